@@ -1,0 +1,40 @@
+# Shared by scripts/demo and scripts/test: install missing Debian packages, configure, build.
+# Sourced, not run. Every function is idempotent, so a second run only rebuilds what changed.
+
+GF_ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/../.." && pwd)"
+
+# Debian packages the build, the tests and the demo need.
+GF_PACKAGES=(
+  build-essential cmake ninja-build pkg-config git
+  libbullet-dev libbullet-extras-dev libeigen3-dev libassimp-dev
+  libosmesa6-dev libimgui-dev libstb-dev zlib1g-dev
+  libgtest-dev libgmock-dev libbenchmark-dev
+  libcli11-dev libtomlplusplus-dev nlohmann-json3-dev
+  ffmpeg
+)
+
+gf_log() { printf '[godfinger] %s\n' "$*" >&2; }
+
+# Installs the packages of GF_PACKAGES that dpkg does not report as installed.
+gf_install_packages() {
+  local missing=()
+  for pkg in "${GF_PACKAGES[@]}"; do
+    dpkg-query -W -f='${Status}' "$pkg" 2>/dev/null | grep -q 'install ok installed' || missing+=("$pkg")
+  done
+  [ ${#missing[@]} -eq 0 ] && return 0
+  gf_log "installing missing Debian packages: ${missing[*]}"
+  local sudo=""
+  [ "$(id -u)" -ne 0 ] && sudo="sudo"
+  $sudo apt-get update -q
+  DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -q --no-install-recommends "${missing[@]}"
+}
+
+# Configures (first run only) and builds one CMake preset: release, debug, asan-ubsan or tsan.
+gf_build() {
+  local preset="$1"
+  cd "$GF_ROOT"
+  if [ ! -f "build/$preset/build.ninja" ]; then
+    cmake --preset "$preset"
+  fi
+  cmake --build --preset "$preset"
+}

@@ -1,0 +1,95 @@
+// The god-finger contact patch (Talvas, Marchal, Lecuyer, 3DUI 2013, Section 3): from one
+// contact point to sub-god-objects (SGOs) spread over the object's mesh. A pure function of its
+// inputs: no Bullet, no globals. Everything is in the touched object's local frame.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <vector>
+
+#include "sim/mesh.hpp"
+
+namespace gf::sim {
+
+/// Largest number of SGOs one finger may ask for.
+inline constexpr int kMaxSgo = 64;
+
+/// God-finger settings. Defaults suit a fingertip on objects of a few centimetres.
+struct PatchSettings {
+  int n_sgo = 8;                    ///< number of radial vectors / SGOs (3..kMaxSgo)
+  double r_max = 0.010;             ///< r_max of Eq. 1: largest contact radius (m)
+  double d0 = 0.004;                ///< D'_0 of Eq. 1: press depth scale (m)
+  double alpha = 2.0;               ///< alpha of Eq. 2: stretch base (>= 1; 1 = no stretch)
+  double stretch_length = 0.004;    ///< length making Eq. 2's exponent dimensionless (m)
+  double max_stretch_exponent = 3;  ///< |exponent| of Eq. 2 is clamped to this (dimensionless)
+  double tau_a = 1.0471975511965976;  ///< tau_a: angular threshold (rad; default 60 deg)
+  double friction = 1.0;            ///< theta: friction coefficient of the finger pad
+  bool tangential_stretch = true;   ///< effect switch: Eq. 2 stretch (off: d_i = r)
+  bool angular_threshold = true;    ///< effect switch: stop at faces beyond tau_a
+  bool friction_cone = true;        ///< effect switch: stop at faces beyond atan(theta)
+  int max_face_crossings = 256;     ///< bound on edges one walk may cross
+  double feature_tolerance = 1e-7;  ///< distance (m) within which a hit is an edge/vertex hit
+};
+
+/// The contact as collision detection reports it, in the object's local frame.
+struct PatchContact {
+  Vec3 point = Vec3::Zero();           ///< c_p: contact point on the object surface (m)
+  Vec3 outward_normal = Vec3::UnitY(); ///< unit surface normal, from the object to the proxy
+  double distance = 0.0;               ///< c_d: signed separation, negative when penetrating (m)
+};
+
+/// Why the walk of one radial vector ended.
+enum class WalkStop : std::uint8_t {
+  kDistance,          ///< travelled the full d_i
+  kAngularThreshold,  ///< next face beyond tau_a (paper Fig. 2c)
+  kFrictionCone,      ///< next face outside the friction cone
+  kBoundary,          ///< reached a boundary edge of an open mesh
+  kCrossingLimit,     ///< crossed max_face_crossings edges
+  kDegenerate,        ///< direction vanished on a face (numerically degenerate geometry)
+  kDropped,           ///< radial vector dropped at an edge or vertex contact (paper Fig. 3b)
+};
+
+/// One sub-god-object.
+struct Sgo {
+  Vec3 position = Vec3::Zero();  ///< on the mesh surface (m)
+  int face = -1;                 ///< triangle holding it
+  int radial = -1;               ///< index of its radial vector
+  double walked = 0.0;           ///< length of the walked path (m)
+  WalkStop stop = WalkStop::kDistance;
+};
+
+/// Result of one patch computation. Reused between calls: after the first call with a given
+/// n_sgo and path length, computing into the same Patch does not allocate.
+struct Patch {
+  bool valid = false;                      ///< false when the input was rejected
+  double press_depth = 0.0;                ///< v . c_n with c_n into the object (m)
+  double radius = 0.0;                     ///< r of Eq. 1 (m)
+  SurfacePoint hit;                        ///< contact point on the mesh with its feature
+  Vec3 press_dir = Vec3::Zero();           ///< c_n of the paper: -outward_normal
+  std::vector<Vec3> radial;                ///< r_i: unit radial vectors, on their start face
+  std::vector<double> distance;            ///< d_i of Eq. 2 (m)
+  std::vector<WalkStop> radial_stop;       ///< how each radial vector's walk ended
+  std::vector<Sgo> sgos;                   ///< SGOs of the radial vectors not dropped
+  std::vector<Vec3> path_points;           ///< walked paths, concatenated (m)
+  std::vector<std::int32_t> path_offsets;  ///< SGO k's path: [offsets[k], offsets[k+1])
+};
+
+/// Eq. 1: contact radius (m) for press depth v . c_n (m). Zero when not pressing.
+double contactRadius(double press_depth, double r_max, double d0);
+
+/// Eq. 2, with the exponent made dimensionless by `stretch_length` and clamped:
+/// d_i = r * alpha^clamp(-(v . r_i) / stretch_length).
+double stretchedDistance(double radius, const Vec3& v, const Vec3& radial_unit,
+                         const PatchSettings& s);
+
+/// True when the settings are usable; otherwise `why` says which field is wrong.
+bool validSettings(const PatchSettings& s, const char** why);
+
+/// Computes the god-finger patch: Eq. 1 radius, n radial vectors mapped onto the faces around
+/// the contact (dropped beyond the thresholds), Eq. 2 distances and the Algorithm 1 walk.
+/// `v` is p_I - p_GO (device minus god-object, m). Non-finite input or invalid settings give
+/// `valid == false` and no SGO. No radius (not pressing) gives no SGO. Any thread.
+void computePatch(const Mesh& mesh, const PatchContact& contact, const Vec3& v,
+                  const PatchSettings& settings, Patch& out);
+
+}  // namespace gf::sim

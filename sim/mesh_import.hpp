@@ -1,0 +1,32 @@
+// Mesh files (OBJ, PLY, STL, OFF, glTF, and the rest assimp reads) into welded Meshes.
+#pragma once
+
+#include <stdexcept>
+#include <string>
+
+#include "sim/mesh.hpp"
+
+namespace gf::sim {
+
+/// A mesh file that cannot be used; what() names the file and the reason.
+class MeshLoadError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+/// Positions and triangles as read from a file, before welding (metres after `scale`).
+struct RawMesh {
+  std::vector<Vec3> positions;
+  std::vector<std::array<std::int32_t, 3>> triangles;
+};
+
+/// Reads every triangle of every mesh in the file, node transforms applied, times `scale`.
+/// Points and lines are ignored. Throws MeshLoadError when the file cannot be read or holds no
+/// triangle, or a coordinate is not finite. Allocates; call at load time only.
+RawMesh readMeshFile(const std::string& path, double scale = 1.0);
+
+/// readMeshFile followed by buildMesh; throws MeshLoadError also when nothing is left after
+/// dropping degenerate triangles.
+Mesh loadMesh(const std::string& path, double scale = 1.0, const MeshBuildSettings& settings = {});
+
+}  // namespace gf::sim

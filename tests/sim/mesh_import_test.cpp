@@ -1,0 +1,97 @@
+#include "sim/mesh_import.hpp"
+
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+
+namespace gf::sim {
+namespace {
+
+namespace fs = std::filesystem;
+
+// The tetrahedron (0,0,0) (1,0,0) (0,1,0) (0,0,1), outward winding, in each format.
+const char* kObj = "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\n";
+const char* kOff = "OFF\n4 4 0\n0 0 0\n1 0 0\n0 1 0\n0 0 1\n3 0 2 1\n3 0 1 3\n3 0 3 2\n3 1 2 3\n";
+const char* kPly =
+    "ply\nformat ascii 1.0\nelement vertex 4\nproperty float x\nproperty float y\n"
+    "property float z\nelement face 4\nproperty list uchar int vertex_indices\nend_header\n"
+    "0 0 0\n1 0 0\n0 1 0\n0 0 1\n3 0 2 1\n3 0 1 3\n3 0 3 2\n3 1 2 3\n";
+const char* kGltf =
+    R"({"asset":{"version":"2.0"},"scene":0,"scenes":[{"nodes":[0]}],"nodes":[{"mesh":0}],)"
+    R"("meshes":[{"primitives":[{"attributes":{"POSITION":0},"indices":1}]}],"buffers":[{"byteLength":72,)"
+    R"("uri":"data:application/octet-stream;base64,)"
+    R"(AAAAAAAAAAAAAAAAAACAPwAAAAAAAAAAAAAAAAAAgD8AAAAAAAAAAAAAAAAAAIA/AAACAAEAAAABAAMAAAADAAIAAQACAAMA"}],)"
+    R"("bufferViews":[{"buffer":0,"byteOffset":0,"byteLength":48},{"buffer":0,"byteOffset":48,)"
+    R"("byteLength":24}],"accessors":[{"bufferView":0,"componentType":5126,"count":4,"type":"VEC3",)"
+    R"("min":[0,0,0],"max":[1,1,1]},{"bufferView":1,"componentType":5123,"count":12,"type":"SCALAR"}]})";
+
+std::string stlText() {
+  const double v[4][3] = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
+  const int f[4][3] = {{0, 2, 1}, {0, 1, 3}, {0, 3, 2}, {1, 2, 3}};
+  std::string s = "solid tet\n";
+  for (const auto& t : f) {
+    s += "facet normal 0 0 0\nouter loop\n";
+    for (int k : t) {
+      s += "vertex " + std::to_string(v[k][0]) + " " + std::to_string(v[k][1]) + " " +
+           std::to_string(v[k][2]) + "\n";
+    }
+    s += "endloop\nendfacet\n";
+  }
+  return s + "endsolid tet\n";
+}
+
+class MeshImport : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = fs::temp_directory_path() /
+           ("gf_mesh_import_" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
+    fs::create_directories(dir_);
+  }
+  void TearDown() override { fs::remove_all(dir_); }
+  std::string write(const std::string& name, const std::string& text) {
+    const fs::path p = dir_ / name;
+    std::ofstream(p) << text;
+    return p.string();
+  }
+  fs::path dir_;
+};
+
+TEST_F(MeshImport, ReadsEveryFormatAsTheSameClosedTetrahedron) {
+  const std::pair<const char*, std::string> files[] = {
+      {"tet.obj", kObj}, {"tet.off", kOff}, {"tet.ply", kPly}, {"tet.stl", stlText()}, {"tet.gltf", kGltf}};
+  for (const auto& [name, text] : files) {
+    SCOPED_TRACE(name);
+    const Mesh m = loadMesh(write(name, text), 2.0);
+    EXPECT_EQ(m.vertexCount(), 4) << "STL repeats vertices per facet: welding joins them";
+    EXPECT_EQ(m.faceCount(), 4);
+    EXPECT_EQ(m.report().boundary_edges, 0);
+    EXPECT_NEAR(std::abs(m.signedVolume()), 8.0 / 6.0, 1e-6) << "scale 2 gives volume 8/6";
+  }
+}
+
+TEST_F(MeshImport, MissingFileNamesThePath) {
+  const std::string path = (dir_ / "nope.obj").string();
+  try {
+    loadMesh(path);
+    FAIL() << "expected MeshLoadError";
+  } catch (const MeshLoadError& e) {
+    EXPECT_NE(std::string(e.what()).find(path), std::string::npos) << e.what();
+  }
+}
+
+TEST_F(MeshImport, FileWithoutTrianglesIsAnError) {
+  EXPECT_THROW(loadMesh(write("points.obj", "v 0 0 0\nv 1 0 0\n")), MeshLoadError);
+}
+
+TEST_F(MeshImport, AllDegenerateTrianglesIsAnError) {
+  EXPECT_THROW(loadMesh(write("flat.obj", "v 0 0 0\nv 1 0 0\nv 2 0 0\nf 1 2 3\n")), MeshLoadError);
+}
+
+TEST_F(MeshImport, BadScaleIsAnError) {
+  EXPECT_THROW(loadMesh(write("tet.obj", kObj), 0.0), MeshLoadError);
+  EXPECT_THROW(loadMesh(write("tet2.obj", kObj), NAN), MeshLoadError);
+}
+
+}  // namespace
+}  // namespace gf::sim
