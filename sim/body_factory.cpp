@@ -1,0 +1,174 @@
+#include "sim/body_factory.hpp"
+
+#include <BulletCollision/Gimpact/btGImpactShape.h>
+
+#include <Eigen/Eigenvalues>
+#include <stdexcept>
+
+#include "sim/mesh_import.hpp"
+#include "sim/primitives.hpp"
+
+namespace gf::sim {
+namespace {
+
+// Collision margin of boxes, cylinders, hulls and meshes (m): small, so edges stay sharp.
+constexpr double kMargin = 0.0005;
+// Default walk-mesh resolutions per shape.
+constexpr int kSphereSubdivisions = 4;
+constexpr int kBoxSegments = 4;
+constexpr int kRoundSegments = 64;
+constexpr double kPlaneHalfSize = 50.0;
+
+[[noreturn]] void fail(const BodyDesc& d, const std::string& what) {
+  throw std::invalid_argument("body '" + d.name + "': " + what);
+}
+
+// Volume, centroid and inertia per unit density of a closed mesh (signed tetrahedra).
+struct MassProperties {
+  double volume = 0.0;
+  Vec3 centroid = Vec3::Zero();
+  Eigen::Matrix3d inertia = Eigen::Matrix3d::Zero();  // about the centroid, unit density
+};
+
+MassProperties massProperties(const Mesh& m) {
+  // Covariance of the canonical tetrahedron (0, e1, e2, e3), unit density.
+  Eigen::Matrix3d c0;
+  c0 << 2, 1, 1, 1, 2, 1, 1, 1, 2;
+  c0 /= 120.0;
+  MassProperties mp;
+  Eigen::Matrix3d cov = Eigen::Matrix3d::Zero();
+  for (int f = 0; f < m.faceCount(); ++f) {
+    Eigen::Matrix3d a;
+    a << m.corner(f, 0), m.corner(f, 1), m.corner(f, 2);
+    const double det = a.determinant();
+    mp.volume += det / 6.0;
+    mp.centroid += det / 24.0 * (m.corner(f, 0) + m.corner(f, 1) + m.corner(f, 2));
+    cov += det * a * c0 * a.transpose();
+  }
+  if (!(mp.volume > 0.0)) return mp;
+  mp.centroid /= mp.volume;
+  cov -= mp.volume * mp.centroid * mp.centroid.transpose();
+  mp.inertia = cov.trace() * Eigen::Matrix3d::Identity() - cov;
+  return mp;
+}
+
+// Moves a loaded mesh into its principal frame and fills mass properties of `out`.
+std::shared_ptr<const Mesh> toBodyFrame(const BodyDesc& d, const Mesh& mesh, BodyShapes& out) {
+  const MassProperties mp = massProperties(mesh);
+  if (d.mass > 0.0 && !(mp.volume > 1e-15)) {
+    fail(d, "mesh '" + d.mesh_path + "' encloses no volume (open or inside-out?): a dynamic "
+            "mesh body needs a closed, outward-wound mesh");
+  }
+  Eigen::Matrix3d axes = Eigen::Matrix3d::Identity();
+  Vec3 principal = Vec3::Zero();
+  if (mp.volume > 1e-15) {
+    Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(mp.inertia);
+    axes = eig.eigenvectors();
+    if (axes.determinant() < 0) axes.col(2) *= -1.0;
+    principal = eig.eigenvalues() * (d.mass / mp.volume);
+  }
+  std::vector<Vec3> pos;
+  pos.reserve(mesh.vertexCount());
+  for (const Vec3& p : mesh.vertices()) pos.push_back(axes.transpose() * (p - mp.centroid));
+  const btMatrix3x3 basis(axes(0, 0), axes(0, 1), axes(0, 2), axes(1, 0), axes(1, 1), axes(1, 2),
+                          axes(2, 0), axes(2, 1), axes(2, 2));
+  out.desc_from_body = btTransform(basis, toBt(mp.centroid));
+  out.local_inertia = toBt(principal);
+  return std::make_shared<const Mesh>(buildMesh(pos, mesh.triangles()));
+}
+
+void makeMeshShapes(const BodyDesc& d, BodyShapes& out) {
+  if (d.mesh_path.empty()) fail(d, "mesh_path is empty");
+  const Mesh loaded = loadMesh(d.mesh_path, d.mesh_scale);
+  out.walk_mesh = toBodyFrame(d, loaded, out);
+  const Mesh& m = *out.walk_mesh;
+  if (d.shape == ShapeKind::kConvexHull) {
+    auto hull = std::make_unique<btConvexHullShape>();
+    for (const Vec3& p : m.vertices()) hull->addPoint(toBt(p), false);
+    hull->recalcLocalAabb();
+    hull->setMargin(kMargin);
+    out.shape = std::move(hull);
+    return;
+  }
+  // Concave: Bullet reads our welded arrays in place (doubles, 32-bit indices).
+  btIndexedMesh part;
+  part.m_numTriangles = m.faceCount();
+  part.m_triangleIndexBase = reinterpret_cast<const unsigned char*>(m.triangles().data());
+  part.m_triangleIndexStride = sizeof(std::array<std::int32_t, 3>);
+  part.m_numVertices = m.vertexCount();
+  part.m_vertexBase = reinterpret_cast<const unsigned char*>(m.vertices().data());
+  part.m_vertexStride = sizeof(Vec3);
+  part.m_indexType = PHY_INTEGER;
+  part.m_vertexType = PHY_DOUBLE;
+  auto arrays = std::make_unique<btTriangleIndexVertexArray>();
+  arrays->addIndexedMesh(part, PHY_INTEGER);
+  if (d.mass > 0.0) {
+    auto gimpact = std::make_unique<btGImpactMeshShape>(arrays.get());
+    gimpact->setMargin(kMargin);
+    gimpact->updateBound();
+    out.shape = std::move(gimpact);
+  } else {
+    out.shape = std::make_unique<btBvhTriangleMeshShape>(arrays.get(), true);
+  }
+  out.mesh_interface = std::move(arrays);
+}
+
+int resolution(const BodyDesc& d, int fallback) {
+  return d.walk_resolution > 0 ? d.walk_resolution : fallback;
+}
+
+}  // namespace
+
+BodyShapes makeBodyShapes(const BodyDesc& d) {
+  if (!(d.mass >= 0.0) || !std::isfinite(d.mass)) fail(d, "mass must be finite and >= 0");
+  if (!(d.friction >= 0.0) || !std::isfinite(d.friction)) fail(d, "friction must be finite and >= 0");
+  if (!d.position.allFinite() || !d.orientation.coeffs().allFinite() ||
+      d.orientation.norm() < 1e-9) {
+    fail(d, "pose must be finite with a non-zero orientation");
+  }
+  BodyShapes out;
+  try {
+    switch (d.shape) {
+      case ShapeKind::kSphere:
+        out.walk_mesh = std::make_shared<const Mesh>(tessellateSphere(d.radius, resolution(d, kSphereSubdivisions)));
+        out.shape = std::make_unique<btSphereShape>(d.radius);
+        break;
+      case ShapeKind::kBox:
+        out.walk_mesh = std::make_shared<const Mesh>(tessellateBox(d.half_extents, resolution(d, kBoxSegments)));
+        out.shape = std::make_unique<btBoxShape>(toBt(d.half_extents));
+        out.shape->setMargin(kMargin);
+        break;
+      case ShapeKind::kCylinder:
+        out.walk_mesh = std::make_shared<const Mesh>(
+            tessellateCylinder(d.radius, d.half_height, resolution(d, kRoundSegments)));
+        out.shape = std::make_unique<btCylinderShape>(btVector3(d.radius, d.half_height, d.radius));
+        out.shape->setMargin(kMargin);
+        break;
+      case ShapeKind::kCapsule:
+        out.walk_mesh = std::make_shared<const Mesh>(
+            tessellateCapsule(d.radius, d.half_height, resolution(d, kRoundSegments)));
+        out.shape = std::make_unique<btCapsuleShape>(d.radius, 2.0 * d.half_height);
+        break;
+      case ShapeKind::kPlane:
+        if (d.mass != 0.0) fail(d, "a plane must be static (mass 0)");
+        out.walk_mesh = std::make_shared<const Mesh>(tessellatePlane(kPlaneHalfSize, resolution(d, 1)));
+        out.shape = std::make_unique<btStaticPlaneShape>(btVector3(0, 1, 0), 0.0);
+        break;
+      case ShapeKind::kConvexHull:
+      case ShapeKind::kConcaveMesh:
+        makeMeshShapes(d, out);
+        break;
+    }
+  } catch (const MeshLoadError& e) {
+    fail(d, e.what());
+  } catch (const std::invalid_argument& e) {
+    const std::string what = e.what();
+    if (what.rfind("body '", 0) == 0) throw;
+    fail(d, what);
+  }
+  const bool is_mesh = d.shape == ShapeKind::kConvexHull || d.shape == ShapeKind::kConcaveMesh;
+  if (d.mass > 0.0 && !is_mesh) out.shape->calculateLocalInertia(d.mass, out.local_inertia);
+  return out;
+}
+
+}  // namespace gf::sim

@@ -1,0 +1,30 @@
+// Builds the Bullet collision shape and the walk mesh of a body description. Internal to sim/.
+#pragma once
+
+#include <btBulletDynamicsCommon.h>
+
+#include <memory>
+
+#include "sim/scene_desc.hpp"
+
+namespace gf::sim {
+
+/// Everything a body needs besides its btRigidBody. The walk mesh is in the body frame (the
+/// frame of the collision shape: centre of mass at the origin, principal axes for meshes).
+struct BodyShapes {
+  std::shared_ptr<const Mesh> walk_mesh;
+  std::unique_ptr<btStridingMeshInterface> mesh_interface;  ///< concave meshes only
+  std::unique_ptr<btCollisionShape> shape;
+  btVector3 local_inertia{0, 0, 0};  ///< kg m^2, principal
+  /// Transform from the description's frame (mesh file frame, scaled) to the body frame.
+  btTransform desc_from_body = btTransform::getIdentity();
+};
+
+/// Creates shapes for `desc`. Throws std::invalid_argument (or MeshLoadError) naming the field
+/// and body when the description cannot be built. Allocates; call at load time only.
+BodyShapes makeBodyShapes(const BodyDesc& desc);
+
+inline btVector3 toBt(const Vec3& v) { return {v.x(), v.y(), v.z()}; }
+inline Vec3 toEigen(const btVector3& v) { return {v.x(), v.y(), v.z()}; }
+
+}  // namespace gf::sim

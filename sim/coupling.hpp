@@ -1,0 +1,30 @@
+// The god-object proxy and its spring-damper virtual coupling to the device.
+#pragma once
+
+#include "sim/mesh.hpp"
+
+namespace gf::sim {
+
+/// Spring-damper between device and proxy (Colgate et al. 1995 virtual coupling).
+struct CouplingSettings {
+  double stiffness = 800.0;  ///< N/m
+  double damping = 10.0;     ///< N s/m, on the device-proxy relative velocity (zeta ~ 0.56)
+  double max_force = 40.0;   ///< N: the coupling force is clamped to this magnitude
+};
+
+/// The proxy: a small sphere, rotation locked and gravity compensated.
+struct ProxySettings {
+  double radius = 0.008;             ///< m
+  /// kg. Light proxies converge slowly against heavy objects in Bullet's iterative solver
+  /// (the god-finger then creeps under a sustained torque); 0.1 kg holds the pinch within 1 deg.
+  double mass = 0.1;
+  double contact_stiffness = 20000;  ///< N/m: total over the true contact and its SGOs
+  double contact_damping = 20.0;     ///< N s/m: total over the true contact and its SGOs
+};
+
+/// Force (N) the coupling applies to the proxy; the device feels its opposite. Clamped to
+/// max_force; zero for non-finite input. Any thread; does not allocate.
+Vec3 couplingForce(const CouplingSettings& s, const Vec3& device_pos, const Vec3& device_vel,
+                   const Vec3& proxy_pos, const Vec3& proxy_vel);
+
+}  // namespace gf::sim

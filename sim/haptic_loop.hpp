@@ -1,0 +1,48 @@
+// The fixed-step haptic loop and its two clocks. The loop owns no Bullet state; it drives a
+// World from the thread that calls run().
+#pragma once
+
+#include <functional>
+#include <vector>
+
+#include "sim/world.hpp"
+
+namespace gf::sim {
+
+/// How simulated time relates to wall-clock time.
+enum class ClockMode {
+  kOffline,   ///< as fast as possible; deterministic
+  kRealtime,  ///< step k starts at start + k dt on steady_clock (absolute deadlines)
+};
+
+/// Settings of one run.
+struct LoopSettings {
+  double rate_hz = 1000.0;          ///< haptic rate (steps per simulated second)
+  double duration = 1.0;            ///< simulated seconds to run
+  ClockMode clock = ClockMode::kOffline;
+  double late_threshold = 0.0005;   ///< s: a realtime step starting later than this is late
+};
+
+/// Timing statistics of a run (wall-clock, so not deterministic).
+struct LoopStats {
+  long steps = 0;
+  double step_median_us = 0.0;  ///< cost of World::step
+  double step_p99_us = 0.0;
+  double step_max_us = 0.0;
+  long late_steps = 0;          ///< realtime: steps started more than late_threshold late
+  double max_lateness_us = 0.0; ///< realtime: worst start lateness
+  double wall_seconds = 0.0;
+};
+
+/// Called after every step with the world (haptic thread). Keep it cheap.
+using StepObserver = std::function<void(const World&)>;
+
+/// Runs `world` for settings.duration at a constant dt = 1/rate_hz. Devices are sampled at the
+/// start time of each step, in finger order. Allocates only before the first step.
+LoopStats runHapticLoop(World& world, const std::vector<DeviceTrack>& devices,
+                        const LoopSettings& settings, const StepObserver& observer);
+
+/// Number of steps a run of `duration` seconds at `rate_hz` takes (rounded to nearest).
+long stepCount(double duration, double rate_hz);
+
+}  // namespace gf::sim

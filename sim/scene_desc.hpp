@@ -1,0 +1,75 @@
+// Read-only description of a session: bodies, fingers, effects and world settings. A World is
+// built from it; a run can be rebuilt or replayed from the same description.
+#pragma once
+
+#include <Eigen/Geometry>
+#include <string>
+#include <vector>
+
+#include "sim/coupling.hpp"
+#include "sim/device.hpp"
+#include "sim/god_finger.hpp"
+
+namespace gf::sim {
+
+/// Effects a scene asks for. What is off is neither built nor run.
+struct EffectSet {
+  bool gravity = true;             ///< world gravity on dynamic bodies
+  bool friction = true;            ///< friction on every contact (off: frictionless world)
+  bool god_finger = true;          ///< SGOs around each finger contact (off: god-objects)
+  bool tangential_stretch = true;  ///< Eq. 2 stretch of the patch
+  bool angular_threshold = true;   ///< walk stops at faces beyond tau_a
+  bool friction_cone = true;       ///< walk stops at faces outside the friction cone
+  bool force_feedback = true;      ///< feedback force to the device is computed and recorded
+};
+
+/// Shape of a body. Physics collides with the exact primitive; the walk uses a tessellation.
+enum class ShapeKind { kSphere, kBox, kCylinder, kCapsule, kPlane, kConvexHull, kConcaveMesh };
+
+/// One rigid body.
+struct BodyDesc {
+  std::string name;
+  ShapeKind shape = ShapeKind::kBox;
+  Vec3 half_extents = Vec3::Constant(0.05);  ///< box half extents (m)
+  double radius = 0.05;                      ///< sphere, cylinder, capsule radius (m)
+  double half_height = 0.05;                 ///< cylinder / capsule half height along y (m)
+  std::string mesh_path;                     ///< hull and concave meshes: file to load
+  double mesh_scale = 1.0;                   ///< factor from mesh file units to metres
+  int walk_resolution = 0;                   ///< tessellation of the walk mesh; 0: per shape default
+  double mass = 0.1;                         ///< kg; 0 makes the body static
+  double friction = 0.8;                     ///< Coulomb coefficient against other bodies
+  double restitution = 0.0;                  ///< coefficient of restitution
+  Vec3 position = Vec3::Zero();              ///< initial position of the centre of mass (m)
+  Eigen::Quaterniond orientation = Eigen::Quaterniond::Identity();
+  Vec3 colour = Vec3(0.7, 0.7, 0.7);         ///< linear RGB in 0..1, for rendering
+};
+
+/// One finger: a god-object proxy coupled to a device, with god-finger settings.
+struct FingerDesc {
+  std::string name;
+  PatchSettings patch;      ///< god-finger settings; patch.n_sgo = 0 is the classic god-object
+  CouplingSettings coupling;
+  ProxySettings proxy;
+  DeviceTrack device;       ///< where the device is at each time
+};
+
+/// World-wide physics settings.
+struct WorldSettings {
+  Vec3 gravity = Vec3(0, -9.81, 0);  ///< m/s^2, y up
+  int solver_iterations = 30;        ///< sequential-impulse iterations per step
+  double haptic_rate_hz = 1000.0;    ///< fixed step rate of the haptic loop
+  double linear_damping = 0.0;       ///< Bullet body damping (1/s) on dynamic bodies
+  double angular_damping = 0.0;
+};
+
+/// A whole session description.
+struct SceneDesc {
+  std::string name;
+  WorldSettings world;
+  EffectSet effects;
+  std::vector<BodyDesc> bodies;
+  std::vector<FingerDesc> fingers;
+  double duration = 5.0;  ///< simulated seconds
+};
+
+}  // namespace gf::sim

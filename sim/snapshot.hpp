@@ -1,0 +1,50 @@
+// Immutable plain-data picture of the world at one instant: what crosses from the haptic
+// thread to the render thread and the recorders. No Bullet types, no pointers into the World.
+#pragma once
+
+#include <Eigen/Geometry>
+#include <string>
+#include <vector>
+
+#include "sim/god_finger.hpp"
+
+namespace gf::sim {
+
+/// One body's pose.
+struct BodySnapshot {
+  Vec3 position = Vec3::Zero();  ///< centre of the description frame (m)
+  Eigen::Quaterniond orientation = Eigen::Quaterniond::Identity();
+};
+
+/// One contact of one finger with one body, with its patch in world coordinates.
+struct ContactSnapshot {
+  int body = -1;                      ///< index into SceneDesc::bodies
+  Vec3 point = Vec3::Zero();          ///< true contact point on the body (m)
+  Vec3 outward_normal = Vec3::UnitY();///< from the body towards the proxy
+  double distance = 0.0;              ///< signed separation (m)
+  double radius = 0.0;                ///< Eq. 1 radius (m)
+  Feature feature = Feature::kFace;
+  std::vector<Vec3> sgos;             ///< SGO positions (m)
+  std::vector<Vec3> path_points;      ///< walked paths, concatenated (m)
+  std::vector<std::int32_t> path_offsets;
+};
+
+/// One finger.
+struct FingerSnapshot {
+  Vec3 device = Vec3::Zero();          ///< device position (m)
+  Vec3 proxy = Vec3::Zero();           ///< proxy centre, the god-object (m)
+  Vec3 coupling_force = Vec3::Zero();  ///< force of the coupling on the proxy (N)
+  Vec3 feedback_force = Vec3::Zero();  ///< force rendered to the device: -coupling (N)
+  int sgo_count = 0;                   ///< SGOs injected this step, over all contacts
+  std::vector<ContactSnapshot> contacts;
+};
+
+/// The world at simulated time `time`.
+struct Snapshot {
+  double time = 0.0;  ///< s
+  long step = 0;
+  std::vector<BodySnapshot> bodies;
+  std::vector<FingerSnapshot> fingers;
+};
+
+}  // namespace gf::sim

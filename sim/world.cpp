@@ -1,0 +1,434 @@
+#include "sim/world.hpp"
+
+#include <BulletCollision/Gimpact/btGImpactCollisionAlgorithm.h>
+
+#include <array>
+#include <stdexcept>
+
+#include "sim/body_factory.hpp"
+#include "sim/contact_injection.hpp"
+
+namespace gf::sim {
+namespace {
+
+// A finger handles at most this many touched bodies per step; further ones stay god-objects.
+constexpr int kMaxContactsPerFinger = 4;
+// Collision group of proxies: they touch bodies, never each other.
+constexpr int kFingerGroup = 1 << 6;
+// Bullet user index marking a proxy (bodies carry their index, >= 0).
+constexpr int kProxyTag = -1;
+
+btTransform poseOf(const Vec3& p, const Eigen::Quaterniond& q) {
+  const Eigen::Quaterniond n = q.normalized();
+  return btTransform(btQuaternion(n.x(), n.y(), n.z(), n.w()), toBt(p));
+}
+
+struct Body {
+  BodyShapes shapes;
+  std::unique_ptr<btRigidBody> rigid;
+};
+
+// One finger's contact with one body during the current step.
+struct FingerContact {
+  int body = -1;
+  TrueContact truth;
+  btPersistentManifold* manifold = nullptr;  // Bullet's, holding the true point
+  Patch patch;
+  std::array<btVector3, kMaxSgo> sgo_world;
+  std::array<WarmStart, kMaxSgo> sgo_warm;  // by SGO, for this step's solve
+  int sgo_count = 0;
+  int first_injected = 0;  // index of its first manifold in World::Impl::injected
+};
+
+// Solved impulses of a finger's contacts, kept from one step to the next. Keyed by body and
+// radial index: SGO i of a patch sits near SGO i of the previous step's patch.
+struct ContactMemory {
+  int body = -1;
+  WarmStart truth;
+  std::array<WarmStart, kMaxSgo> radial;
+};
+
+struct Finger {
+  std::unique_ptr<btSphereShape> shape;
+  std::unique_ptr<btRigidBody> proxy;
+  PatchSettings patch;  // as set, before the effect switches
+  DeviceSample device;
+  Vec3 force = Vec3::Zero();
+  std::array<FingerContact, kMaxContactsPerFinger> contacts;
+  int contact_count = 0;
+  std::array<ContactMemory, kMaxContactsPerFinger> memory;
+};
+
+// Last finite state of a rigid body, for rolling back a step that produced NaN.
+struct SavedState {
+  btTransform transform;
+  btVector3 linear, angular;
+};
+
+void requireFinger(bool ok, const FingerDesc& f, const std::string& what) {
+  if (!ok) throw std::invalid_argument("finger '" + f.name + "': " + what);
+}
+
+void validateFinger(const FingerDesc& f) {
+  const char* why = nullptr;
+  requireFinger(f.patch.n_sgo == 0 || validSettings(f.patch, &why), f, why ? why : "");
+  requireFinger(f.coupling.stiffness > 0 && std::isfinite(f.coupling.stiffness), f,
+                "coupling stiffness must be finite and > 0");
+  requireFinger(f.coupling.damping >= 0 && std::isfinite(f.coupling.damping), f,
+                "coupling damping must be finite and >= 0");
+  requireFinger(f.coupling.max_force > 0 && std::isfinite(f.coupling.max_force), f,
+                "coupling max_force must be finite and > 0");
+  requireFinger(f.proxy.radius > 0 && f.proxy.mass > 0 && f.proxy.contact_stiffness > 0 &&
+                    f.proxy.contact_damping >= 0 && std::isfinite(f.proxy.radius + f.proxy.mass +
+                    f.proxy.contact_stiffness + f.proxy.contact_damping), f,
+                "proxy radius, mass and contact stiffness must be finite and > 0");
+  for (std::size_t k = 0; k < f.device.keyframes.size(); ++k) {
+    const auto& kf = f.device.keyframes[k];
+    requireFinger(std::isfinite(kf.time) && kf.position.allFinite(), f,
+                  "device keyframe " + std::to_string(k) + " is not finite");
+    requireFinger(k == 0 || kf.time > f.device.keyframes[k - 1].time, f,
+                  "device keyframe times must increase (keyframe " + std::to_string(k) + ")");
+  }
+}
+
+}  // namespace
+
+struct World::Impl final : SolveHooks {
+  explicit Impl(const SceneDesc& d);
+  ~Impl() override;
+  void beforeSolve() override;
+  void afterSolve() override;
+
+  void addBody(int index, const BodyDesc& d);
+  void addFinger(int index, const FingerDesc& d);
+  void handleProxyManifold(btPersistentManifold& m, const btCollisionObject* proxy);
+  void computeContactPatch(Finger& f, FingerContact& c);
+  void rememberImpulses(Finger& f);
+  PatchSettings effectivePatch(const Finger& f) const;
+  void saveStates();
+  bool statesFinite() const;
+  void restoreStates();
+  std::vector<btRigidBody*> allRigidBodies() const;
+
+  SceneDesc desc;
+  btDefaultCollisionConfiguration config;
+  btCollisionDispatcher dispatcher{&config};
+  btDbvtBroadphase broadphase;
+  btSequentialImpulseConstraintSolver solver;
+  GodFingerDynamicsWorld world{&dispatcher, &broadphase, &solver, &config, this};
+  std::vector<Body> bodies;
+  std::vector<Finger> fingers;
+  std::vector<btPersistentManifold*> injected;
+  std::vector<SavedState> saved;
+  double time = 0.0;
+  WorldCounters counters;
+};
+
+World::Impl::Impl(const SceneDesc& d) : desc(d) {
+  btGImpactCollisionAlgorithm::registerAlgorithm(&dispatcher);
+  world.setGravity(desc.effects.gravity ? toBt(desc.world.gravity) : btVector3(0, 0, 0));
+  btContactSolverInfo& info = world.getSolverInfo();
+  info.m_numIterations = desc.world.solver_iterations;
+  info.m_warmstartingFactor = 1.0;
+  // Direction caching lets our points keep fixed friction directions, so that their
+  // impulses can warm-start the next step; Bullet's own contacts are not affected.
+  info.m_solverMode = SOLVER_USE_WARMSTARTING | SOLVER_SIMD | SOLVER_USE_2_FRICTION_DIRECTIONS |
+                      SOLVER_ENABLE_FRICTION_DIRECTION_CACHING;
+  bodies.resize(desc.bodies.size());
+  for (std::size_t i = 0; i < desc.bodies.size(); ++i) addBody(static_cast<int>(i), desc.bodies[i]);
+  fingers.resize(desc.fingers.size());
+  for (std::size_t i = 0; i < desc.fingers.size(); ++i) addFinger(static_cast<int>(i), desc.fingers[i]);
+  injected.reserve(desc.fingers.size() * kMaxContactsPerFinger * (kMaxSgo / MANIFOLD_CACHE_SIZE + 1));
+  saved.resize(bodies.size() + fingers.size());
+}
+
+World::Impl::~Impl() {
+  for (btRigidBody* r : allRigidBodies()) world.removeRigidBody(r);
+}
+
+void World::Impl::addBody(int index, const BodyDesc& d) {
+  Body& b = bodies[index];
+  b.shapes = makeBodyShapes(d);
+  btRigidBody::btRigidBodyConstructionInfo ci(d.mass, nullptr, b.shapes.shape.get(), b.shapes.local_inertia);
+  ci.m_startWorldTransform = poseOf(d.position, d.orientation) * b.shapes.desc_from_body;
+  ci.m_friction = desc.effects.friction ? d.friction : 0.0;
+  ci.m_restitution = d.restitution;
+  ci.m_linearDamping = desc.world.linear_damping;
+  ci.m_angularDamping = desc.world.angular_damping;
+  b.rigid = std::make_unique<btRigidBody>(ci);
+  b.rigid->setUserIndex(index);
+  if (d.mass > 0.0) b.rigid->setActivationState(DISABLE_DEACTIVATION);
+  world.addRigidBody(b.rigid.get());
+}
+
+void World::Impl::addFinger(int index, const FingerDesc& d) {
+  validateFinger(d);
+  Finger& f = fingers[index];
+  f.patch = d.patch;
+  f.device = d.device.sample(0.0);
+  f.shape = std::make_unique<btSphereShape>(d.proxy.radius);
+  btVector3 inertia(0, 0, 0);
+  f.shape->calculateLocalInertia(d.proxy.mass, inertia);
+  btRigidBody::btRigidBodyConstructionInfo ci(d.proxy.mass, nullptr, f.shape.get(), inertia);
+  ci.m_startWorldTransform = btTransform(btQuaternion::getIdentity(), toBt(f.device.position));
+  f.proxy = std::make_unique<btRigidBody>(ci);
+  f.proxy->setUserIndex(kProxyTag);
+  f.proxy->setUserIndex2(index);
+  f.proxy->setAngularFactor(0.0);  // rotation locked: a 3-DOF proxy
+  f.proxy->setActivationState(DISABLE_DEACTIVATION);
+  f.proxy->setFlags(f.proxy->getFlags() | BT_DISABLE_WORLD_GRAVITY);
+  world.addRigidBody(f.proxy.get(), kFingerGroup, btBroadphaseProxy::AllFilter & ~kFingerGroup);
+  f.proxy->setGravity(btVector3(0, 0, 0));  // gravity compensated
+}
+
+PatchSettings World::Impl::effectivePatch(const Finger& f) const {
+  PatchSettings s = f.patch;
+  s.tangential_stretch &= desc.effects.tangential_stretch;
+  s.angular_threshold &= desc.effects.angular_threshold;
+  s.friction_cone &= desc.effects.friction_cone;
+  if (!desc.effects.friction) s.friction = 0.0;
+  return s;
+}
+
+void World::Impl::beforeSolve() {
+  for (Finger& f : fingers) f.contact_count = 0;
+  const int n = dispatcher.getNumManifolds();  // injected manifolds are appended after these
+  for (int i = 0; i < n; ++i) {
+    btPersistentManifold& m = *dispatcher.getManifoldByIndexInternal(i);
+    const btCollisionObject* b0 = m.getBody0();
+    const btCollisionObject* b1 = m.getBody1();
+    if (b0->getUserIndex() == kProxyTag) handleProxyManifold(m, b0);
+    else if (b1->getUserIndex() == kProxyTag) handleProxyManifold(m, b1);
+  }
+}
+
+void World::Impl::handleProxyManifold(btPersistentManifold& m, const btCollisionObject* proxy) {
+  Finger& f = fingers[proxy->getUserIndex2()];
+  const FingerDesc& fd = desc.fingers[proxy->getUserIndex2()];
+  TrueContact truth;
+  if (!deepestContact(m, proxy, truth)) return;
+  FingerContact scratch;
+  const bool tracked = f.contact_count < kMaxContactsPerFinger;
+  FingerContact& c = tracked ? f.contacts[f.contact_count++] : scratch;
+  c.body = truth.object->getUserIndex();
+  c.truth = truth;
+  c.manifold = &m;
+  c.sgo_count = 0;
+  c.patch.valid = false;
+  c.patch.sgos.clear();
+  if (tracked && desc.effects.god_finger && f.patch.n_sgo > 0 && truth.distance <= 0.0) {
+    computeContactPatch(f, c);
+  }
+  // The total contact stiffness and damping are shared by the true contact and its SGOs.
+  const double share = 1.0 / (1 + c.sgo_count);
+  const PointMaterial mat{fd.proxy.contact_stiffness * share, fd.proxy.contact_damping * share,
+                          desc.effects.friction ? f.patch.friction : 0.0};
+  // Warm start from the previous step's impulses of the same body (Bullet scales them).
+  const int slot = static_cast<int>(&c - f.contacts.data());
+  const ContactMemory* mem = tracked && f.memory[slot].body == c.body ? &f.memory[slot] : nullptr;
+  keepOnlyPoint(m, truth.index, mat, mem ? mem->truth : WarmStart{});
+  if (c.sgo_count > 0) {
+    for (int i = 0; i < c.sgo_count; ++i) {
+      c.sgo_warm[i] = mem ? mem->radial[c.patch.sgos[i].radial] : WarmStart{};
+    }
+    c.first_injected = static_cast<int>(injected.size());
+    injectPoints(dispatcher, proxy, truth.object, c.sgo_world.data(), c.sgo_count,
+                 truth.outward_normal, truth.distance, mat, c.sgo_warm.data(), injected);
+    counters.sgos_injected += c.sgo_count;
+  }
+}
+
+void World::Impl::rememberImpulses(Finger& f) {
+  for (int k = 0; k < kMaxContactsPerFinger; ++k) {
+    ContactMemory& mem = f.memory[k];
+    if (k >= f.contact_count) {
+      mem.body = -1;
+      continue;
+    }
+    const FingerContact& c = f.contacts[k];
+    mem.body = c.body;
+    mem.truth = solvedImpulses(c.manifold->getContactPoint(0));
+    mem.radial.fill(WarmStart{});
+    for (int i = 0; i < c.sgo_count; ++i) {
+      mem.radial[c.patch.sgos[i].radial] = solvedImpulses(injected, c.first_injected, i);
+    }
+  }
+}
+
+void World::Impl::computeContactPatch(Finger& f, FingerContact& c) {
+  const Mesh& mesh = *bodies[c.body].shapes.walk_mesh;
+  const btTransform& t = c.truth.object->getWorldTransform();
+  const btMatrix3x3 to_local = t.getBasis().transpose();
+  const btVector3 v_world = toBt(f.device.position) - f.proxy->getCenterOfMassPosition();
+  const PatchContact local{toEigen(t.invXform(c.truth.point)),
+                           toEigen(to_local * c.truth.outward_normal), c.truth.distance};
+  computePatch(mesh, local, toEigen(to_local * v_world), effectivePatch(f), c.patch);
+  if (!c.patch.valid) {
+    ++counters.invalid_patches;
+    return;
+  }
+  c.sgo_count = static_cast<int>(c.patch.sgos.size());
+  for (int i = 0; i < c.sgo_count; ++i) c.sgo_world[i] = t * toBt(c.patch.sgos[i].position);
+}
+
+void World::Impl::afterSolve() {
+  for (Finger& f : fingers) rememberImpulses(f);
+  releaseInjected(dispatcher, injected);
+}
+
+std::vector<btRigidBody*> World::Impl::allRigidBodies() const {
+  std::vector<btRigidBody*> out;
+  for (const Body& b : bodies) out.push_back(b.rigid.get());
+  for (const Finger& f : fingers) out.push_back(f.proxy.get());
+  return out;
+}
+
+void World::Impl::saveStates() {
+  std::size_t i = 0;
+  auto save = [&](const btRigidBody& r) {
+    saved[i++] = {r.getWorldTransform(), r.getLinearVelocity(), r.getAngularVelocity()};
+  };
+  for (const Body& b : bodies) save(*b.rigid);
+  for (const Finger& f : fingers) save(*f.proxy);
+}
+
+bool World::Impl::statesFinite() const {
+  auto finite = [](const btRigidBody& r) {
+    const btTransform& t = r.getWorldTransform();
+    const btVector3 v = r.getLinearVelocity(), w = r.getAngularVelocity();
+    const btQuaternion q = t.getRotation();
+    return std::isfinite(t.getOrigin().length2() + v.length2() + w.length2() + q.length2());
+  };
+  for (const Body& b : bodies) if (!finite(*b.rigid)) return false;
+  for (const Finger& f : fingers) if (!finite(*f.proxy)) return false;
+  return true;
+}
+
+void World::Impl::restoreStates() {
+  std::size_t i = 0;
+  auto restore = [&](btRigidBody& r) {
+    const SavedState& s = saved[i++];
+    r.setWorldTransform(s.transform);
+    r.setLinearVelocity(btVector3(0, 0, 0));
+    r.setAngularVelocity(btVector3(0, 0, 0));
+    r.clearForces();
+  };
+  for (Body& b : bodies) restore(*b.rigid);
+  for (Finger& f : fingers) restore(*f.proxy);
+}
+
+World::World(const SceneDesc& desc) : impl_(std::make_unique<Impl>(desc)) {}
+World::~World() = default;
+
+void World::step(double dt, std::span<const DeviceSample> devices) {
+  Impl& w = *impl_;
+  for (std::size_t i = 0; i < w.fingers.size(); ++i) {
+    Finger& f = w.fingers[i];
+    if (i < devices.size() && devices[i].position.allFinite() && devices[i].velocity.allFinite()) {
+      f.device = devices[i];
+    }
+    const CouplingSettings& cs = w.desc.fingers[i].coupling;
+    f.force = sim::couplingForce(cs, f.device.position, f.device.velocity,
+                                 toEigen(f.proxy->getCenterOfMassPosition()),
+                                 toEigen(f.proxy->getLinearVelocity()));
+    f.proxy->applyCentralForce(toBt(f.force));
+  }
+  w.saveStates();
+  w.world.stepSimulation(dt, 0, dt);
+  w.time += dt;
+  ++w.counters.steps;
+  if (!w.statesFinite()) {
+    w.restoreStates();
+    ++w.counters.nan_recoveries;
+  }
+}
+
+double World::time() const { return impl_->time; }
+const SceneDesc& World::desc() const { return impl_->desc; }
+const WorldCounters& World::counters() const { return impl_->counters; }
+
+BodySnapshot World::bodyPose(int body) const {
+  const Body& b = impl_->bodies[body];
+  const btTransform t = b.rigid->getWorldTransform() * b.shapes.desc_from_body.inverse();
+  const btQuaternion q = t.getRotation();
+  return {toEigen(t.getOrigin()), Eigen::Quaterniond(q.w(), q.x(), q.y(), q.z())};
+}
+
+Vec3 World::bodyLinearVelocity(int body) const {
+  return toEigen(impl_->bodies[body].rigid->getLinearVelocity());
+}
+
+Vec3 World::bodyAngularVelocity(int body) const {
+  return toEigen(impl_->bodies[body].rigid->getAngularVelocity());
+}
+
+Vec3 World::proxyPosition(int finger) const {
+  return toEigen(impl_->fingers[finger].proxy->getCenterOfMassPosition());
+}
+
+Vec3 World::couplingForce(int finger) const { return impl_->fingers[finger].force; }
+
+double World::mechanicalEnergy() const {
+  double e = 0.0;
+  for (const btRigidBody* r : impl_->allRigidBodies()) {
+    if (r->getInvMass() == 0.0) continue;
+    const double m = 1.0 / r->getInvMass();
+    const btVector3 w = r->getAngularVelocity();
+    const btVector3 iw = r->getInvInertiaTensorWorld().inverse() * w;
+    e += 0.5 * m * r->getLinearVelocity().length2() + 0.5 * w.dot(iw);
+    e -= m * r->getGravity().dot(r->getCenterOfMassPosition());
+  }
+  return e;
+}
+
+void World::applyTorqueImpulse(int body, const Vec3& impulse) {
+  impl_->bodies[body].rigid->applyTorqueImpulse(toBt(impulse));
+}
+
+void World::setPatchSettings(int finger, const PatchSettings& settings) {
+  const char* why = nullptr;
+  if (settings.n_sgo != 0 && !validSettings(settings, &why)) {
+    throw std::invalid_argument("finger '" + impl_->desc.fingers[finger].name + "': " + why);
+  }
+  impl_->fingers[finger].patch = settings;
+}
+
+void World::snapshot(Snapshot& out) const {
+  const Impl& w = *impl_;
+  out.time = w.time;
+  out.step = w.counters.steps;
+  out.bodies.resize(w.bodies.size());
+  for (std::size_t i = 0; i < w.bodies.size(); ++i) out.bodies[i] = bodyPose(static_cast<int>(i));
+  out.fingers.resize(w.fingers.size());
+  for (std::size_t i = 0; i < w.fingers.size(); ++i) {
+    const Finger& f = w.fingers[i];
+    FingerSnapshot& fs = out.fingers[i];
+    fs.device = f.device.position;
+    fs.proxy = toEigen(f.proxy->getCenterOfMassPosition());
+    fs.coupling_force = f.force;
+    fs.feedback_force = w.desc.effects.force_feedback ? Vec3(-f.force) : Vec3::Zero();
+    fs.sgo_count = 0;
+    fs.contacts.resize(f.contact_count);
+    for (int k = 0; k < f.contact_count; ++k) {
+      const FingerContact& c = f.contacts[k];
+      ContactSnapshot& cs = fs.contacts[k];
+      const btTransform& t = c.truth.object->getWorldTransform();
+      cs.body = c.body;
+      cs.point = toEigen(c.truth.point);
+      cs.outward_normal = toEigen(c.truth.outward_normal);
+      cs.distance = c.truth.distance;
+      cs.radius = c.patch.valid ? c.patch.radius : 0.0;
+      cs.feature = c.patch.hit.feature;
+      fs.sgo_count += c.sgo_count;
+      cs.sgos.clear();
+      cs.path_points.clear();
+      cs.path_offsets.clear();
+      if (c.sgo_count == 0) continue;
+      for (int s = 0; s < c.sgo_count; ++s) cs.sgos.push_back(toEigen(c.sgo_world[s]));
+      for (const Vec3& p : c.patch.path_points) cs.path_points.push_back(toEigen(t * toBt(p)));
+      cs.path_offsets = c.patch.path_offsets;
+    }
+  }
+}
+
+}  // namespace gf::sim
