@@ -368,6 +368,13 @@ Vec3 World::proxyPosition(int finger) const {
 
 Vec3 World::couplingForce(int finger) const { return impl_->fingers[finger].force; }
 
+int World::sgoCount(int finger) const {
+  const Finger& f = impl_->fingers[finger];
+  int n = 0;
+  for (int k = 0; k < f.contact_count; ++k) n += f.contacts[k].sgo_count;
+  return n;
+}
+
 double World::mechanicalEnergy() const {
   double e = 0.0;
   for (const btRigidBody* r : impl_->allRigidBodies()) {

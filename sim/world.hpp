@@ -46,6 +46,8 @@ class World {
   /// Proxy centre and coupling force (N) of finger i.
   Vec3 proxyPosition(int finger) const;
   Vec3 couplingForce(int finger) const;
+  /// SGOs finger i fed to the solver in the last step, over all its contacts.
+  int sgoCount(int finger) const;
   /// Kinetic plus gravitational potential energy of the dynamic bodies and proxies (J).
   double mechanicalEnergy() const;
 

@@ -1,0 +1,49 @@
+// Benchmarks (not tests): cost of one haptic step of the two-finger pinch, and of the patch.
+// Run: build/release/gf_bench [--benchmark_out=FILE --benchmark_out_format=csv]
+#include <benchmark/benchmark.h>
+
+#include "app/builtin_scenes.hpp"
+#include "sim/god_finger.hpp"
+#include "sim/haptic_loop.hpp"
+#include "sim/primitives.hpp"
+
+namespace {
+
+using namespace gf;
+
+// One haptic step of the pinch while the lifted cylinder is held (t >= 3.5 s).
+void BM_PinchStep(benchmark::State& state) {
+  const sim::SceneDesc scene = app::pinchScene({static_cast<int>(state.range(0)), 3.5});
+  sim::World world(scene);
+  std::vector<sim::DeviceTrack> devices;
+  for (const sim::FingerDesc& f : scene.fingers) devices.push_back(f.device);
+  sim::runHapticLoop(world, devices, {1000.0, scene.duration}, nullptr);
+  std::vector<sim::DeviceSample> samples;
+  for (const sim::DeviceTrack& d : devices) samples.push_back(d.sample(world.time()));
+  for (auto _ : state) world.step(0.001, samples);
+  state.counters["sgo_per_step"] = benchmark::Counter(
+      static_cast<double>(world.sgoCount(0) + world.sgoCount(1)));
+}
+BENCHMARK(BM_PinchStep)->Arg(0)->Arg(8)->Arg(16)->Arg(64)->Unit(benchmark::kMicrosecond)
+    ->Repetitions(5)->ReportAggregatesOnly(true);
+
+// The patch alone on the pinch cylinder's walk mesh: time per SGO.
+void BM_Patch(benchmark::State& state) {
+  const sim::Mesh mesh = sim::tessellateCylinder(0.03, 0.05, 64);
+  sim::PatchSettings s;
+  s.n_sgo = static_cast<int>(state.range(0));
+  const sim::PatchContact c{sim::Vec3(0.03, -0.01, 0.003), sim::Vec3::UnitX(), -2e-4};
+  const sim::Vec3 v(-0.005, 0.001, 0.0);
+  sim::Patch p;
+  for (auto _ : state) {
+    sim::computePatch(mesh, c, v, s, p);
+    benchmark::DoNotOptimize(p.sgos.data());
+  }
+  // items_per_second counts SGOs: time per SGO is its inverse.
+  state.SetItemsProcessed(static_cast<std::int64_t>(state.iterations()) * s.n_sgo);
+}
+BENCHMARK(BM_Patch)->Arg(8)->Arg(16)->Arg(64)->Unit(benchmark::kNanosecond);
+
+}  // namespace
+
+BENCHMARK_MAIN();
