@@ -207,16 +207,19 @@ void World::Impl::handleProxyManifold(btPersistentManifold& m, const btCollision
   const FingerDesc& fd = desc.fingers[proxy->getUserIndex2()];
   TrueContact truth;
   if (!deepestContact(m, proxy, truth)) return;
-  FingerContact scratch;
-  const bool tracked = f.contact_count < kMaxContactsPerFinger;
-  FingerContact& c = tracked ? f.contacts[f.contact_count++] : scratch;
+  if (f.contact_count == kMaxContactsPerFinger) {  // beyond the tracked contacts: a god-object
+    keepOnlyPoint(m, truth.index, {fd.proxy.contact_stiffness, fd.proxy.contact_damping,
+                                   desc.effects.friction ? f.patch.friction : 0.0}, {});
+    return;
+  }
+  FingerContact& c = f.contacts[f.contact_count++];
   c.body = truth.object->getUserIndex();
   c.truth = truth;
   c.manifold = &m;
   c.sgo_count = 0;
   c.patch.valid = false;
   c.patch.sgos.clear();
-  if (tracked && desc.effects.god_finger && f.patch.n_sgo > 0 && truth.distance <= 0.0) {
+  if (desc.effects.god_finger && f.patch.n_sgo > 0 && truth.distance <= 0.0) {
     computeContactPatch(f, c);
   }
   // The total contact stiffness and damping are shared by the true contact and its SGOs.
@@ -225,7 +228,7 @@ void World::Impl::handleProxyManifold(btPersistentManifold& m, const btCollision
                           desc.effects.friction ? f.patch.friction : 0.0};
   // Warm start from the previous step's impulses of the same body (Bullet scales them).
   const int slot = static_cast<int>(&c - f.contacts.data());
-  const ContactMemory* mem = tracked && f.memory[slot].body == c.body ? &f.memory[slot] : nullptr;
+  const ContactMemory* mem = f.memory[slot].body == c.body ? &f.memory[slot] : nullptr;
   keepOnlyPoint(m, truth.index, mat, mem ? mem->truth : WarmStart{});
   if (c.sgo_count > 0) {
     for (int i = 0; i < c.sgo_count; ++i) {
@@ -414,7 +417,7 @@ void World::snapshot(Snapshot& out) const {
     fs.proxy = toEigen(f.proxy->getCenterOfMassPosition());
     fs.coupling_force = f.force;
     fs.feedback_force = w.desc.effects.force_feedback ? Vec3(-f.force) : Vec3::Zero();
-    fs.sgo_count = 0;
+    fs.sgo_count = sgoCount(static_cast<int>(i));
     fs.contacts.resize(f.contact_count);
     for (int k = 0; k < f.contact_count; ++k) {
       const FingerContact& c = f.contacts[k];
@@ -426,7 +429,6 @@ void World::snapshot(Snapshot& out) const {
       cs.distance = c.truth.distance;
       cs.radius = c.patch.valid ? c.patch.radius : 0.0;
       cs.feature = c.patch.hit.feature;
-      fs.sgo_count += c.sgo_count;
       cs.sgos.clear();
       cs.path_points.clear();
       cs.path_offsets.clear();
