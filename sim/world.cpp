@@ -132,8 +132,13 @@ World::Impl::Impl(const SceneDesc& d) : desc(d) {
   info.m_warmstartingFactor = 1.0;
   // Direction caching lets our points keep fixed friction directions, so that their
   // impulses can warm-start the next step; Bullet's own contacts are not affected.
+  // A patch's rows are nearly redundant (same bodies, same normal, lever arms of a few mm):
+  // sweeping them in a fixed order biases the load towards the first points, and the
+  // twist-resisting share converges slowly. Bullet's randomized order (its own seeded
+  // generator, so runs stay bit-identical) holds the pinch within 1 degree in 10 iterations
+  // where the fixed order needs 30.
   info.m_solverMode = SOLVER_USE_WARMSTARTING | SOLVER_SIMD | SOLVER_USE_2_FRICTION_DIRECTIONS |
-                      SOLVER_ENABLE_FRICTION_DIRECTION_CACHING;
+                      SOLVER_ENABLE_FRICTION_DIRECTION_CACHING | SOLVER_RANDMIZE_ORDER;
   bodies.resize(desc.bodies.size());
   for (std::size_t i = 0; i < desc.bodies.size(); ++i) addBody(static_cast<int>(i), desc.bodies[i]);
   fingers.resize(desc.fingers.size());
