@@ -1,39 +1,125 @@
-// The `godfinger` command: run built-in sessions and list them.
+// The `godfinger` command: run scripted sessions, compute one contact area, list the bundled
+// scenes, or drive a live session from standard input.
 #include <CLI/CLI.hpp>
 
 #include <cstdio>
 #include <exception>
+#include <filesystem>
+#include <iostream>
 
-#include "app/builtin_scenes.hpp"
+#include "app/live.hpp"
+#include "app/patch_json.hpp"
+#include "app/scene_file.hpp"
 #include "app/session.hpp"
+#include "app/trace_writer.hpp"
+#include "sim/mesh_import.hpp"
 
 namespace {
 
+using gf::app::InputError;
+
 struct RunArgs {
-  std::string scene = "pinch";
+  std::string scene;
   std::string out = "out";
+  std::vector<std::string> overrides;
   double duration = 0.0;
-  int n_sgo = 8;
   bool realtime = false;
 };
 
-void addRun(CLI::App& app, RunArgs& args) {
-  CLI::App* run = app.add_subcommand("run", "Run a session and write trace.csv and summary.json");
-  run->add_option("--scene", args.scene, "Built-in scene to run (see `godfinger list`)");
-  run->add_option("--out", args.out, "Output folder (created if missing)");
-  run->add_option("--duration", args.duration, "Simulated seconds (default: the scene's)")
-      ->check(CLI::NonNegativeNumber);
-  run->add_option("--n-sgo", args.n_sgo, "SGOs per finger; 0 is the classic god-object")
-      ->check(CLI::Range(0, 64));
-  run->add_flag("--realtime", args.realtime, "Pace steps on the wall clock (absolute deadlines)");
+struct PatchArgs {
+  std::string mesh, out, point, normal, push;
+  double scale = 1.0;
+  gf::sim::PatchSettings settings;
+  double tau_a_deg = 60.0;
+};
+
+void addRun(CLI::App& app, RunArgs& a) {
+  CLI::App* run = app.add_subcommand("run", "Run a scene; write trace.csv, summary.json and contacts/");
+  run->add_option("scene", a.scene, "Scene file, or the name of a bundled scene (godfinger list)")->required();
+  run->add_option("--out", a.out, "Output folder (created if missing)");
+  run->add_option("--set", a.overrides, "Override a scene field, e.g. --set fingers.left.n_sgo=0");
+  run->add_option("--duration", a.duration, "Simulated seconds (default: the scene's)")->check(CLI::PositiveNumber);
+  run->add_flag("--realtime", a.realtime, "Pace steps on the wall clock (absolute deadlines)");
 }
 
-int runCommand(const RunArgs& args) {
-  const gf::sim::SceneDesc scene = gf::app::makeBuiltinScene(args.scene, {args.n_sgo, args.duration});
-  const gf::sim::LoopStats stats = gf::app::runSession(scene, {args.out, args.realtime, true});
-  std::printf("%s: %ld steps, step median %.1f us, p99 %.1f us; wrote %s/trace.csv and %s/summary.json\n",
-              scene.name.c_str(), stats.steps, stats.step_median_us, stats.step_p99_us,
-              args.out.c_str(), args.out.c_str());
+void addPatch(CLI::App& app, PatchArgs& a) {
+  CLI::App* p = app.add_subcommand("patch", "Compute one god-finger contact area on a mesh; write patch.json");
+  p->add_option("--mesh", a.mesh, "Mesh file (OBJ, PLY, STL, OFF, glTF, ...)")->required();
+  p->add_option("--scale", a.scale, "Factor from mesh units to metres")->check(CLI::PositiveNumber);
+  p->add_option("--point", a.point, "Contact point X,Y,Z on the mesh (m)")->required();
+  p->add_option("--normal", a.normal, "Outward surface normal X,Y,Z at the point")->required();
+  p->add_option("--push", a.push, "Coupling vector v = device - god-object X,Y,Z (m)")->required();
+  p->add_option("--n-sgo", a.settings.n_sgo, "Number of SGOs")->check(CLI::Range(3, 64));
+  p->add_option("--r-max", a.settings.r_max, "Largest contact radius r_max (m)")->check(CLI::Range(0.0, 1.0));
+  p->add_option("--d0", a.settings.d0, "Press depth scale D'_0 (m)")->check(CLI::Range(1e-6, 1.0));
+  p->add_option("--alpha", a.settings.alpha, "Stretch base alpha of Eq. 2")->check(CLI::Range(1.0, 100.0));
+  p->add_option("--tau-a", a.tau_a_deg, "Angular threshold tau_a (degrees)")->check(CLI::Range(0.0, 180.0));
+  p->add_option("--friction", a.settings.friction, "Friction coefficient theta")->check(CLI::Range(0.0, 100.0));
+  p->add_option("--out", a.out, "Output folder (created if missing)")->required();
+}
+
+gf::sim::Vec3 parseVec3(const std::string& option, const std::string& text) {
+  gf::sim::Vec3 v;
+  std::size_t pos = 0;
+  for (int i = 0; i < 3; ++i) {
+    const std::size_t end = i < 2 ? text.find(',', pos) : text.size();
+    if (end == std::string::npos) throw InputError("command line", 0, 0, option, "expected X,Y,Z, got '" + text + "'");
+    const std::string cell = text.substr(pos, end - pos);
+    char* stop = nullptr;
+    v[i] = std::strtod(cell.c_str(), &stop);
+    if (cell.empty() || *stop != '\0' || !std::isfinite(v[i])) {
+      throw InputError("command line", 0, 0, option, "expected three finite numbers X,Y,Z, got '" + text + "'");
+    }
+    pos = end + 1;
+  }
+  return v;
+}
+
+int runCommand(const RunArgs& a) {
+  gf::app::SessionDesc session = gf::app::loadSceneFile(gf::app::resolveScenePath(a.scene), a.overrides);
+  session.overrides = a.overrides;
+  if (a.duration > 0.0) session.scene.duration = a.duration;
+  const gf::sim::LoopStats stats = gf::app::runSession(session, {a.out, a.realtime, true});
+  std::printf("%s: %ld steps, step median %.1f us, p99 %.1f us; wrote %s/\n", session.scene.name.c_str(),
+              stats.steps, stats.step_median_us, stats.step_p99_us, a.out.c_str());
+  return 0;
+}
+
+int patchCommand(PatchArgs& a) {
+  const gf::sim::PatchContact contact{parseVec3("--point", a.point), parseVec3("--normal", a.normal), 0.0};
+  const gf::sim::Vec3 push = parseVec3("--push", a.push);
+  if (contact.outward_normal.norm() < 1e-9) throw InputError("command line", 0, 0, "--normal", "must not be zero");
+  a.settings.tau_a = a.tau_a_deg * std::numbers::pi / 180.0;
+  gf::sim::Mesh mesh;
+  try {
+    mesh = gf::sim::loadMesh(a.mesh, a.scale);
+  } catch (const gf::sim::MeshLoadError& e) {
+    throw InputError("command line", 0, 0, "--mesh", e.what());
+  }
+  gf::sim::Patch patch;
+  gf::sim::computePatch(mesh, contact, push, a.settings, patch);
+  nlohmann::json j = gf::app::patchJson(patch, a.settings);
+  j["mesh"] = a.mesh;
+  j["scale"] = a.scale;
+  std::error_code ec;
+  std::filesystem::create_directories(a.out, ec);
+  if (ec) throw std::runtime_error(a.out + ": cannot create folder: " + ec.message());
+  const std::string path = (std::filesystem::path(a.out) / "patch.json").string();
+  gf::app::writeFileAtomically(path, j.dump(1) + "\n");
+  std::printf("radius %.6g m, %zu SGOs; wrote %s\n", patch.radius, patch.sgos.size(), path.c_str());
+  return 0;
+}
+
+int listCommand() {
+  for (const std::string& path : gf::app::bundledScenePaths()) {
+    const std::string name = std::filesystem::path(path).stem().string();
+    try {
+      const gf::app::SessionDesc s = gf::app::loadSceneFile(path);
+      std::printf("%-24s %s\n", name.c_str(), s.summary.c_str());
+    } catch (const std::exception& e) {
+      std::printf("%-24s (does not load: %s)\n", name.c_str(), e.what());
+    }
+  }
   return 0;
 }
 
@@ -44,14 +130,21 @@ int main(int argc, char** argv) {
   app.require_subcommand(1);
   RunArgs run_args;
   addRun(app, run_args);
-  app.add_subcommand("list", "List the built-in scenes");
+  PatchArgs patch_args;
+  addPatch(app, patch_args);
+  app.add_subcommand("list", "List the bundled scenes");
+  gf::app::LiveOptions live;
+  CLI::App* live_cmd = app.add_subcommand("live", "Interactive session: one command a line on standard input");
+  live_cmd->add_option("scene", live.scene_path, "Scene file or bundled scene name")->required();
+  live_cmd->add_option("--set", live.overrides, "Override a scene field");
+  live_cmd->add_option("--out", live.out_dir, "Folder for snapshots (contacts/)");
   CLI11_PARSE(app, argc, argv);
   try {
-    if (app.got_subcommand("list")) {
-      for (const gf::app::BuiltinScene& s : gf::app::builtinScenes()) {
-        std::printf("%-12s %s\n", s.name, s.summary);
-      }
-      return 0;
+    if (app.got_subcommand("list")) return listCommand();
+    if (app.got_subcommand("patch")) return patchCommand(patch_args);
+    if (app.got_subcommand("live")) {
+      live.scene_path = gf::app::resolveScenePath(live.scene_path);
+      return gf::app::runLive(live, std::cin, std::cout);
     }
     return runCommand(run_args);
   } catch (const std::exception& e) {

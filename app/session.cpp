@@ -2,15 +2,19 @@
 
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
 
+#include "app/patch_json.hpp"
 #include "app/trace_writer.hpp"
 #include "sim/world.hpp"
 
 namespace gf::app {
 namespace {
+
+namespace fs = std::filesystem;
 
 nlohmann::json fingerJson(const sim::FingerDesc& f) {
   const sim::PatchSettings& p = f.patch;
@@ -24,19 +28,23 @@ nlohmann::json fingerJson(const sim::FingerDesc& f) {
           {"friction", p.friction},
           {"coupling_stiffness_n_per_m", f.coupling.stiffness},
           {"coupling_damping_ns_per_m", f.coupling.damping},
+          {"max_force_n", f.coupling.max_force},
           {"proxy_radius_m", f.proxy.radius},
           {"proxy_mass_kg", f.proxy.mass},
           {"contact_stiffness_n_per_m", f.proxy.contact_stiffness},
           {"contact_damping_ns_per_m", f.proxy.contact_damping}};
 }
 
-nlohmann::json summaryJson(const sim::SceneDesc& scene, const sim::World& world,
+nlohmann::json summaryJson(const SessionDesc& session, const sim::World& world,
                            const sim::LoopStats& stats, bool realtime) {
+  const sim::SceneDesc& scene = session.scene;
   nlohmann::json fingers = nlohmann::json::array();
   for (const sim::FingerDesc& f : scene.fingers) fingers.push_back(fingerJson(f));
   const sim::EffectSet& e = scene.effects;
   const sim::WorldCounters& c = world.counters();
   return {{"scene", scene.name},
+          {"source", session.source},
+          {"overrides", session.overrides},
           {"clock", realtime ? "realtime" : "offline"},
           {"duration_s", scene.duration},
           {"haptic_rate_hz", scene.world.haptic_rate_hz},
@@ -55,25 +63,84 @@ nlohmann::json summaryJson(const sim::SceneDesc& scene, const sim::World& world,
           {"wall_time_s", stats.wall_seconds}};
 }
 
+// forces.csv: the force on each listed body other than gravity (N), from its change of velocity
+// over the step: m (dv/dt - g). This is the paper's Fig. 8 curve for the pinched cylinder.
+class ForceWriter {
+ public:
+  ForceWriter(const sim::World& world, const std::vector<std::string>& names, long rows) {
+    const sim::SceneDesc& d = world.desc();
+    text_.push_back('t');
+    for (const std::string& n : names) {
+      for (std::size_t b = 0; b < d.bodies.size(); ++b) {
+        if (d.bodies[b].name != n) continue;
+        bodies_.push_back(static_cast<int>(b));
+        previous_.push_back(world.bodyLinearVelocity(static_cast<int>(b)));
+        for (const char* c : {".fx", ".fy", ".fz"}) text_.append(1, ',').append(n).append(c);
+      }
+    }
+    text_ += '\n';
+    gravity_ = d.effects.gravity ? d.world.gravity : sim::Vec3::Zero();
+    text_.reserve(text_.size() + static_cast<std::size_t>(std::max(0L, rows)) * 24 * (1 + 3 * bodies_.size()));
+  }
+  bool empty() const { return bodies_.empty(); }
+  void record(const sim::World& world, double dt) {
+    appendNumber(text_, world.time());
+    for (std::size_t i = 0; i < bodies_.size(); ++i) {
+      const sim::Vec3 v = world.bodyLinearVelocity(bodies_[i]);
+      const sim::Vec3 f = world.desc().bodies[bodies_[i]].mass * ((v - previous_[i]) / dt - gravity_);
+      previous_[i] = v;
+      for (double x : {f.x(), f.y(), f.z()}) {
+        text_ += ',';
+        appendNumber(text_, x);
+      }
+    }
+    text_ += '\n';
+  }
+  const std::string& text() const { return text_; }
+
+ private:
+  std::string text_;
+  std::vector<int> bodies_;
+  std::vector<sim::Vec3> previous_;
+  sim::Vec3 gravity_ = sim::Vec3::Zero();
+};
+
+std::string contactFileName(double t) {
+  char name[48];
+  std::snprintf(name, sizeof name, "t%.3f.json", t);
+  return name;
+}
+
 }  // namespace
 
-sim::LoopStats runSession(const sim::SceneDesc& scene, const SessionOptions& options) {
+sim::LoopStats runSession(const SessionDesc& session, const SessionOptions& options) {
+  const sim::SceneDesc& scene = session.scene;
+  const fs::path dir(options.out_dir);
   std::error_code ec;
-  std::filesystem::create_directories(options.out_dir, ec);
+  fs::create_directories(dir / "contacts", ec);
   if (ec) throw std::runtime_error(options.out_dir + ": cannot create folder: " + ec.message());
   sim::World world(scene);
   std::vector<sim::DeviceTrack> devices;
   for (const sim::FingerDesc& f : scene.fingers) devices.push_back(f.device);
-  const double rate = scene.world.haptic_rate_hz;
+  const double rate = scene.world.haptic_rate_hz, dt = 1.0 / rate;
   const long steps = sim::stepCount(scene.duration, rate);
-  TraceWriter trace(world, steps);
+  TraceWriter trace(world, session.record.trace ? steps : 0);
+  ForceWriter forces(world, session.record.force_bodies, steps);
+  std::vector<double> pending = session.record.contact_times;
+  std::sort(pending.begin(), pending.end(), std::greater<>());  // next time at the back
+  std::vector<std::pair<double, sim::Snapshot>> contact_snaps;  // serialised after the run
   const long report_every = std::max(1L, static_cast<long>(rate));  // once per simulated second
   const auto start = std::chrono::steady_clock::now();
   long done = 0;
   sim::LoopSettings loop{rate, scene.duration,
                          options.realtime ? sim::ClockMode::kRealtime : sim::ClockMode::kOffline};
   const sim::LoopStats stats = sim::runHapticLoop(world, devices, loop, [&](const sim::World& w) {
-    trace.record(w);
+    if (session.record.trace) trace.record(w);
+    if (!forces.empty()) forces.record(w, dt);
+    while (!pending.empty() && pending.back() <= w.time() + 0.5 * dt) {
+      w.snapshot(contact_snaps.emplace_back(pending.back(), sim::Snapshot{}).second);
+      pending.pop_back();
+    }
     if (options.progress && ++done % report_every == 0) {
       const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
       std::fprintf(stderr, "\r[godfinger] %s: t = %.1f / %.1f s, %ld / %ld steps, ETA %.1f s ",
@@ -82,10 +149,13 @@ sim::LoopStats runSession(const sim::SceneDesc& scene, const SessionOptions& opt
     }
   });
   if (options.progress) std::fprintf(stderr, "\n");
-  const std::filesystem::path dir(options.out_dir);
-  trace.save((dir / "trace.csv").string());
+  if (session.record.trace) trace.save((dir / "trace.csv").string());
+  if (!forces.empty()) writeFileAtomically((dir / "forces.csv").string(), forces.text());
+  for (const auto& [t, snap] : contact_snaps) {
+    writeFileAtomically((dir / "contacts" / contactFileName(t)).string(), contactsJson(snap, scene).dump(1) + "\n");
+  }
   writeFileAtomically((dir / "summary.json").string(),
-                      summaryJson(scene, world, stats, options.realtime).dump(2) + "\n");
+                      summaryJson(session, world, stats, options.realtime).dump(2) + "\n");
   return stats;
 }
 

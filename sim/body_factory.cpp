@@ -1,8 +1,10 @@
 #include "sim/body_factory.hpp"
 
 #include <BulletCollision/Gimpact/btGImpactShape.h>
+#include <HACD/hacdHACD.h>
 
 #include <Eigen/Eigenvalues>
+#include <span>
 #include <stdexcept>
 
 #include "sim/mesh_import.hpp"
@@ -18,6 +20,11 @@ constexpr int kSphereSubdivisions = 4;
 constexpr int kBoxSegments = 4;
 constexpr int kRoundSegments = 64;
 constexpr double kPlaneHalfSize = 50.0;
+// HACD decomposition: the mesh is normalised to this size, and parts may be this concave in
+// those units (2 % of the size); at most this many vertices per part.
+constexpr double kHacdScale = 1000.0;
+constexpr double kHacdConcavity = 20.0;
+constexpr int kHacdVerticesPerPart = 64;
 
 [[noreturn]] void fail(const BodyDesc& d, const std::string& what) {
   throw std::invalid_argument("body '" + d.name + "': " + what);
@@ -77,17 +84,57 @@ std::shared_ptr<const Mesh> toBodyFrame(const BodyDesc& d, const Mesh& mesh, Bod
   return std::make_shared<const Mesh>(buildMesh(pos, mesh.triangles()));
 }
 
+std::unique_ptr<btConvexHullShape> hullOf(std::span<const Vec3> points) {
+  auto hull = std::make_unique<btConvexHullShape>();
+  for (const Vec3& p : points) hull->addPoint(toBt(p), false);
+  hull->recalcLocalAabb();
+  hull->setMargin(kMargin);
+  return hull;
+}
+
+// Approximate convex decomposition (HACD) into a compound of hulls, in the body frame.
+std::unique_ptr<btCollisionShape> decompose(const BodyDesc& d, const Mesh& m, BodyShapes& out) {
+  std::vector<HACD::Vec3<HACD::Real>> points;
+  std::vector<HACD::Vec3<long>> triangles;
+  for (const Vec3& p : m.vertices()) points.emplace_back(p.x(), p.y(), p.z());
+  for (const auto& t : m.triangles()) triangles.emplace_back(t[0], t[1], t[2]);
+  HACD::HACD hacd;
+  hacd.SetPoints(points.data());
+  hacd.SetNPoints(points.size());
+  hacd.SetTriangles(triangles.data());
+  hacd.SetNTriangles(triangles.size());
+  hacd.SetScaleFactor(kHacdScale);
+  hacd.SetConcavity(kHacdConcavity);
+  hacd.SetNClusters(1);
+  hacd.SetNVerticesPerCH(kHacdVerticesPerPart);
+  hacd.SetAddExtraDistPoints(false);
+  hacd.SetAddNeighboursDistPoints(false);
+  hacd.SetAddFacesPoints(false);
+  if (!hacd.Compute() || hacd.GetNClusters() == 0) fail(d, "convex decomposition of '" + d.mesh_path + "' failed");
+  auto compound = std::make_unique<btCompoundShape>();
+  for (std::size_t c = 0; c < hacd.GetNClusters(); ++c) {
+    std::vector<HACD::Vec3<HACD::Real>> part(hacd.GetNPointsCH(c));
+    std::vector<HACD::Vec3<long>> part_triangles(hacd.GetNTrianglesCH(c));
+    hacd.GetCH(c, part.data(), part_triangles.data());
+    std::vector<Vec3> pts;
+    for (const auto& p : part) pts.emplace_back(p.X(), p.Y(), p.Z());
+    out.parts.push_back(hullOf(pts));
+    compound->addChildShape(btTransform::getIdentity(), out.parts.back().get());
+  }
+  return compound;
+}
+
 void makeMeshShapes(const BodyDesc& d, BodyShapes& out) {
   if (d.mesh_path.empty()) fail(d, "mesh_path is empty");
   const Mesh loaded = loadMesh(d.mesh_path, d.mesh_scale);
   out.walk_mesh = toBodyFrame(d, loaded, out);
   const Mesh& m = *out.walk_mesh;
   if (d.shape == ShapeKind::kConvexHull) {
-    auto hull = std::make_unique<btConvexHullShape>();
-    for (const Vec3& p : m.vertices()) hull->addPoint(toBt(p), false);
-    hull->recalcLocalAabb();
-    hull->setMargin(kMargin);
-    out.shape = std::move(hull);
+    out.shape = hullOf(m.vertices());
+    return;
+  }
+  if (d.shape == ShapeKind::kConvexDecomposition) {
+    out.shape = decompose(d, m, out);
     return;
   }
   // Concave: Bullet reads our welded arrays in place (doubles, 32-bit indices).
@@ -155,6 +202,7 @@ BodyShapes makeBodyShapes(const BodyDesc& d) {
         out.shape = std::make_unique<btStaticPlaneShape>(btVector3(0, 1, 0), 0.0);
         break;
       case ShapeKind::kConvexHull:
+      case ShapeKind::kConvexDecomposition:
       case ShapeKind::kConcaveMesh:
         makeMeshShapes(d, out);
         break;
@@ -166,7 +214,8 @@ BodyShapes makeBodyShapes(const BodyDesc& d) {
     if (what.rfind("body '", 0) == 0) throw;
     fail(d, what);
   }
-  const bool is_mesh = d.shape == ShapeKind::kConvexHull || d.shape == ShapeKind::kConcaveMesh;
+  const bool is_mesh = d.shape == ShapeKind::kConvexHull || d.shape == ShapeKind::kConvexDecomposition ||
+                       d.shape == ShapeKind::kConcaveMesh;
   if (d.mass > 0.0 && !is_mesh) out.shape->calculateLocalInertia(d.mass, out.local_inertia);
   return out;
 }

@@ -4,6 +4,7 @@
 #include <btBulletDynamicsCommon.h>
 
 #include <memory>
+#include <vector>
 
 #include "sim/scene_desc.hpp"
 
@@ -14,6 +15,7 @@ namespace gf::sim {
 struct BodyShapes {
   std::shared_ptr<const Mesh> walk_mesh;
   std::unique_ptr<btStridingMeshInterface> mesh_interface;  ///< concave meshes only
+  std::vector<std::unique_ptr<btCollisionShape>> parts;  ///< children of a compound `shape`
   std::unique_ptr<btCollisionShape> shape;
   btVector3 local_inertia{0, 0, 0};  ///< kg m^2, principal
   /// Transform from the description's frame (mesh file frame, scaled) to the body frame.

@@ -19,7 +19,7 @@ struct ProxySettings {
   /// (the god-finger then creeps under a sustained torque); 0.1 kg holds the pinch within 1 deg.
   double mass = 0.1;
   double contact_stiffness = 20000;  ///< N/m: total over the true contact and its SGOs
-  double contact_damping = 20.0;     ///< N s/m: total over the true contact and its SGOs
+  double contact_damping = 1000.0;   ///< N s/m: total over the true contact and its SGOs
 };
 
 /// Force (N) the coupling applies to the proxy; the device feels its opposite. Clamped to

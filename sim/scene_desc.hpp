@@ -24,7 +24,18 @@ struct EffectSet {
 };
 
 /// Shape of a body. Physics collides with the exact primitive; the walk uses a tessellation.
-enum class ShapeKind { kSphere, kBox, kCylinder, kCapsule, kPlane, kConvexHull, kConcaveMesh };
+/// Meshes collide as their convex hull, as convex parts (HACD decomposition, as in the paper's
+/// Havok implementation), or as the exact triangles (GImpact when dynamic).
+enum class ShapeKind {
+  kSphere,
+  kBox,
+  kCylinder,
+  kCapsule,
+  kPlane,
+  kConvexHull,
+  kConvexDecomposition,
+  kConcaveMesh
+};
 
 /// One rigid body.
 struct BodyDesc {

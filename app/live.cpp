@@ -1,0 +1,186 @@
+#include "app/live.hpp"
+
+#include <nlohmann/json.hpp>
+
+#include <filesystem>
+#include <istream>
+#include <ostream>
+#include <sstream>
+
+#include "app/patch_json.hpp"
+#include "app/scene_file.hpp"
+#include "app/trace_writer.hpp"
+#include "sim/world.hpp"
+
+namespace gf::app {
+namespace {
+
+namespace fs = std::filesystem;
+
+constexpr const char* kLiveFields[] = {"n_sgo", "r_max", "d0", "alpha", "stretch_length",
+                                       "max_stretch_exponent", "tau_a", "friction"};
+
+class Live {
+ public:
+  Live(const LiveOptions& o, std::ostream& out)
+      : options_(o), out_(out), overrides_(o.overrides),
+        session_(loadSceneFile(o.scene_path, overrides_)), world_(session_.scene) {
+    for (const sim::FingerDesc& f : session_.scene.fingers) devices_.push_back(f.device);
+    samples_.resize(devices_.size());
+  }
+
+  // Executes one line; returns false on quit.
+  bool execute(const std::string& line) {
+    std::istringstream words(line);
+    std::string command;
+    if (!(words >> command) || command[0] == '#') return true;
+    if (command == "quit" || command == "exit") {
+      out_ << "ok bye\n";
+      return false;
+    }
+    if (command == "help") {
+      out_ << "ok commands: move FINGER X Y Z [SECONDS] | set fingers.NAME.FIELD=VALUE | step [N] | "
+              "state | snapshot [NAME] | quit\n";
+    } else if (command == "step") {
+      long n = 1;
+      if (!(words >> n)) n = words.eof() ? 1 : -1;
+      if (n < 1 || n > 10000000) throw std::invalid_argument("step: N must be a whole number in 1..10000000");
+      for (long i = 0; i < n; ++i) step();
+      answerState();
+    } else if (command == "state") {
+      answerState();
+    } else if (command == "move") {
+      move(words);
+    } else if (command == "set") {
+      std::string assignment;
+      words >> assignment;
+      set(assignment);
+    } else if (command == "snapshot") {
+      std::string name;
+      if (!(words >> name)) name = "live_" + std::to_string(world_.counters().steps);
+      if (name.find('/') != std::string::npos) throw std::invalid_argument("snapshot: NAME must not contain '/'");
+      snapshot(name);
+    } else {
+      throw std::invalid_argument("unknown command '" + command + "' (try help)");
+    }
+    std::string extra;
+    if (words >> extra) throw std::invalid_argument(command + ": unexpected '" + extra + "'");
+    return true;
+  }
+
+ private:
+  void step() {
+    const double t = world_.time();
+    for (std::size_t i = 0; i < devices_.size(); ++i) samples_[i] = devices_[i].sample(t);
+    world_.step(1.0 / session_.scene.world.haptic_rate_hz, samples_);
+  }
+
+  int fingerIndex(const std::string& name) const {
+    for (std::size_t i = 0; i < session_.scene.fingers.size(); ++i) {
+      if (session_.scene.fingers[i].name == name) return static_cast<int>(i);
+    }
+    throw std::invalid_argument("no finger called '" + name + "'");
+  }
+
+  void move(std::istringstream& words) {
+    std::string finger;
+    double x, y, z, seconds = 0.0;
+    if (!(words >> finger >> x >> y >> z)) throw std::invalid_argument("move: expected FINGER X Y Z [SECONDS]");
+    if (!(words >> seconds)) {
+      if (!words.eof()) throw std::invalid_argument("move: SECONDS must be a number");
+      seconds = 0.0;
+    }
+    const sim::Vec3 target(x, y, z);
+    if (!target.allFinite() || !std::isfinite(seconds) || seconds < 0.0) {
+      throw std::invalid_argument("move: position and SECONDS must be finite, SECONDS >= 0");
+    }
+    const int f = fingerIndex(finger);
+    const double t = world_.time();
+    sim::DeviceTrack track;
+    track.interpolation = sim::Interpolation::kLinear;
+    track.keyframes.push_back({t, devices_[f].sample(t).position});
+    if (seconds > 0.0) track.keyframes.push_back({t + seconds, target});
+    else track.keyframes.back().position = target;
+    devices_[f] = track;
+    out_ << "ok " << finger << " to " << x << ' ' << y << ' ' << z << " by t=" << t + seconds << '\n';
+  }
+
+  void set(const std::string& assignment) {
+    // fingers.NAME.FIELD=VALUE, validated by re-reading the scene with this override.
+    const std::size_t eq = assignment.find('=');
+    const std::string key = assignment.substr(0, eq);
+    const std::size_t dot = key.rfind('.');
+    const bool live_field = key.rfind("fingers.", 0) == 0 && dot != std::string::npos && dot > 8 &&
+                            std::any_of(std::begin(kLiveFields), std::end(kLiveFields),
+                                        [&](const char* f) { return key.substr(dot + 1) == f; });
+    if (eq == std::string::npos || !live_field) {
+      throw std::invalid_argument("set: expected fingers.NAME.FIELD=VALUE with FIELD one of n_sgo, r_max, "
+                                  "d0, alpha, stretch_length, max_stretch_exponent, tau_a, friction");
+    }
+    std::vector<std::string> next = overrides_;
+    next.push_back(assignment);
+    SessionDesc reread = loadSceneFile(options_.scene_path, next);
+    const int f = fingerIndex(key.substr(8, dot - 8));
+    world_.setPatchSettings(f, reread.scene.fingers[f].patch);
+    session_.scene.fingers[f].patch = reread.scene.fingers[f].patch;
+    overrides_ = std::move(next);
+    out_ << "ok " << assignment << '\n';
+  }
+
+  void snapshot(const std::string& name) {
+    sim::Snapshot snap;
+    world_.snapshot(snap);
+    const fs::path dir = fs::path(options_.out_dir) / "contacts";
+    std::error_code ec;
+    fs::create_directories(dir, ec);
+    if (ec) throw std::runtime_error(dir.string() + ": cannot create folder: " + ec.message());
+    const std::string path = (dir / (name + ".json")).string();
+    writeFileAtomically(path, contactsJson(snap, session_.scene).dump(1) + "\n");
+    out_ << "ok " << path << '\n';
+  }
+
+  void answerState() {
+    nlohmann::json fingers = nlohmann::json::array();
+    for (std::size_t i = 0; i < session_.scene.fingers.size(); ++i) {
+      const int f = static_cast<int>(i);
+      const sim::Vec3 p = world_.proxyPosition(f), force = world_.couplingForce(f);
+      fingers.push_back({{"name", session_.scene.fingers[i].name},
+                         {"proxy", {p.x(), p.y(), p.z()}},
+                         {"force_n", {force.x(), force.y(), force.z()}},
+                         {"n_sgo", world_.sgoCount(f)}});
+    }
+    out_ << "ok " << nlohmann::json{{"t", world_.time()}, {"fingers", fingers}}.dump() << '\n';
+  }
+
+  const LiveOptions& options_;
+  std::ostream& out_;
+  std::vector<std::string> overrides_;
+  SessionDesc session_;
+  sim::World world_;
+  std::vector<sim::DeviceTrack> devices_;
+  std::vector<sim::DeviceSample> samples_;
+};
+
+}  // namespace
+
+int runLive(const LiveOptions& options, std::istream& in, std::ostream& out) {
+  Live live(options, out);
+  out << "ok ready (help lists the commands)" << std::endl;
+  int failures = 0, number = 0;
+  std::string line;
+  while (std::getline(in, line)) {
+    ++number;
+    bool go_on = true;
+    try {
+      go_on = live.execute(line);
+    } catch (const std::exception& e) {
+      ++failures;
+      out << "error: " << options.input_name << ':' << number << ": " << e.what() << '\n';
+    }
+    out.flush();
+    if (!go_on) break;
+  }
+  return failures == 0 ? 0 : 1;
+}
+
+}  // namespace gf::app

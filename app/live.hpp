@@ -1,0 +1,32 @@
+// `godfinger live`: an interactive session driven by one command a line, answered line by line.
+#pragma once
+
+#include <iosfwd>
+#include <string>
+#include <vector>
+
+#include "app/session_desc.hpp"
+
+namespace gf::app {
+
+/// Where a live session comes from and where its snapshots go.
+struct LiveOptions {
+  std::string scene_path;              ///< scene file, re-read (with overrides) by `set`
+  std::vector<std::string> overrides;  ///< --set given on the command line
+  std::string out_dir = "out";         ///< snapshots go to out_dir/contacts/
+  std::string input_name = "<stdin>";  ///< names the input in error messages
+};
+
+/// Runs commands from `in` until `quit` or end of input, answering each on `out`:
+///   move FINGER X Y Z [SECONDS]   device to (X, Y, Z) m, straight, over SECONDS (default 0)
+///   set fingers.NAME.FIELD=VALUE  a god-finger setting (n_sgo, r_max, d0, alpha,
+///                                 stretch_length, max_stretch_exponent, tau_a, friction)
+///   step [N]                      N haptic steps (default 1), then the state
+///   state                         the state: time, and per finger proxy, force, SGOs
+///   snapshot [NAME]               contacts JSON to out_dir/contacts/NAME.json
+///   help, quit
+/// Answers start with "ok" or "error: INPUT:LINE: ...". Returns 0 when every command
+/// succeeded, 1 otherwise. Throws InputError when the scene itself cannot be loaded.
+int runLive(const LiveOptions& options, std::istream& in, std::ostream& out);
+
+}  // namespace gf::app

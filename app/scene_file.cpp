@@ -1,0 +1,567 @@
+#include "app/scene_file.hpp"
+
+#include <toml++/toml.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <numbers>
+#include <set>
+#include <sstream>
+
+#include "sim/mesh_import.hpp"
+
+namespace gf::app {
+namespace {
+
+namespace fs = std::filesystem;
+using sim::Vec3;
+
+constexpr double kDegToRad = std::numbers::pi / 180.0;
+
+std::string sourceOf(const toml::node& n, const std::string& fallback) {
+  const auto& path = n.source().path;
+  return path && !path->empty() ? *path : fallback;
+}
+
+const char* typeName(const toml::node& n) {
+  switch (n.type()) {
+    case toml::node_type::table: return "a table";
+    case toml::node_type::array: return "an array";
+    case toml::node_type::string: return "a string";
+    case toml::node_type::integer: return "an integer";
+    case toml::node_type::floating_point: return "a number";
+    case toml::node_type::boolean: return "a boolean";
+    default: return "a date or time";
+  }
+}
+
+// One TOML table being read: typed getters that name file, line and dotted field on error, and
+// a check that every key was used (unknown fields are errors, not silently ignored).
+class Reader {
+ public:
+  Reader(const toml::table& t, std::string prefix, std::string file)
+      : table_(t), prefix_(std::move(prefix)), file_(std::move(file)) {}
+
+  [[noreturn]] void fail(const toml::node* n, const std::string& key, const std::string& why) const {
+    const toml::node& at = n ? *n : static_cast<const toml::node&>(table_);
+    throw InputError(sourceOf(at, file_), static_cast<int>(at.source().begin.line),
+                     static_cast<int>(at.source().begin.column), field(key), why);
+  }
+  std::string field(const std::string& key) const { return prefix_.empty() ? key : prefix_ + "." + key; }
+  const std::string& file() const { return file_; }
+  const toml::table& table() const { return table_; }
+
+  const toml::node* find(const std::string& key) {
+    used_.insert(key);
+    return table_.get(key);
+  }
+  bool has(const std::string& key) const { return table_.contains(key); }
+
+  double number(const std::string& key, double fallback, double lo = -HUGE_VAL, double hi = HUGE_VAL) {
+    const toml::node* n = find(key);
+    return n ? checkedNumber(*n, key, lo, hi) : fallback;
+  }
+  double requiredNumber(const std::string& key, double lo = -HUGE_VAL, double hi = HUGE_VAL) {
+    const toml::node* n = find(key);
+    if (!n) fail(nullptr, key, "missing (a number is required)");
+    return checkedNumber(*n, key, lo, hi);
+  }
+  int integer(const std::string& key, int fallback, int lo, int hi) {
+    const toml::node* n = find(key);
+    if (!n) return fallback;
+    if (!n->is_integer()) fail(n, key, std::string("expected an integer, got ") + typeName(*n));
+    const std::int64_t v = n->as_integer()->get();
+    if (v < lo || v > hi) fail(n, key, "must be in " + std::to_string(lo) + ".." + std::to_string(hi));
+    return static_cast<int>(v);
+  }
+  bool boolean(const std::string& key, bool fallback) {
+    const toml::node* n = find(key);
+    if (!n) return fallback;
+    if (!n->is_boolean()) fail(n, key, std::string("expected true or false, got ") + typeName(*n));
+    return n->as_boolean()->get();
+  }
+  std::string string(const std::string& key, const std::string& fallback) {
+    const toml::node* n = find(key);
+    if (!n) return fallback;
+    if (!n->is_string()) fail(n, key, std::string("expected a string, got ") + typeName(*n));
+    return n->as_string()->get();
+  }
+  // One of `choices`; returns its index.
+  int choice(const std::string& key, std::span<const char* const> choices, int fallback) {
+    const toml::node* n = find(key);
+    if (!n) {
+      if (fallback < 0) fail(nullptr, key, "missing (one of " + join(choices) + ")");
+      return fallback;
+    }
+    if (!n->is_string()) fail(n, key, std::string("expected a string, got ") + typeName(*n));
+    const std::string v = n->as_string()->get();
+    for (std::size_t i = 0; i < choices.size(); ++i) {
+      if (v == choices[i]) return static_cast<int>(i);
+    }
+    fail(n, key, "unknown value '" + v + "' (one of " + join(choices) + ")");
+  }
+  Vec3 vec3(const std::string& key, const Vec3& fallback) {
+    const toml::node* n = find(key);
+    return n ? checkedVec3(*n, key) : fallback;
+  }
+  Vec3 checkedVec3(const toml::node& n, const std::string& key) {
+    const toml::array* a = n.as_array();
+    if (!a || a->size() != 3) fail(&n, key, "expected an array of 3 numbers [x, y, z]");
+    Vec3 v;
+    for (int i = 0; i < 3; ++i) v[i] = checkedNumber(*a->get(i), key, -HUGE_VAL, HUGE_VAL);
+    return v;
+  }
+  std::vector<double> numbers(const std::string& key) {
+    std::vector<double> out;
+    const toml::node* n = find(key);
+    if (!n) return out;
+    const toml::array* a = n->as_array();
+    if (!a) fail(n, key, std::string("expected an array of numbers, got ") + typeName(*n));
+    for (const toml::node& e : *a) out.push_back(checkedNumber(e, key, 0.0, HUGE_VAL));
+    return out;
+  }
+  std::vector<std::pair<std::string, const toml::node*>> strings(const std::string& key) {
+    std::vector<std::pair<std::string, const toml::node*>> out;
+    const toml::node* n = find(key);
+    if (!n) return out;
+    const toml::array* a = n->as_array();
+    if (!a) fail(n, key, std::string("expected an array of strings, got ") + typeName(*n));
+    for (const toml::node& e : *a) {
+      if (!e.is_string()) fail(&e, key, std::string("expected a string, got ") + typeName(e));
+      out.emplace_back(e.as_string()->get(), &e);
+    }
+    return out;
+  }
+  // Sub-tables of `key`, in the order they appear in the file (overrides last).
+  std::vector<std::pair<std::string, const toml::table*>> namedTables(const std::string& key) {
+    std::vector<std::pair<std::string, const toml::table*>> out;
+    const toml::node* n = find(key);
+    if (!n) return out;
+    const toml::table* t = n->as_table();
+    if (!t) fail(n, key, std::string("expected a table, got ") + typeName(*n));
+    for (const auto& [k, v] : *t) {
+      if (!v.is_table()) fail(&v, key + "." + std::string(k.str()), std::string("expected a table, got ") + typeName(v));
+      out.emplace_back(std::string(k.str()), v.as_table());
+    }
+    auto line = [](const toml::table* t2) {
+      const auto& p = t2->source().path;
+      // Nodes from --set have their own source: they sort after the file's.
+      return std::pair(p && p->rfind("--set", 0) == 0 ? 1 : 0, t2->source().begin.line);
+    };
+    std::stable_sort(out.begin(), out.end(),
+                     [&](const auto& a, const auto& b) { return line(a.second) < line(b.second); });
+    return out;
+  }
+  // Every key of the table must have been read.
+  void finish() const {
+    for (const auto& [k, v] : table_) {
+      if (!used_.contains(std::string(k.str()))) fail(&v, std::string(k.str()), "unknown field");
+    }
+  }
+
+ private:
+  double checkedNumber(const toml::node& n, const std::string& key, double lo, double hi) const {
+    if (!n.is_number()) fail(&n, key, std::string("expected a number, got ") + typeName(n));
+    const double v = n.value<double>().value_or(0.0);
+    if (!std::isfinite(v)) fail(&n, key, "must be finite");
+    if (v < lo || v > hi) {
+      std::ostringstream s;
+      s << "must be in [" << lo << ", " << hi << "], got " << v;
+      fail(&n, key, s.str());
+    }
+    return v;
+  }
+  static std::string join(std::span<const char* const> choices) {
+    std::string s;
+    for (const char* c : choices) s += (s.empty() ? "" : ", ") + std::string(c);
+    return s;
+  }
+
+  const toml::table& table_;
+  std::string prefix_;
+  std::string file_;
+  std::set<std::string> used_;
+};
+
+std::string resolvePath(const std::string& base_dir, const std::string& p) {
+  const fs::path path(p);
+  return path.is_absolute() || base_dir.empty() ? p : (fs::path(base_dir) / path).lexically_normal().string();
+}
+
+constexpr const char* kShapes[] = {"sphere", "box", "cylinder", "capsule", "plane", "mesh"};
+constexpr const char* kCollisions[] = {"convex_hull", "decomposition", "concave"};
+constexpr const char* kInterpolations[] = {"linear", "smooth"};
+constexpr const char* kEffects[] = {"gravity",           "friction",       "god_finger",
+                                    "tangential_stretch", "angular_threshold", "friction_cone",
+                                    "force_feedback"};
+
+void readEffects(Reader& r, sim::EffectSet& e) {
+  if (!r.has("effects")) {
+    r.fail(nullptr, "effects", "missing: list the effects the scene calls for (any of gravity, "
+                               "friction, god_finger, tangential_stretch, angular_threshold, "
+                               "friction_cone, force_feedback)");
+  }
+  bool on[std::size(kEffects)] = {};
+  for (const auto& [name, node] : r.strings("effects")) {
+    const auto it = std::find_if(std::begin(kEffects), std::end(kEffects),
+                                 [&](const char* k) { return name == k; });
+    if (it == std::end(kEffects)) r.fail(node, "effects", "unknown effect '" + name + "'");
+    on[it - std::begin(kEffects)] = true;
+  }
+  e.gravity = on[0];
+  e.friction = on[1];
+  e.god_finger = on[2];
+  e.tangential_stretch = on[3];
+  e.angular_threshold = on[4];
+  e.friction_cone = on[5];
+  e.force_feedback = on[6];
+}
+
+Eigen::Quaterniond readOrientation(Reader& r) {
+  if (r.has("orientation") && r.has("rotation")) {
+    r.fail(r.find("rotation"), "rotation", "give either orientation or rotation, not both");
+  }
+  if (r.has("rotation")) {
+    const Vec3 deg = r.vec3("rotation", Vec3::Zero());
+    return Eigen::AngleAxisd(deg.x() * kDegToRad, Vec3::UnitX()) *
+           Eigen::AngleAxisd(deg.y() * kDegToRad, Vec3::UnitY()) *
+           Eigen::AngleAxisd(deg.z() * kDegToRad, Vec3::UnitZ());
+  }
+  const toml::node* n = r.find("orientation");
+  if (!n) return Eigen::Quaterniond::Identity();
+  const toml::array* a = n->as_array();
+  if (!a || a->size() != 4 || !std::all_of(a->begin(), a->end(), [](const toml::node& e) {
+        return e.is_number() && std::isfinite(e.value<double>().value_or(NAN));
+      })) {
+    r.fail(n, "orientation", "expected a quaternion [x, y, z, w] of finite numbers");
+  }
+  Eigen::Quaterniond q(a->get(3)->value<double>().value(), a->get(0)->value<double>().value(),
+                       a->get(1)->value<double>().value(), a->get(2)->value<double>().value());
+  if (q.norm() < 1e-9) r.fail(n, "orientation", "quaternion has zero length");
+  return q.normalized();
+}
+
+sim::BodyDesc readBody(const std::string& name, const toml::table& t, const Reader& parent,
+                       const std::string& base_dir) {
+  Reader r(t, parent.field("bodies." + name), parent.file());
+  sim::BodyDesc b;
+  b.name = name;
+  const int shape = r.choice("shape", kShapes, -1);
+  const double big = 1e3;  // m: nothing in a haptic scene is larger
+  switch (shape) {
+    case 0: b.shape = sim::ShapeKind::kSphere; break;
+    case 1: b.shape = sim::ShapeKind::kBox; break;
+    case 2: b.shape = sim::ShapeKind::kCylinder; break;
+    case 3: b.shape = sim::ShapeKind::kCapsule; break;
+    case 4: b.shape = sim::ShapeKind::kPlane; break;
+    default: break;
+  }
+  if (shape == 0 || shape == 2 || shape == 3) b.radius = r.requiredNumber("radius", 1e-4, big);
+  if (shape == 2 || shape == 3) b.half_height = r.requiredNumber("half_height", 1e-4, big);
+  if (shape == 1) {
+    const toml::node* n = r.find("half_extents");
+    if (!n) r.fail(nullptr, "half_extents", "missing (box half extents [x, y, z] in m)");
+    b.half_extents = r.checkedVec3(*n, "half_extents");
+    if (b.half_extents.minCoeff() < 1e-4) r.fail(n, "half_extents", "every half extent must be >= 1e-4 m");
+  }
+  if (shape == 5) {
+    const toml::node* n = r.find("mesh");
+    if (!n || !n->is_string()) r.fail(n, "mesh", "expected the mesh file's path (a string)");
+    b.mesh_path = resolvePath(base_dir, n->as_string()->get());
+    b.mesh_scale = r.number("scale", 1.0, 1e-9, 1e9);
+    const int collision = r.choice("collision", kCollisions, 0);
+    b.shape = collision == 0   ? sim::ShapeKind::kConvexHull
+              : collision == 1 ? sim::ShapeKind::kConvexDecomposition
+                               : sim::ShapeKind::kConcaveMesh;
+    try {
+      const sim::Mesh m = sim::loadMesh(b.mesh_path, b.mesh_scale);
+      if (m.faceCount() == 0) r.fail(n, "mesh", b.mesh_path + ": no triangle left after welding");
+    } catch (const sim::MeshLoadError& e) {
+      r.fail(n, "mesh", e.what());
+    }
+  }
+  b.walk_resolution = r.integer("walk_resolution", 0, 0, 4096);
+  const bool is_static = r.boolean("static", shape == 4);
+  if (shape == 4 && !is_static) r.fail(r.find("static"), "static", "a plane is always static");
+  if (is_static) {
+    if (r.has("mass")) r.fail(r.find("mass"), "mass", "a static body has no mass; remove the field");
+    b.mass = 0.0;
+  } else {
+    b.mass = r.requiredNumber("mass", 1e-6, 1e6);
+  }
+  b.friction = r.number("friction", b.friction, 0.0, 100.0);
+  b.restitution = r.number("restitution", b.restitution, 0.0, 1.0);
+  b.position = r.vec3("position", b.position);
+  b.orientation = readOrientation(r);
+  b.colour = r.vec3("colour", b.colour);
+  if (b.colour.minCoeff() < 0.0 || b.colour.maxCoeff() > 1.0) {
+    r.fail(r.find("colour"), "colour", "components must be in 0..1 (linear RGB)");
+  }
+  r.finish();
+  return b;
+}
+
+sim::DeviceTrack readDevice(Reader& parent, const std::string& base_dir) {
+  const toml::node* n = parent.find("device");
+  if (!n) parent.fail(nullptr, "device", "missing: the finger needs a device (keyframes or csv)");
+  if (!n->is_table()) parent.fail(n, "device", "expected a table");
+  Reader r(*n->as_table(), parent.field("device"), parent.file());
+  sim::DeviceTrack d;
+  if (r.has("csv") == r.has("keyframes")) r.fail(nullptr, "keyframes", "give exactly one of keyframes and csv");
+  d.interpolation = r.choice("interpolation", kInterpolations, 1) == 0 ? sim::Interpolation::kLinear
+                                                                       : sim::Interpolation::kSmooth;
+  if (r.has("csv")) {
+    const toml::node* c = r.find("csv");
+    if (!c->is_string()) r.fail(c, "csv", "expected the CSV file's path (a string)");
+    if (r.has("interpolation")) r.fail(r.find("interpolation"), "interpolation", "a recorded CSV is always linear");
+    d = readDeviceCsv(resolvePath(base_dir, c->as_string()->get()));
+  } else {
+    const toml::node* k = r.find("keyframes");
+    const toml::array* a = k->as_array();
+    if (!a || a->empty()) r.fail(k, "keyframes", "expected a non-empty array of {t = s, p = [x, y, z]}");
+    for (const toml::node& e : *a) {
+      if (!e.is_table()) r.fail(&e, "keyframes", "expected {t = s, p = [x, y, z]}");
+      Reader kr(*e.as_table(), r.field("keyframes"), r.file());
+      sim::DeviceTrack::Keyframe kf{kr.requiredNumber("t", 0.0, 1e6), Vec3::Zero()};
+      const toml::node* p = kr.find("p");
+      if (!p) kr.fail(&e, "p", "missing (device position [x, y, z] in m)");
+      kf.position = kr.checkedVec3(*p, "p");
+      kr.finish();
+      if (!d.keyframes.empty() && kf.time <= d.keyframes.back().time) {
+        kr.fail(kr.find("t"), "t", "keyframe times must increase strictly");
+      }
+      d.keyframes.push_back(kf);
+    }
+  }
+  r.finish();
+  return d;
+}
+
+sim::FingerDesc readFinger(const std::string& name, const toml::table& t, const Reader& parent,
+                           const std::string& base_dir) {
+  Reader r(t, parent.field("fingers." + name), parent.file());
+  sim::FingerDesc f;
+  f.name = name;
+  sim::PatchSettings& p = f.patch;
+  p.n_sgo = r.integer("n_sgo", p.n_sgo, 0, sim::kMaxSgo);
+  if (p.n_sgo > 0 && p.n_sgo < 3) r.fail(r.find("n_sgo"), "n_sgo", "must be 0 (god-object) or 3..64");
+  p.r_max = r.number("r_max", p.r_max, 0.0, 1.0);
+  p.d0 = r.number("d0", p.d0, 1e-6, 1.0);
+  p.alpha = r.number("alpha", p.alpha, 1.0, 100.0);
+  p.stretch_length = r.number("stretch_length", p.stretch_length, 1e-6, 1.0);
+  p.max_stretch_exponent = r.number("max_stretch_exponent", p.max_stretch_exponent, 0.0, 50.0);
+  p.tau_a = r.number("tau_a", p.tau_a / kDegToRad, 0.0, 180.0) * kDegToRad;
+  p.friction = r.number("friction", p.friction, 0.0, 100.0);
+  f.proxy.radius = r.number("proxy_radius", f.proxy.radius, 1e-4, 0.1);
+  f.proxy.mass = r.number("proxy_mass", f.proxy.mass, 1e-4, 10.0);
+  f.proxy.contact_stiffness = r.number("contact_stiffness", f.proxy.contact_stiffness, 1.0, 1e8);
+  f.proxy.contact_damping = r.number("contact_damping", f.proxy.contact_damping, 0.0, 1e6);
+  f.coupling.stiffness = r.number("coupling_stiffness", f.coupling.stiffness, 0.0, 1e6);
+  f.coupling.damping = r.number("coupling_damping", f.coupling.damping, 0.0, 1e5);
+  f.coupling.max_force = r.number("max_force", f.coupling.max_force, 0.0, 1e4);
+  f.device = readDevice(r, base_dir);
+  r.finish();
+  return f;
+}
+
+CameraDesc readCamera(const std::string& name, const toml::table& t, const Reader& parent) {
+  Reader r(t, parent.field("cameras." + name), parent.file());
+  CameraDesc c;
+  c.name = name;
+  c.position = r.vec3("position", c.position);
+  c.target = r.vec3("target", c.target);
+  c.fov_deg = r.number("fov", c.fov_deg, 1.0, 170.0);
+  if ((c.position - c.target).norm() < 1e-6) r.fail(r.find("target"), "target", "equals the camera position");
+  r.finish();
+  return c;
+}
+
+void readRecord(Reader& parent, SessionDesc& s) {
+  const toml::node* n = parent.find("record");
+  if (!n) return;
+  if (!n->is_table()) parent.fail(n, "record", "expected a table");
+  Reader r(*n->as_table(), "record", parent.file());
+  s.record.trace = r.boolean("trace", true);
+  s.record.contact_times = r.numbers("contacts");
+  for (const auto& [body, node] : r.strings("forces")) {
+    const bool known = std::any_of(s.scene.bodies.begin(), s.scene.bodies.end(),
+                                   [&](const sim::BodyDesc& b) { return b.name == body && b.mass > 0.0; });
+    if (!known) r.fail(node, "forces", "no dynamic body called '" + body + "'");
+    s.record.force_bodies.push_back(body);
+  }
+  r.finish();
+}
+
+// "--set a.b.c=VALUE": VALUE is read as TOML, or as a string when it is not valid TOML.
+void applyOverride(toml::table& root, const std::string& text) {
+  const std::string where = "--set " + text;
+  const std::size_t eq = text.find('=');
+  if (eq == std::string::npos || eq == 0) throw InputError(where, 0, 0, text, "expected FIELD=VALUE");
+  const std::string key = text.substr(0, eq), value = text.substr(eq + 1);
+  std::vector<std::string> parts;
+  for (std::size_t a = 0; a <= key.size();) {
+    const std::size_t b = std::min(key.find('.', a), key.size());
+    parts.push_back(key.substr(a, b - a));
+    if (parts.back().empty()) throw InputError(where, 0, 0, key, "empty name in the field path");
+    a = b + 1;
+  }
+  toml::table* t = &root;
+  std::string walked;
+  for (std::size_t i = 0; i + 1 < parts.size(); ++i) {
+    walked += (walked.empty() ? "" : ".") + parts[i];
+    toml::node* n = t->get(parts[i]);
+    if (!n) n = t->insert(parts[i], toml::table{}).first->second.as_table();
+    if (!n->is_table()) throw InputError(where, 0, 0, walked, "is not a table");
+    t = n->as_table();
+  }
+  toml::table parsed;
+  try {
+    parsed = toml::parse("v = " + value, where);
+  } catch (const toml::parse_error&) {
+    std::string quoted;
+    for (char c : value) quoted += (c == '"' || c == '\\') ? std::string("\\") + c : std::string(1, c);
+    try {
+      parsed = toml::parse("v = \"" + quoted + "\"", where);
+    } catch (const toml::parse_error& e) {
+      throw InputError(where, 0, 0, key, std::string(e.description()));
+    }
+  }
+  t->insert_or_assign(parts.back(), std::move(*parsed.get("v")));
+}
+
+SessionDesc readSession(toml::table& root, const std::string& source, const std::string& base_dir,
+                        std::span<const std::string> overrides) {
+  for (const std::string& o : overrides) applyOverride(root, o);
+  Reader r(root, "", source);
+  SessionDesc s;
+  s.source = source;
+  s.scene.name = r.string("name", fs::path(source).stem().string());
+  s.summary = r.string("summary", "");
+  s.scene.duration = r.requiredNumber("duration", 1e-3, 1e6);
+  s.scene.world.haptic_rate_hz = r.number("haptic_rate", 1000.0, 10.0, 100000.0);
+  readEffects(r, s.scene.effects);
+  if (const toml::node* w = r.find("world")) {
+    if (!w->is_table()) r.fail(w, "world", "expected a table");
+    Reader wr(*w->as_table(), "world", source);
+    sim::WorldSettings& ws = s.scene.world;
+    ws.gravity = wr.vec3("gravity", ws.gravity);
+    ws.solver_iterations = wr.integer("solver_iterations", ws.solver_iterations, 1, 10000);
+    ws.linear_damping = wr.number("linear_damping", ws.linear_damping, 0.0, 1e3);
+    ws.angular_damping = wr.number("angular_damping", ws.angular_damping, 0.0, 1e3);
+    wr.finish();
+  }
+  for (const auto& [name, t] : r.namedTables("bodies")) s.scene.bodies.push_back(readBody(name, *t, r, base_dir));
+  if (s.scene.bodies.empty()) r.fail(nullptr, "bodies", "missing: a scene needs at least one body");
+  for (const auto& [name, t] : r.namedTables("fingers")) s.scene.fingers.push_back(readFinger(name, *t, r, base_dir));
+  for (const auto& [name, t] : r.namedTables("cameras")) s.cameras.push_back(readCamera(name, *t, r));
+  readRecord(r, s);
+  r.finish();
+  return s;
+}
+
+}  // namespace
+
+std::string InputError::message(const std::string& file, int line, int column,
+                                const std::string& field, const std::string& reason) {
+  std::string m = file;
+  if (line > 0) {
+    m.append(":").append(std::to_string(line));
+    if (column > 0) m.append(":").append(std::to_string(column));
+  }
+  m.append(": ");
+  if (!field.empty()) m.append(field).append(": ");
+  m.append(reason);
+  return m;
+}
+
+InputError::InputError(const std::string& file, int line, int column, const std::string& field,
+                       const std::string& reason)
+    : std::runtime_error(message(file, line, column, field, reason)),
+      file_(file),
+      line_(line),
+      field_(field) {}
+
+SessionDesc parseSceneText(const std::string& text, const std::string& source_name,
+                           const std::string& base_dir, std::span<const std::string> overrides) {
+  toml::table root;
+  try {
+    root = toml::parse(text, source_name);
+  } catch (const toml::parse_error& e) {
+    throw InputError(source_name, static_cast<int>(e.source().begin.line),
+                     static_cast<int>(e.source().begin.column), "", std::string(e.description()));
+  }
+  return readSession(root, source_name, base_dir, overrides);
+}
+
+SessionDesc loadSceneFile(const std::string& path, std::span<const std::string> overrides) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw InputError(path, 0, 0, "", "cannot open the scene file");
+  std::stringstream text;
+  text << in.rdbuf();
+  return parseSceneText(text.str(), path, fs::path(path).parent_path().string(), overrides);
+}
+
+sim::DeviceTrack readDeviceCsv(const std::string& path) {
+  std::ifstream in(path);
+  if (!in) throw InputError(path, 0, 0, "", "cannot open the device CSV");
+  sim::DeviceTrack d;
+  d.interpolation = sim::Interpolation::kLinear;
+  std::string line;
+  int number = 0;
+  constexpr const char* kColumns[] = {"t", "x", "y", "z"};
+  while (std::getline(in, line)) {
+    ++number;
+    if (!line.empty() && line.back() == '\r') line.pop_back();
+    if (number == 1) {
+      if (line != "t,x,y,z") throw InputError(path, 1, 0, "header", "expected the header row t,x,y,z");
+      continue;
+    }
+    if (line.empty()) continue;
+    double v[4];
+    std::size_t pos = 0;
+    for (int i = 0; i < 4; ++i) {
+      const std::size_t end = std::min(line.find(',', pos), line.size());
+      const std::string cell = line.substr(pos, end - pos);
+      char* stop = nullptr;
+      v[i] = std::strtod(cell.c_str(), &stop);
+      if (cell.empty() || *stop != '\0' || !std::isfinite(v[i])) {
+        throw InputError(path, number, 0, kColumns[i], "expected a finite number, got '" + cell + "'");
+      }
+      if ((i < 3) != (end < line.size())) throw InputError(path, number, 0, kColumns[i], "expected 4 columns");
+      pos = end + 1;
+    }
+    if (!d.keyframes.empty() && v[0] <= d.keyframes.back().time) {
+      throw InputError(path, number, 0, "t", "times must increase strictly");
+    }
+    d.keyframes.push_back({v[0], Vec3(v[1], v[2], v[3])});
+  }
+  if (d.keyframes.empty()) throw InputError(path, number, 0, "", "no sample after the header");
+  return d;
+}
+
+std::string bundledSceneDir() {
+  if (const char* env = std::getenv("GODFINGER_SCENES"); env && *env) return env;
+  return GF_ASSET_DIR "/scenes";
+}
+
+std::string resolveScenePath(const std::string& scene) {
+  if (fs::is_regular_file(scene)) return scene;
+  const fs::path bundled = fs::path(bundledSceneDir()) / (scene + ".toml");
+  if (scene.find('/') == std::string::npos && fs::is_regular_file(bundled)) return bundled.string();
+  throw InputError(scene, 0, 0, "", "no such scene file, and no bundled scene of that name (see `godfinger list`)");
+}
+
+std::vector<std::string> bundledScenePaths() {
+  std::vector<std::string> out;
+  std::error_code ec;
+  for (const auto& e : fs::directory_iterator(bundledSceneDir(), ec)) {
+    if (e.path().extension() == ".toml") out.push_back(e.path().string());
+  }
+  std::sort(out.begin(), out.end());
+  return out;
+}
+
+}  // namespace gf::app

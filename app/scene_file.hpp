@@ -1,0 +1,56 @@
+// Scene files (TOML): parsing, command-line overrides and the bundled scenes.
+// The format is documented field by field in assets/scenes/README.md.
+#pragma once
+
+#include <span>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "app/session_desc.hpp"
+
+namespace gf::app {
+
+/// Bad input: what() reads "FILE:LINE:COLUMN: FIELD: reason" (line and column when known).
+class InputError : public std::runtime_error {
+ public:
+  InputError(const std::string& file, int line, int column, const std::string& field,
+             const std::string& reason);
+  const std::string& file() const { return file_; }
+  int line() const { return line_; }
+  const std::string& field() const { return field_; }
+
+ private:
+  static std::string message(const std::string& file, int line, int column, const std::string& field,
+                             const std::string& reason);
+  std::string file_;
+  int line_;
+  std::string field_;
+};
+
+/// Loads a scene file and applies `overrides` ("fields.path=VALUE", VALUE in TOML syntax or a
+/// bare string) before validation. Mesh and device CSV paths are relative to the file. Loads
+/// every mesh once to check it. Throws InputError.
+SessionDesc loadSceneFile(const std::string& path, std::span<const std::string> overrides = {});
+
+/// Same as loadSceneFile, from text; `source_name` names it in errors and `base_dir` resolves
+/// relative paths.
+SessionDesc parseSceneText(const std::string& text, const std::string& source_name,
+                           const std::string& base_dir, std::span<const std::string> overrides = {});
+
+/// Reads a recorded device path: CSV with a header row "t,x,y,z" (s, m), strictly increasing
+/// times; played back with linear interpolation. Throws InputError naming file and line.
+sim::DeviceTrack readDeviceCsv(const std::string& path);
+
+/// The folder of bundled scene files: $GODFINGER_SCENES if set, else the source tree's
+/// assets/scenes.
+std::string bundledSceneDir();
+
+/// A scene argument as given on the command line: a path to a file, or the name of a bundled
+/// scene (without ".toml"). Throws InputError when neither exists.
+std::string resolveScenePath(const std::string& scene);
+
+/// The bundled scene files, sorted by name.
+std::vector<std::string> bundledScenePaths();
+
+}  // namespace gf::app
