@@ -1,0 +1,209 @@
+// Scene files: fields, overrides, and a clear error (file, line, field) for each bad input.
+#include "app/scene_file.hpp"
+
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include "app/live.hpp"
+#include "app/session.hpp"
+#include "tests/app/scene_run.hpp"
+
+namespace gf::app {
+namespace {
+
+namespace fs = std::filesystem;
+
+const std::string kMinimal = R"(name = "mini"
+duration = 0.2
+effects = ["gravity", "friction", "god_finger"]
+[bodies.ground]
+shape = "plane"
+[bodies.ball]
+shape = "sphere"
+radius = 0.03
+mass = 0.1
+position = [0, 0.03, 0]
+[fingers.left]
+n_sgo = 8
+[fingers.left.device]
+keyframes = [ { t = 0.0, p = [0, 0.1, 0] }, { t = 0.2, p = [0, 0.06, 0] } ]
+)";
+
+// The error parseSceneText gives for `text` (fails the test when there is none).
+InputError errorOf(const std::string& text, std::vector<std::string> overrides = {}) {
+  try {
+    parseSceneText(text, "scene.toml", "", overrides);
+  } catch (const InputError& e) {
+    return e;
+  }
+  ADD_FAILURE() << "no error for:\n" << text;
+  return InputError("", 0, 0, "", "");
+}
+
+std::string replaced(const std::string& from, const std::string& to) {
+  std::string s = kMinimal;
+  const std::size_t at = s.find(from);
+  EXPECT_NE(at, std::string::npos) << from;
+  return s.replace(at, from.size(), to);
+}
+
+TEST(SceneFile, ReadsBodiesFingersAndEffectsInFileOrder) {
+  const SessionDesc s = parseSceneText(kMinimal, "scene.toml", "");
+  ASSERT_EQ(s.scene.bodies.size(), 2u);
+  EXPECT_EQ(s.scene.bodies[0].name, "ground");
+  EXPECT_EQ(s.scene.bodies[1].name, "ball");
+  EXPECT_EQ(s.scene.bodies[0].mass, 0.0);
+  EXPECT_DOUBLE_EQ(s.scene.bodies[1].radius, 0.03);
+  ASSERT_EQ(s.scene.fingers.size(), 1u);
+  EXPECT_EQ(s.scene.fingers[0].device.keyframes.size(), 2u);
+  EXPECT_TRUE(s.scene.effects.gravity);
+  EXPECT_TRUE(s.scene.effects.god_finger);
+  EXPECT_FALSE(s.scene.effects.tangential_stretch) << "not listed, so not run";
+  EXPECT_FALSE(s.scene.effects.force_feedback);
+}
+
+TEST(SceneFile, OverridesSetAnyField) {
+  const std::vector<std::string> o = {"fingers.left.n_sgo=0", "bodies.ball.mass=0.25", "name=other",
+                                      "fingers.left.tau_a=30"};
+  const SessionDesc s = parseSceneText(kMinimal, "scene.toml", "", o);
+  EXPECT_EQ(s.scene.fingers[0].patch.n_sgo, 0);
+  EXPECT_DOUBLE_EQ(s.scene.bodies[1].mass, 0.25);
+  EXPECT_EQ(s.scene.name, "other");
+  EXPECT_NEAR(s.scene.fingers[0].patch.tau_a, 30.0 * std::numbers::pi / 180.0, 1e-12);
+}
+
+TEST(SceneFile, ErrorsNameFileLineAndField) {
+  struct Case {
+    std::string text;
+    int line;
+    std::string field, reason;
+  };
+  const Case cases[] = {
+      {replaced("radius = 0.03", "radius = 0.03\ncolor = [1, 0, 0]"), 9, "bodies.ball.color", "unknown field"},
+      {replaced("mass = 0.1", "mass = \"heavy\""), 9, "bodies.ball.mass", "expected a number, got a string"},
+      {replaced("mass = 0.1", "mass = nan"), 9, "bodies.ball.mass", "must be finite"},
+      {replaced("n_sgo = 8", "n_sgo = 2"), 12, "fingers.left.n_sgo", "must be 0 (god-object) or 3..64"},
+      {replaced("n_sgo = 8", "n_sgo = 8.5"), 12, "fingers.left.n_sgo", "expected an integer"},
+      {replaced("\"god_finger\"]", "\"god_fingers\"]"), 3, "effects", "unknown effect 'god_fingers'"},
+      {replaced("shape = \"sphere\"", "shape = \"cone\""), 7, "bodies.ball.shape", "unknown value 'cone'"},
+      {replaced("duration = 0.2", "duration = "), 2, "", ""},  // TOML syntax error
+      {replaced("{ t = 0.2,", "{ t = 0.0,"), 14, "fingers.left.device.keyframes.t", "increase strictly"},
+  };
+  for (const Case& c : cases) {
+    const InputError e = errorOf(c.text);
+    EXPECT_EQ(e.file(), "scene.toml");
+    EXPECT_EQ(e.line(), c.line) << e.what();
+    EXPECT_EQ(e.field(), c.field) << e.what();
+    EXPECT_NE(std::string(e.what()).find(c.reason), std::string::npos) << e.what();
+  }
+}
+
+TEST(SceneFile, MissingAndEmptyMeshesAreNamed) {
+  const fs::path dir = fs::temp_directory_path() / "gf_scene_file_test";
+  fs::create_directories(dir);
+  std::ofstream(dir / "empty.obj") << "# no triangle\nv 0 0 0\n";
+  const std::string body = "shape = \"sphere\"\nradius = 0.03";
+  for (const char* mesh : {"missing.obj", "empty.obj"}) {
+    const std::string text = replaced(body, "shape = \"mesh\"\nmesh = \"" + std::string(mesh) + "\"");
+    try {
+      parseSceneText(text, "scene.toml", dir.string());
+      ADD_FAILURE() << mesh << " accepted";
+    } catch (const InputError& e) {
+      EXPECT_EQ(e.line(), 8) << e.what();
+      EXPECT_EQ(e.field(), "bodies.ball.mesh");
+      EXPECT_NE(std::string(e.what()).find(mesh), std::string::npos) << e.what();
+    }
+  }
+}
+
+TEST(SceneFile, BadOverridesAreNamed) {
+  const InputError a = errorOf(kMinimal, {"fingers.left.n_sgo=lots"});
+  EXPECT_EQ(a.file(), "--set fingers.left.n_sgo=lots");
+  EXPECT_EQ(a.field(), "fingers.left.n_sgo");
+  const InputError b = errorOf(kMinimal, {"fingers.left.nsgo=4"});
+  EXPECT_EQ(b.field(), "fingers.left.nsgo");
+  EXPECT_NE(std::string(b.what()).find("unknown field"), std::string::npos);
+  const InputError c = errorOf(kMinimal, {"fingers.left.n_sgo"});
+  EXPECT_NE(std::string(c.what()).find("FIELD=VALUE"), std::string::npos);
+}
+
+TEST(SceneFile, DeviceCsvErrorsNameTheLine) {
+  const fs::path dir = fs::temp_directory_path() / "gf_scene_file_test";
+  fs::create_directories(dir);
+  std::ofstream(dir / "good.csv") << "t,x,y,z\n0,0,0.1,0\n0.5,0,0.05,0\n";
+  std::ofstream(dir / "bad.csv") << "t,x,y,z\n0,0,0.1,0\n0.5,0,oops,0\n";
+  const sim::DeviceTrack d = readDeviceCsv((dir / "good.csv").string());
+  EXPECT_EQ(d.keyframes.size(), 2u);
+  EXPECT_NEAR(d.sample(0.25).position.y(), 0.075, 1e-12) << "played back linearly";
+  try {
+    readDeviceCsv((dir / "bad.csv").string());
+    ADD_FAILURE() << "bad CSV accepted";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.line(), 3);
+    EXPECT_EQ(e.field(), "y");
+  }
+}
+
+TEST(BundledScenes, EveryOneLoadsAndRuns) {
+  const std::vector<std::string> paths = bundledScenePaths();
+  EXPECT_GE(paths.size(), 6u);
+  for (const std::string& p : paths) {
+    SessionDesc s = loadSceneFile(p);
+    s.scene.duration = 0.05;
+    sim::World world(s.scene);
+    std::vector<sim::DeviceTrack> devices;
+    for (const sim::FingerDesc& f : s.scene.fingers) devices.push_back(f.device);
+    const sim::LoopStats stats = sim::runHapticLoop(world, devices, {1000.0, s.scene.duration}, nullptr);
+    EXPECT_EQ(stats.steps, 50) << p;
+    EXPECT_EQ(world.counters().nan_recoveries, 0) << p;
+  }
+}
+
+std::string readFile(const fs::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+TEST(Session, SameSceneTwiceGivesByteIdenticalTrace) {
+  SessionDesc s = testing::bundled("fig7-side-pick");
+  s.scene.duration = 1.0;
+  const fs::path a = fs::temp_directory_path() / "gf_session_a", b = fs::temp_directory_path() / "gf_session_b";
+  runSession(s, {a.string(), false, false});
+  runSession(s, {b.string(), false, false});
+  const std::string ta = readFile(a / "trace.csv");
+  EXPECT_GT(ta.size(), 1000u);
+  EXPECT_EQ(ta, readFile(b / "trace.csv"));
+  EXPECT_TRUE(fs::exists(a / "summary.json"));
+  EXPECT_EQ(ta.substr(0, ta.find('\n')),
+            "t,box.px,box.py,box.pz,box.qx,box.qy,box.qz,box.qw,left.fx,left.fy,left.fz,left.n_sgo,"
+            "right.fx,right.fy,right.fz,right.n_sgo");
+}
+
+TEST(Live, AnswersEachLineAndReportsBadCommands) {
+  LiveOptions o;
+  o.scene_path = std::string(GF_SOURCE_DIR) + "/assets/scenes/fig7-side-pick.toml";
+  o.out_dir = (fs::temp_directory_path() / "gf_live").string();
+  std::istringstream in(
+      "step 600\nset fingers.left.n_sgo=0\nmove right 0.05 0.05 0 0.1\nstep 10\nsnapshot s1\n"
+      "jump\nset fingers.left.n_sgo=2\nquit\nstep\n");
+  std::ostringstream out;
+  EXPECT_EQ(runLive(o, in, out), 1) << "two bad lines";
+  std::vector<std::string> lines;
+  std::istringstream answers(out.str());
+  for (std::string l; std::getline(answers, l);) lines.push_back(l);
+  ASSERT_EQ(lines.size(), 9u) << out.str();  // ready + 8 answers; nothing after quit
+  EXPECT_NE(lines[1].find("\"t\":0.6"), std::string::npos) << lines[1];
+  EXPECT_EQ(lines[2], "ok fingers.left.n_sgo=0");
+  EXPECT_EQ(lines[6].rfind("error: <stdin>:6: unknown command 'jump'", 0), 0u) << lines[6];
+  EXPECT_NE(lines[7].find("<stdin>:7"), std::string::npos) << lines[7];
+  EXPECT_NE(lines[7].find("fingers.left.n_sgo"), std::string::npos) << lines[7];
+  EXPECT_TRUE(fs::exists(fs::path(o.out_dir) / "contacts" / "s1.json"));
+}
+
+}  // namespace
+}  // namespace gf::app
