@@ -10,8 +10,10 @@
 #include "app/live.hpp"
 #include "app/patch_json.hpp"
 #include "app/scene_file.hpp"
+#include "app/screenshots.hpp"
 #include "app/session.hpp"
 #include "app/trace_writer.hpp"
+#include "render/render_thread.hpp"
 #include "sim/mesh_import.hpp"
 
 namespace {
@@ -24,6 +26,8 @@ struct RunArgs {
   std::vector<std::string> overrides;
   double duration = 0.0;
   bool realtime = false;
+  bool frames = false;
+  std::string video, camera;
 };
 
 struct PatchArgs {
@@ -40,10 +44,14 @@ void addRun(CLI::App& app, RunArgs& a) {
   run->add_option("--set", a.overrides, "Override a scene field, e.g. --set fingers.left.n_sgo=0");
   run->add_option("--duration", a.duration, "Simulated seconds (default: the scene's)")->check(CLI::PositiveNumber);
   run->add_flag("--realtime", a.realtime, "Pace steps on the wall clock (absolute deadlines)");
+  run->add_flag("--frames", a.frames, "Write frames/000000.png ... at 60 frames per simulated second");
+  run->add_option("--video", a.video, "Write an MP4 of the frames (H.264, via ffmpeg)");
+  run->add_option("--camera", a.camera, "Camera of the scene to render (default: its first)");
 }
 
 void addPatch(CLI::App& app, PatchArgs& a) {
-  CLI::App* p = app.add_subcommand("patch", "Compute one god-finger contact area on a mesh; write patch.json");
+  CLI::App* p = app.add_subcommand("patch", "Compute one god-finger contact area on a mesh; write patch.json "
+                                              "and its close-up patch.png");
   p->add_option("--mesh", a.mesh, "Mesh file (OBJ, PLY, STL, OFF, glTF, ...)")->required();
   p->add_option("--scale", a.scale, "Factor from mesh units to metres")->check(CLI::PositiveNumber);
   p->add_option("--point", a.point, "Contact point X,Y,Z on the mesh (m)")->required();
@@ -79,10 +87,43 @@ int runCommand(const RunArgs& a) {
   gf::app::SessionDesc session = gf::app::loadSceneFile(gf::app::resolveScenePath(a.scene), a.overrides);
   session.overrides = a.overrides;
   if (a.duration > 0.0) session.scene.duration = a.duration;
-  const gf::sim::LoopStats stats = gf::app::runSession(session, {a.out, a.realtime, true});
+  gf::app::sessionCamera(session, a.camera);  // an unknown camera fails before anything runs
+  if (!a.video.empty() && std::filesystem::is_directory(a.video)) {
+    throw InputError("command line", 0, 0, "--video", a.video + " is a folder; give a file such as out.mp4");
+  }
+  gf::app::SessionOptions options{a.out, a.realtime, true, a.frames, a.video, a.camera};
+  const gf::sim::LoopStats stats = gf::app::runSession(session, options);
   std::printf("%s: %ld steps, step median %.1f us, p99 %.1f us; wrote %s/\n", session.scene.name.c_str(),
               stats.steps, stats.step_median_us, stats.step_p99_us, a.out.c_str());
+  if (a.frames) std::printf("frames: %s/frames/\n", a.out.c_str());
+  if (!a.video.empty()) std::printf("video: %s\n", a.video.c_str());
   return 0;
+}
+
+// The close-up of a computed patch: the mesh as a static body, the patch as one finger's contact.
+void writePatchCloseUp(const PatchArgs& a, const gf::sim::PatchContact& contact, const gf::sim::Patch& patch,
+                       const std::string& prefix) {
+  gf::sim::SceneDesc scene;
+  gf::sim::BodyDesc body;
+  body.shape = gf::sim::ShapeKind::kConcaveMesh;
+  body.mesh_path = a.mesh;
+  body.mesh_scale = a.scale;
+  body.mass = 0.0;
+  scene.bodies.push_back(body);
+  gf::sim::FingerDesc finger;
+  finger.patch = a.settings;
+  scene.fingers.push_back(finger);
+  gf::sim::Snapshot snap;
+  snap.bodies.resize(1);
+  gf::sim::ContactSnapshot& c = snap.fingers.emplace_back().contacts.emplace_back();
+  c.body = 0;
+  c.point = patch.hit.point;
+  c.outward_normal = contact.outward_normal.normalized();
+  c.radius = patch.radius;
+  for (const gf::sim::Sgo& s : patch.sgos) c.sgos.push_back(s.position);
+  c.path_points = patch.path_points;
+  c.path_offsets = patch.path_offsets;
+  gf::render::renderCloseUps(scene, snap, prefix, 480);
 }
 
 int patchCommand(PatchArgs& a) {
@@ -106,7 +147,22 @@ int patchCommand(PatchArgs& a) {
   if (ec) throw std::runtime_error(a.out + ": cannot create folder: " + ec.message());
   const std::string path = (std::filesystem::path(a.out) / "patch.json").string();
   gf::app::writeFileAtomically(path, j.dump(1) + "\n");
-  std::printf("radius %.6g m, %zu SGOs; wrote %s\n", patch.radius, patch.sgos.size(), path.c_str());
+  const std::string picture = (std::filesystem::path(a.out) / "patch").string();
+  writePatchCloseUp(a, contact, patch, picture);
+  std::printf("radius %.6g m, %zu SGOs; wrote %s and %s.png\n", patch.radius, patch.sgos.size(), path.c_str(),
+              picture.c_str());
+  return 0;
+}
+
+int screenshotsCommand(const std::string& out) {
+  std::error_code ec;
+  std::filesystem::create_directories(out, ec);
+  if (ec) throw std::runtime_error(out + ": cannot create folder: " + ec.message());
+  for (const gf::app::Shot& shot : gf::app::referenceShots()) {
+    const std::string path = (std::filesystem::path(out) / (shot.name + ".png")).string();
+    gf::render::writePng(path, gf::app::renderShot(shot), 9);
+    std::printf("%s\n", path.c_str());
+  }
   return 0;
 }
 
@@ -138,9 +194,13 @@ int main(int argc, char** argv) {
   live_cmd->add_option("scene", live.scene_path, "Scene file or bundled scene name")->required();
   live_cmd->add_option("--set", live.overrides, "Override a scene field");
   live_cmd->add_option("--out", live.out_dir, "Folder for snapshots (contacts/)");
+  std::string shots_out = "screenshots";
+  app.add_subcommand("screenshots", "Render the reference pictures (visual-regression goldens) into --out")
+      ->add_option("--out", shots_out, "Folder (default: screenshots, the goldens when run from the repository)");
   CLI11_PARSE(app, argc, argv);
   try {
     if (app.got_subcommand("list")) return listCommand();
+    if (app.got_subcommand("screenshots")) return screenshotsCommand(shots_out);
     if (app.got_subcommand("patch")) return patchCommand(patch_args);
     if (app.got_subcommand("live")) {
       live.scene_path = gf::app::resolveScenePath(live.scene_path);

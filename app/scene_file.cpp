@@ -40,6 +40,12 @@ const char* typeName(const toml::node& n) {
 
 // One TOML table being read: typed getters that name file, line and dotted field on error, and
 // a check that every key was used (unknown fields are errors, not silently ignored).
+std::string join(std::span<const char* const> choices) {
+  std::string s;
+  for (const char* c : choices) s.append(s.empty() ? "" : ", ").append(c);
+  return s;
+}
+
 class Reader {
  public:
   Reader(const toml::table& t, std::string prefix, std::string file)
@@ -174,12 +180,6 @@ class Reader {
     }
     return v;
   }
-  static std::string join(std::span<const char* const> choices) {
-    std::string s;
-    for (const char* c : choices) s += (s.empty() ? "" : ", ") + std::string(c);
-    return s;
-  }
-
   const toml::table& table_;
   std::string prefix_;
   std::string file_;
@@ -196,13 +196,13 @@ constexpr const char* kCollisions[] = {"convex_hull", "decomposition", "concave"
 constexpr const char* kInterpolations[] = {"linear", "smooth"};
 constexpr const char* kEffects[] = {"gravity",           "friction",       "god_finger",
                                     "tangential_stretch", "angular_threshold", "friction_cone",
-                                    "force_feedback"};
+                                    "force_feedback",     "patch_highlight", "shadows",
+                                    "overlay"};
 
-void readEffects(Reader& r, sim::EffectSet& e) {
+void readEffects(Reader& r, sim::EffectSet& e, ViewSettings& view) {
   if (!r.has("effects")) {
-    r.fail(nullptr, "effects", "missing: list the effects the scene calls for (any of gravity, "
-                               "friction, god_finger, tangential_stretch, angular_threshold, "
-                               "friction_cone, force_feedback)");
+    r.fail(nullptr, "effects", std::string("missing: list the effects the scene calls for (any of ")
+                                   .append(join(kEffects)).append(")"));
   }
   bool on[std::size(kEffects)] = {};
   for (const auto& [name, node] : r.strings("effects")) {
@@ -218,6 +218,63 @@ void readEffects(Reader& r, sim::EffectSet& e) {
   e.angular_threshold = on[4];
   e.friction_cone = on[5];
   e.force_feedback = on[6];
+  view.patch_highlight = on[7];
+  view.shadows = on[8];
+  view.overlay = on[9];
+}
+
+// widget = "FINGER/FIELD" names a finger of the scene and a widget of its panel; value parses.
+void checkWidget(Reader& r, const sim::SceneDesc& scene, const render::WidgetAction& a) {
+  const std::size_t slash = a.widget.find('/');
+  const std::string finger = a.widget.substr(0, slash);
+  const std::string field = slash == std::string::npos ? "" : a.widget.substr(slash + 1);
+  const bool known_finger = std::any_of(scene.fingers.begin(), scene.fingers.end(),
+                                        [&](const sim::FingerDesc& f) { return f.name == finger; });
+  const auto& fields = render::widgetFields();
+  if (!known_finger || std::find(fields.begin(), fields.end(), field) == fields.end()) {
+    std::string names;
+    for (const std::string& f : fields) names.append(names.empty() ? "" : ", ").append(f);
+    r.fail(r.find("widget"), "widget", "expected FINGER/FIELD with a finger of the scene and FIELD one of " + names);
+  }
+  if (field == "god_finger") {
+    if (a.value != "on" && a.value != "off") r.fail(r.find("value"), "value", "expected \"on\" or \"off\"");
+    return;
+  }
+  char* end = nullptr;
+  const double v = std::strtod(a.value.c_str(), &end);
+  if (a.value.empty() || *end != '\0' || !std::isfinite(v)) r.fail(r.find("value"), "value", "expected a number");
+}
+
+// [render]: frame size, anti-aliasing and scripted overlay input.
+void readView(Reader& parent, SessionDesc& s) {
+  ViewSettings& v = s.view;
+  if (const toml::node* n = parent.find("render")) {
+    if (!n->is_table()) parent.fail(n, "render", "expected a table");
+    Reader r(*n->as_table(), "render", parent.file());
+    v.width = r.integer("width", v.width, 16, 1920);
+    v.height = r.integer("height", v.height, 16, 1080);
+    v.msaa_samples = r.integer("msaa", v.msaa_samples, 1, 8);
+    if (const toml::node* k = r.find("actions")) {
+      const toml::array* a = k->as_array();
+      if (!a) r.fail(k, "actions", "expected an array of {t = s, widget = \"FINGER/FIELD\", value = \"...\"}");
+      for (const toml::node& e : *a) {
+        if (!e.is_table()) r.fail(&e, "actions", "expected {t = s, widget = \"FINGER/FIELD\", value = \"...\"}");
+        Reader ar(*e.as_table(), r.field("actions"), r.file());
+        render::WidgetAction act;
+        act.time = ar.requiredNumber("t", 0.0, s.scene.duration);
+        act.widget = ar.string("widget", "");
+        act.value = ar.string("value", "");
+        checkWidget(ar, s.scene, act);
+        if (!v.actions.empty() && act.time < v.actions.back().time) ar.fail(ar.find("t"), "t", "actions must be in time order");
+        v.actions.push_back(act);
+        ar.finish();
+      }
+    }
+    r.finish();
+  }
+  if (!v.actions.empty() && !v.overlay) {
+    parent.fail(parent.find("render"), "render.actions", "scripted input needs the overlay effect");
+  }
 }
 
 Eigen::Quaterniond readOrientation(Reader& r) {
@@ -392,6 +449,10 @@ void readRecord(Reader& parent, SessionDesc& s) {
     if (!known) r.fail(node, "forces", "no dynamic body called '" + body + "'");
     s.record.force_bodies.push_back(body);
   }
+  s.record.force_chart = r.boolean("force_chart", false);
+  if (s.record.force_chart && s.record.force_bodies.empty()) {
+    r.fail(r.find("force_chart"), "force_chart", "needs a body listed in record.forces");
+  }
   r.finish();
 }
 
@@ -442,7 +503,7 @@ SessionDesc readSession(toml::table& root, const std::string& source, const std:
   s.summary = r.string("summary", "");
   s.scene.duration = r.requiredNumber("duration", 1e-3, 1e6);
   s.scene.world.haptic_rate_hz = r.number("haptic_rate", 1000.0, 10.0, 100000.0);
-  readEffects(r, s.scene.effects);
+  readEffects(r, s.scene.effects, s.view);
   if (const toml::node* w = r.find("world")) {
     if (!w->is_table()) r.fail(w, "world", "expected a table");
     Reader wr(*w->as_table(), "world", source);
@@ -458,6 +519,7 @@ SessionDesc readSession(toml::table& root, const std::string& source, const std:
   for (const auto& [name, t] : r.namedTables("fingers")) s.scene.fingers.push_back(readFinger(name, *t, r, base_dir));
   for (const auto& [name, t] : r.namedTables("cameras")) s.cameras.push_back(readCamera(name, *t, r));
   readRecord(r, s);
+  readView(r, s);
   r.finish();
   return s;
 }

@@ -7,7 +7,9 @@
 #include <cstdio>
 #include <filesystem>
 
+#include "app/frame_driver.hpp"
 #include "app/patch_json.hpp"
+#include "app/scene_file.hpp"
 #include "app/trace_writer.hpp"
 #include "sim/world.hpp"
 
@@ -80,15 +82,19 @@ class ForceWriter {
     }
     text_ += '\n';
     gravity_ = d.effects.gravity ? d.world.gravity : sim::Vec3::Zero();
+    times_.reserve(static_cast<std::size_t>(std::max(0L, rows)));
+    fy_.reserve(static_cast<std::size_t>(std::max(0L, rows)));
     text_.reserve(text_.size() + static_cast<std::size_t>(std::max(0L, rows)) * 24 * (1 + 3 * bodies_.size()));
   }
   bool empty() const { return bodies_.empty(); }
   void record(const sim::World& world, double dt) {
     appendNumber(text_, world.time());
+    times_.push_back(world.time());
     for (std::size_t i = 0; i < bodies_.size(); ++i) {
       const sim::Vec3 v = world.bodyLinearVelocity(bodies_[i]);
       const sim::Vec3 f = world.desc().bodies[bodies_[i]].mass * ((v - previous_[i]) / dt - gravity_);
       previous_[i] = v;
+      if (i == 0) fy_.push_back(f.y());
       for (double x : {f.x(), f.y(), f.z()}) {
         text_ += ',';
         appendNumber(text_, x);
@@ -97,18 +103,108 @@ class ForceWriter {
     text_ += '\n';
   }
   const std::string& text() const { return text_; }
+  /// The y force on the first body against time, as a chart curve.
+  render::ChartSeries series(const std::string& label, const Eigen::Vector3f& colour) const {
+    return {label, colour, times_, fy_};
+  }
 
  private:
   std::string text_;
   std::vector<int> bodies_;
   std::vector<sim::Vec3> previous_;
+  std::vector<double> times_, fy_;
   sim::Vec3 gravity_ = sim::Vec3::Zero();
 };
 
 std::string contactFileName(double t) {
   char name[48];
-  std::snprintf(name, sizeof name, "t%.3f.json", t);
+  std::snprintf(name, sizeof name, "t%.3f", t);
   return name;
+}
+
+}  // namespace
+
+render::Camera sessionCamera(const SessionDesc& session, const std::string& name) {
+  if (name.empty() && !session.cameras.empty()) return session.cameras.front();
+  for (const CameraDesc& c : session.cameras) {
+    if (c.name == name) return c;
+  }
+  if (!name.empty()) {
+    std::string known;
+    for (const CameraDesc& c : session.cameras) known.append(known.empty() ? "" : ", ").append(c.name);
+    throw InputError(session.source, 0, 0, "cameras." + name,
+                     "no such camera (the scene has: " + (known.empty() ? "none" : known) + ")");
+  }
+  render::Camera c;  // no camera in the scene: look at the origin from the front and above
+  c.name = "default";
+  return c;
+}
+
+render::FrameOutputSettings frameSettings(const SessionDesc& session, const SessionOptions& options) {
+  const ViewSettings& v = session.view;
+  render::FrameOutputSettings f;
+  f.width = v.width;
+  f.height = v.height;
+  f.msaa_samples = v.msaa_samples;
+  f.camera = sessionCamera(session, options.camera);
+  if (options.frames) f.frames_dir = (fs::path(options.out_dir) / "frames").string();
+  f.video_path = options.video_path;
+  f.scene.shadows = v.shadows;
+  f.scene.patch_highlight = v.patch_highlight;
+  f.overlay = v.overlay;
+  f.overlay_settings.actions = v.actions;
+  f.realtime = options.realtime;
+  return f;
+}
+
+namespace {
+
+// The y force on the first force body with every finger a god-object, for the Fig. 8 chart.
+render::ChartSeries godObjectForces(const SessionDesc& session) {
+  sim::SceneDesc scene = session.scene;
+  for (sim::FingerDesc& f : scene.fingers) f.patch.n_sgo = 0;
+  sim::World world(scene);
+  std::vector<sim::DeviceTrack> devices;
+  for (const sim::FingerDesc& f : scene.fingers) devices.push_back(f.device);
+  const double dt = 1.0 / scene.world.haptic_rate_hz;
+  ForceWriter forces(world, {session.record.force_bodies.front()}, 0);
+  sim::runHapticLoop(world, devices, {scene.world.haptic_rate_hz, scene.duration},
+                     [&](const sim::World& w) { forces.record(w, dt); });
+  return forces.series("god-object (n_SGO = 0)", {0.85f, 0.2f, 0.15f});
+}
+
+void writeForceChart(const SessionDesc& session, const ForceWriter& forces, render::RenderThread& renderer,
+                     const fs::path& path) {
+  render::ChartSpec chart;
+  chart.title = session.scene.name + ": y force on " + session.record.force_bodies.front() +
+                " (N, gravity removed) - paper Fig. 8";
+  chart.x_label = "time (s)";
+  chart.y_label = "F_y (N)";
+  chart.series.push_back(godObjectForces(session));
+  int n = 0;
+  for (const sim::FingerDesc& f : session.scene.fingers) n = std::max(n, f.patch.n_sgo);
+  chart.series.push_back(forces.series("god-finger (n_SGO = " + std::to_string(n) + ")", {0.1f, 0.3f, 0.9f}));
+  renderer.submitChart(chart, path.string());
+}
+
+nlohmann::json renderJson(const render::RenderStats& r, long frames) {
+  const auto fps = [](const render::SinkStats& s) { return s.busy_seconds > 0 ? s.frames / s.busy_seconds : 0.0; };
+  return {{"frames", frames},
+          {"render_ms", {{"median", r.render_ms_median}, {"p99", r.render_ms_p99}}},
+          {"png", {{"frames", r.png.frames}, {"encode_fps", fps(r.png)}}},
+          {"video", {{"frames", r.video.frames}, {"bytes", r.video.bytes}}},
+          {"gl", r.gl}};
+}
+
+nlohmann::json changesJson(const std::vector<AppliedChange>& changes, const sim::SceneDesc& scene) {
+  nlohmann::json out = nlohmann::json::array();
+  for (const AppliedChange& c : changes) {
+    const sim::PatchSettings& p = c.command.patch;
+    out.push_back({{"t", c.time}, {"finger", scene.fingers[static_cast<std::size_t>(c.command.finger)].name},
+                   {"n_sgo", p.n_sgo}, {"r_max_m", p.r_max}, {"alpha", p.alpha}, {"tau_a_rad", p.tau_a},
+                   {"friction", p.friction}});
+  }
+  return out;
 }
 
 }  // namespace
@@ -129,16 +225,33 @@ sim::LoopStats runSession(const SessionDesc& session, const SessionOptions& opti
   std::vector<double> pending = session.record.contact_times;
   std::sort(pending.begin(), pending.end(), std::greater<>());  // next time at the back
   std::vector<std::pair<double, sim::Snapshot>> contact_snaps;  // serialised after the run
+  // The render thread: frames, close-ups and charts.
+  const bool stream = options.frames || !options.video_path.empty();
+  const bool closeups = options.close_ups && !pending.empty();
+  std::unique_ptr<render::RenderThread> renderer;
+  if (stream || closeups || session.record.force_chart) {
+    render::FrameOutputSettings fo = frameSettings(session, options);
+    if (!stream) fo.overlay = false;
+    renderer = std::make_unique<render::RenderThread>(scene, fo);
+  }
+  sim::LiveTimings live;
+  std::unique_ptr<FrameDriver> frames;
+  if (stream) frames = std::make_unique<FrameDriver>(*renderer, 60.0, options.realtime, session.view.actions, &live);
   const long report_every = std::max(1L, static_cast<long>(rate));  // once per simulated second
   const auto start = std::chrono::steady_clock::now();
   long done = 0;
   sim::LoopSettings loop{rate, scene.duration,
                          options.realtime ? sim::ClockMode::kRealtime : sim::ClockMode::kOffline};
+  loop.live = &live;
+  if (frames) frames->start(world);
   const sim::LoopStats stats = sim::runHapticLoop(world, devices, loop, [&](const sim::World& w) {
     if (session.record.trace) trace.record(w);
     if (!forces.empty()) forces.record(w, dt);
+    if (frames) frames->afterStep(world, dt);
     while (!pending.empty() && pending.back() <= w.time() + 0.5 * dt) {
       w.snapshot(contact_snaps.emplace_back(pending.back(), sim::Snapshot{}).second);
+      if (closeups) renderer->submitCloseUps(contact_snaps.back().second,
+                                             (dir / "contacts" / contactFileName(pending.back())).string());
       pending.pop_back();
     }
     if (options.progress && ++done % report_every == 0) {
@@ -152,10 +265,17 @@ sim::LoopStats runSession(const SessionDesc& session, const SessionOptions& opti
   if (session.record.trace) trace.save((dir / "trace.csv").string());
   if (!forces.empty()) writeFileAtomically((dir / "forces.csv").string(), forces.text());
   for (const auto& [t, snap] : contact_snaps) {
-    writeFileAtomically((dir / "contacts" / contactFileName(t)).string(), contactsJson(snap, scene).dump(1) + "\n");
+    writeFileAtomically((dir / "contacts" / (contactFileName(t) + ".json")).string(),
+                        contactsJson(snap, scene).dump(1) + "\n");
   }
-  writeFileAtomically((dir / "summary.json").string(),
-                      summaryJson(session, world, stats, options.realtime).dump(2) + "\n");
+  if (session.record.force_chart) writeForceChart(session, forces, *renderer, dir / "forces.png");
+  nlohmann::json summary = summaryJson(session, world, stats, options.realtime);
+  if (renderer) {
+    const render::RenderStats r = renderer->finish();
+    summary["render"] = renderJson(r, frames ? frames->frames() : 0);
+    if (frames) summary["overlay_changes"] = changesJson(frames->changes(), scene);
+  }
+  writeFileAtomically((dir / "summary.json").string(), summary.dump(2) + "\n");
   return stats;
 }
 

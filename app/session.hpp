@@ -4,6 +4,7 @@
 #include <string>
 
 #include "app/session_desc.hpp"
+#include "render/render_thread.hpp"
 #include "sim/haptic_loop.hpp"
 
 namespace gf::app {
@@ -13,13 +14,25 @@ struct SessionOptions {
   std::string out_dir = "out";  ///< created if missing
   bool realtime = false;        ///< realtime clock (absolute deadlines) instead of offline
   bool progress = true;         ///< progress lines (sim time, steps, ETA) on stderr
+  bool frames = false;          ///< PNG sequence out_dir/frames/000000.png ...
+  std::string video_path;       ///< MP4 of the frames (ffmpeg); empty: none
+  std::string camera;           ///< camera of the frame stream; empty: the scene's first
+  bool close_ups = true;        ///< close-up PNG beside each contact snapshot
 };
+
+/// The camera called `name` in the session (the first when empty; a default view of the scene
+/// when it has none). Throws InputError naming the camera when there is no such camera.
+render::Camera sessionCamera(const SessionDesc& session, const std::string& name);
+
+/// The render thread's settings for this session and these options.
+render::FrameOutputSettings frameSettings(const SessionDesc& session, const SessionOptions& options);
 
 /// Runs the session for scene.duration and writes into out_dir: summary.json, trace.csv (when
 /// recorded), contacts/t<time>.json at the recorded times, forces.csv (when bodies are listed).
 /// Every file is written whole through a rename, so an earlier run's file is replaced only by a
 /// complete one. Returns the loop statistics. Throws std::runtime_error (naming the path) on
-/// I/O failure.
+/// I/O failure. Frames (options.frames, options.video_path) are drawn by a render thread, at
+/// every 1/60 s of simulated time; summary.json then holds the render timings.
 sim::LoopStats runSession(const SessionDesc& session, const SessionOptions& options);
 
 }  // namespace gf::app

@@ -4,6 +4,8 @@
 #include <string>
 #include <vector>
 
+#include "render/camera.hpp"
+#include "render/overlay.hpp"
 #include "sim/scene_desc.hpp"
 
 namespace gf::app {
@@ -13,15 +15,24 @@ struct RecordSettings {
   bool trace = true;                         ///< trace.csv, one row per haptic step
   std::vector<double> contact_times;         ///< s: contacts/t<time>.json at these times
   std::vector<std::string> force_bodies;     ///< forces.csv: non-gravity force on these bodies
+  /// forces.png: the y force on the first force body against time, this scene with god-fingers
+  /// and again with every finger a god-object (the paper's Fig. 8)
+  bool force_chart = false;
+};
+
+/// How the scene is drawn: the render effects and the [render] table.
+struct ViewSettings {
+  bool patch_highlight = false;  ///< effect: contact patches, SGOs, normals, force arrows
+  bool shadows = false;          ///< effect: soft shadows from the key light
+  bool overlay = false;          ///< effect: the ImGui overlay
+  int width = 1280;              ///< frame size (pixels, up to 1920 x 1080)
+  int height = 720;
+  int msaa_samples = 4;          ///< multisample anti-aliasing (1: off)
+  std::vector<render::WidgetAction> actions;  ///< scripted overlay input, by time
 };
 
 /// A camera for the renderer (one is rendered per output stream).
-struct CameraDesc {
-  std::string name;
-  sim::Vec3 position = sim::Vec3(0.3, 0.25, 0.4);  ///< m
-  sim::Vec3 target = sim::Vec3::Zero();            ///< m: the point looked at
-  double fov_deg = 40.0;                           ///< vertical field of view (degrees)
-};
+using CameraDesc = render::Camera;
 
 /// A loaded scene file: the physics description plus what to record and how to look at it.
 struct SessionDesc {
@@ -30,6 +41,7 @@ struct SessionDesc {
   std::string source;        ///< the file it came from ("" for built-in scenes)
   std::vector<std::string> overrides;  ///< the --set FIELD=VALUE applied, in order
   RecordSettings record;
+  ViewSettings view;
   std::vector<CameraDesc> cameras;
 };
 

@@ -20,6 +20,16 @@ double percentile(std::vector<float>& v, double q) {
 
 }  // namespace
 
+HapticTimings LiveTimings::summary() const {
+  const std::size_t n = std::min(recent_us.size(), static_cast<std::size_t>(std::max(0L, steps)));
+  std::vector<float> v(recent_us.begin(), recent_us.begin() + static_cast<std::ptrdiff_t>(n));
+  HapticTimings t;
+  t.step_p99_us = percentile(v, 0.99);
+  t.step_median_us = percentile(v, 0.5);
+  t.late_steps = late_steps;
+  return t;
+}
+
 long stepCount(double duration, double rate_hz) { return std::lround(duration * rate_hz); }
 
 LoopStats runHapticLoop(World& world, const std::vector<DeviceTrack>& devices,
@@ -44,6 +54,7 @@ LoopStats runHapticLoop(World& world, const std::vector<DeviceTrack>& devices,
       const double late = std::chrono::duration<double>(Clock::now() - deadline).count();
       stats.max_lateness_us = std::max(stats.max_lateness_us, late * 1e6);
       stats.late_steps += late > settings.late_threshold;
+      if (settings.live) settings.live->late_steps = stats.late_steps;
     }
     // Time of step k from its index, so no rounding accumulates over long runs.
     const double t = t0 + static_cast<double>(k) * dt;
@@ -51,6 +62,7 @@ LoopStats runHapticLoop(World& world, const std::vector<DeviceTrack>& devices,
     const auto before = Clock::now();
     world.step(dt, samples);
     step_us[k] = std::chrono::duration<float, std::micro>(Clock::now() - before).count();
+    if (LiveTimings* live = settings.live) live->recent_us[live->steps++ % live->recent_us.size()] = step_us[k];
     if (observer) observer(world);
   }
   stats.wall_seconds = std::chrono::duration<double>(Clock::now() - start).count();

@@ -15,12 +15,23 @@ enum class ClockMode {
   kRealtime,  ///< step k starts at start + k dt on steady_clock (absolute deadlines)
 };
 
+/// Step timings the loop keeps current while it runs, for the overlay. Written and read on the
+/// haptic thread (the observer reads them).
+struct LiveTimings {
+  std::vector<float> recent_us = std::vector<float>(1000);  ///< ring: cost of the latest steps
+  long steps = 0;                                           ///< steps recorded so far
+  long late_steps = 0;                                      ///< realtime steps started late
+  /// Median and p99 over the ring, and the late count. Allocates a copy of the ring.
+  HapticTimings summary() const;
+};
+
 /// Settings of one run.
 struct LoopSettings {
   double rate_hz = 1000.0;          ///< haptic rate (steps per simulated second)
   double duration = 1.0;            ///< simulated seconds to run
   ClockMode clock = ClockMode::kOffline;
   double late_threshold = 0.0005;   ///< s: a realtime step starting later than this is late
+  LiveTimings* live = nullptr;      ///< updated after every step when set
 };
 
 /// Timing statistics of a run (wall-clock, so not deterministic).

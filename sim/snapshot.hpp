@@ -39,12 +39,26 @@ struct FingerSnapshot {
   std::vector<ContactSnapshot> contacts;
 };
 
+/// Haptic-loop timings as of a snapshot (wall-clock; all zero in offline replays).
+struct HapticTimings {
+  double step_median_us = 0.0;  ///< over the last second of steps
+  double step_p99_us = 0.0;
+  long late_steps = 0;          ///< realtime steps started > 0.5 ms past their deadline, so far
+};
+
 /// The world at simulated time `time`.
 struct Snapshot {
   double time = 0.0;  ///< s
   long step = 0;
   std::vector<BodySnapshot> bodies;
   std::vector<FingerSnapshot> fingers;
+  HapticTimings timings;
 };
+
+/// The world at `time` between snapshots a (earlier) and b (later) of the same world: body
+/// poses, proxies, devices and forces interpolated (slerp for orientations); contacts and
+/// patches taken from b and carried along with their body's interpolated pose. `out` reuses
+/// its storage. Any thread.
+void interpolateSnapshot(const Snapshot& a, const Snapshot& b, double time, Snapshot& out);
 
 }  // namespace gf::sim

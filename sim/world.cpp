@@ -121,6 +121,10 @@ struct World::Impl final : SolveHooks {
   std::vector<btPersistentManifold*> injected;
   std::vector<SavedState> saved;
   double time = 0.0;
+  // Time is counted in steps of one dt from the last change of dt, so k steps of 1 ms read
+  // exactly k / 1000 s instead of a running sum's rounding.
+  double time_base = 0.0, steps_dt = 0.0;
+  long steps_since_base = 0;
   WorldCounters counters;
 };
 
@@ -343,7 +347,12 @@ void World::step(double dt, std::span<const DeviceSample> devices) {
   }
   w.saveStates();
   w.world.stepSimulation(dt, 0, dt);
-  w.time += dt;
+  if (dt != w.steps_dt) {
+    w.time_base = w.time;
+    w.steps_dt = dt;
+    w.steps_since_base = 0;
+  }
+  w.time = w.time_base + static_cast<double>(++w.steps_since_base) / (1.0 / dt);
   ++w.counters.steps;
   if (!w.statesFinite()) {
     w.restoreStates();

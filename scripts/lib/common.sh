@@ -7,7 +7,7 @@ GF_ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/../.." && pwd)"
 GF_PACKAGES=(
   build-essential cmake ninja-build pkg-config git
   libbullet-dev libbullet-extras-dev libeigen3-dev libassimp-dev
-  libosmesa6-dev libimgui-dev libstb-dev zlib1g-dev
+  libosmesa6-dev libimgui-dev libstb-dev libdeflate-dev
   libgtest-dev libgmock-dev libbenchmark-dev
   libcli11-dev libtomlplusplus-dev nlohmann-json3-dev
   ffmpeg

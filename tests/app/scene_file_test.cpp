@@ -173,8 +173,8 @@ TEST(Session, SameSceneTwiceGivesByteIdenticalTrace) {
   SessionDesc s = testing::bundled("fig7-side-pick");
   s.scene.duration = 1.0;
   const fs::path a = fs::temp_directory_path() / "gf_session_a", b = fs::temp_directory_path() / "gf_session_b";
-  runSession(s, {a.string(), false, false});
-  runSession(s, {b.string(), false, false});
+  runSession(s, {a.string(), false, false, false, "", ""});
+  runSession(s, {b.string(), false, false, false, "", ""});
   const std::string ta = readFile(a / "trace.csv");
   EXPECT_GT(ta.size(), 1000u);
   EXPECT_EQ(ta, readFile(b / "trace.csv"));

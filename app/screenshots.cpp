@@ -1,0 +1,42 @@
+#include "app/screenshots.hpp"
+
+#include "app/scene_file.hpp"
+#include "app/session.hpp"
+#include "render/render_thread.hpp"
+#include "sim/haptic_loop.hpp"
+#include "sim/world.hpp"
+
+namespace gf::app {
+
+const std::vector<Shot>& referenceShots() {
+  static const std::vector<Shot> kShots = {
+      {"fig5-push-ball", "fig5-push-ball", 1.5, "", {}},
+      {"fig6-lift-one-finger", "fig6-lift-one-finger", 2.5, "", {}},
+      {"fig7-lift-two-fingers", "fig7-lift-two-fingers", 2.0, "", {}},
+      {"fig7-side-pick", "fig7-side-pick", 2.5, "", {}},
+      {"fig8-pinch-oscillation", "fig8-pinch-oscillation", 4.0, "", {}},
+      {"fig8-god-object", "fig8-pinch-oscillation", 4.0, "", {"fingers.left.n_sgo=0", "fingers.right.n_sgo=0"}},
+      {"concave-mesh", "concave-mesh", 1.5, "", {}},
+      {"edge-contact", "edge-contact", 1.2, "", {}},
+      {"vertex-contact", "vertex-contact", 1.2, "", {}},
+      {"overlay", "overlay-demo", 2.0, "", {}},
+  };
+  return kShots;
+}
+
+render::Image renderShot(const Shot& shot) {
+  SessionDesc session = loadSceneFile(resolveScenePath(shot.scene), shot.overrides);
+  session.view.width = kShotWidth;
+  session.view.height = kShotHeight;
+  sim::World world(session.scene);
+  std::vector<sim::DeviceTrack> devices;
+  for (const sim::FingerDesc& f : session.scene.fingers) devices.push_back(f.device);
+  sim::runHapticLoop(world, devices, {session.scene.world.haptic_rate_hz, shot.time}, nullptr);
+  sim::Snapshot snapshot;
+  world.snapshot(snapshot);
+  SessionOptions options;
+  options.camera = shot.camera;
+  return render::renderStill(session.scene, snapshot, frameSettings(session, options));
+}
+
+}  // namespace gf::app

@@ -1,0 +1,38 @@
+// The table of reference pictures: fixed (scene, time, camera) pairs rendered offline. The
+// visual-regression test compares them with the goldens in screenshots/; `godfinger
+// screenshots --bless` writes new goldens; the README shows them.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "render/image.hpp"
+
+namespace gf::app {
+
+/// One reference picture.
+struct Shot {
+  std::string name;                    ///< file name without .png
+  std::string scene;                   ///< bundled scene name
+  double time = 0.0;                   ///< s of simulated time
+  std::string camera;                  ///< camera of the scene ("" for its first)
+  std::vector<std::string> overrides;  ///< --set FIELD=VALUE applied to the scene
+};
+
+/// Every reference picture, in README order.
+const std::vector<Shot>& referenceShots();
+
+/// Size of the reference pictures (pixels).
+inline constexpr int kShotWidth = 640;
+inline constexpr int kShotHeight = 360;
+
+/// Runs the shot's scene offline up to its time and renders that instant. Deterministic on one
+/// machine. Throws InputError for a broken scene, render::GlError when GL fails.
+render::Image renderShot(const Shot& shot);
+
+/// Tolerance of the comparison: a pixel differs when a channel is off by more than this...
+inline constexpr int kShotChannelThreshold = 24;
+/// ...and a picture fails when more than this share of its pixels differ.
+inline constexpr double kShotMaxDifferingShare = 0.004;
+
+}  // namespace gf::app

@@ -1,0 +1,70 @@
+// Where rendered frames go: a PNG sequence encoded on its own writer thread, or an MP4 made by
+// the ffmpeg binary from raw frames on a pipe. Both are fed by the render thread only.
+#pragma once
+
+#include <condition_variable>
+#include <cstdio>
+#include <deque>
+#include <mutex>
+#include <string>
+#include <thread>
+
+#include "render/image.hpp"
+
+namespace gf::render {
+
+/// Counts of a finished sink.
+struct SinkStats {
+  long frames = 0;
+  double busy_seconds = 0.0;  ///< time spent encoding (PNG) or writing to the pipe (MP4)
+  long bytes = 0;             ///< bytes written
+};
+
+/// frames/000000.png, 000001.png, ... in `folder`, encoded by a writer thread (zlib level 1) so
+/// the render thread only waits when `queue_depth` frames are already pending.
+class PngSequenceWriter {
+ public:
+  /// Creates `folder` when missing. Throws ImageError naming it when it cannot.
+  PngSequenceWriter(const std::string& folder, int queue_depth = 3);
+  ~PngSequenceWriter();
+  PngSequenceWriter(const PngSequenceWriter&) = delete;
+  PngSequenceWriter& operator=(const PngSequenceWriter&) = delete;
+  /// Queues the next frame (takes the pixels). Throws the writer's first error, if any.
+  void push(Image&& frame);
+  /// Writes what is queued, stops the thread, rethrows the first error. Idempotent.
+  SinkStats finish();
+
+ private:
+  void run();
+  std::string folder_;
+  std::size_t depth_;
+  std::mutex mutex_;
+  std::condition_variable changed_;
+  std::deque<Image> queue_;
+  bool closing_ = false;
+  std::string error_;
+  SinkStats stats_;
+  std::thread thread_;
+};
+
+/// An H.264 MP4 written by `ffmpeg` (libx264, yuv420p, CRF `crf`, 60 fps) from raw RGB frames.
+class VideoWriter {
+ public:
+  /// Starts ffmpeg writing `path`. Throws ImageError when it cannot be started.
+  VideoWriter(const std::string& path, int width, int height, double fps, int crf = 26);
+  ~VideoWriter();
+  VideoWriter(const VideoWriter&) = delete;
+  VideoWriter& operator=(const VideoWriter&) = delete;
+  /// Writes one frame of the size given at construction. Throws ImageError when ffmpeg failed.
+  void push(const Image& frame);
+  /// Closes the pipe and waits for ffmpeg; throws ImageError when it reported failure.
+  SinkStats finish();
+
+ private:
+  std::string path_;
+  int width_, height_;
+  std::FILE* pipe_ = nullptr;
+  SinkStats stats_;
+};
+
+}  // namespace gf::render

@@ -1,0 +1,35 @@
+// 8-bit RGB images in memory, rows from top to bottom, and their PNG files.
+#pragma once
+
+#include <cstdint>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace gf::render {
+
+/// An RGB8 image; pixel (x, y) starts at rgb[3 * (y * width + x)], y = 0 is the top row.
+struct Image {
+  int width = 0;
+  int height = 0;
+  std::vector<std::uint8_t> rgb;
+};
+
+/// A PNG file that cannot be read or written; what() names the file.
+class ImageError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+/// Encodes `image` as PNG bytes: each row filtered with PNG's "Up" filter, then deflated into a
+/// zlib stream by libdeflate at `zlib_level` (1 = fastest, 12 = smallest). Any thread; allocates.
+std::vector<std::uint8_t> encodePng(const Image& image, int zlib_level = 1);
+
+/// Writes encodePng(image) to `path` through a temporary file and a rename, so a reader never
+/// sees half a file. Throws ImageError naming the path.
+void writePng(const std::string& path, const Image& image, int zlib_level = 1);
+
+/// Reads a PNG (any bit depth and colour type stb_image reads) as RGB8. Throws ImageError.
+Image readPng(const std::string& path);
+
+}  // namespace gf::render

@@ -1,0 +1,30 @@
+// The highlighted contact patch: a translucent surface that follows the walked paths over the
+// body, built per frame from a contact snapshot. Render thread; reuses its buffers.
+#pragma once
+
+#include <vector>
+
+#include "render/gpu.hpp"
+#include "sim/mesh.hpp"
+#include "sim/snapshot.hpp"
+
+namespace gf::render {
+
+/// How finely the patch surface is built.
+struct PatchMeshSettings {
+  int rings = 8;              ///< samples along each walked path, contact point excluded
+  int rays_between = 3;       ///< interpolated rays between two neighbouring paths
+  double lift = 0.0002;       ///< m the surface is raised along the body normal (no z-fighting)
+};
+
+/// Builds the patch of `contact` (world frame) as triangles lying on `mesh`, the body's render
+/// surface in its description frame, at the body pose `pose`. The region between neighbouring
+/// walked paths is filled with rays interpolated between them, each sample projected onto the
+/// surface, so the patch bends with the body (over edges and round shapes) instead of floating.
+/// `outline` receives line segments (GL_LINES) of the walked paths and the rim through the SGOs.
+/// Contacts with fewer than two paths produce no triangles.
+void buildPatchMesh(const sim::ContactSnapshot& contact, const sim::Mesh& mesh,
+                    const sim::BodySnapshot& pose, const PatchMeshSettings& settings,
+                    std::vector<Vertex>& triangles, std::vector<Vertex>& outline);
+
+}  // namespace gf::render

@@ -1,0 +1,363 @@
+#include "render/render_thread.hpp"
+
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <condition_variable>
+#include <deque>
+#include <future>
+#include <mutex>
+#include <thread>
+
+#include "render/context.hpp"
+#include "render/gl.hpp"
+#include "render/gpu.hpp"
+#include "render/imgui_layer.hpp"
+#include "sim/world.hpp"
+
+namespace gf::render {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+constexpr std::size_t kQueueDepth = 2;
+
+// One piece of offline work.
+struct Job {
+  sim::Snapshot snapshot;
+  std::string close_up_prefix;  // non-empty: close-ups instead of a frame
+  std::unique_ptr<ChartSpec> chart;  // non-null: a chart to `chart_path` instead of a frame
+  std::string chart_path;
+  std::promise<std::vector<SettingsCommand>> reply;
+  bool wants_reply = false;
+};
+
+// Latest-value handoff: the writer fills `back`, then swaps it with `middle`; the reader swaps
+// `middle` with `front` when it holds something new. Neither side ever waits.
+class TripleBuffer {
+ public:
+  sim::Snapshot& back() { return slots_[back_]; }
+  void publish() { back_ = middle_.exchange(back_ | kFresh) & kIndex; }
+  bool update() {
+    if (!(middle_.load() & kFresh)) return false;
+    front_ = middle_.exchange(front_) & kIndex;
+    return true;
+  }
+  const sim::Snapshot& front() const { return slots_[front_]; }
+
+ private:
+  static constexpr int kFresh = 4, kIndex = 3;
+  sim::Snapshot slots_[3];
+  int back_ = 0, front_ = 1;
+  std::atomic<int> middle_{2};
+};
+
+double percentileMs(std::vector<float> v, double q) {
+  if (v.empty()) return 0.0;
+  const auto k = static_cast<std::size_t>(q * (v.size() - 1) + 0.5);
+  std::nth_element(v.begin(), v.begin() + k, v.end());
+  return v[k];
+}
+
+// Everything GL, created and destroyed on the render thread.
+struct Gpu {
+  GlContext context;
+  SceneRenderer scene;
+  Framebuffer frame;
+  std::unique_ptr<Overlay> overlay;
+  std::unique_ptr<Framebuffer> close_up_frame;
+  int close_up_px;
+  Gpu(const sim::SceneDesc& desc, const FrameOutputSettings& s)
+      : scene(desc, s.scene), frame(s.width, s.height, s.msaa_samples), close_up_px(s.close_up_px) {
+    if (s.overlay) overlay = std::make_unique<Overlay>(desc, s.overlay_settings, s.width, s.height);
+  }
+};
+
+void drawCloseUps(Gpu& gpu, const sim::SceneDesc& desc, const sim::Snapshot& snap, const std::string& prefix) {
+  if (!gpu.close_up_frame) gpu.close_up_frame = std::make_unique<Framebuffer>(gpu.close_up_px, gpu.close_up_px, 4);
+  RenderSettings settings = gpu.scene.settings();
+  const RenderSettings saved = settings;
+  settings.fingers = false;  // the proxy would hide the patch it stands on
+  settings.patch_highlight = true;
+  gpu.scene.setSettings(settings);
+  for (std::size_t f = 0; f < snap.fingers.size(); ++f) {
+    if (snap.fingers[f].contacts.empty()) continue;
+    const sim::ContactSnapshot& c = snap.fingers[f].contacts.front();
+    sim::Snapshot only = snap;  // this finger's patch alone
+    for (std::size_t g = 0; g < only.fingers.size(); ++g) {
+      if (g != f) only.fingers[g].contacts.clear();
+    }
+    const double half = std::max(1.5 * desc.fingers[f].patch.r_max, 1.3 * c.radius) + 0.002;
+    gpu.close_up_frame->bind();
+    gpu.scene.draw(only, closeUpCamera(c.point, c.outward_normal, half), gpu.close_up_px, gpu.close_up_px);
+    Image image;
+    gpu.close_up_frame->read(image);
+    writePng(closeUpPath(prefix, desc.fingers[f].name), image);
+  }
+  gpu.scene.setSettings(saved);
+}
+
+void drawChartFile(const ChartSpec& chart, const std::string& path) {
+  Framebuffer frame(chart.width, chart.height, 4);
+  ImGuiLayer layer(chart.width, chart.height, 17.0f);
+  frame.bind();
+  glClearColor(1, 1, 1, 1);
+  glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+  drawChart(layer, chart);
+  Image image;
+  frame.read(image);
+  writePng(path, image);
+}
+
+// Close-ups and charts: work that is not a frame of the stream.
+void drawSideJob(Gpu& gpu, const sim::SceneDesc& desc, const Job& job) {
+  if (job.chart) {
+    drawChartFile(*job.chart, job.chart_path);
+  } else {
+    drawCloseUps(gpu, desc, job.snapshot, job.close_up_prefix);
+  }
+}
+
+}  // namespace
+
+std::string closeUpPath(const std::string& prefix, const std::string& finger) {
+  return finger.empty() ? prefix + ".png" : std::string(prefix).append("-").append(finger).append(".png");
+}
+
+struct RenderThread::Impl {
+  sim::SceneDesc scene;
+  FrameOutputSettings settings;
+  std::unique_ptr<PngSequenceWriter> png;
+  std::unique_ptr<VideoWriter> video;
+  std::mutex mutex;
+  std::condition_variable changed;
+  std::deque<Job> queue;
+  bool closing = false;
+  std::string error;
+  TripleBuffer latest;
+  std::mutex command_mutex;
+  std::vector<SettingsCommand> commands;
+  std::vector<float> frame_ms;
+  Clock::time_point start = Clock::now();
+  std::string gl_description;
+  std::thread thread;
+
+  void fail(const std::string& what) {
+    std::lock_guard lock(mutex);
+    if (error.empty()) error = what;
+    closing = true;
+    changed.notify_all();
+  }
+
+  // Draws one frame of the stream and hands it to the encoders; returns the overlay's commands.
+  std::vector<SettingsCommand> drawFrame(Gpu& gpu, const sim::Snapshot& snap) {
+    const auto begin = Clock::now();
+    gpu.frame.bind();
+    gpu.scene.draw(snap, settings.camera, settings.width, settings.height);
+    std::vector<SettingsCommand> made;
+    const double last_ms = frame_ms.empty() ? 0.0 : frame_ms.back();
+    if (gpu.overlay) made = gpu.overlay->draw(snap, {last_ms});
+    Image image;
+    gpu.frame.read(image);
+    frame_ms.push_back(std::chrono::duration<float, std::milli>(Clock::now() - begin).count());
+    if (video) video->push(image);
+    if (png) png->push(std::move(image));
+    return made;
+  }
+
+  void runOffline(Gpu& gpu) {
+    for (;;) {
+      Job job;
+      {
+        std::unique_lock lock(mutex);
+        changed.wait(lock, [&] { return !queue.empty() || closing; });
+        if (queue.empty()) return;
+        job = std::move(queue.front());
+        queue.pop_front();
+        changed.notify_all();
+      }
+      if (!job.close_up_prefix.empty() || job.chart) {
+        drawSideJob(gpu, scene, job);
+        continue;
+      }
+      std::vector<SettingsCommand> made = drawFrame(gpu, job.snapshot);
+      if (job.wants_reply) job.reply.set_value(std::move(made));
+    }
+  }
+
+  void runRealtime(Gpu& gpu) {
+    const auto period = std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(1.0 / settings.fps));
+    for (auto next = Clock::now();; next += period) {
+      std::this_thread::sleep_until(next);
+      // Close-ups and charts still come through the queue in realtime runs; they are drawn
+      // outside the lock so the haptic thread never waits on a draw.
+      std::deque<Job> side;
+      bool stop = false;
+      {
+        std::lock_guard lock(mutex);
+        side.swap(queue);
+        stop = closing;
+      }
+      for (const Job& job : side) drawSideJob(gpu, scene, job);
+      if (stop) break;
+      if (!latest.update()) continue;
+      std::vector<SettingsCommand> made = drawFrame(gpu, latest.front());
+      if (made.empty()) continue;
+      std::lock_guard lock(command_mutex);
+      commands.insert(commands.end(), made.begin(), made.end());
+    }
+  }
+
+  void run(std::promise<void>& ready) {
+    std::unique_ptr<Gpu> gpu;
+    try {
+      gpu = std::make_unique<Gpu>(scene, settings);
+      gl_description = gpu->context.description();
+    } catch (const std::exception& e) {
+      ready.set_exception(std::current_exception());
+      return;
+    }
+    ready.set_value();
+    try {
+      if (settings.realtime) {
+        runRealtime(*gpu);
+      } else {
+        runOffline(*gpu);
+      }
+    } catch (const std::exception& e) {
+      fail(e.what());
+    }
+  }
+};
+
+RenderThread::RenderThread(const sim::SceneDesc& scene, const FrameOutputSettings& settings)
+    : impl_(std::make_unique<Impl>()) {
+  Impl& r = *impl_;
+  r.scene = scene;
+  r.settings = settings;
+  if (settings.width < 1 || settings.height < 1 || settings.width > 1920 || settings.height > 1080) {
+    throw GlError("frame size must be 1..1920 x 1..1080 pixels");
+  }
+  if (!settings.frames_dir.empty()) r.png = std::make_unique<PngSequenceWriter>(settings.frames_dir);
+  if (!settings.video_path.empty()) {
+    r.video = std::make_unique<VideoWriter>(settings.video_path, settings.width, settings.height, settings.fps);
+  }
+  std::promise<void> ready;
+  std::future<void> started = ready.get_future();
+  r.thread = std::thread([&r, &ready] { r.run(ready); });
+  try {
+    started.get();
+  } catch (...) {
+    r.thread.join();
+    throw;
+  }
+}
+
+RenderThread::~RenderThread() {
+  try {
+    finish();
+  } catch (const std::exception&) {
+    // finish() already reported to an owner that called it.
+  }
+}
+
+std::vector<SettingsCommand> RenderThread::submitFrame(const sim::Snapshot& snapshot, bool wait_for_commands) {
+  Impl& r = *impl_;
+  std::future<std::vector<SettingsCommand>> reply;
+  {
+    std::unique_lock lock(r.mutex);
+    r.changed.wait(lock, [&] { return r.queue.size() < kQueueDepth || !r.error.empty(); });
+    if (!r.error.empty()) throw GlError(r.error);
+    Job& job = r.queue.emplace_back();
+    job.snapshot = snapshot;
+    job.wants_reply = wait_for_commands;
+    if (wait_for_commands) reply = job.reply.get_future();
+    r.changed.notify_all();
+  }
+  if (!wait_for_commands) return {};
+  try {
+    return reply.get();
+  } catch (const std::future_error&) {  // the thread failed before drawing it
+    std::lock_guard lock(r.mutex);
+    throw GlError(r.error.empty() ? "render thread stopped" : r.error);
+  }
+}
+
+void RenderThread::submitCloseUps(const sim::Snapshot& snapshot, const std::string& prefix) {
+  Impl& r = *impl_;
+  std::unique_lock lock(r.mutex);
+  if (!r.error.empty()) throw GlError(r.error);
+  Job& job = r.queue.emplace_back();
+  job.snapshot = snapshot;
+  job.close_up_prefix = prefix;
+  r.changed.notify_all();
+}
+
+void RenderThread::submitChart(const ChartSpec& chart, const std::string& path) {
+  Impl& r = *impl_;
+  std::unique_lock lock(r.mutex);
+  if (!r.error.empty()) throw GlError(r.error);
+  Job& job = r.queue.emplace_back();
+  job.chart = std::make_unique<ChartSpec>(chart);
+  job.chart_path = path;
+  r.changed.notify_all();
+}
+
+void RenderThread::publishLatest(const sim::World& world, const sim::HapticTimings& timings) {
+  sim::Snapshot& back = impl_->latest.back();
+  world.snapshot(back);
+  back.timings = timings;
+  impl_->latest.publish();
+}
+
+std::vector<SettingsCommand> RenderThread::takeCommands() {
+  std::unique_lock lock(impl_->command_mutex, std::try_to_lock);
+  std::vector<SettingsCommand> out;
+  if (lock.owns_lock() && !impl_->commands.empty()) out.swap(impl_->commands);
+  return out;
+}
+
+RenderStats RenderThread::finish() {
+  Impl& r = *impl_;
+  {
+    std::lock_guard lock(r.mutex);
+    r.closing = true;
+    r.changed.notify_all();
+  }
+  if (r.thread.joinable()) r.thread.join();
+  RenderStats stats;
+  stats.gl = r.gl_description;
+  stats.frames = static_cast<long>(r.frame_ms.size());
+  stats.render_ms_median = percentileMs(r.frame_ms, 0.5);
+  stats.render_ms_p99 = percentileMs(r.frame_ms, 0.99);
+  try {
+    if (r.png) stats.png = r.png->finish();
+    if (r.video) stats.video = r.video->finish();
+  } catch (const ImageError& e) {
+    if (r.error.empty()) r.error = e.what();
+  }
+  stats.wall_seconds = std::chrono::duration<double>(Clock::now() - r.start).count();
+  if (!r.error.empty()) throw GlError(r.error);
+  return stats;
+}
+
+void renderCloseUps(const sim::SceneDesc& scene, const sim::Snapshot& snapshot, const std::string& prefix,
+                    int size_px) {
+  FrameOutputSettings settings;
+  settings.width = settings.height = size_px;
+  settings.close_up_px = size_px;
+  settings.msaa_samples = 1;
+  Gpu gpu(scene, settings);
+  drawCloseUps(gpu, scene, snapshot, prefix);
+}
+
+Image renderStill(const sim::SceneDesc& scene, const sim::Snapshot& snapshot, const FrameOutputSettings& settings) {
+  Gpu gpu(scene, settings);
+  gpu.frame.bind();
+  gpu.scene.draw(snapshot, settings.camera, settings.width, settings.height);
+  if (gpu.overlay) gpu.overlay->draw(snapshot, {});
+  Image image;
+  gpu.frame.read(image);
+  return image;
+}
+
+}  // namespace gf::render

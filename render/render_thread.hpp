@@ -1,0 +1,92 @@
+// The render thread: the only owner of OSMesa, GL, ImGui and the frame encoders. The haptic
+// thread hands it immutable Snapshots; offline through a short queue (every frame drawn, in
+// order), realtime through a triple buffer (the latest state, never blocking the haptic thread).
+#pragma once
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "render/camera.hpp"
+#include "render/chart.hpp"
+#include "render/frame_sinks.hpp"
+#include "render/overlay.hpp"
+#include "render/scene_renderer.hpp"
+#include "sim/snapshot.hpp"
+
+namespace gf::sim {
+class World;
+}
+
+namespace gf::render {
+
+/// What the render thread draws and where it writes it.
+struct FrameOutputSettings {
+  int width = 1280;               ///< pixels (1..1920 wide, 1..1080 high)
+  int height = 720;
+  int msaa_samples = 4;           ///< 1 turns anti-aliasing off
+  double fps = 60.0;              ///< frame rate of the outputs (frames per simulated second)
+  Camera camera;                  ///< the camera of the frame stream
+  std::string frames_dir;         ///< PNG sequence folder; empty: none
+  std::string video_path;         ///< MP4 file; empty: none
+  RenderSettings scene;           ///< drawing switches (effects)
+  bool overlay = false;           ///< the ImGui overlay effect
+  OverlaySettings overlay_settings;
+  int close_up_px = 480;          ///< side of contact close-up images (pixels)
+  bool realtime = false;          ///< draw the latest snapshot at `fps` of wall-clock time
+};
+
+/// What the render thread did.
+struct RenderStats {
+  long frames = 0;
+  double render_ms_median = 0.0;  ///< draw + overlay + read-back, per frame
+  double render_ms_p99 = 0.0;
+  double wall_seconds = 0.0;      ///< from start to finish()
+  SinkStats png, video;
+  std::string gl;                 ///< GL version and renderer
+};
+
+class RenderThread {
+ public:
+  /// Starts the thread and its GL context. Throws GlError (or sim::MeshLoadError) when it
+  /// cannot render the scene, ImageError when an output cannot be opened.
+  RenderThread(const sim::SceneDesc& scene, const FrameOutputSettings& settings);
+  ~RenderThread();
+  RenderThread(const RenderThread&) = delete;
+  RenderThread& operator=(const RenderThread&) = delete;
+
+  /// Offline: queues the frame of `snapshot` (blocks while two frames wait). With
+  /// `wait_for_commands`, waits until it is drawn and returns the overlay's settings changes,
+  /// so scripted input lands on the same haptic step in every run. Throws the thread's error.
+  std::vector<SettingsCommand> submitFrame(const sim::Snapshot& snapshot, bool wait_for_commands);
+  /// Queues close-ups of every contact in `snapshot`, written as `<prefix>-<finger>.png`.
+  void submitCloseUps(const sim::Snapshot& snapshot, const std::string& prefix);
+  /// Queues a chart, written as the PNG `path`.
+  void submitChart(const ChartSpec& chart, const std::string& path);
+  /// Realtime: publishes the latest state. Never blocks; does not allocate once the buffers
+  /// have grown. Haptic thread only.
+  void publishLatest(const sim::World& world, const sim::HapticTimings& timings);
+  /// Realtime: settings changes made in the overlay since the last call; never blocks.
+  std::vector<SettingsCommand> takeCommands();
+  /// Draws what is queued, stops the thread and the encoders, rethrows the first error.
+  RenderStats finish();
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+/// Close-up file of finger `finger` (its scene name) for a snapshot written under `prefix`.
+std::string closeUpPath(const std::string& prefix, const std::string& finger);
+
+/// Draws close-ups of every contact of `snapshot` on the calling thread (which becomes the
+/// render thread for its duration: it makes and destroys its own GL context). For commands
+/// without a haptic loop, such as `godfinger patch`.
+void renderCloseUps(const sim::SceneDesc& scene, const sim::Snapshot& snapshot,
+                    const std::string& prefix, int size_px);
+
+/// Draws one frame of `snapshot` as `settings` ask (size, camera, effects, overlay) on the
+/// calling thread, with a GL context of its own: stills and visual-regression images.
+Image renderStill(const sim::SceneDesc& scene, const sim::Snapshot& snapshot, const FrameOutputSettings& settings);
+
+}  // namespace gf::render

@@ -1,0 +1,50 @@
+// Draws one Snapshot of a scene: shaded bodies, the ground grid with soft shadows, each finger
+// (proxy, device ghost, coupling spring), and each contact's highlighted patch with its SGOs,
+// normal and force arrow. Render thread only.
+#pragma once
+
+#include <Eigen/Core>
+#include <memory>
+
+#include "render/camera.hpp"
+#include "render/gpu.hpp"
+#include "sim/scene_desc.hpp"
+#include "sim/snapshot.hpp"
+
+namespace gf::render {
+
+/// What a scene draws and how. The switches are effects: what is off is not built.
+struct RenderSettings {
+  bool shadows = true;               ///< shadow map from the key light (soft, 5x5 PCF)
+  bool patch_highlight = true;       ///< contact patches, SGO dots, normals, force arrows
+  bool fingers = true;               ///< proxies, device ghosts, springs
+  int shadow_map_size = 2048;        ///< texels per side
+  double force_arrow_m_per_n = 0.01; ///< arrow length per newton of coupling force (m/N)
+  double max_arrow_m = 0.08;         ///< longest force arrow (m)
+};
+
+/// Colour of finger i (linear RGB), shared by every view and the overlay.
+Eigen::Vector3f fingerColour(int finger);
+
+/// Draws snapshots of one scene. Construction loads every body's render surface and makes the
+/// GL objects (allocates; throws sim::MeshLoadError or GlError). draw() does not allocate once
+/// its buffers have grown to the largest patch.
+class SceneRenderer {
+ public:
+  SceneRenderer(const sim::SceneDesc& scene, const RenderSettings& settings);
+  ~SceneRenderer();
+  SceneRenderer(const SceneRenderer&) = delete;
+  SceneRenderer& operator=(const SceneRenderer&) = delete;
+
+  /// Draws `snapshot` seen from `camera` into the bound framebuffer of `width` x `height`.
+  void draw(const sim::Snapshot& snapshot, const Camera& camera, int width, int height);
+  /// Changes the switches for the next draw (close-ups hide the fingers).
+  void setSettings(const RenderSettings& settings);
+  const RenderSettings& settings() const;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace gf::render
