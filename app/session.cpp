@@ -187,9 +187,12 @@ void writeForceChart(const SessionDesc& session, const ForceWriter& forces, rend
   renderer.submitChart(chart, path.string());
 }
 
-nlohmann::json renderJson(const render::RenderStats& r, long frames) {
+// frames: drawn by the render thread; published: handed over by the haptic thread (realtime
+// draws only the newest of those, so it can draw fewer).
+nlohmann::json renderJson(const render::RenderStats& r, long published) {
   const auto fps = [](const render::SinkStats& s) { return s.busy_seconds > 0 ? s.frames / s.busy_seconds : 0.0; };
-  return {{"frames", frames},
+  return {{"frames", r.frames},
+          {"published", published},
           {"render_ms", {{"median", r.render_ms_median}, {"p99", r.render_ms_p99}}},
           {"png", {{"frames", r.png.frames}, {"encode_fps", fps(r.png)}}},
           {"video", {{"frames", r.video.frames}, {"bytes", r.video.bytes}}},
