@@ -25,7 +25,7 @@ class Live {
   Live(const LiveOptions& o, std::ostream& out)
       : options_(o), out_(out), overrides_(o.overrides),
         session_(loadSceneFile(o.scene_path, overrides_)), world_(session_.scene) {
-    for (const sim::FingerDesc& f : session_.scene.fingers) devices_.push_back(f.device);
+    devices_ = sim::deviceTracks(session_.scene);
     samples_.resize(devices_.size());
   }
 

@@ -24,19 +24,21 @@ const std::vector<Shot>& referenceShots() {
   return kShots;
 }
 
+sim::Snapshot snapshotAt(const SessionDesc& session, double time) {
+  sim::World world(session.scene);
+  sim::runHapticLoop(world, sim::deviceTracks(session.scene), {session.scene.world.haptic_rate_hz, time}, nullptr);
+  sim::Snapshot snapshot;
+  world.snapshot(snapshot);
+  return snapshot;
+}
+
 render::Image renderShot(const Shot& shot) {
   SessionDesc session = loadSceneFile(resolveScenePath(shot.scene), shot.overrides);
   session.view.width = kShotWidth;
   session.view.height = kShotHeight;
-  sim::World world(session.scene);
-  std::vector<sim::DeviceTrack> devices;
-  for (const sim::FingerDesc& f : session.scene.fingers) devices.push_back(f.device);
-  sim::runHapticLoop(world, devices, {session.scene.world.haptic_rate_hz, shot.time}, nullptr);
-  sim::Snapshot snapshot;
-  world.snapshot(snapshot);
   SessionOptions options;
   options.camera = shot.camera;
-  return render::renderStill(session.scene, snapshot, frameSettings(session, options));
+  return render::renderStill(session.scene, snapshotAt(session, shot.time), frameSettings(session, options));
 }
 
 }  // namespace gf::app

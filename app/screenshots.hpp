@@ -6,7 +6,9 @@
 #include <string>
 #include <vector>
 
+#include "app/session_desc.hpp"
 #include "render/image.hpp"
+#include "sim/snapshot.hpp"
 
 namespace gf::app {
 
@@ -25,6 +27,9 @@ const std::vector<Shot>& referenceShots();
 /// Size of the reference pictures (pixels).
 inline constexpr int kShotWidth = 640;
 inline constexpr int kShotHeight = 360;
+
+/// The state of `session`'s scene after running it offline from t = 0 to `time` (s).
+sim::Snapshot snapshotAt(const SessionDesc& session, double time);
 
 /// Runs the shot's scene offline up to its time and renders that instant. Deterministic on one
 /// machine. Throws InputError for a broken scene, render::GlError when GL fails.

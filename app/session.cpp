@@ -164,8 +164,7 @@ render::ChartSeries godObjectForces(const SessionDesc& session) {
   sim::SceneDesc scene = session.scene;
   for (sim::FingerDesc& f : scene.fingers) f.patch.n_sgo = 0;
   sim::World world(scene);
-  std::vector<sim::DeviceTrack> devices;
-  for (const sim::FingerDesc& f : scene.fingers) devices.push_back(f.device);
+  const std::vector<sim::DeviceTrack> devices = sim::deviceTracks(scene);
   const double dt = 1.0 / scene.world.haptic_rate_hz;
   ForceWriter forces(world, {session.record.force_bodies.front()}, 0);
   sim::runHapticLoop(world, devices, {scene.world.haptic_rate_hz, scene.duration},
@@ -219,8 +218,7 @@ sim::LoopStats runSession(const SessionDesc& session, const SessionOptions& opti
   fs::create_directories(dir / "contacts", ec);
   if (ec) throw std::runtime_error(options.out_dir + ": cannot create folder: " + ec.message());
   sim::World world(scene);
-  std::vector<sim::DeviceTrack> devices;
-  for (const sim::FingerDesc& f : scene.fingers) devices.push_back(f.device);
+  const std::vector<sim::DeviceTrack> devices = sim::deviceTracks(scene);
   const double rate = scene.world.haptic_rate_hz, dt = 1.0 / rate;
   const long steps = sim::stepCount(scene.duration, rate);
   TraceWriter trace(world, session.record.trace ? steps : 0);

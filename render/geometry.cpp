@@ -14,11 +14,6 @@ constexpr int kSphereSubdivisions = 4;
 constexpr int kRoundSegments = 64;
 constexpr double kCreaseDeg = 35.0;
 
-Vertex vertex(const sim::Vec3& p, const sim::Vec3& n) {
-  return {{static_cast<float>(p.x()), static_cast<float>(p.y()), static_cast<float>(p.z())},
-          {static_cast<float>(n.x()), static_cast<float>(n.y()), static_cast<float>(n.z())}};
-}
-
 }  // namespace
 
 std::vector<Vertex> shadedTriangles(const sim::Mesh& mesh, double crease_deg) {
@@ -34,7 +29,7 @@ std::vector<Vertex> shadedTriangles(const sim::Mesh& mesh, double crease_deg) {
         const sim::Vec3& ng = mesh.faceNormal(*g);
         if (ng.dot(nf) >= cos_crease) sum += ng;
       }
-      out.push_back(vertex(mesh.vertices()[v], sum.squaredNorm() > 0 ? sum.normalized() : nf));
+      out.push_back(makeVertex(mesh.vertices()[v], sum.squaredNorm() > 0 ? sum.normalized() : nf));
     }
   }
   return out;
@@ -81,12 +76,12 @@ std::vector<Vertex> unitCone(int segments) {
     const sim::Vec3 p0(std::cos(a0), 0, -std::sin(a0)), p1(std::cos(a1), 0, -std::sin(a1));
     // Side normal of a 45-degree cone, per corner for smooth shading.
     const auto side = [](const sim::Vec3& p) { return sim::Vec3(p.x(), 1.0, p.z()).normalized(); };
-    out.push_back(vertex(p0, side(p0)));
-    out.push_back(vertex(p1, side(p1)));
-    out.push_back(vertex(tip, side(0.5 * (p0 + p1)).normalized()));
-    out.push_back(vertex(sim::Vec3::Zero(), -sim::Vec3::UnitY()));
-    out.push_back(vertex(p1, -sim::Vec3::UnitY()));
-    out.push_back(vertex(p0, -sim::Vec3::UnitY()));
+    out.push_back(makeVertex(p0, side(p0)));
+    out.push_back(makeVertex(p1, side(p1)));
+    out.push_back(makeVertex(tip, side(0.5 * (p0 + p1)).normalized()));
+    out.push_back(makeVertex(sim::Vec3::Zero(), -sim::Vec3::UnitY()));
+    out.push_back(makeVertex(p1, -sim::Vec3::UnitY()));
+    out.push_back(makeVertex(p0, -sim::Vec3::UnitY()));
   }
   return out;
 }

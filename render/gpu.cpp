@@ -26,6 +26,11 @@ unsigned compile(const char* name, GLenum kind, const char* source) {
 
 }  // namespace
 
+Vertex makeVertex(const Eigen::Vector3d& p, const Eigen::Vector3d& n) {
+  return {{static_cast<float>(p.x()), static_cast<float>(p.y()), static_cast<float>(p.z())},
+          {static_cast<float>(n.x()), static_cast<float>(n.y()), static_cast<float>(n.z())}};
+}
+
 Program::Program(const char* name, const char* vertex_source, const char* fragment_source) {
   const unsigned vs = compile(name, GL_VERTEX_SHADER, vertex_source);
   const unsigned fs = compile(name, GL_FRAGMENT_SHADER, fragment_source);

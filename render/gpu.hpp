@@ -32,6 +32,9 @@ struct Vertex {
   float normal[3];
 };
 
+/// A vertex from double-precision position and normal.
+Vertex makeVertex(const Eigen::Vector3d& position, const Eigen::Vector3d& normal);
+
 /// Triangles in a vertex buffer (attributes 0: position, 1: normal). `dynamic` buffers are
 /// refilled each frame with upload().
 class GpuMesh {

@@ -83,6 +83,16 @@ struct Overlay::Impl {
     return in;
   }
 
+  // Every panel of one frame; returns the settings changes made.
+  std::vector<SettingsCommand> panels(const sim::Snapshot& snap, const RenderTimings& timings) {
+    std::vector<SettingsCommand> commands;
+    scenePanel(snap);
+    fingerPanel(commands);
+    timingPanel(snap, timings);
+    forcePlot(snap);
+    return commands;
+  }
+
   void remember(const std::string& id) {
     const ImVec2 lo = ImGui::GetItemRectMin(), hi = ImGui::GetItemRectMax();
     widget_rects[id] = ImVec4(lo.x, lo.y, hi.x, hi.y);
@@ -201,12 +211,8 @@ Overlay::Overlay(const sim::SceneDesc& scene, const OverlaySettings& settings, i
   sim::Snapshot empty;
   empty.time = -1.0;
   empty.fingers.resize(scene.fingers.size());
-  std::vector<SettingsCommand> ignored;
   impl_->layer.beginFrame(1.0 / 60.0, {});
-  impl_->scenePanel(empty);
-  impl_->fingerPanel(ignored);
-  impl_->timingPanel(empty, {});
-  impl_->forcePlot(empty);
+  impl_->panels(empty, {});
   ImGui::EndFrame();
 }
 
@@ -216,11 +222,7 @@ std::vector<SettingsCommand> Overlay::draw(const sim::Snapshot& snapshot, const 
   Impl& o = *impl_;
   const double dt = o.last_time >= 0.0 && snapshot.time > o.last_time ? snapshot.time - o.last_time : 1.0 / 60.0;
   o.layer.beginFrame(dt, o.scriptedInput(snapshot.time));
-  std::vector<SettingsCommand> commands;
-  o.scenePanel(snapshot);
-  o.fingerPanel(commands);
-  o.timingPanel(snapshot, timings);
-  o.forcePlot(snapshot);
+  std::vector<SettingsCommand> commands = o.panels(snapshot, timings);
   o.layer.render();
   o.last_time = snapshot.time;
   return commands;

@@ -7,11 +7,6 @@ namespace {
 
 using sim::Vec3;
 
-Vertex vertex(const Vec3& p, const Vec3& n) {
-  return {{static_cast<float>(p.x()), static_cast<float>(p.y()), static_cast<float>(p.z())},
-          {static_cast<float>(n.x()), static_cast<float>(n.y()), static_cast<float>(n.z())}};
-}
-
 // Point at arc-length fraction s (0..1) along the polyline [first, last).
 Vec3 alongPath(const Vec3* first, const Vec3* last, double s) {
   double total = 0.0;
@@ -68,22 +63,22 @@ void buildPatchMesh(const sim::ContactSnapshot& contact, const sim::Mesh& mesh,
   for (int r = 0; r < rays; ++r) {
     for (int j = 0; j < rings; ++j) {
       const Projected &a = at(r, j), &b = at(r, j + 1), &c = at(r + 1, j + 1), &d = at(r + 1, j);
-      for (const Projected* p : {&a, &b, &c}) triangles.push_back(vertex(p->point, p->normal));
+      for (const Projected* p : {&a, &b, &c}) triangles.push_back(makeVertex(p->point, p->normal));
       if (j > 0) {
-        for (const Projected* p : {&a, &c, &d}) triangles.push_back(vertex(p->point, p->normal));
+        for (const Projected* p : {&a, &c, &d}) triangles.push_back(makeVertex(p->point, p->normal));
       }
     }
   }
   // Outline: the walked paths and the rim.
   for (int k = 0; k < paths; ++k) {
     for (int j = 0; j < rings; ++j) {
-      outline.push_back(vertex(at(k * sub, j).point, at(k * sub, j).normal));
-      outline.push_back(vertex(at(k * sub, j + 1).point, at(k * sub, j + 1).normal));
+      outline.push_back(makeVertex(at(k * sub, j).point, at(k * sub, j).normal));
+      outline.push_back(makeVertex(at(k * sub, j + 1).point, at(k * sub, j + 1).normal));
     }
   }
   for (int r = 0; r < rays; ++r) {
-    outline.push_back(vertex(at(r, rings).point, at(r, rings).normal));
-    outline.push_back(vertex(at(r + 1, rings).point, at(r + 1, rings).normal));
+    outline.push_back(makeVertex(at(r, rings).point, at(r, rings).normal));
+    outline.push_back(makeVertex(at(r + 1, rings).point, at(r + 1, rings).normal));
   }
 }
 

@@ -13,6 +13,7 @@
 #include "render/gl.hpp"
 #include "render/gpu.hpp"
 #include "render/imgui_layer.hpp"
+#include "sim/haptic_loop.hpp"
 #include "sim/world.hpp"
 
 namespace gf::render {
@@ -50,13 +51,6 @@ class TripleBuffer {
   int back_ = 0, front_ = 1;
   std::atomic<int> middle_{2};
 };
-
-double percentileMs(std::vector<float> v, double q) {
-  if (v.empty()) return 0.0;
-  const auto k = static_cast<std::size_t>(q * (v.size() - 1) + 0.5);
-  std::nth_element(v.begin(), v.begin() + k, v.end());
-  return v[k];
-}
 
 // Everything GL, created and destroyed on the render thread.
 struct Gpu {
@@ -327,8 +321,8 @@ RenderStats RenderThread::finish() {
   RenderStats stats;
   stats.gl = r.gl_description;
   stats.frames = static_cast<long>(r.frame_ms.size());
-  stats.render_ms_median = percentileMs(r.frame_ms, 0.5);
-  stats.render_ms_p99 = percentileMs(r.frame_ms, 0.99);
+  stats.render_ms_median = sim::percentile(r.frame_ms, 0.5);
+  stats.render_ms_p99 = sim::percentile(r.frame_ms, 0.99);
   try {
     if (r.png) stats.png = r.png->finish();
     if (r.video) stats.video = r.video->finish();

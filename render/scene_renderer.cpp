@@ -95,6 +95,10 @@ struct SceneRenderer::Impl {
     const Vertex corners[4] = {{{-h, 0, -h}, {0, 1, 0}}, {{h, 0, -h}, {0, 1, 0}},
                                {{h, 0, h}, {0, 1, 0}}, {{-h, 0, h}, {0, 1, 0}}};
     ground_quad.upload({corners[0], corners[2], corners[1], corners[0], corners[3], corners[2]});
+    // The key light is fixed: its view covers the scene's starting bounds.
+    const Vec3 eye = centre + 3.0 * extent * light_dir;
+    light_view_proj = orthographic(1.5 * extent, 1.5 * extent, 0.5 * extent, 6.0 * extent) *
+                      lookAt(eye, centre, upFor(-light_dir));
   }
 
   void setMatrices(const Program& p, const Eigen::Matrix4f& model) const {
@@ -118,9 +122,6 @@ struct SceneRenderer::Impl {
   }
 
   void shadowPass(const sim::Snapshot& snap) {
-    const Vec3 eye = centre + 3.0 * extent * light_dir;
-    light_view_proj = orthographic(1.5 * extent, 1.5 * extent, 0.5 * extent, 6.0 * extent) *
-                      lookAt(eye, centre, upFor(-light_dir));
     shadow->bindForDrawing();
     glClear(GL_DEPTH_BUFFER_BIT);
     glEnable(GL_POLYGON_OFFSET_FILL);
@@ -234,8 +235,8 @@ struct SceneRenderer::Impl {
       const double taper = std::min(1.0, std::min(u, 1 - u) * 12);
       const Vec3 p = a + u * axis + q * Vec3(taper * coil_radius * std::cos(angle), 0,
                                              taper * coil_radius * std::sin(angle));
-      spring_vertices.push_back({{float(previous.x()), float(previous.y()), float(previous.z())}, {0, 1, 0}});
-      spring_vertices.push_back({{float(p.x()), float(p.y()), float(p.z())}, {0, 1, 0}});
+      spring_vertices.push_back(makeVertex(previous, Vec3::UnitY()));
+      spring_vertices.push_back(makeVertex(p, Vec3::UnitY()));
       previous = p;
     }
   }

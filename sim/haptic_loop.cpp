@@ -11,14 +11,14 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
+}  // namespace
+
 double percentile(std::vector<float>& v, double q) {
   if (v.empty()) return 0.0;
   const auto k = static_cast<std::size_t>(std::min<double>(v.size() - 1, q * (v.size() - 1) + 0.5));
   std::nth_element(v.begin(), v.begin() + k, v.end());
   return v[k];
 }
-
-}  // namespace
 
 HapticTimings LiveTimings::summary() const {
   const std::size_t n = std::min(recent_us.size(), static_cast<std::size_t>(std::max(0L, steps)));

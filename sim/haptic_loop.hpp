@@ -53,6 +53,9 @@ using StepObserver = std::function<void(const World&)>;
 LoopStats runHapticLoop(World& world, const std::vector<DeviceTrack>& devices,
                         const LoopSettings& settings, const StepObserver& observer);
 
+/// The q-quantile (0..1, nearest rank) of `values`, which it reorders; 0 when empty.
+double percentile(std::vector<float>& values, double q);
+
 /// Number of steps a run of `duration` seconds at `rate_hz` takes (rounded to nearest).
 long stepCount(double duration, double rate_hz);
 

@@ -83,4 +83,11 @@ struct SceneDesc {
   double duration = 5.0;  ///< simulated seconds
 };
 
+/// Each finger's device track, in finger order: what runHapticLoop plays back.
+inline std::vector<DeviceTrack> deviceTracks(const SceneDesc& scene) {
+  std::vector<DeviceTrack> out;
+  for (const FingerDesc& f : scene.fingers) out.push_back(f.device);
+  return out;
+}
+
 }  // namespace gf::sim

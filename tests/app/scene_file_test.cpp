@@ -155,7 +155,7 @@ TEST(BundledScenes, EveryOneLoadsAndRuns) {
     s.scene.duration = 0.05;
     sim::World world(s.scene);
     std::vector<sim::DeviceTrack> devices;
-    for (const sim::FingerDesc& f : s.scene.fingers) devices.push_back(f.device);
+    devices = sim::deviceTracks(s.scene);
     const sim::LoopStats stats = sim::runHapticLoop(world, devices, {1000.0, s.scene.duration}, nullptr);
     EXPECT_EQ(stats.steps, 50) << p;
     EXPECT_EQ(world.counters().nan_recoveries, 0) << p;

@@ -3,12 +3,11 @@
 #include <benchmark/benchmark.h>
 
 #include "app/scene_file.hpp"
+#include "app/screenshots.hpp"
 #include "app/session.hpp"
 #include "render/context.hpp"
 #include "render/gpu.hpp"
 #include "render/scene_renderer.hpp"
-#include "sim/haptic_loop.hpp"
-#include "sim/world.hpp"
 
 namespace {
 
@@ -21,11 +20,7 @@ struct Prepared {
 
 Prepared prepare(const std::string& scene, double time) {
   Prepared p{app::loadSceneFile(app::resolveScenePath(scene)), {}};
-  sim::World world(p.session.scene);
-  std::vector<sim::DeviceTrack> devices;
-  for (const sim::FingerDesc& f : p.session.scene.fingers) devices.push_back(f.device);
-  sim::runHapticLoop(world, devices, {1000.0, time}, nullptr);
-  world.snapshot(p.snapshot);
+  p.snapshot = app::snapshotAt(p.session, time);
   return p;
 }
 

@@ -16,7 +16,7 @@ void BM_PinchStep(benchmark::State& state) {
   const sim::SceneDesc scene = app::pinchScene({static_cast<int>(state.range(0)), 3.5});
   sim::World world(scene);
   std::vector<sim::DeviceTrack> devices;
-  for (const sim::FingerDesc& f : scene.fingers) devices.push_back(f.device);
+  devices = sim::deviceTracks(scene);
   sim::runHapticLoop(world, devices, {1000.0, scene.duration}, nullptr);
   std::vector<sim::DeviceSample> samples;
   for (const sim::DeviceTrack& d : devices) samples.push_back(d.sample(world.time()));
