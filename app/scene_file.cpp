@@ -253,7 +253,13 @@ void readView(Reader& parent, SessionDesc& s) {
     Reader r(*n->as_table(), "render", parent.file());
     v.width = r.integer("width", v.width, 16, 1920);
     v.height = r.integer("height", v.height, 16, 1080);
-    v.msaa_samples = r.integer("msaa", v.msaa_samples, 1, 8);
+    const std::string aa = r.string("antialiasing", render::antialiasingName(v.antialiasing));
+    if (const std::optional<render::Antialiasing> parsed = render::parseAntialiasing(aa)) {
+      v.antialiasing = *parsed;
+    } else {
+      r.fail(r.find("antialiasing"), "antialiasing", "expected \"fxaa\", \"msaa\" or \"none\"");
+    }
+    v.msaa_samples = r.integer("msaa_samples", v.msaa_samples, 2, 8);
     if (const toml::node* k = r.find("actions")) {
       const toml::array* a = k->as_array();
       if (!a) r.fail(k, "actions", "expected an array of {t = s, widget = \"FINGER/FIELD\", value = \"...\"}");

@@ -60,6 +60,7 @@ nlohmann::json summaryJson(const SessionDesc& session, const sim::World& world,
                             {"max", stats.step_max_us}}},
           {"counters", {{"steps", stats.steps}, {"deadline_misses", stats.late_steps},
                         {"max_lateness_us", stats.max_lateness_us},
+                        {"fifo_priority", stats.fifo_priority},
                         {"nan_recoveries", c.nan_recoveries},
                         {"invalid_patches", c.invalid_patches}, {"sgos_injected", c.sgos_injected}}},
           {"wall_time_s", stats.wall_seconds}};
@@ -145,6 +146,7 @@ render::FrameOutputSettings frameSettings(const SessionDesc& session, const Sess
   render::FrameOutputSettings f;
   f.width = v.width;
   f.height = v.height;
+  f.antialiasing = v.antialiasing;
   f.msaa_samples = v.msaa_samples;
   f.camera = sessionCamera(session, options.camera);
   if (options.frames) f.frames_dir = (fs::path(options.out_dir) / "frames").string();

@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "render/camera.hpp"
+#include "render/gpu.hpp"
 #include "render/overlay.hpp"
 #include "sim/scene_desc.hpp"
 
@@ -27,7 +28,8 @@ struct ViewSettings {
   bool overlay = false;          ///< effect: the ImGui overlay
   int width = 1280;              ///< frame size (pixels, up to 1920 x 1080)
   int height = 720;
-  int msaa_samples = 4;          ///< multisample anti-aliasing (1: off)
+  render::Antialiasing antialiasing = render::Antialiasing::kFxaa;
+  int msaa_samples = 4;          ///< samples with antialiasing = "msaa" (2..8)
   std::vector<render::WidgetAction> actions;  ///< scripted overlay input, by time
 };
 

@@ -57,8 +57,8 @@ std::shared_ptr<const sim::Mesh> bodyRenderMesh(const sim::BodyDesc& body) {
   return nullptr;
 }
 
-std::vector<Vertex> unitSphere() {
-  return shadedTriangles(sim::tessellateSphere(1.0, 3), kCreaseDeg);
+std::vector<Vertex> unitSphere(int subdivisions) {
+  return shadedTriangles(sim::tessellateSphere(1.0, subdivisions), kCreaseDeg);
 }
 
 std::vector<Vertex> unitCylinder(int segments) {

@@ -21,8 +21,8 @@ std::vector<Vertex> shadedTriangles(const sim::Mesh& mesh, double crease_deg);
 /// nullptr: they are drawn as the ground. Throws sim::MeshLoadError for unreadable meshes.
 std::shared_ptr<const sim::Mesh> bodyRenderMesh(const sim::BodyDesc& body);
 
-/// Radius 1 sphere at the origin.
-std::vector<Vertex> unitSphere();
+/// Radius 1 icosphere at the origin: 20 * 4^subdivisions triangles.
+std::vector<Vertex> unitSphere(int subdivisions);
 /// Radius 1 cylinder from y = 0 to y = 1, with caps.
 std::vector<Vertex> unitCylinder(int segments);
 /// Cone of base radius 1 at y = 0, tip at y = 1, with its base cap.

@@ -1,9 +1,11 @@
-// Small owners of GL objects: shader programs, vertex buffers, the multisampled framebuffer a
-// frame is drawn into. Render thread only; constructors allocate GL objects.
+// Small owners of GL objects: shader programs, vertex buffers, the framebuffer a frame is drawn
+// into and its anti-aliasing, the cached backdrop, the shadow map. Render thread only; constructors allocate GL objects.
 #pragma once
 
 #include <Eigen/Core>
 #include <cstdint>
+#include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -11,10 +13,13 @@
 
 namespace gf::render {
 
-/// A linked vertex + fragment shader program. Throws GlError with the compiler's log.
+/// A linked vertex + fragment shader program. Throws GlError with the compiler's log. Both
+/// sources are compiled as GLSL 3.30 core with `defines` (lines such as "#define SHADOWS")
+/// ahead of them; a source's own #version line is dropped.
 class Program {
  public:
-  Program(const char* name, const char* vertex_source, const char* fragment_source);
+  Program(const char* name, const char* vertex_source, const char* fragment_source,
+          const char* defines = "");
   ~Program();
   Program(const Program&) = delete;
   Program& operator=(const Program&) = delete;
@@ -35,7 +40,8 @@ struct Vertex {
 /// A vertex from double-precision position and normal.
 Vertex makeVertex(const Eigen::Vector3d& position, const Eigen::Vector3d& normal);
 
-/// Triangles in a vertex buffer (attributes 0: position, 1: normal). `dynamic` buffers are
+/// Triangles in a vertex buffer (attributes 0: position, 1: normal). Static meshes are given
+/// their vertices once (equal vertices shared through an index buffer); `dynamic` ones are
 /// refilled each frame with upload().
 class GpuMesh {
  public:
@@ -43,38 +49,85 @@ class GpuMesh {
   ~GpuMesh();
   GpuMesh(const GpuMesh&) = delete;
   GpuMesh& operator=(const GpuMesh&) = delete;
-  /// Replaces the contents (grows the buffer when needed).
+  /// Replaces the contents of a dynamic mesh (grows the buffer when needed).
   void upload(const std::vector<Vertex>& vertices);
   /// Draws the vertices as `mode` (GL_TRIANGLES, GL_LINES, ...).
   void draw(unsigned mode) const;
   int size() const { return count_; }
 
  private:
-  unsigned vao_ = 0, vbo_ = 0;
-  int count_ = 0;
+  unsigned vao_ = 0, vbo_ = 0, ebo_ = 0;
+  int count_ = 0;  // vertices (dynamic) or indices (static) drawn
   std::size_t capacity_ = 0;
   bool dynamic_ = false;
 };
 
-/// A multisampled colour + depth framebuffer and the single-sampled one it resolves into.
+/// How a frame is anti-aliased. FXAA is a post-process pass over the finished scene and costs a
+/// third of 4x MSAA on llvmpipe (which shades and resolves every sample on the CPU).
+enum class Antialiasing { kNone, kFxaa, kMsaa };
+
+/// Parses "none", "fxaa" or "msaa"; nullopt for anything else.
+std::optional<Antialiasing> parseAntialiasing(const std::string& name);
+const char* antialiasingName(Antialiasing aa);
+
+/// A rectangle of pixels in GL's convention (origin bottom left): [x0, x1) x [y0, y1).
+struct PixelRect {
+  int x0 = 0, y0 = 0, x1 = 0, y1 = 0;
+  bool empty() const { return x1 <= x0 || y1 <= y0; }
+};
+
+/// Where a frame is drawn: the scene target (colour + depth, multisampled for kMsaa) and the
+/// single-sampled output that resolve() fills, overlays are drawn onto and read() returns. For
+/// kNone and kFxaa the two are one buffer: FXAA filters the scene in place, reading a copy of
+/// the pixels it changes.
 class Framebuffer {
  public:
-  /// width x height pixels (1..4096), `samples` 1 (no MSAA) .. 8. Throws GlError.
-  Framebuffer(int width, int height, int samples);
+  /// width x height pixels (1..4096); `msaa_samples` (2..8) is used by kMsaa only. Throws GlError.
+  Framebuffer(int width, int height, Antialiasing aa, int msaa_samples = 4);
   ~Framebuffer();
   Framebuffer(const Framebuffer&) = delete;
   Framebuffer& operator=(const Framebuffer&) = delete;
-  /// Binds the multisampled buffer for drawing and sets the viewport.
-  void bind() const;
-  /// Resolves the samples and reads the frame into `out` (rows top to bottom).
-  void read(Image& out) const;
+  /// Binds the scene target for drawing and sets the viewport.
+  void bind();
+  /// Anti-aliases the scene into the output and binds the output (for 2D overlays). FXAA is
+  /// applied inside `edges` only (where the scene has geometric edges); nullopt: everywhere.
+  void resolve(const std::optional<PixelRect>& edges = std::nullopt);
+  /// Resolves if that has not happened since bind(), then reads the output into `out` (rows
+  /// top to bottom).
+  void read(Image& out);
   int width() const { return width_; }
   int height() const { return height_; }
 
  private:
+  struct Fxaa;
+  int width_, height_;
+  Antialiasing aa_;
+  unsigned scene_fbo_ = 0, scene_colour_ = 0, scene_depth_ = 0;
+  unsigned output_fbo_ = 0, output_colour_ = 0;  // kMsaa only; otherwise the scene is the output
+  std::unique_ptr<Fxaa> fxaa_;
+  std::vector<std::uint8_t> rgba_;  // read-back buffer
+  bool resolved_ = false;
+};
+
+/// A copy of the part of a frame that does not move (the clear colour and the ground under a
+/// fixed camera), kept in the scene target's format and restored by one blit per frame.
+class Backdrop {
+ public:
+  Backdrop(int width, int height, int samples);
+  ~Backdrop();
+  Backdrop(const Backdrop&) = delete;
+  Backdrop& operator=(const Backdrop&) = delete;
+  bool fits(int width, int height, int samples) const {
+    return width == width_ && height == height_ && samples == samples_;
+  }
+  /// Binds the backdrop for drawing its contents.
+  void bind() const;
+  /// Copies colour and depth into framebuffer `target` and binds it again.
+  void restoreInto(unsigned target) const;
+
+ private:
   int width_, height_, samples_;
-  unsigned msaa_fbo_ = 0, msaa_colour_ = 0, msaa_depth_ = 0;
-  unsigned resolve_fbo_ = 0, resolve_colour_ = 0;
+  unsigned fbo_ = 0, colour_ = 0, depth_ = 0;
 };
 
 /// A depth-only framebuffer for the shadow map (texture unit given to bindTexture()).

@@ -59,15 +59,19 @@ struct Gpu {
   Framebuffer frame;
   std::unique_ptr<Overlay> overlay;
   std::unique_ptr<Framebuffer> close_up_frame;
+  Antialiasing antialiasing;
   int close_up_px;
   Gpu(const sim::SceneDesc& desc, const FrameOutputSettings& s)
-      : scene(desc, s.scene), frame(s.width, s.height, s.msaa_samples), close_up_px(s.close_up_px) {
+      : scene(desc, s.scene),
+        frame(s.width, s.height, s.antialiasing, s.msaa_samples),
+        antialiasing(s.antialiasing),
+        close_up_px(s.close_up_px) {
     if (s.overlay) overlay = std::make_unique<Overlay>(desc, s.overlay_settings, s.width, s.height);
   }
 };
 
 void drawCloseUps(Gpu& gpu, const sim::SceneDesc& desc, const sim::Snapshot& snap, const std::string& prefix) {
-  if (!gpu.close_up_frame) gpu.close_up_frame = std::make_unique<Framebuffer>(gpu.close_up_px, gpu.close_up_px, 4);
+  if (!gpu.close_up_frame) gpu.close_up_frame = std::make_unique<Framebuffer>(gpu.close_up_px, gpu.close_up_px, gpu.antialiasing);
   RenderSettings settings = gpu.scene.settings();
   const RenderSettings saved = settings;
   settings.fingers = false;  // the proxy would hide the patch it stands on
@@ -82,7 +86,8 @@ void drawCloseUps(Gpu& gpu, const sim::SceneDesc& desc, const sim::Snapshot& sna
     }
     const double half = std::max(1.5 * desc.fingers[f].patch.r_max, 1.3 * c.radius) + 0.002;
     gpu.close_up_frame->bind();
-    gpu.scene.draw(only, closeUpCamera(c.point, c.outward_normal, half), gpu.close_up_px, gpu.close_up_px);
+    gpu.close_up_frame->resolve(
+        gpu.scene.draw(only, closeUpCamera(c.point, c.outward_normal, half), gpu.close_up_px, gpu.close_up_px));
     Image image;
     gpu.close_up_frame->read(image);
     writePng(closeUpPath(prefix, desc.fingers[f].name), image);
@@ -91,7 +96,7 @@ void drawCloseUps(Gpu& gpu, const sim::SceneDesc& desc, const sim::Snapshot& sna
 }
 
 void drawChartFile(const ChartSpec& chart, const std::string& path) {
-  Framebuffer frame(chart.width, chart.height, 4);
+  Framebuffer frame(chart.width, chart.height, Antialiasing::kNone);  // ImGui smooths its own edges
   ImGuiLayer layer(chart.width, chart.height, 17.0f);
   frame.bind();
   glClearColor(1, 1, 1, 1);
@@ -146,7 +151,8 @@ struct RenderThread::Impl {
   std::vector<SettingsCommand> drawFrame(Gpu& gpu, const sim::Snapshot& snap) {
     const auto begin = Clock::now();
     gpu.frame.bind();
-    gpu.scene.draw(snap, settings.camera, settings.width, settings.height);
+    // The overlay goes on top of the anti-aliased scene.
+    gpu.frame.resolve(gpu.scene.draw(snap, settings.camera, settings.width, settings.height));
     std::vector<SettingsCommand> made;
     const double last_ms = frame_ms.empty() ? 0.0 : frame_ms.back();
     if (gpu.overlay) made = gpu.overlay->draw(snap, {last_ms});
@@ -339,7 +345,6 @@ void renderCloseUps(const sim::SceneDesc& scene, const sim::Snapshot& snapshot, 
   FrameOutputSettings settings;
   settings.width = settings.height = size_px;
   settings.close_up_px = size_px;
-  settings.msaa_samples = 1;
   Gpu gpu(scene, settings);
   drawCloseUps(gpu, scene, snapshot, prefix);
 }
@@ -347,7 +352,7 @@ void renderCloseUps(const sim::SceneDesc& scene, const sim::Snapshot& snapshot, 
 Image renderStill(const sim::SceneDesc& scene, const sim::Snapshot& snapshot, const FrameOutputSettings& settings) {
   Gpu gpu(scene, settings);
   gpu.frame.bind();
-  gpu.scene.draw(snapshot, settings.camera, settings.width, settings.height);
+  gpu.frame.resolve(gpu.scene.draw(snapshot, settings.camera, settings.width, settings.height));
   if (gpu.overlay) gpu.overlay->draw(snapshot, {});
   Image image;
   gpu.frame.read(image);

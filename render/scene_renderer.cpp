@@ -20,6 +20,7 @@ constexpr int kRoundSegments = 24;
 constexpr float kGhostAlpha = 0.28f;
 constexpr float kPatchAlpha = 0.55f;
 constexpr float kProxyAlpha = 0.6f;
+constexpr double kLightHalf = 1.5;  // half side of the key light's view, in scene radii
 
 Eigen::Matrix4f modelMatrix(const Vec3& position, const Eigen::Quaterniond& orientation,
                             const Vec3& scale) {
@@ -38,7 +39,15 @@ struct BodyDraw {
   std::unique_ptr<GpuMesh> gpu;
   Eigen::Vector3f colour;
   bool ground = false;
+  bool closed = false;  // closed and wound outwards: back faces are hidden and need not be drawn
 };
+
+// A mesh whose back faces can never be seen: no boundary, no non-manifold or inconsistently
+// wound edge, positive volume.
+bool closedOutward(const sim::Mesh& m) {
+  const sim::MeshBuildReport& r = m.report();
+  return r.boundary_edges == 0 && r.non_manifold_edges == 0 && r.inconsistent_edges == 0 && m.signedVolume() > 0.0;
+}
 
 // Centre and radius (m) of everything the scene starts with: sizes the shadow map and fog.
 std::pair<Vec3, double> sceneBounds(const sim::SceneDesc& scene, const std::vector<BodyDraw>& bodies) {
@@ -56,6 +65,17 @@ std::pair<Vec3, double> sceneBounds(const sim::SceneDesc& scene, const std::vect
   return {box.center(), std::max(0.05, 0.5 * box.diagonal().norm())};
 }
 
+// Corner k (0..7) of a mesh's bounding box, placed by `pose` (world, m).
+Vec3 boxCorner(const sim::Mesh& m, const sim::BodySnapshot& pose, int k) {
+  const Vec3 corner((k & 1 ? m.boundsMax() : m.boundsMin()).x(), (k & 2 ? m.boundsMax() : m.boundsMin()).y(),
+                    (k & 4 ? m.boundsMax() : m.boundsMin()).z());
+  return pose.position + pose.orientation * corner;
+}
+
+bool sameView(const Camera& a, const Camera& b) {
+  return a.position == b.position && a.target == b.target && a.fov_deg == b.fov_deg;
+}
+
 }  // namespace
 
 Eigen::Vector3f fingerColour(int finger) {
@@ -67,12 +87,24 @@ Eigen::Vector3f fingerColour(int finger) {
 struct SceneRenderer::Impl {
   sim::SceneDesc scene;
   RenderSettings settings;
-  Program surface{"surface", shaders::kSurfaceVertex, shaders::kSurfaceFragment};
+  // One program per kind of surface: llvmpipe would run every side of a uniform branch.
+  Program lit{"lit", shaders::kSurfaceVertex, shaders::kLitFragment.c_str()};
+  Program lit_shadowed{"lit+shadow", shaders::kSurfaceVertex, shaders::kLitFragment.c_str(), "#define SHADOWS"};
+  Program ground{"ground", shaders::kSurfaceVertex, shaders::kGroundFragment.c_str()};
+  Program receiver{"shadow receiver", shaders::kSurfaceVertex, shaders::kShadowReceiverFragment.c_str()};
+  Program flat{"flat", shaders::kSurfaceVertex, shaders::kFlatFragment};
   Program depth{"depth", shaders::kDepthVertex, shaders::kDepthFragment};
+  const Program* current = &lit;  // the program drawShape() feeds
   std::unique_ptr<ShadowMap> shadow;
   std::vector<BodyDraw> bodies;
-  GpuMesh sphere{unitSphere()}, cylinder{unitCylinder(kRoundSegments)}, cone{unitCone(kRoundSegments)};
-  GpuMesh ground_quad;
+  // Proxies and ghosts are large on screen; contact dots are a few pixels (and many).
+  GpuMesh sphere{unitSphere(3)}, dot_sphere{unitSphere(1)}, cylinder{unitCylinder(kRoundSegments)}, cone{unitCone(kRoundSegments)};
+  std::unique_ptr<GpuMesh> ground_quad;
+  GpuMesh receiver_quad{{}, true};  // where shadows can fall on one ground plane
+  std::vector<Vertex> receiver_vertices;
+  // Clear colour and ground for the last camera, restored each frame instead of redrawn.
+  std::unique_ptr<Backdrop> backdrop;
+  Camera backdrop_camera;
   GpuMesh patch_fill{{}, true}, patch_lines{{}, true}, spring_lines{{}, true};
   std::vector<Vertex> fill_vertices, line_vertices, spring_vertices;
   Vec3 centre = Vec3::Zero();
@@ -86,7 +118,10 @@ struct SceneRenderer::Impl {
       d.mesh = bodyRenderMesh(b);
       d.colour = b.colour.cast<float>();
       d.ground = b.shape == sim::ShapeKind::kPlane;
-      if (d.mesh) d.gpu = std::make_unique<GpuMesh>(shadedTriangles(*d.mesh, 35.0));
+      if (d.mesh) {
+        d.gpu = std::make_unique<GpuMesh>(shadedTriangles(*d.mesh, 35.0));
+        d.closed = closedOutward(*d.mesh);
+      }
       bodies.push_back(std::move(d));
     }
     std::tie(centre, extent) = sceneBounds(scene, bodies);
@@ -94,24 +129,34 @@ struct SceneRenderer::Impl {
     const float h = static_cast<float>(40.0 * extent);
     const Vertex corners[4] = {{{-h, 0, -h}, {0, 1, 0}}, {{h, 0, -h}, {0, 1, 0}},
                                {{h, 0, h}, {0, 1, 0}}, {{-h, 0, h}, {0, 1, 0}}};
-    ground_quad.upload({corners[0], corners[2], corners[1], corners[0], corners[3], corners[2]});
+    ground_quad = std::make_unique<GpuMesh>(
+        std::vector<Vertex>{corners[0], corners[2], corners[1], corners[0], corners[3], corners[2]});
     // The key light is fixed: its view covers the scene's starting bounds.
     const Vec3 eye = centre + 3.0 * extent * light_dir;
-    light_view_proj = orthographic(1.5 * extent, 1.5 * extent, 0.5 * extent, 6.0 * extent) *
+    light_view_proj = orthographic(kLightHalf * extent, kLightHalf * extent, 0.5 * extent, 6.0 * extent) *
                       lookAt(eye, centre, upFor(-light_dir));
   }
 
-  void setMatrices(const Program& p, const Eigen::Matrix4f& model) const {
-    glUniformMatrix4fv(p.uniform("u_model"), 1, GL_FALSE, model.data());
-    const Eigen::Matrix3f normal = model.topLeftCorner<3, 3>().inverse().transpose();
-    glUniformMatrix3fv(p.uniform("u_normal_matrix"), 1, GL_FALSE, normal.data());
+  void use(const Program& p) {
+    current = &p;
+    p.use();
   }
 
+  void setMatrices(const Eigen::Matrix4f& model) const {
+    glUniformMatrix4fv(current->uniform("u_model"), 1, GL_FALSE, model.data());
+    const Eigen::Matrix3f normal = model.topLeftCorner<3, 3>().inverse().transpose();
+    glUniformMatrix3fv(current->uniform("u_normal_matrix"), 1, GL_FALSE, normal.data());
+  }
+
+  void setColour(const Eigen::Vector3f& colour, float alpha) const {
+    glUniform4f(current->uniform("u_colour"), colour.x(), colour.y(), colour.z(), alpha);
+  }
+
+  // `mesh` with the current program.
   void drawShape(const GpuMesh& mesh, const Eigen::Matrix4f& model, const Eigen::Vector3f& colour,
-                 float alpha, int mode = 0) const {
-    setMatrices(surface, model);
-    glUniform4f(surface.uniform("u_colour"), colour.x(), colour.y(), colour.z(), alpha);
-    glUniform1i(surface.uniform("u_mode"), mode);
+                 float alpha) const {
+    setMatrices(model);
+    setColour(colour, alpha);
     mesh.draw(GL_TRIANGLES);
   }
 
@@ -133,48 +178,169 @@ struct SceneRenderer::Impl {
       mesh.draw(GL_TRIANGLES);
     };
     for (std::size_t b = 0; b < bodies.size(); ++b) {
-      if (bodies[b].gpu) cast(*bodies[b].gpu, bodyModel(snap, b));
+      if (!bodies[b].gpu) continue;
+      if (bodies[b].closed) glEnable(GL_CULL_FACE);
+      cast(*bodies[b].gpu, bodyModel(snap, b));
+      glDisable(GL_CULL_FACE);
     }
+    glEnable(GL_CULL_FACE);  // spheres are closed
     if (settings.fingers) {
       for (std::size_t i = 0; i < snap.fingers.size(); ++i) {
         const double r = scene.fingers[i].proxy.radius;
         cast(sphere, modelMatrix(snap.fingers[i].proxy, Eigen::Quaterniond::Identity(), Vec3::Constant(r)));
       }
     }
+    glDisable(GL_CULL_FACE);
     glDisable(GL_POLYGON_OFFSET_FILL);
   }
 
+  // Camera, light and ground uniforms of every surface program for this frame.
   void beginSurfacePass(const Camera& camera, int width, int height) {
     const double far_m = 60.0 * extent + (camera.position - centre).norm();
     view_proj = perspective(camera.fov_deg, double(width) / height, 0.002, far_m) *
                 lookAt(camera.position, camera.target, upFor(camera.target - camera.position));
-    surface.use();
-    glUniformMatrix4fv(surface.uniform("u_view_proj"), 1, GL_FALSE, view_proj.data());
-    glUniformMatrix4fv(surface.uniform("u_light_view_proj"), 1, GL_FALSE, light_view_proj.data());
     const Eigen::Vector3f l = light_dir.cast<float>(), c = camera.position.cast<float>();
-    glUniform3f(surface.uniform("u_light_dir"), l.x(), l.y(), l.z());
-    glUniform3f(surface.uniform("u_camera"), c.x(), c.y(), c.z());
-    glUniform3f(surface.uniform("u_background"), kBackground.x(), kBackground.y(), kBackground.z());
-    glUniform1i(surface.uniform("u_use_shadow"), shadow ? 1 : 0);
-    glUniform1i(surface.uniform("u_shadow"), 0);
-    if (shadow) {
-      shadow->bindTexture(0);
-      glUniform1f(surface.uniform("u_shadow_texel"), 1.0f / shadow->size());
-    }
     // Grid: 1 cm minor, 10 cm major lines for table-top scenes; scaled up for larger ones.
     const float minor = static_cast<float>(std::pow(10.0, std::floor(std::log10(extent * 0.5))));
-    glUniform2f(surface.uniform("u_grid"), minor, 10.0f * minor);
-    glUniform2f(surface.uniform("u_fog"), static_cast<float>(4.0 * extent), static_cast<float>(25.0 * extent));
+    if (shadow) shadow->bindTexture(0);
+    for (const Program* p : {&lit, &lit_shadowed, &ground, &receiver, &flat}) {
+      p->use();
+      glUniformMatrix4fv(p->uniform("u_view_proj"), 1, GL_FALSE, view_proj.data());
+      glUniformMatrix4fv(p->uniform("u_light_view_proj"), 1, GL_FALSE, light_view_proj.data());
+      glUniform3f(p->uniform("u_light_dir"), l.x(), l.y(), l.z());
+      glUniform3f(p->uniform("u_camera"), c.x(), c.y(), c.z());
+      glUniform3f(p->uniform("u_background"), kBackground.x(), kBackground.y(), kBackground.z());
+      glUniform1i(p->uniform("u_shadow"), 0);
+      if (shadow) glUniform1f(p->uniform("u_shadow_texel"), 1.0f / shadow->size());
+      glUniform2f(p->uniform("u_grid"), minor, 10.0f * minor);
+      glUniform2f(p->uniform("u_fog"), static_cast<float>(4.0 * extent), static_cast<float>(25.0 * extent));
+    }
+    use(lit);
+  }
+
+  // Background colour and ground: drawn into the backdrop when the view changed, then copied
+  // into the frame. Ground planes are static bodies, so only the camera and the frame size
+  // change what the backdrop holds.
+  void drawBackdrop(const sim::Snapshot& snap, const Camera& camera, int width, int height) {
+    GLint target = 0, samples = 0;
+    glGetIntegerv(GL_FRAMEBUFFER_BINDING, &target);
+    glGetIntegerv(GL_SAMPLES, &samples);
+    samples = std::max(samples, 1);
+    if (!backdrop || !backdrop->fits(width, height, samples) || !sameView(camera, backdrop_camera)) {
+      if (!backdrop || !backdrop->fits(width, height, samples)) {
+        backdrop = std::make_unique<Backdrop>(width, height, samples);
+      }
+      backdrop->bind();
+      const Eigen::Vector3f bg = kBackground.cwiseSqrt();  // the shaders' display gamma
+      glClearColor(bg.x(), bg.y(), bg.z(), 1.0f);
+      glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+      use(ground);
+      for (std::size_t b = 0; b < bodies.size(); ++b) {
+        if (bodies[b].ground) drawShape(*ground_quad, bodyModel(snap, b), kGround.cwiseProduct(bodies[b].colour / 0.7f), 1.0f);
+      }
+      backdrop_camera = camera;
+    }
+    backdrop->restoreInto(static_cast<unsigned>(target));
+  }
+
+  // Pixels that the bodies, fingers and contact marks of `snap` can cover: each drawn thing's
+  // bounding sphere, projected conservatively. Outside it the frame is the smooth backdrop.
+  PixelRect dynamicRect(const sim::Snapshot& snap, const Camera& camera, int width, int height) const {
+    const Eigen::Matrix4d view = lookAt(camera.position, camera.target, upFor(camera.target - camera.position)).cast<double>();
+    const double fy = 1.0 / std::tan(0.5 * camera.fov_deg * std::numbers::pi / 180.0);
+    const double fx = fy * height / width;
+    double x0 = 1, x1 = -1, y0 = 1, y1 = -1;  // NDC
+    bool everywhere = false;
+    const auto add = [&](const Vec3& centre_world, double r) {
+      const Vec3 c = (view * centre_world.homogeneous()).head<3>();
+      const double d = -c.z();
+      if (d - r < 1e-3) {
+        everywhere = true;  // reaches behind the camera
+        return;
+      }
+      for (const double z : {d - r, d + r}) {
+        x0 = std::min(x0, fx * (c.x() - r) / z), x1 = std::max(x1, fx * (c.x() + r) / z);
+        y0 = std::min(y0, fy * (c.y() - r) / z), y1 = std::max(y1, fy * (c.y() + r) / z);
+      }
+    };
+    for (std::size_t b = 0; b < bodies.size(); ++b) {
+      if (bodies[b].ground || !bodies[b].mesh) continue;
+      for (int k = 0; k < 8; ++k) add(boxCorner(*bodies[b].mesh, snap.bodies[b], k), 0.0);
+    }
+    for (std::size_t i = 0; i < snap.fingers.size(); ++i) {
+      const sim::FingerSnapshot& f = snap.fingers[i];
+      const double r = scene.fingers[i].proxy.radius;
+      add(f.proxy, r);
+      add(f.device, r);
+      if (!f.contacts.empty()) add(f.proxy + forceArrow(f), r);
+      for (const sim::ContactSnapshot& c : f.contacts) add(c.point, std::max(c.radius, scene.fingers[i].patch.r_max));
+    }
+    if (everywhere) return {0, 0, width, height};
+    const auto px = [](double ndc, int size) { return static_cast<int>(std::clamp((0.5 * ndc + 0.5) * size, 0.0, double(size))); };
+    return {px(x0, width), px(y0, height), px(x1, width) + 1, px(y1, height) + 1};
+  }
+
+  // The rectangle of ground plane b (its own frame) that the shadows of `snap` can darken:
+  // every body's bounding box and every proxy, projected along the key light. Empty when the
+  // light grazes the plane.
+  void receiverQuad(const sim::Snapshot& snap, std::size_t b) {
+    receiver_vertices.clear();
+    const sim::BodySnapshot& g = snap.bodies[b];
+    const Vec3 normal = g.orientation * Vec3::UnitY();
+    const double facing = light_dir.dot(normal);
+    if (facing < 0.05) return;
+    Eigen::AlignedBox2d rect;
+    const auto add = [&](const Vec3& p, double r) {
+      const Vec3 on_ground = p - ((p - g.position).dot(normal) / facing) * light_dir;
+      const Vec3 local = g.orientation.conjugate() * (on_ground - g.position);
+      const Eigen::Vector2d xz(local.x(), local.z());
+      rect.extend(xz - Eigen::Vector2d::Constant(r / facing));
+      rect.extend(xz + Eigen::Vector2d::Constant(r / facing));
+    };
+    for (std::size_t k = 0; k < bodies.size(); ++k) {
+      if (bodies[k].ground || !bodies[k].mesh) continue;
+      for (int c = 0; c < 8; ++c) add(boxCorner(*bodies[k].mesh, snap.bodies[k], c), 0.0);
+    }
+    if (settings.fingers) {
+      for (std::size_t i = 0; i < snap.fingers.size(); ++i) add(snap.fingers[i].proxy, scene.fingers[i].proxy.radius);
+    }
+    if (rect.isEmpty()) return;
+    rect.extend(rect.min() - Eigen::Vector2d::Constant(0.01 * extent));  // the soft edge
+    rect.extend(rect.max() + Eigen::Vector2d::Constant(0.01 * extent));
+    const auto corner = [&](double x, double z) { return makeVertex(Vec3(x, 0, z), Vec3::UnitY()); };
+    const Vertex a = corner(rect.min().x(), rect.min().y()), b2 = corner(rect.max().x(), rect.min().y()),
+                 c = corner(rect.max().x(), rect.max().y()), d = corner(rect.min().x(), rect.max().y());
+    receiver_vertices = {a, c, b2, a, d, c};
+  }
+
+  // Darkens the ground where the key light is blocked (multiplies the backdrop's colour). Drawn
+  // after the bodies, so the depth test spares the pixels they cover.
+  void drawGroundShadows(const sim::Snapshot& snap) {
+    use(receiver);
+    glEnable(GL_BLEND);
+    glBlendFunc(GL_DST_COLOR, GL_ZERO);
+    glDepthMask(GL_FALSE);
+    glEnable(GL_POLYGON_OFFSET_FILL);
+    glPolygonOffset(-1.0f, -2.0f);
+    for (std::size_t b = 0; b < bodies.size(); ++b) {
+      if (!bodies[b].ground) continue;
+      receiverQuad(snap, b);
+      receiver_quad.upload(receiver_vertices);
+      drawShape(receiver_quad, bodyModel(snap, b), Eigen::Vector3f::Ones(), 1.0f);
+    }
+    glDisable(GL_POLYGON_OFFSET_FILL);
+    glDepthMask(GL_TRUE);
+    glBlendFunc(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA);
+    glDisable(GL_BLEND);
   }
 
   void drawBodies(const sim::Snapshot& snap) {
+    use(shadow ? lit_shadowed : lit);
     for (std::size_t b = 0; b < bodies.size(); ++b) {
-      const BodyDraw& d = bodies[b];
-      if (d.ground) {
-        drawShape(ground_quad, bodyModel(snap, b), kGround.cwiseProduct(d.colour / 0.7f), 1.0f, 1);
-      } else if (d.gpu) {
-        drawShape(*d.gpu, bodyModel(snap, b), d.colour, 1.0f);
-      }
+      if (bodies[b].ground || !bodies[b].gpu) continue;
+      if (bodies[b].closed) glEnable(GL_CULL_FACE);
+      drawShape(*bodies[b].gpu, bodyModel(snap, b), bodies[b].colour, 1.0f);
+      glDisable(GL_CULL_FACE);
     }
   }
 
@@ -192,13 +358,16 @@ struct SceneRenderer::Impl {
   // Proxies are drawn after the patches and a little translucent: the patch under the finger
   // stays readable.
   void drawFingers(const sim::Snapshot& snap) {
+    use(lit);
     glEnable(GL_BLEND);
+    glEnable(GL_CULL_FACE);  // spheres are closed: the back half would only be blended twice
     for (std::size_t i = 0; i < snap.fingers.size(); ++i) {
       const sim::FingerSnapshot& f = snap.fingers[i];
       const double r = scene.fingers[i].proxy.radius;
       drawShape(sphere, modelMatrix(f.proxy, Eigen::Quaterniond::Identity(), Vec3::Constant(r)),
                 fingerColour(static_cast<int>(i)) * 0.8f + Eigen::Vector3f::Constant(0.15f), kProxyAlpha);
     }
+    glDisable(GL_CULL_FACE);
     glDisable(GL_BLEND);
   }
 
@@ -206,6 +375,8 @@ struct SceneRenderer::Impl {
   void drawDeviceGhosts(const sim::Snapshot& snap) {
     glDisable(GL_DEPTH_TEST);
     glEnable(GL_BLEND);
+    use(lit);
+    glEnable(GL_CULL_FACE);
     spring_vertices.clear();
     for (std::size_t i = 0; i < snap.fingers.size(); ++i) {
       const sim::FingerSnapshot& f = snap.fingers[i];
@@ -214,10 +385,11 @@ struct SceneRenderer::Impl {
                 fingerColour(static_cast<int>(i)), kGhostAlpha);
       appendSpring(f.proxy, f.device, 0.5 * r);
     }
+    glDisable(GL_CULL_FACE);
     spring_lines.upload(spring_vertices);
-    setMatrices(surface, Eigen::Matrix4f::Identity());
-    glUniform4f(surface.uniform("u_colour"), 0.1f, 0.1f, 0.1f, 0.85f);
-    glUniform1i(surface.uniform("u_mode"), 2);
+    use(flat);
+    setMatrices(Eigen::Matrix4f::Identity());
+    setColour(Eigen::Vector3f::Constant(0.1f), 0.85f);
     spring_lines.draw(GL_LINES);
     glDisable(GL_BLEND);
     glEnable(GL_DEPTH_TEST);
@@ -258,27 +430,37 @@ struct SceneRenderer::Impl {
       glEnable(GL_POLYGON_OFFSET_FILL);
       glPolygonOffset(-2.0f, -4.0f);
       patch_fill.upload(fill_vertices);
+      use(shadow ? lit_shadowed : lit);  // lit like the body under it
       drawShape(patch_fill, Eigen::Matrix4f::Identity(), colour, kPatchAlpha);
       glDisable(GL_POLYGON_OFFSET_FILL);
       glDepthMask(GL_TRUE);
       glDisable(GL_BLEND);
       patch_lines.upload(line_vertices);
-      glUniform4f(surface.uniform("u_colour"), colour.x() * 0.5f, colour.y() * 0.5f, colour.z() * 0.5f, 1.0f);
-      glUniform1i(surface.uniform("u_mode"), 2);
+      use(flat);
+      setMatrices(Eigen::Matrix4f::Identity());
+      setColour(0.5f * colour, 1.0f);
       patch_lines.draw(GL_LINES);
       drawContactMarks(snap.fingers[i], static_cast<int>(i));
     }
   }
 
+  // The force arrow of a touching finger, from its proxy (m).
+  Vec3 forceArrow(const sim::FingerSnapshot& f) const {
+    const double n = f.coupling_force.norm();
+    if (n < 1e-9) return Vec3::Zero();
+    return std::min(settings.max_arrow_m, n * settings.force_arrow_m_per_n) / n * f.coupling_force;
+  }
+
   void drawContactMarks(const sim::FingerSnapshot& f, int finger) {
     const Eigen::Vector3f colour = fingerColour(finger);
     const double dot = 0.12 * scene.fingers[static_cast<std::size_t>(finger)].proxy.radius;
+    use(lit);
     for (const sim::ContactSnapshot& c : f.contacts) {
       // The god-object's contact point; with n_SGO = 0 it is the whole patch.
-      drawShape(sphere, modelMatrix(c.point, Eigen::Quaterniond::Identity(), Vec3::Constant(1.3 * dot)),
+      drawShape(dot_sphere, modelMatrix(c.point, Eigen::Quaterniond::Identity(), Vec3::Constant(1.3 * dot)),
                 Eigen::Vector3f(0.95f, 0.95f, 0.95f), 1.0f);
       for (const Vec3& s : c.sgos) {
-        drawShape(sphere, modelMatrix(s, Eigen::Quaterniond::Identity(), Vec3::Constant(dot)), colour, 1.0f);
+        drawShape(dot_sphere, modelMatrix(s, Eigen::Quaterniond::Identity(), Vec3::Constant(dot)), colour, 1.0f);
       }
     }
     glDisable(GL_DEPTH_TEST);  // arrows read through the proxy and the body
@@ -286,11 +468,7 @@ struct SceneRenderer::Impl {
       const double length = std::max(c.radius, 0.6 * scene.fingers[static_cast<std::size_t>(finger)].patch.r_max);
       drawArrow(c.point, length * c.outward_normal, 0.3 * dot, Eigen::Vector3f(0.95f, 0.95f, 0.95f));
     }
-    if (!f.contacts.empty()) {
-      const double n = f.coupling_force.norm();
-      const double length = std::min(settings.max_arrow_m, n * settings.force_arrow_m_per_n);
-      if (n > 1e-9) drawArrow(f.proxy, length * f.coupling_force / n, 0.6 * dot, Eigen::Vector3f(1.0f, 0.75f, 0.1f));
-    }
+    if (!f.contacts.empty()) drawArrow(f.proxy, forceArrow(f), 0.6 * dot, Eigen::Vector3f(1.0f, 0.75f, 0.1f));
     glEnable(GL_DEPTH_TEST);
   }
 };
@@ -310,7 +488,7 @@ void SceneRenderer::setSettings(const RenderSettings& settings) {
 
 const RenderSettings& SceneRenderer::settings() const { return impl_->settings; }
 
-void SceneRenderer::draw(const sim::Snapshot& snapshot, const Camera& camera, int width, int height) {
+PixelRect SceneRenderer::draw(const sim::Snapshot& snapshot, const Camera& camera, int width, int height) {
   GLint target = 0;
   glGetIntegerv(GL_FRAMEBUFFER_BINDING, &target);
   glDisable(GL_CULL_FACE);
@@ -320,14 +498,14 @@ void SceneRenderer::draw(const sim::Snapshot& snapshot, const Camera& camera, in
   if (impl_->shadow) impl_->shadowPass(snapshot);
   glBindFramebuffer(GL_FRAMEBUFFER, static_cast<GLuint>(target));
   glViewport(0, 0, width, height);
-  const Eigen::Vector3f bg = kBackground.cwiseSqrt();  // the shaders' display gamma
-  glClearColor(bg.x(), bg.y(), bg.z(), 1.0f);
-  glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
   impl_->beginSurfacePass(camera, width, height);
+  impl_->drawBackdrop(snapshot, camera, width, height);
   impl_->drawBodies(snapshot);
+  if (impl_->shadow) impl_->drawGroundShadows(snapshot);
   if (impl_->settings.patch_highlight) impl_->drawPatches(snapshot);
   if (impl_->settings.fingers) impl_->drawFingers(snapshot);
   if (impl_->settings.fingers) impl_->drawDeviceGhosts(snapshot);
+  return impl_->dynamicRect(snapshot, camera, width, height);
 }
 
 }  // namespace gf::render

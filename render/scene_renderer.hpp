@@ -15,10 +15,10 @@ namespace gf::render {
 
 /// What a scene draws and how. The switches are effects: what is off is not built.
 struct RenderSettings {
-  bool shadows = true;               ///< shadow map from the key light (soft, 5x5 PCF)
+  bool shadows = true;               ///< shadow map from the key light (soft: 2 bilinear taps)
   bool patch_highlight = true;       ///< contact patches, SGO dots, normals, force arrows
   bool fingers = true;               ///< proxies, device ghosts, springs
-  int shadow_map_size = 2048;        ///< texels per side
+  int shadow_map_size = 1024;        ///< texels per side (the map covers 3 scene radii)
   double force_arrow_m_per_n = 0.01; ///< arrow length per newton of coupling force (m/N)
   double max_arrow_m = 0.08;         ///< longest force arrow (m)
 };
@@ -37,7 +37,8 @@ class SceneRenderer {
   SceneRenderer& operator=(const SceneRenderer&) = delete;
 
   /// Draws `snapshot` seen from `camera` into the bound framebuffer of `width` x `height`.
-  void draw(const sim::Snapshot& snapshot, const Camera& camera, int width, int height);
+  /// Returns the pixels where it drew anything but the backdrop (what anti-aliasing must see).
+  PixelRect draw(const sim::Snapshot& snapshot, const Camera& camera, int width, int height);
   /// Changes the switches for the next draw (close-ups hide the fingers).
   void setSettings(const RenderSettings& settings);
   const RenderSettings& settings() const;

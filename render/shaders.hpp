@@ -1,9 +1,11 @@
 // GLSL 3.30 core sources of the scene and overlay programs.
 #pragma once
 
+#include <string>
+
 namespace gf::render::shaders {
 
-/// Lit surfaces: bodies, ground (grid), fingers, arrows; also flat colour (u_mode 2).
+/// Surfaces: world position, normal and light-space position for the fragment programs below.
 inline constexpr const char* kSurfaceVertex = R"(#version 330 core
 layout(location = 0) in vec3 a_position;
 layout(location = 1) in vec3 a_normal;
@@ -23,7 +25,10 @@ void main() {
 }
 )";
 
-inline constexpr const char* kSurfaceFragment = R"(#version 330 core
+/// Shared by the lit, ground and shadow-receiver programs: lighting constants, the shadow
+/// lookup and the display transfer. Programs are specialised by #defines (Program's
+/// `defines`) rather than uniform branches: llvmpipe runs both sides of a branch.
+inline constexpr const char* kSurfaceCommon = R"(
 in vec3 v_world;
 in vec3 v_normal;
 in vec4 v_light;
@@ -32,59 +37,126 @@ uniform vec3 u_light_dir;     // unit, towards the key light
 uniform vec3 u_camera;
 uniform vec3 u_background;    // linear RGB the ground fades into
 uniform sampler2DShadow u_shadow;
-uniform int u_use_shadow;
-uniform int u_mode;           // 0 lit, 1 ground with grid, 2 flat colour
 uniform float u_shadow_texel; // 1 / shadow map size
 uniform vec2 u_grid;          // minor, major spacing (m)
 uniform vec2 u_fog;           // distances (m) where the ground starts and ends fading
 out vec4 frag;
 
+const vec3 kKey = vec3(0.95, 0.92, 0.86);
+vec3 sky(vec3 n) { return mix(vec3(0.16, 0.15, 0.14), vec3(0.30, 0.33, 0.38), 0.5 + 0.5 * n.y); }
+
+// Share of the key light reaching this point: two bilinear depth comparisons (each a 2x2
+// filter) offset along the diagonal give a soft edge for little cost on a CPU rasteriser.
 float lightVisible() {
-  if (u_use_shadow == 0) return 1.0;
   vec3 p = v_light.xyz / v_light.w * 0.5 + 0.5;
-  if (p.z >= 1.0 || any(lessThan(p.xy, vec2(0.0))) || any(greaterThan(p.xy, vec2(1.0)))) return 1.0;
-  // Four bilinear depth comparisons (each already a 2x2 filter): a soft edge for little cost on
-  // a CPU rasteriser.
-  float sum = 0.0;
-  for (int x = 0; x < 2; ++x)
-    for (int y = 0; y < 2; ++y)
-      sum += texture(u_shadow, vec3(p.xy + (vec2(x, y) - 0.5) * 1.5 * u_shadow_texel, p.z - 0.0005));
-  return 0.25 * sum;
+  vec2 d = vec2(0.75 * u_shadow_texel);
+  return 0.5 * (texture(u_shadow, vec3(p.xy - d, p.z - 0.0005)) + texture(u_shadow, vec3(p.xy + d, p.z - 0.0005)));
 }
 
+float fogAmount() { return smoothstep(u_fog.x, u_fog.y, length(u_camera - v_world)); }
+
+// Linear to display values: gamma 2 (a square root is far cheaper than pow on llvmpipe).
+vec3 display(vec3 linear) { return sqrt(max(linear, vec3(0.0))); }
+)";
+
+/// Lit surfaces: bodies, patches, fingers, arrows. SHADOWS: receives the key light's shadow.
+inline const std::string kLitFragment = std::string(kSurfaceCommon) + R"(
+void main() {
+  vec3 n = normalize(v_normal);
+  vec3 l = u_light_dir;
+  vec3 h = normalize(l + normalize(u_camera - v_world));
+  float diffuse = max(dot(n, l), 0.0);
+  float s2 = max(dot(n, h), 0.0);
+  s2 *= s2; s2 *= s2; s2 *= s2; s2 *= s2; s2 *= s2; s2 *= s2;  // ^64
+#ifdef SHADOWS
+  float lit = lightVisible();
+#else
+  float lit = 1.0;
+#endif
+  vec3 base = u_colour.rgb;
+  vec3 colour = base * sky(n) + lit * (base * diffuse * kKey + vec3(0.3 * s2));
+  frag = vec4(display(colour), u_colour.a);
+}
+)";
+
+/// The ground: grid lines and fog, no shadow (drawn once per camera into the backdrop).
+inline const std::string kGroundFragment = std::string(kSurfaceCommon) + R"(
 float gridLine(vec2 coord) {
   vec2 d = abs(fract(coord - 0.5) - 0.5) / max(fwidth(coord), vec2(1e-6));
   return 1.0 - min(min(d.x, d.y), 1.0);
 }
 
-// Linear to display values: gamma 2 (a square root is far cheaper than pow on llvmpipe).
-vec3 display(vec3 linear) { return sqrt(max(linear, vec3(0.0))); }
+void main() {
+  vec3 n = normalize(v_normal);
+  vec2 coord = v_world.xz;
+  float minor_fade = clamp(1.0 - 2.0 * length(fwidth(coord / u_grid.x)), 0.0, 1.0);
+  vec3 base = u_colour.rgb;
+  base *= 1.0 - 0.25 * gridLine(coord / u_grid.x) * minor_fade - 0.35 * gridLine(coord / u_grid.y);
+  float diffuse = max(dot(n, u_light_dir), 0.0);
+  vec3 colour = base * sky(n) + base * diffuse * kKey;
+  frag = vec4(display(mix(colour, u_background, fogAmount())), 1.0);
+}
+)";
+
+/// Shadow on the ground: multiplies the backdrop by the display value of shadowed / lit light
+/// (the ground's base colour cancels), fading with the fog. Blend: destination colour x source.
+inline const std::string kShadowReceiverFragment = std::string(kSurfaceCommon) + R"(
+void main() {
+  vec3 n = normalize(v_normal);
+  vec3 key = max(dot(n, u_light_dir), 0.0) * kKey;
+  vec3 ratio = (sky(n) + lightVisible() * key) / (sky(n) + key);
+  frag = vec4(sqrt(mix(ratio, vec3(1.0), fogAmount())), 1.0);
+}
+)";
+
+/// One flat colour: lines, the spring.
+inline constexpr const char* kFlatFragment = R"(#version 330 core
+uniform vec4 u_colour;
+out vec4 frag;
+void main() { frag = vec4(sqrt(max(u_colour.rgb, vec3(0.0))), u_colour.a); }
+)";
+
+/// A triangle covering the viewport; no vertex attributes (a vertex array must still be bound).
+inline constexpr const char* kFullScreenVertex = R"(#version 330 core
+void main() {
+  vec2 p = vec2((gl_VertexID << 1) & 2, gl_VertexID & 2);
+  gl_Position = vec4(2.0 * p - 1.0, 0.0, 1.0);
+}
+)";
+
+/// Post-process anti-aliasing of the scene image (a directional filter in the spirit of FXAA):
+/// pixels whose neighbourhood has little luma contrast are left alone; elsewhere the luma of
+/// the four neighbours gives the direction across the edge, two pairs of filtered taps along
+/// the edge blend it, and the wider pair is dropped when it leaves the local luma range.
+inline constexpr const char* kFxaaFragment = R"(#version 330 core
+uniform sampler2D u_scene;
+uniform vec2 u_texel;  // 1 / size in pixels
+out vec4 frag;
+
+float luma(vec3 c) { return dot(c, vec3(0.299, 0.587, 0.114)); }
 
 void main() {
-  if (u_mode == 2) {
-    frag = vec4(display(u_colour.rgb), u_colour.a);
-    return;
-  }
-  vec3 n = normalize(v_normal);
-  vec3 base = u_colour.rgb;
-  float distance_to_camera = length(u_camera - v_world);
-  if (u_mode == 1) {
-    vec2 coord = v_world.xz;
-    float minor_fade = clamp(1.0 - 8.0 * length(fwidth(coord / u_grid.x)) * 0.25, 0.0, 1.0);
-    base *= 1.0 - 0.25 * gridLine(coord / u_grid.x) * minor_fade - 0.35 * gridLine(coord / u_grid.y);
-  }
-  vec3 l = normalize(u_light_dir);
-  vec3 v = normalize(u_camera - v_world);
-  vec3 h = normalize(l + v);
-  float diffuse = max(dot(n, l), 0.0);
-  float s2 = max(dot(n, h), 0.0);
-  s2 *= s2; s2 *= s2; s2 *= s2; s2 *= s2; s2 *= s2; s2 *= s2;  // ^64
-  float specular = u_mode == 1 ? 0.0 : 0.3 * s2;
-  float lit = lightVisible();
-  vec3 sky = mix(vec3(0.16, 0.15, 0.14), vec3(0.30, 0.33, 0.38), 0.5 + 0.5 * n.y);
-  vec3 colour = base * sky + lit * (base * diffuse * vec3(0.95, 0.92, 0.86) + vec3(specular));
-  if (u_mode == 1) colour = mix(colour, u_background, smoothstep(u_fog.x, u_fog.y, distance_to_camera));
-  frag = vec4(display(colour), u_colour.a);
+  ivec2 p = ivec2(gl_FragCoord.xy);
+  // Unfiltered reads of the pixel and its four neighbours (cheaper than filtered ones).
+  vec3 centre = texelFetch(u_scene, p, 0).rgb;
+  float n = luma(texelFetch(u_scene, p + ivec2(0, 1), 0).rgb);
+  float s = luma(texelFetch(u_scene, p + ivec2(0, -1), 0).rgb);
+  float e = luma(texelFetch(u_scene, p + ivec2(1, 0), 0).rgb);
+  float w = luma(texelFetch(u_scene, p + ivec2(-1, 0), 0).rgb);
+  float c = luma(centre);
+  float lo = min(c, min(min(n, s), min(e, w)));
+  float hi = max(c, max(max(n, s), max(e, w)));
+  // No edge here: keep the pixel. (The pass writes over the scene it reads a copy of.)
+  if (hi - lo < max(1.0 / 32.0, 0.125 * hi)) discard;
+  // Along the edge: perpendicular to the luma gradient, stretched towards the nearer axis.
+  vec2 along = vec2(n - s, w - e);
+  float bias = max(0.0625 * (n + s + e + w), 1.0 / 128.0);
+  along = clamp(along / (min(abs(along.x), abs(along.y)) + bias), -8.0, 8.0) * u_texel;
+  vec2 uv = gl_FragCoord.xy * u_texel;
+  vec3 near = 0.5 * (texture(u_scene, uv - along / 6.0).rgb + texture(u_scene, uv + along / 6.0).rgb);
+  vec3 far = 0.5 * near + 0.25 * (texture(u_scene, uv - 0.5 * along).rgb + texture(u_scene, uv + 0.5 * along).rgb);
+  float f = luma(far);
+  frag = vec4(f < lo || f > hi ? near : far, 1.0);
 }
 )";
 

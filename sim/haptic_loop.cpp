@@ -4,12 +4,38 @@
 #include <chrono>
 #include <cmath>
 #include <stdexcept>
+#include <optional>
 #include <thread>
+
+#include <pthread.h>
+#include <sched.h>
 
 namespace gf::sim {
 namespace {
 
 using Clock = std::chrono::steady_clock;
+
+// SCHED_FIFO for the calling thread while alive; the previous policy is restored after.
+class FifoPriority {
+ public:
+  FifoPriority() {
+    pthread_getschedparam(pthread_self(), &policy_, &saved_);
+    sched_param p{};
+    p.sched_priority = std::min(80, sched_get_priority_max(SCHED_FIFO));
+    active_ = pthread_setschedparam(pthread_self(), SCHED_FIFO, &p) == 0;
+  }
+  ~FifoPriority() {
+    if (active_) pthread_setschedparam(pthread_self(), policy_, &saved_);
+  }
+  FifoPriority(const FifoPriority&) = delete;
+  FifoPriority& operator=(const FifoPriority&) = delete;
+  bool active() const { return active_; }
+
+ private:
+  int policy_ = SCHED_OTHER;
+  sched_param saved_{};
+  bool active_ = false;
+};
 
 }  // namespace
 
@@ -44,6 +70,8 @@ LoopStats runHapticLoop(World& world, const std::vector<DeviceTrack>& devices,
   std::vector<float> step_us(static_cast<std::size_t>(steps));
   LoopStats stats;
   const double t0 = world.time();
+  std::optional<FifoPriority> priority;
+  if (settings.clock == ClockMode::kRealtime) stats.fifo_priority = priority.emplace().active();
   const auto start = Clock::now();
   const auto period = std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(dt));
   for (long k = 0; k < steps; ++k) {

@@ -43,13 +43,18 @@ struct LoopStats {
   long late_steps = 0;          ///< realtime: steps started more than late_threshold late
   double max_lateness_us = 0.0; ///< realtime: worst start lateness
   double wall_seconds = 0.0;
+  /// realtime: the loop ran under SCHED_FIFO (needs root or CAP_SYS_NICE); otherwise it
+  /// shared the cores with the renderer and encoders at normal priority.
+  bool fifo_priority = false;
 };
 
 /// Called after every step with the world (haptic thread). Keep it cheap.
 using StepObserver = std::function<void(const World&)>;
 
 /// Runs `world` for settings.duration at a constant dt = 1/rate_hz. Devices are sampled at the
-/// start time of each step, in finger order. Allocates only before the first step.
+/// start time of each step, in finger order. Allocates only before the first step. A realtime
+/// loop asks for SCHED_FIFO priority for the calling thread while it runs (so rendering and
+/// encoding threads cannot delay a step) and restores the thread's policy afterwards.
 LoopStats runHapticLoop(World& world, const std::vector<DeviceTrack>& devices,
                         const LoopSettings& settings, const StepObserver& observer);
 

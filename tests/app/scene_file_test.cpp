@@ -3,6 +3,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -99,6 +100,20 @@ TEST(SceneFile, ErrorsNameFileLineAndField) {
     EXPECT_EQ(e.field(), c.field) << e.what();
     EXPECT_NE(std::string(e.what()).find(c.reason), std::string::npos) << e.what();
   }
+}
+
+TEST(SceneFile, AntialiasingIsOneOfThreeNames) {
+  EXPECT_EQ(parseSceneText(kMinimal, "scene.toml", "").view.antialiasing, render::Antialiasing::kFxaa);
+  const std::string text = std::string(kMinimal) + "[render]\nantialiasing = \"msaa\"\nmsaa_samples = 8\n";
+  const SessionDesc s = parseSceneText(text, "scene.toml", "");
+  EXPECT_EQ(s.view.antialiasing, render::Antialiasing::kMsaa);
+  EXPECT_EQ(s.view.msaa_samples, 8);
+  const std::string minimal = kMinimal;
+  const int render_line = static_cast<int>(std::count(minimal.begin(), minimal.end(), '\n')) + 2;
+  const InputError e = errorOf(minimal + "[render]\nantialiasing = \"smaa\"\n");
+  EXPECT_EQ(e.line(), render_line) << e.what();
+  EXPECT_EQ(e.field(), "render.antialiasing");
+  EXPECT_NE(std::string(e.what()).find("expected \"fxaa\", \"msaa\" or \"none\""), std::string::npos) << e.what();
 }
 
 TEST(SceneFile, MissingAndEmptyMeshesAreNamed) {

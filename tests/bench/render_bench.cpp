@@ -2,6 +2,8 @@
 // encoding of such a frame. Run by hand: build/release/gf_bench --benchmark_filter=Render|Png
 #include <benchmark/benchmark.h>
 
+#include <optional>
+
 #include "app/scene_file.hpp"
 #include "app/screenshots.hpp"
 #include "app/session.hpp"
@@ -24,19 +26,25 @@ Prepared prepare(const std::string& scene, double time) {
   return p;
 }
 
-void BM_RenderFrame1280x720(benchmark::State& state, const char* scene, double time) {
+// Draw + anti-aliasing + read-back of one frame, repeated; `aa` overrides the scene's choice.
+void drawFrames(benchmark::State& state, const char* scene, double time,
+                std::optional<render::Antialiasing> aa = std::nullopt) {
   const Prepared p = prepare(scene, time);
   render::GlContext context;
   const render::FrameOutputSettings f = app::frameSettings(p.session, {});
   render::SceneRenderer renderer(p.session.scene, f.scene);
-  render::Framebuffer frame(1280, 720, f.msaa_samples);
+  render::Framebuffer frame(1280, 720, aa.value_or(f.antialiasing), f.msaa_samples);
   render::Image image;
   for (auto _ : state) {
     frame.bind();
-    renderer.draw(p.snapshot, f.camera, 1280, 720);
+    frame.resolve(renderer.draw(p.snapshot, f.camera, 1280, 720));
     frame.read(image);
     benchmark::DoNotOptimize(image.rgb.data());
   }
+}
+
+void BM_RenderFrame1280x720(benchmark::State& state, const char* scene, double time) {
+  drawFrames(state, scene, time);
 }
 BENCHMARK_CAPTURE(BM_RenderFrame1280x720, fig5, "fig5-push-ball", 1.5)->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(BM_RenderFrame1280x720, fig6, "fig6-lift-one-finger", 2.5)->Unit(benchmark::kMillisecond);
@@ -45,6 +53,14 @@ BENCHMARK_CAPTURE(BM_RenderFrame1280x720, fig7_side, "fig7-side-pick", 2.5)->Uni
 BENCHMARK_CAPTURE(BM_RenderFrame1280x720, fig8, "fig8-pinch-oscillation", 4.0)->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(BM_RenderFrame1280x720, concave_mesh, "concave-mesh", 1.5)->Unit(benchmark::kMillisecond);
 
+// What anti-aliasing costs: fig8 drawn without, with FXAA (the default) and with 4x MSAA.
+void BM_RenderAntialiasing1280x720(benchmark::State& state, render::Antialiasing aa) {
+  drawFrames(state, "fig8-pinch-oscillation", 4.0, aa);
+}
+BENCHMARK_CAPTURE(BM_RenderAntialiasing1280x720, none, render::Antialiasing::kNone)->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_RenderAntialiasing1280x720, fxaa, render::Antialiasing::kFxaa)->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_RenderAntialiasing1280x720, msaa4, render::Antialiasing::kMsaa)->Unit(benchmark::kMillisecond);
+
 void BM_PngEncode1280x720(benchmark::State& state) {
   const Prepared p = prepare("fig8-pinch-oscillation", 4.0);
   render::Image image;
@@ -52,9 +68,9 @@ void BM_PngEncode1280x720(benchmark::State& state) {
     render::GlContext context;
     const render::FrameOutputSettings f = app::frameSettings(p.session, {});
     render::SceneRenderer renderer(p.session.scene, f.scene);
-    render::Framebuffer frame(1280, 720, f.msaa_samples);
+    render::Framebuffer frame(1280, 720, f.antialiasing, f.msaa_samples);
     frame.bind();
-    renderer.draw(p.snapshot, f.camera, 1280, 720);
+    frame.resolve(renderer.draw(p.snapshot, f.camera, 1280, 720));
     frame.read(image);
   }
   std::size_t bytes = 0;
