@@ -62,8 +62,9 @@ class GpuMesh {
   bool dynamic_ = false;
 };
 
-/// How a frame is anti-aliased. FXAA is a post-process pass over the finished scene and costs a
-/// third of 4x MSAA on llvmpipe (which shades and resolves every sample on the CPU).
+/// How a frame is anti-aliased. FXAA is a post-process pass over the finished scene; on fig8 at
+/// 1280x720 it adds 3.5 ms to a frame where 4x MSAA adds 21 ms (llvmpipe shades, stores and
+/// resolves every sample on the CPU).
 enum class Antialiasing { kNone, kFxaa, kMsaa };
 
 /// Parses "none", "fxaa" or "msaa"; nullopt for anything else.
