@@ -53,7 +53,6 @@ class GpuMesh {
   void upload(const std::vector<Vertex>& vertices);
   /// Draws the vertices as `mode` (GL_TRIANGLES, GL_LINES, ...).
   void draw(unsigned mode) const;
-  int size() const { return count_; }
 
  private:
   unsigned vao_ = 0, vbo_ = 0, ebo_ = 0;

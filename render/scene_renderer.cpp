@@ -109,7 +109,7 @@ struct SceneRenderer::Impl {
   std::vector<Vertex> fill_vertices, line_vertices, spring_vertices;
   Vec3 centre = Vec3::Zero();
   double extent = 0.1;
-  Eigen::Matrix4f view_proj, light_view_proj;
+  Eigen::Matrix4f view, view_proj, light_view_proj;  // view, view_proj: this frame's camera
   Vec3 light_dir = Vec3(0.25, 1.0, 0.3).normalized();
 
   Impl(const sim::SceneDesc& s, const RenderSettings& r) : scene(s), settings(r) {
@@ -197,8 +197,8 @@ struct SceneRenderer::Impl {
   // Camera, light and ground uniforms of every surface program for this frame.
   void beginSurfacePass(const Camera& camera, int width, int height) {
     const double far_m = 60.0 * extent + (camera.position - centre).norm();
-    view_proj = perspective(camera.fov_deg, double(width) / height, 0.002, far_m) *
-                lookAt(camera.position, camera.target, upFor(camera.target - camera.position));
+    view = lookAt(camera.position, camera.target, upFor(camera.target - camera.position));
+    view_proj = perspective(camera.fov_deg, double(width) / height, 0.002, far_m) * view;
     const Eigen::Vector3f l = light_dir.cast<float>(), c = camera.position.cast<float>();
     // Grid: 1 cm minor, 10 cm major lines for table-top scenes; scaled up for larger ones.
     const float minor = static_cast<float>(std::pow(10.0, std::floor(std::log10(extent * 0.5))));
@@ -246,13 +246,13 @@ struct SceneRenderer::Impl {
   // Pixels that the bodies, fingers and contact marks of `snap` can cover: each drawn thing's
   // bounding sphere, projected conservatively. Outside it the frame is the smooth backdrop.
   PixelRect dynamicRect(const sim::Snapshot& snap, const Camera& camera, int width, int height) const {
-    const Eigen::Matrix4d view = lookAt(camera.position, camera.target, upFor(camera.target - camera.position)).cast<double>();
+    const Eigen::Matrix4d to_camera = view.cast<double>();  // set by beginSurfacePass()
     const double fy = 1.0 / std::tan(0.5 * camera.fov_deg * std::numbers::pi / 180.0);
     const double fx = fy * height / width;
     double x0 = 1, x1 = -1, y0 = 1, y1 = -1;  // NDC
     bool everywhere = false;
     const auto add = [&](const Vec3& centre_world, double r) {
-      const Vec3 c = (view * centre_world.homogeneous()).head<3>();
+      const Vec3 c = (to_camera * centre_world.homogeneous()).head<3>();
       const double d = -c.z();
       if (d - r < 1e-3) {
         everywhere = true;  // reaches behind the camera
