@@ -24,16 +24,24 @@ bool FrameDriver::isSyncFrame(long k) const {
   return false;
 }
 
-void FrameDriver::apply(sim::World& world, const std::vector<render::SettingsCommand>& commands) {
-  for (const render::SettingsCommand& c : commands) {
+void FrameDriver::apply(sim::World& world, const std::vector<sim::SettingsCommand>& commands) {
+  for (const sim::SettingsCommand& c : commands) {
     world.setPatchSettings(c.finger, c.patch);
     changes_.push_back({world.time(), c});
   }
 }
 
+// Realtime: the latest state, written straight into the render thread's free slot.
+void FrameDriver::publishLatest(const sim::World& world) {
+  sim::Snapshot& slot = renderer_.latestSlot();
+  world.snapshot(slot);
+  slot.timings = live_ ? live_->summary() : sim::HapticTimings{};
+  renderer_.publishLatest();
+}
+
 void FrameDriver::start(sim::World& world) {
   if (realtime_) {
-    renderer_.publishLatest(world, live_ ? live_->summary() : sim::HapticTimings{});
+    publishLatest(world);
   } else {
     world.snapshot(frame_);
     apply(world, renderer_.submitFrame(frame_, isSyncFrame(0)));
@@ -46,7 +54,7 @@ void FrameDriver::afterStep(sim::World& world, double dt) {
   if (realtime_) {
     if (t + kTimeEps < frameTime(next_frame_)) return;
     while (t + kTimeEps >= frameTime(next_frame_)) ++next_frame_;
-    renderer_.publishLatest(world, live_ ? live_->summary() : sim::HapticTimings{});
+    publishLatest(world);
     apply(world, renderer_.takeCommands());
     return;
   }

@@ -13,7 +13,7 @@ namespace gf::app {
 /// A settings change made through the overlay, as applied to the simulation.
 struct AppliedChange {
   double time = 0.0;  ///< s: applied from the step after this time
-  render::SettingsCommand command;
+  sim::SettingsCommand command;
 };
 
 /// Haptic thread only. Offline, the frame at k/fps is interpolated between the two steps around
@@ -33,7 +33,8 @@ class FrameDriver {
 
  private:
   double frameTime(long k) const { return static_cast<double>(k) / fps_; }
-  void apply(sim::World& world, const std::vector<render::SettingsCommand>& commands);
+  void apply(sim::World& world, const std::vector<sim::SettingsCommand>& commands);
+  void publishLatest(const sim::World& world);
   bool isSyncFrame(long k) const;
 
   render::RenderThread& renderer_;

@@ -10,6 +10,7 @@
 #include "app/patch_json.hpp"
 #include "app/scene_file.hpp"
 #include "app/trace_writer.hpp"
+#include "sim/settings.hpp"
 #include "sim/world.hpp"
 
 namespace gf::app {
@@ -17,14 +18,19 @@ namespace {
 
 namespace fs = std::filesystem;
 
-constexpr const char* kLiveFields[] = {"n_sgo", "r_max", "d0", "alpha", "stretch_length",
-                                       "max_stretch_exponent", "tau_a", "friction"};
+// The finger settings `set` may change: the live ones of sim/settings.hpp.
+std::string liveFieldNames() {
+  std::string names;
+  for (const sim::Setting<sim::FingerDesc>& s : sim::fingerSettings()) {
+    if (s.live) names.append(names.empty() ? "" : ", ").append(s.name);
+  }
+  return names;
+}
 
 class Live {
  public:
   Live(const LiveOptions& o, std::ostream& out)
-      : options_(o), out_(out), overrides_(o.overrides),
-        session_(loadSceneFile(o.scene_path, overrides_)), world_(session_.scene) {
+      : options_(o), out_(out), session_(loadSceneFile(o.scene_path, o.overrides)), world_(session_.scene) {
     devices_ = sim::deviceTracks(session_.scene);
     samples_.resize(devices_.size());
   }
@@ -105,25 +111,28 @@ class Live {
     out_ << "ok " << finger << " to " << x << ' ' << y << ' ' << z << " by t=" << t + seconds << '\n';
   }
 
+  // fingers.NAME.FIELD=VALUE: a live finger setting, checked by its validator, applied from
+  // the next step.
   void set(const std::string& assignment) {
-    // fingers.NAME.FIELD=VALUE, validated by re-reading the scene with this override.
     const std::size_t eq = assignment.find('=');
     const std::string key = assignment.substr(0, eq);
     const std::size_t dot = key.rfind('.');
-    const bool live_field = key.rfind("fingers.", 0) == 0 && dot != std::string::npos && dot > 8 &&
-                            std::any_of(std::begin(kLiveFields), std::end(kLiveFields),
-                                        [&](const char* f) { return key.substr(dot + 1) == f; });
-    if (eq == std::string::npos || !live_field) {
-      throw std::invalid_argument("set: expected fingers.NAME.FIELD=VALUE with FIELD one of n_sgo, r_max, "
-                                  "d0, alpha, stretch_length, max_stretch_exponent, tau_a, friction");
+    const bool finger_field = key.rfind("fingers.", 0) == 0 && dot != std::string::npos && dot > 8;
+    const sim::Setting<sim::FingerDesc>* s =
+        finger_field ? sim::findSetting(sim::fingerSettings(), std::string_view(key).substr(dot + 1)) : nullptr;
+    if (eq == std::string::npos || !s || !s->live) {
+      throw std::invalid_argument("set: expected fingers.NAME.FIELD=VALUE with FIELD one of " + liveFieldNames());
     }
-    std::vector<std::string> next = overrides_;
-    next.push_back(assignment);
-    SessionDesc reread = loadSceneFile(options_.scene_path, next);
     const int f = fingerIndex(key.substr(8, dot - 8));
-    world_.setPatchSettings(f, reread.scene.fingers[f].patch);
-    session_.scene.fingers[f].patch = reread.scene.fingers[f].patch;
-    overrides_ = std::move(next);
+    const std::string text = assignment.substr(eq + 1);
+    char* end = nullptr;
+    const double value = std::strtod(text.c_str(), &end);
+    if (text.empty() || *end != '\0') throw std::invalid_argument(key + ": expected a number, got '" + text + "'");
+    if (const std::optional<std::string> why = sim::checkGiven(*s, value)) throw std::invalid_argument(key + ": " + *why);
+    sim::FingerDesc next = session_.scene.fingers[f];
+    sim::setGiven(*s, next, value);
+    world_.setPatchSettings(f, next.patch);
+    session_.scene.fingers[f].patch = next.patch;
     out_ << "ok " << assignment << '\n';
   }
 
@@ -154,7 +163,6 @@ class Live {
 
   const LiveOptions& options_;
   std::ostream& out_;
-  std::vector<std::string> overrides_;
   SessionDesc session_;
   sim::World world_;
   std::vector<sim::DeviceTrack> devices_;

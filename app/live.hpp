@@ -11,7 +11,7 @@ namespace gf::app {
 
 /// Where a live session comes from and where its snapshots go.
 struct LiveOptions {
-  std::string scene_path;              ///< scene file, re-read (with overrides) by `set`
+  std::string scene_path;              ///< scene file
   std::vector<std::string> overrides;  ///< --set given on the command line
   std::string out_dir = "out";         ///< snapshots go to out_dir/contacts/
   std::string input_name = "<stdin>";  ///< names the input in error messages
@@ -19,8 +19,9 @@ struct LiveOptions {
 
 /// Runs commands from `in` until `quit` or end of input, answering each on `out`:
 ///   move FINGER X Y Z [SECONDS]   device to (X, Y, Z) m, straight, over SECONDS (default 0)
-///   set fingers.NAME.FIELD=VALUE  a god-finger setting (n_sgo, r_max, d0, alpha,
-///                                 stretch_length, max_stretch_exponent, tau_a, friction)
+///   set fingers.NAME.FIELD=VALUE  a live finger setting of sim/settings.hpp (n_sgo, r_max, d0,
+///                                 alpha, stretch_length, max_stretch_exponent, tau_a in
+///                                 degrees, friction), checked by its validator
 ///   step [N]                      N haptic steps (default 1), then the state
 ///   state                         the state: time, and per finger proxy, force, SGOs
 ///   snapshot [NAME]               contacts JSON to out_dir/contacts/NAME.json

@@ -14,7 +14,9 @@
 #include "app/session.hpp"
 #include "app/trace_writer.hpp"
 #include "render/render_thread.hpp"
+#include "sim/contact_record.hpp"
 #include "sim/mesh_import.hpp"
+#include "sim/settings.hpp"
 
 namespace {
 
@@ -37,12 +39,29 @@ struct PatchArgs {
   double tau_a_deg = 60.0;
 };
 
+// A command-line check by the validator of setting `name` of `table` (the value in its unit).
+template <class Desc>
+CLI::Validator settingCheck(std::span<const gf::sim::Setting<Desc>> table, std::string_view name) {
+  const gf::sim::Setting<Desc>* s = gf::sim::findSetting(table, name);
+  return CLI::Validator(
+      [s](std::string& text) -> std::string {
+        char* end = nullptr;
+        const double v = std::strtod(text.c_str(), &end);
+        if (text.empty() || *end != '\0') return "expected a number, got '" + text + "'";
+        return gf::sim::checkGiven(*s, v).value_or("");
+      },
+      std::string(s->unit.empty() ? "" : "(" + std::string(s->unit) + ")"));
+}
+
+CLI::Validator fingerCheck(std::string_view name) { return settingCheck(gf::sim::fingerSettings(), name); }
+
 void addRun(CLI::App& app, RunArgs& a) {
   CLI::App* run = app.add_subcommand("run", "Run a scene; write trace.csv, summary.json and contacts/");
   run->add_option("scene", a.scene, "Scene file, or the name of a bundled scene (godfinger list)")->required();
   run->add_option("--out", a.out, "Output folder (created if missing)");
   run->add_option("--set", a.overrides, "Override a scene field, e.g. --set fingers.left.n_sgo=0");
-  run->add_option("--duration", a.duration, "Simulated seconds (default: the scene's)")->check(CLI::PositiveNumber);
+  run->add_option("--duration", a.duration, "Simulated seconds (default: the scene's)")
+      ->check(settingCheck(gf::sim::sceneSettings(), "duration"));
   run->add_flag("--realtime", a.realtime, "Pace steps on the wall clock (absolute deadlines)");
   run->add_flag("--frames", a.frames, "Write frames/000000.png ... at 60 frames per simulated second");
   run->add_option("--video", a.video, "Write an MP4 of the frames (H.264, via ffmpeg)");
@@ -53,16 +72,17 @@ void addPatch(CLI::App& app, PatchArgs& a) {
   CLI::App* p = app.add_subcommand("patch", "Compute one god-finger contact area on a mesh; write patch.json "
                                               "and its close-up patch.png");
   p->add_option("--mesh", a.mesh, "Mesh file (OBJ, PLY, STL, OFF, glTF, ...)")->required();
-  p->add_option("--scale", a.scale, "Factor from mesh units to metres")->check(CLI::PositiveNumber);
+  p->add_option("--scale", a.scale, "Factor from mesh units to metres")
+      ->check(settingCheck(gf::sim::bodySettings(), "scale"));
   p->add_option("--point", a.point, "Contact point X,Y,Z on the mesh (m)")->required();
   p->add_option("--normal", a.normal, "Outward surface normal X,Y,Z at the point")->required();
   p->add_option("--push", a.push, "Coupling vector v = device - god-object X,Y,Z (m)")->required();
-  p->add_option("--n-sgo", a.settings.n_sgo, "Number of SGOs")->check(CLI::Range(3, 64));
-  p->add_option("--r-max", a.settings.r_max, "Largest contact radius r_max (m)")->check(CLI::Range(0.0, 1.0));
-  p->add_option("--d0", a.settings.d0, "Press depth scale D'_0 (m)")->check(CLI::Range(1e-6, 1.0));
-  p->add_option("--alpha", a.settings.alpha, "Stretch base alpha of Eq. 2")->check(CLI::Range(1.0, 100.0));
-  p->add_option("--tau-a", a.tau_a_deg, "Angular threshold tau_a (degrees)")->check(CLI::Range(0.0, 180.0));
-  p->add_option("--friction", a.settings.friction, "Friction coefficient theta")->check(CLI::Range(0.0, 100.0));
+  p->add_option("--n-sgo", a.settings.n_sgo, "Number of SGOs")->check(fingerCheck("n_sgo"));
+  p->add_option("--r-max", a.settings.r_max, "Largest contact radius r_max (m)")->check(fingerCheck("r_max"));
+  p->add_option("--d0", a.settings.d0, "Press depth scale D'_0 (m)")->check(fingerCheck("d0"));
+  p->add_option("--alpha", a.settings.alpha, "Stretch base alpha of Eq. 2")->check(fingerCheck("alpha"));
+  p->add_option("--tau-a", a.tau_a_deg, "Angular threshold tau_a (degrees)")->check(fingerCheck("tau_a"));
+  p->add_option("--friction", a.settings.friction, "Friction coefficient theta")->check(fingerCheck("friction"));
   p->add_option("--out", a.out, "Output folder (created if missing)")->required();
 }
 
@@ -101,44 +121,47 @@ int runCommand(const RunArgs& a) {
 }
 
 // The close-up of a computed patch: the mesh as a static body, the patch as one finger's contact.
-void writePatchCloseUp(const PatchArgs& a, const gf::sim::PatchContact& contact, const gf::sim::Patch& patch,
-                       const std::string& prefix) {
+void writePatchCloseUp(const PatchArgs& a, const std::shared_ptr<const gf::sim::Mesh>& mesh,
+                       const gf::sim::ContactRecord& record, const std::string& prefix) {
   gf::sim::SceneDesc scene;
   gf::sim::BodyDesc body;
   body.shape = gf::sim::ShapeKind::kConcaveMesh;
   body.mesh_path = a.mesh;
   body.mesh_scale = a.scale;
+  body.mesh = mesh;  // drawn from the mesh already loaded
   body.mass = 0.0;
   scene.bodies.push_back(body);
   gf::sim::FingerDesc finger;
   finger.patch = a.settings;
   scene.fingers.push_back(finger);
   gf::sim::Snapshot snap;
-  snap.bodies.resize(1);
-  gf::sim::ContactSnapshot& c = snap.fingers.emplace_back().contacts.emplace_back();
-  c.body = 0;
-  c.point = patch.hit.point;
-  c.outward_normal = contact.outward_normal.normalized();
-  c.radius = patch.radius;
-  for (const gf::sim::Sgo& s : patch.sgos) c.sgos.push_back(s.position);
-  c.path_points = patch.path_points;
-  c.path_offsets = patch.path_offsets;
+  snap.bodies.resize(1);  // the mesh frame is the world frame
+  gf::sim::toContactSnapshot(record, snap.bodies[0], snap.fingers.emplace_back().contacts.emplace_back());
   gf::render::renderCloseUps(scene, snap, prefix, 480);
 }
 
 int patchCommand(PatchArgs& a) {
-  const gf::sim::PatchContact contact{parseVec3("--point", a.point), parseVec3("--normal", a.normal), 0.0};
+  gf::sim::ContactRecord record;
+  record.body = 0;
+  record.contact = {parseVec3("--point", a.point), parseVec3("--normal", a.normal), 0.0};
   const gf::sim::Vec3 push = parseVec3("--push", a.push);
-  if (contact.outward_normal.norm() < 1e-9) throw InputError("command line", 0, 0, "--normal", "must not be zero");
+  if (record.contact.outward_normal_local.norm() < 1e-9) {
+    throw InputError("command line", 0, 0, "--normal", "must not be zero");
+  }
+  record.contact.outward_normal_local.normalize();
+  if (a.settings.n_sgo < gf::sim::kMinSgo) {
+    throw InputError("command line", 0, 0, "--n-sgo", "a patch needs at least " + std::to_string(gf::sim::kMinSgo) + " SGOs");
+  }
   a.settings.tau_a = a.tau_a_deg * std::numbers::pi / 180.0;
-  gf::sim::Mesh mesh;
+  std::shared_ptr<const gf::sim::Mesh> mesh;
   try {
-    mesh = gf::sim::loadMesh(a.mesh, a.scale);
+    mesh = std::make_shared<const gf::sim::Mesh>(gf::sim::loadMesh(a.mesh, a.scale));
   } catch (const gf::sim::MeshLoadError& e) {
     throw InputError("command line", 0, 0, "--mesh", e.what());
   }
-  gf::sim::Patch patch;
-  gf::sim::computePatch(mesh, contact, push, a.settings, patch);
+  gf::sim::computePatch(*mesh, record.contact, push, a.settings, record.patch);
+  record.press_depth = record.patch.press_depth;
+  const gf::sim::Patch& patch = record.patch;
   nlohmann::json j = gf::app::patchJson(patch, a.settings);
   j["mesh"] = a.mesh;
   j["scale"] = a.scale;
@@ -148,7 +171,7 @@ int patchCommand(PatchArgs& a) {
   const std::string path = (std::filesystem::path(a.out) / "patch.json").string();
   gf::app::writeFileAtomically(path, j.dump(1) + "\n");
   const std::string picture = (std::filesystem::path(a.out) / "patch").string();
-  writePatchCloseUp(a, contact, patch, picture);
+  writePatchCloseUp(a, mesh, record, picture);
   std::printf("radius %.6g m, %zu SGOs; wrote %s and %s.png\n", patch.radius, patch.sgos.size(), path.c_str(),
               picture.c_str());
   return 0;

@@ -1,33 +1,19 @@
 #include "app/patch_json.hpp"
 
-#include <numbers>
+#include "sim/settings.hpp"
 
 namespace gf::app {
 namespace {
 
 nlohmann::json vec(const sim::Vec3& v) { return {v.x(), v.y(), v.z()}; }
 
-const char* featureName(sim::Feature f) {
-  switch (f) {
-    case sim::Feature::kFace: return "face";
-    case sim::Feature::kEdge: return "edge";
-    case sim::Feature::kVertex: return "vertex";
-  }
-  return "face";
-}
+// Names of sim::Feature and sim::WalkStop values, in enum order.
+constexpr const char* kFeatureNames[] = {"face", "edge", "vertex"};
+constexpr const char* kStopNames[] = {"distance",  "angular_threshold", "friction_cone", "boundary",
+                                      "crossing_limit", "degenerate",   "dropped"};
 
-const char* stopName(sim::WalkStop s) {
-  switch (s) {
-    case sim::WalkStop::kDistance: return "distance";
-    case sim::WalkStop::kAngularThreshold: return "angular_threshold";
-    case sim::WalkStop::kFrictionCone: return "friction_cone";
-    case sim::WalkStop::kBoundary: return "boundary";
-    case sim::WalkStop::kCrossingLimit: return "crossing_limit";
-    case sim::WalkStop::kDegenerate: return "degenerate";
-    case sim::WalkStop::kDropped: return "dropped";
-  }
-  return "distance";
-}
+const char* featureName(sim::Feature f) { return kFeatureNames[static_cast<std::size_t>(f)]; }
+const char* stopName(sim::WalkStop s) { return kStopNames[static_cast<std::size_t>(s)]; }
 
 nlohmann::json paths(const std::vector<sim::Vec3>& points, const std::vector<std::int32_t>& offsets) {
   nlohmann::json out = nlohmann::json::array();
@@ -41,21 +27,31 @@ nlohmann::json paths(const std::vector<sim::Vec3>& points, const std::vector<std
 
 }  // namespace
 
+nlohmann::json fingerSettingsJson(const sim::FingerDesc& finger, bool live_only) {
+  nlohmann::json out = nlohmann::json::object();
+  for (const sim::Setting<sim::FingerDesc>& s : sim::fingerSettings()) {
+    if (live_only && !s.live) continue;
+    const double v = sim::givenValue(s, finger);
+    out[sim::jsonKey(s)] = s.kind == sim::SettingKind::kInteger ? nlohmann::json(static_cast<long>(v)) : nlohmann::json(v);
+  }
+  return out;
+}
+
 nlohmann::json patchJson(const sim::Patch& p, const sim::PatchSettings& s) {
   nlohmann::json radial = nlohmann::json::array();
   for (std::size_t i = 0; i < p.radial.size(); ++i) {
-    radial.push_back({{"direction", vec(p.radial[i])}, {"distance_m", p.distance[i]},
-                      {"stop", stopName(p.radial_stop[i])}});
+    radial.push_back({{"direction", vec(p.radial[i])}, {"d_i_m", p.d_i[i]}, {"stop", stopName(p.radial_stop[i])}});
   }
   nlohmann::json sgos = nlohmann::json::array();
   for (const sim::Sgo& g : p.sgos) {
     sgos.push_back({{"position", vec(g.position)}, {"face", g.face}, {"radial", g.radial},
                     {"walked_m", g.walked}, {"stop", stopName(g.stop)}});
   }
-  return {{"valid", p.valid},
-          {"settings", {{"n_sgo", s.n_sgo}, {"r_max_m", s.r_max}, {"d0_m", s.d0}, {"alpha", s.alpha},
-                        {"stretch_length_m", s.stretch_length},
-                        {"tau_a_deg", s.tau_a * 180.0 / std::numbers::pi}, {"friction", s.friction}}},
+  sim::FingerDesc finger;
+  finger.patch = s;
+  return {{"frame", "mesh"},
+          {"valid", p.valid},
+          {"settings", fingerSettingsJson(finger, true)},
           {"hit", {{"point", vec(p.hit.point)}, {"face", p.hit.face},
                    {"feature", featureName(p.hit.feature)}, {"feature_index", p.hit.feature_index}}},
           {"press_dir", vec(p.press_dir)},
@@ -73,15 +69,16 @@ nlohmann::json contactsJson(const sim::Snapshot& snap, const sim::SceneDesc& sce
     nlohmann::json contacts = nlohmann::json::array();
     for (const sim::ContactSnapshot& c : fs.contacts) {
       nlohmann::json sgos = nlohmann::json::array();
-      for (const sim::Vec3& g : c.sgos) sgos.push_back(vec(g));
+      for (const sim::Vec3& g : c.sgos_world) sgos.push_back(vec(g));
       contacts.push_back({{"body", c.body >= 0 ? scene.bodies[c.body].name : std::string()},
-                          {"point", vec(c.point)},
-                          {"outward_normal", vec(c.outward_normal)},
-                          {"distance_m", c.distance},
+                          {"point", vec(c.point_world)},
+                          {"outward_normal", vec(c.outward_normal_world)},
+                          {"separation_m", c.separation},
+                          {"press_depth_m", c.press_depth},
                           {"radius_m", c.radius},
                           {"feature", featureName(c.feature)},
                           {"sgos", sgos},
-                          {"paths", paths(c.path_points, c.path_offsets)}});
+                          {"paths", paths(c.path_points_world, c.path_offsets)}});
     }
     fingers.push_back({{"name", scene.fingers[f].name},
                        {"device", vec(fs.device)},
@@ -91,7 +88,7 @@ nlohmann::json contactsJson(const sim::Snapshot& snap, const sim::SceneDesc& sce
                        {"sgo_count", fs.sgo_count},
                        {"contacts", contacts}});
   }
-  return {{"scene", scene.name}, {"time_s", snap.time}, {"step", snap.step}, {"fingers", fingers}};
+  return {{"scene", scene.name}, {"frame", "world"}, {"time_s", snap.time}, {"step", snap.step}, {"fingers", fingers}};
 }
 
 }  // namespace gf::app

@@ -9,12 +9,16 @@
 
 namespace gf::app {
 
-/// A patch in the mesh's own frame: radius, radial vectors, distances, stops, SGOs with their
-/// faces, and the walked paths (one polyline per SGO).
+/// A finger's settings as JSON, named as fingerSettings() names them with their unit
+/// ("r_max_m", "tau_a_deg"): every one, or only the live (god-finger) ones.
+nlohmann::json fingerSettingsJson(const sim::FingerDesc& finger, bool live_only);
+
+/// A patch in the mesh's own frame ("frame": "mesh"): press depth, radius, radial vectors with
+/// their d_i and stops, SGOs with their faces, and the walked paths (one polyline per SGO).
 nlohmann::json patchJson(const sim::Patch& patch, const sim::PatchSettings& settings);
 
-/// Every finger of a snapshot in world coordinates: device, proxy, coupling force and each
-/// contact with its radius, SGOs and walked paths.
+/// Every finger of a snapshot in the world frame ("frame": "world"): device, proxy, coupling
+/// force and each contact with its separation, press depth, radius, SGOs and walked paths.
 nlohmann::json contactsJson(const sim::Snapshot& snapshot, const sim::SceneDesc& scene);
 
 }  // namespace gf::app

@@ -12,6 +12,7 @@
 #include <sstream>
 
 #include "sim/mesh_import.hpp"
+#include "sim/settings.hpp"
 
 namespace gf::app {
 namespace {
@@ -38,14 +39,16 @@ const char* typeName(const toml::node& n) {
   }
 }
 
-// One TOML table being read: typed getters that name file, line and dotted field on error, and
-// a check that every key was used (unknown fields are errors, not silently ignored).
-std::string join(std::span<const char* const> choices) {
+template <class Names>
+std::string join(const Names& choices) {
   std::string s;
-  for (const char* c : choices) s.append(s.empty() ? "" : ", ").append(c);
+  for (const auto& c : choices) s.append(s.empty() ? "" : ", ").append(c);
   return s;
 }
 
+// One TOML table being read: typed getters that name file, line and dotted field on error, and
+// a check that every key was used (unknown fields are errors, not silently ignored). Values of
+// description settings are checked by their validator in sim/settings.hpp.
 class Reader {
  public:
   Reader(const toml::table& t, std::string prefix, std::string file)
@@ -65,6 +68,36 @@ class Reader {
     return table_.get(key);
   }
   bool has(const std::string& key) const { return table_.contains(key); }
+  /// The node of `key` when present (for errors found after reading), else null.
+  const toml::node* nodeOf(const std::string& key) const { return table_.get(key); }
+
+  /// Reads setting `s` from `key` when present (or fails when `required` and missing): typed
+  /// as the setting's kind, checked by its validator, stored in `desc`. True when present.
+  template <class Desc>
+  bool setting(const sim::Setting<Desc>& s, Desc& desc, const std::string& key, bool required = false) {
+    const toml::node* n = find(key);
+    if (!n) {
+      if (required) fail(nullptr, key, std::string("missing (") + kindName(s) + " is required)");
+      return false;
+    }
+    if (s.kind == sim::SettingKind::kVector) {
+      const Vec3 v = checkedVec3(*n, key);
+      if (const std::optional<std::string> why = sim::checkGiven(s, v)) fail(n, key, *why);
+      s.set_vector(desc, v * s.si_per_unit);
+      return true;
+    }
+    if (s.kind == sim::SettingKind::kInteger && !n->is_integer()) {
+      fail(n, key, std::string("expected an integer, got ") + typeName(*n));
+    }
+    const double v = checkedNumber(*n, key, -HUGE_VAL, HUGE_VAL);
+    if (const std::optional<std::string> why = sim::checkGiven(s, v)) fail(n, key, *why);
+    sim::setGiven(s, desc, v);
+    return true;
+  }
+  /// Fails on the first field the validator of a whole description found not legal.
+  void failOn(const std::optional<sim::FieldError>& e) const {
+    if (e) fail(nodeOf(e->field), e->field, e->reason);
+  }
 
   double number(const std::string& key, double fallback, double lo = -HUGE_VAL, double hi = HUGE_VAL) {
     const toml::node* n = find(key);
@@ -96,7 +129,8 @@ class Reader {
     return n->as_string()->get();
   }
   // One of `choices`; returns its index.
-  int choice(const std::string& key, std::span<const char* const> choices, int fallback) {
+  template <class Names>
+  int choice(const std::string& key, const Names& choices, int fallback) {
     const toml::node* n = find(key);
     if (!n) {
       if (fallback < 0) fail(nullptr, key, "missing (one of " + join(choices) + ")");
@@ -104,7 +138,7 @@ class Reader {
     }
     if (!n->is_string()) fail(n, key, std::string("expected a string, got ") + typeName(*n));
     const std::string v = n->as_string()->get();
-    for (std::size_t i = 0; i < choices.size(); ++i) {
+    for (std::size_t i = 0; i < std::size(choices); ++i) {
       if (v == choices[i]) return static_cast<int>(i);
     }
     fail(n, key, "unknown value '" + v + "' (one of " + join(choices) + ")");
@@ -169,6 +203,12 @@ class Reader {
   }
 
  private:
+  template <class Desc>
+  static const char* kindName(const sim::Setting<Desc>& s) {
+    return s.kind == sim::SettingKind::kVector    ? "an array [x, y, z]"
+           : s.kind == sim::SettingKind::kInteger ? "an integer"
+                                                  : "a number";
+  }
   double checkedNumber(const toml::node& n, const std::string& key, double lo, double hi) const {
     if (!n.is_number()) fail(&n, key, std::string("expected a number, got ") + typeName(n));
     const double v = n.value<double>().value_or(0.0);
@@ -191,58 +231,73 @@ std::string resolvePath(const std::string& base_dir, const std::string& p) {
   return path.is_absolute() || base_dir.empty() ? p : (fs::path(base_dir) / path).lexically_normal().string();
 }
 
-constexpr const char* kShapes[] = {"sphere", "box", "cylinder", "capsule", "plane", "mesh"};
-constexpr const char* kCollisions[] = {"convex_hull", "decomposition", "concave"};
 constexpr const char* kInterpolations[] = {"linear", "smooth"};
-constexpr const char* kEffects[] = {"gravity",           "friction",       "god_finger",
-                                    "tangential_stretch", "angular_threshold", "friction_cone",
-                                    "force_feedback",     "patch_highlight", "shadows",
-                                    "overlay"};
 
-void readEffects(Reader& r, sim::EffectSet& e, ViewSettings& view) {
-  if (!r.has("effects")) {
-    r.fail(nullptr, "effects", std::string("missing: list the effects the scene calls for (any of ")
-                                   .append(join(kEffects)).append(")"));
-  }
-  bool on[std::size(kEffects)] = {};
-  for (const auto& [name, node] : r.strings("effects")) {
-    const auto it = std::find_if(std::begin(kEffects), std::end(kEffects),
-                                 [&](const char* k) { return name == k; });
-    if (it == std::end(kEffects)) r.fail(node, "effects", "unknown effect '" + name + "'");
-    on[it - std::begin(kEffects)] = true;
-  }
-  e.gravity = on[0];
-  e.friction = on[1];
-  e.god_finger = on[2];
-  e.tangential_stretch = on[3];
-  e.angular_threshold = on[4];
-  e.friction_cone = on[5];
-  e.force_feedback = on[6];
-  view.patch_highlight = on[7];
-  view.shadows = on[8];
-  view.overlay = on[9];
+// Effects that change the pictures, not the physics (sim::effectSwitches() lists those).
+struct ViewEffect {
+  std::string_view name;
+  bool ViewSettings::*on;
+};
+constexpr ViewEffect kViewEffects[] = {
+    {"patch_highlight", &ViewSettings::patch_highlight},
+    {"shadows", &ViewSettings::shadows},
+    {"overlay", &ViewSettings::overlay},
+};
+
+std::vector<std::string_view> effectNames() {
+  std::vector<std::string_view> names;
+  for (const sim::EffectSwitch& e : sim::effectSwitches()) names.push_back(e.name);
+  for (const ViewEffect& e : kViewEffects) names.push_back(e.name);
+  return names;
 }
 
-// widget = "FINGER/FIELD" names a finger of the scene and a widget of its panel; value parses.
+// `effects`: every effect listed is on, every other one off.
+void readEffects(Reader& r, sim::EffectSet& e, ViewSettings& view) {
+  if (!r.has("effects")) {
+    r.fail(nullptr, "effects", "missing: list the effects the scene calls for (any of " + join(effectNames()) + ")");
+  }
+  for (const sim::EffectSwitch& s : sim::effectSwitches()) e.*s.on = false;
+  for (const ViewEffect& s : kViewEffects) view.*s.on = false;
+  for (const auto& [name, node] : r.strings("effects")) {
+    const auto sim_effect = std::find_if(sim::effectSwitches().begin(), sim::effectSwitches().end(),
+                                         [&](const sim::EffectSwitch& s) { return s.name == name; });
+    const auto view_effect = std::find_if(std::begin(kViewEffects), std::end(kViewEffects),
+                                          [&](const ViewEffect& s) { return s.name == name; });
+    if (sim_effect != sim::effectSwitches().end()) {
+      e.*sim_effect->on = true;
+    } else if (view_effect != std::end(kViewEffects)) {
+      view.*view_effect->on = true;
+    } else {
+      r.fail(node, "effects", "unknown effect '" + name + "' (one of " + join(effectNames()) + ")");
+    }
+  }
+}
+
+// widget = "FINGER/FIELD" names a finger of the scene and a widget of its panel; the value is
+// one the widget's setting accepts (in the unit the widget shows).
 void checkWidget(Reader& r, const sim::SceneDesc& scene, const render::WidgetAction& a) {
   const std::size_t slash = a.widget.find('/');
   const std::string finger = a.widget.substr(0, slash);
   const std::string field = slash == std::string::npos ? "" : a.widget.substr(slash + 1);
   const bool known_finger = std::any_of(scene.fingers.begin(), scene.fingers.end(),
                                         [&](const sim::FingerDesc& f) { return f.name == finger; });
-  const auto& fields = render::widgetFields();
-  if (!known_finger || std::find(fields.begin(), fields.end(), field) == fields.end()) {
-    std::string names;
-    for (const std::string& f : fields) names.append(names.empty() ? "" : ", ").append(f);
-    r.fail(r.find("widget"), "widget", "expected FINGER/FIELD with a finger of the scene and FIELD one of " + names);
+  const render::OverlayWidget* widget = render::findOverlayWidget(field);
+  if (!known_finger || !widget) {
+    std::vector<std::string_view> names;
+    for (const render::OverlayWidget& w : render::kOverlayWidgets) names.push_back(w.field);
+    r.fail(r.find("widget"), "widget", "expected FINGER/FIELD with a finger of the scene and FIELD one of " + join(names));
   }
   if (field == "god_finger") {
     if (a.value != "on" && a.value != "off") r.fail(r.find("value"), "value", "expected \"on\" or \"off\"");
     return;
   }
   char* end = nullptr;
-  const double v = std::strtod(a.value.c_str(), &end);
-  if (a.value.empty() || *end != '\0' || !std::isfinite(v)) r.fail(r.find("value"), "value", "expected a number");
+  const double shown = std::strtod(a.value.c_str(), &end);
+  if (a.value.empty() || *end != '\0' || !std::isfinite(shown)) r.fail(r.find("value"), "value", "expected a number");
+  const sim::Setting<sim::FingerDesc>& s = *sim::findSetting(sim::fingerSettings(), field);
+  if (const std::optional<std::string> why = sim::checkGiven(s, shown / widget->shown_per_unit)) {
+    r.fail(r.find("value"), "value", field + " " + *why);
+  }
 }
 
 // [render]: frame size, anti-aliasing and scripted overlay input.
@@ -307,64 +362,96 @@ Eigen::Quaterniond readOrientation(Reader& r) {
   return q.normalized();
 }
 
+// `shape` (and `collision` for meshes): the row of sim::shapeInfos() it names.
+const sim::ShapeInfo& readShape(Reader& r) {
+  std::vector<std::string_view> shapes, collisions;
+  for (const sim::ShapeInfo& s : sim::shapeInfos()) {
+    if (std::find(shapes.begin(), shapes.end(), s.shape) == shapes.end()) shapes.push_back(s.shape);
+    if (!s.collision.empty()) collisions.push_back(s.collision);
+  }
+  const std::string_view shape = shapes[static_cast<std::size_t>(r.choice("shape", shapes, -1))];
+  const std::string_view collision =
+      shape == "mesh" ? collisions[static_cast<std::size_t>(r.choice("collision", collisions, 0))] : "";
+  for (const sim::ShapeInfo& s : sim::shapeInfos()) {
+    if (s.shape == shape && s.collision == collision) return s;
+  }
+  r.fail(r.find("shape"), "shape", "no such shape");
+}
+
+// `mesh` and `scale`: the mesh file, loaded once per (path, scale) into `meshes`.
+void readMesh(Reader& r, const std::string& base_dir, sim::MeshCache& meshes, sim::BodyDesc& b) {
+  const toml::node* n = r.find("mesh");
+  if (!n || !n->is_string()) r.fail(n, "mesh", "expected the mesh file's path (a string)");
+  b.mesh_path = resolvePath(base_dir, n->as_string()->get());
+  r.setting(*sim::findSetting(sim::bodySettings(), "scale"), b, "scale");
+  try {
+    b.mesh = meshes.load(b.mesh_path, b.mesh_scale);
+  } catch (const sim::MeshLoadError& e) {
+    r.fail(n, "mesh", e.what());
+  }
+}
+
+// Body settings every shape has (dimensions, scale and mass are read where they apply).
+bool commonBodySetting(const sim::Setting<sim::BodyDesc>& s) {
+  for (const sim::ShapeInfo& shape : sim::shapeInfos()) {
+    for (std::string_view d : shape.dimensions) {
+      if (d == s.name) return false;
+    }
+  }
+  return s.name != "scale" && s.name != "mass";
+}
+
 sim::BodyDesc readBody(const std::string& name, const toml::table& t, const Reader& parent,
-                       const std::string& base_dir) {
+                       const std::string& base_dir, sim::MeshCache& meshes) {
   Reader r(t, parent.field("bodies." + name), parent.file());
   sim::BodyDesc b;
   b.name = name;
-  const int shape = r.choice("shape", kShapes, -1);
-  const double big = 1e3;  // m: nothing in a haptic scene is larger
-  switch (shape) {
-    case 0: b.shape = sim::ShapeKind::kSphere; break;
-    case 1: b.shape = sim::ShapeKind::kBox; break;
-    case 2: b.shape = sim::ShapeKind::kCylinder; break;
-    case 3: b.shape = sim::ShapeKind::kCapsule; break;
-    case 4: b.shape = sim::ShapeKind::kPlane; break;
-    default: break;
+  const sim::ShapeInfo& shape = readShape(r);
+  b.shape = shape.kind;
+  for (std::string_view d : shape.dimensions) {
+    if (!d.empty()) r.setting(*sim::findSetting(sim::bodySettings(), d), b, std::string(d), true);
   }
-  if (shape == 0 || shape == 2 || shape == 3) b.radius = r.requiredNumber("radius", 1e-4, big);
-  if (shape == 2 || shape == 3) b.half_height = r.requiredNumber("half_height", 1e-4, big);
-  if (shape == 1) {
-    const toml::node* n = r.find("half_extents");
-    if (!n) r.fail(nullptr, "half_extents", "missing (box half extents [x, y, z] in m)");
-    b.half_extents = r.checkedVec3(*n, "half_extents");
-    if (b.half_extents.minCoeff() < 1e-4) r.fail(n, "half_extents", "every half extent must be >= 1e-4 m");
-  }
-  if (shape == 5) {
-    const toml::node* n = r.find("mesh");
-    if (!n || !n->is_string()) r.fail(n, "mesh", "expected the mesh file's path (a string)");
-    b.mesh_path = resolvePath(base_dir, n->as_string()->get());
-    b.mesh_scale = r.number("scale", 1.0, 1e-9, 1e9);
-    const int collision = r.choice("collision", kCollisions, 0);
-    b.shape = collision == 0   ? sim::ShapeKind::kConvexHull
-              : collision == 1 ? sim::ShapeKind::kConvexDecomposition
-                               : sim::ShapeKind::kConcaveMesh;
-    try {
-      const sim::Mesh m = sim::loadMesh(b.mesh_path, b.mesh_scale);
-      if (m.faceCount() == 0) r.fail(n, "mesh", b.mesh_path + ": no triangle left after welding");
-    } catch (const sim::MeshLoadError& e) {
-      r.fail(n, "mesh", e.what());
-    }
-  }
-  b.walk_resolution = r.integer("walk_resolution", 0, 0, 4096);
-  const bool is_static = r.boolean("static", shape == 4);
-  if (shape == 4 && !is_static) r.fail(r.find("static"), "static", "a plane is always static");
+  if (sim::isMeshShape(b.shape)) readMesh(r, base_dir, meshes, b);
+  const bool is_plane = b.shape == sim::ShapeKind::kPlane;
+  const bool is_static = r.boolean("static", is_plane);
+  if (is_plane && !is_static) r.fail(r.find("static"), "static", "a plane is always static");
   if (is_static) {
     if (r.has("mass")) r.fail(r.find("mass"), "mass", "a static body has no mass; remove the field");
     b.mass = 0.0;
   } else {
-    b.mass = r.requiredNumber("mass", 1e-6, 1e6);
+    r.setting(*sim::findSetting(sim::bodySettings(), "mass"), b, "mass", true);
   }
-  b.friction = r.number("friction", b.friction, 0.0, 100.0);
-  b.restitution = r.number("restitution", b.restitution, 0.0, 1.0);
-  b.position = r.vec3("position", b.position);
+  for (const sim::Setting<sim::BodyDesc>& s : sim::bodySettings()) {
+    if (commonBodySetting(s)) r.setting(s, b, std::string(s.name));
+  }
   b.orientation = readOrientation(r);
-  b.colour = r.vec3("colour", b.colour);
-  if (b.colour.minCoeff() < 0.0 || b.colour.maxCoeff() > 1.0) {
-    r.fail(r.find("colour"), "colour", "components must be in 0..1 (linear RGB)");
-  }
+  r.failOn(sim::validateBody(b));
   r.finish();
   return b;
+}
+
+// The keyframes of a device table: each {t, p}, then the track's own rules (times increasing).
+void readKeyframes(Reader& r, sim::DeviceTrack& d) {
+  const toml::node* k = r.find("keyframes");
+  const toml::array* a = k->as_array();
+  if (!a || a->empty()) r.fail(k, "keyframes", "expected a non-empty array of {t = s, p = [x, y, z]}");
+  std::vector<const toml::table*> tables;
+  for (const toml::node& e : *a) {
+    if (!e.is_table()) r.fail(&e, "keyframes", "expected {t = s, p = [x, y, z]}");
+    Reader kr(*e.as_table(), r.field("keyframes"), r.file());
+    sim::DeviceTrack::Keyframe kf{kr.requiredNumber("t"), Vec3::Zero()};
+    const toml::node* p = kr.find("p");
+    if (!p) kr.fail(&e, "p", "missing (device position [x, y, z] in m)");
+    kf.position = kr.checkedVec3(*p, "p");
+    kr.finish();
+    d.keyframes.push_back(kf);
+    tables.push_back(e.as_table());
+  }
+  if (const std::optional<sim::FieldError> e = sim::validateTrack(d)) {
+    const std::string key = e->field.substr(e->field.find('.') + 1);  // "keyframes.t" -> "t"
+    Reader kr(*tables[static_cast<std::size_t>(e->index)], r.field("keyframes"), r.file());
+    kr.fail(kr.nodeOf(key), key, e->reason);
+  }
 }
 
 sim::DeviceTrack readDevice(Reader& parent, const std::string& base_dir) {
@@ -382,22 +469,7 @@ sim::DeviceTrack readDevice(Reader& parent, const std::string& base_dir) {
     if (r.has("interpolation")) r.fail(r.find("interpolation"), "interpolation", "a recorded CSV is always linear");
     d = readDeviceCsv(resolvePath(base_dir, c->as_string()->get()));
   } else {
-    const toml::node* k = r.find("keyframes");
-    const toml::array* a = k->as_array();
-    if (!a || a->empty()) r.fail(k, "keyframes", "expected a non-empty array of {t = s, p = [x, y, z]}");
-    for (const toml::node& e : *a) {
-      if (!e.is_table()) r.fail(&e, "keyframes", "expected {t = s, p = [x, y, z]}");
-      Reader kr(*e.as_table(), r.field("keyframes"), r.file());
-      sim::DeviceTrack::Keyframe kf{kr.requiredNumber("t", 0.0, 1e6), Vec3::Zero()};
-      const toml::node* p = kr.find("p");
-      if (!p) kr.fail(&e, "p", "missing (device position [x, y, z] in m)");
-      kf.position = kr.checkedVec3(*p, "p");
-      kr.finish();
-      if (!d.keyframes.empty() && kf.time <= d.keyframes.back().time) {
-        kr.fail(kr.find("t"), "t", "keyframe times must increase strictly");
-      }
-      d.keyframes.push_back(kf);
-    }
+    readKeyframes(r, d);
   }
   r.finish();
   return d;
@@ -408,24 +480,9 @@ sim::FingerDesc readFinger(const std::string& name, const toml::table& t, const 
   Reader r(t, parent.field("fingers." + name), parent.file());
   sim::FingerDesc f;
   f.name = name;
-  sim::PatchSettings& p = f.patch;
-  p.n_sgo = r.integer("n_sgo", p.n_sgo, 0, sim::kMaxSgo);
-  if (p.n_sgo > 0 && p.n_sgo < 3) r.fail(r.find("n_sgo"), "n_sgo", "must be 0 (god-object) or 3..64");
-  p.r_max = r.number("r_max", p.r_max, 0.0, 1.0);
-  p.d0 = r.number("d0", p.d0, 1e-6, 1.0);
-  p.alpha = r.number("alpha", p.alpha, 1.0, 100.0);
-  p.stretch_length = r.number("stretch_length", p.stretch_length, 1e-6, 1.0);
-  p.max_stretch_exponent = r.number("max_stretch_exponent", p.max_stretch_exponent, 0.0, 50.0);
-  p.tau_a = r.number("tau_a", p.tau_a / kDegToRad, 0.0, 180.0) * kDegToRad;
-  p.friction = r.number("friction", p.friction, 0.0, 100.0);
-  f.proxy.radius = r.number("proxy_radius", f.proxy.radius, 1e-4, 0.1);
-  f.proxy.mass = r.number("proxy_mass", f.proxy.mass, 1e-4, 10.0);
-  f.proxy.contact_stiffness = r.number("contact_stiffness", f.proxy.contact_stiffness, 1.0, 1e8);
-  f.proxy.contact_damping = r.number("contact_damping", f.proxy.contact_damping, 0.0, 1e6);
-  f.coupling.stiffness = r.number("coupling_stiffness", f.coupling.stiffness, 0.0, 1e6);
-  f.coupling.damping = r.number("coupling_damping", f.coupling.damping, 0.0, 1e5);
-  f.coupling.max_force = r.number("max_force", f.coupling.max_force, 0.0, 1e4);
+  for (const sim::Setting<sim::FingerDesc>& s : sim::fingerSettings()) r.setting(s, f, std::string(s.name));
   f.device = readDevice(r, base_dir);
+  r.failOn(sim::validateFinger(f));
   r.finish();
   return f;
 }
@@ -499,6 +556,23 @@ void applyOverride(toml::table& root, const std::string& text) {
   t->insert_or_assign(parts.back(), std::move(*parsed.get("v")));
 }
 
+// The scene-wide settings: `duration` and `haptic_rate` at the top, the rest in [world].
+void readSceneSettings(Reader& r, sim::SceneDesc& scene) {
+  const auto top = [](const sim::Setting<sim::SceneDesc>& s) { return s.name.find('.') == std::string_view::npos; };
+  for (const sim::Setting<sim::SceneDesc>& s : sim::sceneSettings()) {
+    if (top(s)) r.setting(s, scene, std::string(s.name), s.name == "duration");
+  }
+  if (const toml::node* w = r.find("world")) {
+    if (!w->is_table()) r.fail(w, "world", "expected a table");
+    Reader wr(*w->as_table(), "world", r.file());
+    for (const sim::Setting<sim::SceneDesc>& s : sim::sceneSettings()) {
+      if (!top(s)) wr.setting(s, scene, std::string(s.name.substr(s.name.find('.') + 1)));
+    }
+    wr.finish();
+  }
+  r.failOn(sim::validateScene(scene));
+}
+
 SessionDesc readSession(toml::table& root, const std::string& source, const std::string& base_dir,
                         std::span<const std::string> overrides) {
   for (const std::string& o : overrides) applyOverride(root, o);
@@ -507,20 +581,12 @@ SessionDesc readSession(toml::table& root, const std::string& source, const std:
   s.source = source;
   s.scene.name = r.string("name", fs::path(source).stem().string());
   s.summary = r.string("summary", "");
-  s.scene.duration = r.requiredNumber("duration", 1e-3, 1e6);
-  s.scene.world.haptic_rate_hz = r.number("haptic_rate", 1000.0, 10.0, 100000.0);
+  readSceneSettings(r, s.scene);
   readEffects(r, s.scene.effects, s.view);
-  if (const toml::node* w = r.find("world")) {
-    if (!w->is_table()) r.fail(w, "world", "expected a table");
-    Reader wr(*w->as_table(), "world", source);
-    sim::WorldSettings& ws = s.scene.world;
-    ws.gravity = wr.vec3("gravity", ws.gravity);
-    ws.solver_iterations = wr.integer("solver_iterations", ws.solver_iterations, 1, 10000);
-    ws.linear_damping = wr.number("linear_damping", ws.linear_damping, 0.0, 1e3);
-    ws.angular_damping = wr.number("angular_damping", ws.angular_damping, 0.0, 1e3);
-    wr.finish();
+  sim::MeshCache meshes;  // each mesh file is read once per scene
+  for (const auto& [name, t] : r.namedTables("bodies")) {
+    s.scene.bodies.push_back(readBody(name, *t, r, base_dir, meshes));
   }
-  for (const auto& [name, t] : r.namedTables("bodies")) s.scene.bodies.push_back(readBody(name, *t, r, base_dir));
   if (s.scene.bodies.empty()) r.fail(nullptr, "bodies", "missing: a scene needs at least one body");
   for (const auto& [name, t] : r.namedTables("fingers")) s.scene.fingers.push_back(readFinger(name, *t, r, base_dir));
   for (const auto& [name, t] : r.namedTables("cameras")) s.cameras.push_back(readCamera(name, *t, r));
@@ -579,6 +645,7 @@ sim::DeviceTrack readDeviceCsv(const std::string& path) {
   d.interpolation = sim::Interpolation::kLinear;
   std::string line;
   int number = 0;
+  std::vector<int> lines;  // file line of each keyframe
   constexpr const char* kColumns[] = {"t", "x", "y", "z"};
   while (std::getline(in, line)) {
     ++number;
@@ -601,12 +668,14 @@ sim::DeviceTrack readDeviceCsv(const std::string& path) {
       if ((i < 3) != (end < line.size())) throw InputError(path, number, 0, kColumns[i], "expected 4 columns");
       pos = end + 1;
     }
-    if (!d.keyframes.empty() && v[0] <= d.keyframes.back().time) {
-      throw InputError(path, number, 0, "t", "times must increase strictly");
-    }
     d.keyframes.push_back({v[0], Vec3(v[1], v[2], v[3])});
+    lines.push_back(number);
   }
   if (d.keyframes.empty()) throw InputError(path, number, 0, "", "no sample after the header");
+  if (const std::optional<sim::FieldError> e = sim::validateTrack(d)) {
+    throw InputError(path, lines[static_cast<std::size_t>(e->index)], 0, e->field == "keyframes.t" ? "t" : "x,y,z",
+                     e->reason);
+  }
   return d;
 }
 

@@ -11,6 +11,7 @@
 #include "app/patch_json.hpp"
 #include "app/scene_file.hpp"
 #include "app/trace_writer.hpp"
+#include "sim/settings.hpp"
 #include "sim/world.hpp"
 
 namespace gf::app {
@@ -19,22 +20,15 @@ namespace {
 namespace fs = std::filesystem;
 
 nlohmann::json fingerJson(const sim::FingerDesc& f) {
-  const sim::PatchSettings& p = f.patch;
-  return {{"name", f.name},
-          {"n_sgo", p.n_sgo},
-          {"r_max_m", p.r_max},
-          {"d0_m", p.d0},
-          {"alpha", p.alpha},
-          {"stretch_length_m", p.stretch_length},
-          {"tau_a_rad", p.tau_a},
-          {"friction", p.friction},
-          {"coupling_stiffness_n_per_m", f.coupling.stiffness},
-          {"coupling_damping_ns_per_m", f.coupling.damping},
-          {"max_force_n", f.coupling.max_force},
-          {"proxy_radius_m", f.proxy.radius},
-          {"proxy_mass_kg", f.proxy.mass},
-          {"contact_stiffness_n_per_m", f.proxy.contact_stiffness},
-          {"contact_damping_ns_per_m", f.proxy.contact_damping}};
+  nlohmann::json j = fingerSettingsJson(f, false);
+  j["name"] = f.name;
+  return j;
+}
+
+nlohmann::json effectsJson(const sim::EffectSet& e) {
+  nlohmann::json out = nlohmann::json::object();
+  for (const sim::EffectSwitch& s : sim::effectSwitches()) out[std::string(s.name)] = e.*s.on;
+  return out;
 }
 
 nlohmann::json summaryJson(const SessionDesc& session, const sim::World& world,
@@ -42,7 +36,6 @@ nlohmann::json summaryJson(const SessionDesc& session, const sim::World& world,
   const sim::SceneDesc& scene = session.scene;
   nlohmann::json fingers = nlohmann::json::array();
   for (const sim::FingerDesc& f : scene.fingers) fingers.push_back(fingerJson(f));
-  const sim::EffectSet& e = scene.effects;
   const sim::WorldCounters& c = world.counters();
   return {{"scene", scene.name},
           {"source", session.source},
@@ -51,10 +44,7 @@ nlohmann::json summaryJson(const SessionDesc& session, const sim::World& world,
           {"duration_s", scene.duration},
           {"haptic_rate_hz", scene.world.haptic_rate_hz},
           {"solver_iterations", scene.world.solver_iterations},
-          {"effects", {{"gravity", e.gravity}, {"friction", e.friction}, {"god_finger", e.god_finger},
-                       {"tangential_stretch", e.tangential_stretch},
-                       {"angular_threshold", e.angular_threshold}, {"friction_cone", e.friction_cone},
-                       {"force_feedback", e.force_feedback}}},
+          {"effects", effectsJson(scene.effects)},
           {"fingers", fingers},
           {"step_time_us", {{"median", stats.step_median_us}, {"p99", stats.step_p99_us},
                             {"max", stats.step_max_us}}},
@@ -190,11 +180,12 @@ void writeForceChart(const SessionDesc& session, const ForceWriter& forces, rend
 
 // frames: drawn by the render thread; published: handed over by the haptic thread (realtime
 // draws only the newest of those, so it can draw fewer).
-nlohmann::json renderJson(const render::RenderStats& r, long published) {
+nlohmann::json renderJson(render::RenderStats r, long published) {
   const auto fps = [](const render::SinkStats& s) { return s.busy_seconds > 0 ? s.frames / s.busy_seconds : 0.0; };
-  return {{"frames", r.frames},
+  const long frames = static_cast<long>(r.frame_ms.size());
+  return {{"frames", frames},
           {"published", published},
-          {"render_ms", {{"median", r.render_ms_median}, {"p99", r.render_ms_p99}}},
+          {"render_ms", {{"median", sim::percentile(r.frame_ms, 0.5)}, {"p99", sim::percentile(r.frame_ms, 0.99)}}},
           {"png", {{"frames", r.png.frames}, {"encode_fps", fps(r.png)}}},
           {"video", {{"frames", r.video.frames}, {"bytes", r.video.bytes}}},
           {"gl", r.gl}};
@@ -203,10 +194,12 @@ nlohmann::json renderJson(const render::RenderStats& r, long published) {
 nlohmann::json changesJson(const std::vector<AppliedChange>& changes, const sim::SceneDesc& scene) {
   nlohmann::json out = nlohmann::json::array();
   for (const AppliedChange& c : changes) {
-    const sim::PatchSettings& p = c.command.patch;
-    out.push_back({{"t", c.time}, {"finger", scene.fingers[static_cast<std::size_t>(c.command.finger)].name},
-                   {"n_sgo", p.n_sgo}, {"r_max_m", p.r_max}, {"alpha", p.alpha}, {"tau_a_rad", p.tau_a},
-                   {"friction", p.friction}});
+    sim::FingerDesc finger = scene.fingers[static_cast<std::size_t>(c.command.finger)];
+    finger.patch = c.command.patch;
+    nlohmann::json j = fingerSettingsJson(finger, true);
+    j["t"] = c.time;
+    j["finger"] = finger.name;
+    out.push_back(std::move(j));
   }
   return out;
 }
@@ -274,8 +267,7 @@ sim::LoopStats runSession(const SessionDesc& session, const SessionOptions& opti
   if (session.record.force_chart) writeForceChart(session, forces, *renderer, dir / "forces.png");
   nlohmann::json summary = summaryJson(session, world, stats, options.realtime);
   if (renderer) {
-    const render::RenderStats r = renderer->finish();
-    summary["render"] = renderJson(r, frames ? frames->frames() : 0);
+    summary["render"] = renderJson(renderer->finish(), frames ? frames->frames() : 0);
     if (frames) summary["overlay_changes"] = changesJson(frames->changes(), scene);
   }
   writeFileAtomically((dir / "summary.json").string(), summary.dump(2) + "\n");

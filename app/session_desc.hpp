@@ -4,9 +4,7 @@
 #include <string>
 #include <vector>
 
-#include "render/camera.hpp"
-#include "render/gpu.hpp"
-#include "render/overlay.hpp"
+#include "render/view_desc.hpp"
 #include "sim/scene_desc.hpp"
 
 namespace gf::app {

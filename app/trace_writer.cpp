@@ -47,7 +47,7 @@ TraceWriter::TraceWriter(const sim::World& world, long expected_rows) {
 void TraceWriter::record(const sim::World& world) {
   appendNumber(text_, world.time());
   for (int b : dynamic_bodies_) {
-    const sim::BodySnapshot p = world.bodyPose(b);
+    const sim::Pose p = world.bodyPose(b);
     for (double x : {p.position.x(), p.position.y(), p.position.z(), p.orientation.x(),
                      p.orientation.y(), p.orientation.z(), p.orientation.w()}) {
       text_ += ',';

@@ -2,19 +2,10 @@
 #pragma once
 
 #include <Eigen/Geometry>
-#include <string>
 
-#include "sim/mesh.hpp"
+#include "render/view_desc.hpp"
 
 namespace gf::render {
-
-/// A pinhole camera looking from `position` at `target`.
-struct Camera {
-  std::string name;                                ///< as in the scene file ([cameras.NAME])
-  sim::Vec3 position = sim::Vec3(0.3, 0.25, 0.4);  ///< m
-  sim::Vec3 target = sim::Vec3::Zero();            ///< m: the point looked at
-  double fov_deg = 40.0;                           ///< vertical field of view (degrees)
-};
 
 /// World-to-camera matrix (right-handed, camera looks down -z). `up` must not be parallel to
 /// the viewing direction.

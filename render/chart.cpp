@@ -7,6 +7,7 @@
 #include <cstdio>
 #include <vector>
 
+#include "render/context.hpp"
 #include "render/imgui_layer.hpp"
 
 namespace gf::render {
@@ -48,6 +49,7 @@ void fit(const ChartSpec& chart, Range& x, Range& y) {
 }  // namespace
 
 void drawChart(ImGuiLayer& layer, const ChartSpec& chart) {
+  GF_ASSERT_GL_THREAD();
   layer.beginFrame(1.0 / 60.0, {});
   const float w = static_cast<float>(chart.width), h = static_cast<float>(chart.height);
   ImDrawList* d = ImGui::GetForegroundDrawList();

@@ -17,6 +17,8 @@ struct GlContext::Impl {
   std::thread::id owner = std::this_thread::get_id();
 };
 
+bool onGlThread() { return OSMesaGetCurrentContext() != nullptr; }
+
 GlContext::GlContext() : impl_(std::make_unique<Impl>()) {
   const int attribs[] = {OSMESA_FORMAT, OSMESA_RGBA, OSMESA_DEPTH_BITS, 24,
                          OSMESA_PROFILE, OSMESA_CORE_PROFILE,
@@ -30,23 +32,17 @@ GlContext::GlContext() : impl_(std::make_unique<Impl>()) {
 }
 
 GlContext::~GlContext() {
-  assertOwner();
+  GF_ASSERT(std::this_thread::get_id() == impl_->owner && OSMesaGetCurrentContext() == impl_->context &&
+            "a GlContext is destroyed on the thread that made it, and last: declare it before the GL objects it serves");
   OSMesaMakeCurrent(nullptr, nullptr, GL_UNSIGNED_BYTE, 0, 0);
   OSMesaDestroyContext(impl_->context);
 }
 
 std::string GlContext::description() const {
-  assertOwner();
+  GF_ASSERT_GL_THREAD();
   const auto* version = reinterpret_cast<const char*>(glGetString(GL_VERSION));
   const auto* renderer = reinterpret_cast<const char*>(glGetString(GL_RENDERER));
   return std::string(version ? version : "?").append(" on ").append(renderer ? renderer : "?");
-}
-
-void GlContext::assertOwner() const {
-  if (std::this_thread::get_id() == impl_->owner) return;
-  std::fprintf(stderr, "godfinger: GL used off the render thread; only the thread that made the "
-                       "GlContext may draw (see README, Threading model)\n");
-  std::abort();
 }
 
 void checkGl(const char* what) {

@@ -3,7 +3,6 @@
 #include <cmath>
 #include <numbers>
 
-#include "sim/mesh_import.hpp"
 #include "sim/primitives.hpp"
 
 namespace gf::render {
@@ -52,7 +51,7 @@ std::shared_ptr<const sim::Mesh> bodyRenderMesh(const sim::BodyDesc& body) {
     case sim::ShapeKind::kConvexHull:
     case sim::ShapeKind::kConvexDecomposition:
     case sim::ShapeKind::kConcaveMesh:
-      return std::make_shared<sim::Mesh>(sim::loadMesh(body.mesh_path, body.mesh_scale));
+      return sim::bodyMesh(body);  // the mesh the scene loaded, shared with the World
   }
   return nullptr;
 }

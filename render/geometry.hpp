@@ -17,8 +17,9 @@ namespace gf::render {
 std::vector<Vertex> shadedTriangles(const sim::Mesh& mesh, double crease_deg);
 
 /// The surface a body is drawn with, in the body's description frame (m): primitives finely
-/// tessellated, meshes as loaded (so patches can be projected onto what is seen). Planes return
-/// nullptr: they are drawn as the ground. Throws sim::MeshLoadError for unreadable meshes.
+/// tessellated, meshes as the scene loaded them (body.mesh, shared with the World, so patches
+/// are projected onto what is seen). Planes return nullptr: they are drawn as the ground.
+/// Throws sim::MeshLoadError when body.mesh is null and its file cannot be read.
 std::shared_ptr<const sim::Mesh> bodyRenderMesh(const sim::BodyDesc& body);
 
 /// Radius 1 icosphere at the origin: 20 * 4^subdivisions triangles.

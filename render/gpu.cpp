@@ -38,6 +38,7 @@ Vertex makeVertex(const Eigen::Vector3d& p, const Eigen::Vector3d& n) {
 
 Program::Program(const char* name, const char* vertex_source, const char* fragment_source,
                  const char* defines) {
+  GF_ASSERT_GL_THREAD();
   const unsigned vs = compile(name, GL_VERTEX_SHADER, vertex_source, defines);
   unsigned fs = 0;
   try {
@@ -62,11 +63,20 @@ Program::Program(const char* name, const char* vertex_source, const char* fragme
   throw GlError(message.append(" program: ").append(log));
 }
 
-Program::~Program() { glDeleteProgram(id_); }
-void Program::use() const { glUseProgram(id_); }
+Program::~Program() {
+  GF_ASSERT_GL_THREAD();
+  glDeleteProgram(id_);
+}
+
+void Program::use() const {
+  GF_ASSERT_GL_THREAD();
+  glUseProgram(id_);
+}
+
 int Program::uniform(const char* name) const { return glGetUniformLocation(id_, name); }
 
 GpuMesh::GpuMesh(const std::vector<Vertex>& vertices, bool dynamic) : dynamic_(dynamic) {
+  GF_ASSERT_GL_THREAD();
   glGenVertexArrays(1, &vao_);
   glGenBuffers(1, &vbo_);
   glBindVertexArray(vao_);
@@ -101,12 +111,14 @@ GpuMesh::GpuMesh(const std::vector<Vertex>& vertices, bool dynamic) : dynamic_(d
 }
 
 GpuMesh::~GpuMesh() {
+  GF_ASSERT_GL_THREAD();
   glDeleteBuffers(1, &vbo_);
   if (ebo_) glDeleteBuffers(1, &ebo_);
   glDeleteVertexArrays(1, &vao_);
 }
 
 void GpuMesh::upload(const std::vector<Vertex>& vertices) {
+  GF_ASSERT_GL_THREAD();
   if (!dynamic_) throw GlError("upload() on a static mesh");
   glBindBuffer(GL_ARRAY_BUFFER, vbo_);
   const std::size_t bytes = vertices.size() * sizeof(Vertex);
@@ -119,6 +131,7 @@ void GpuMesh::upload(const std::vector<Vertex>& vertices) {
 }
 
 void GpuMesh::draw(unsigned mode) const {
+  GF_ASSERT_GL_THREAD();
   if (count_ == 0) return;
   glBindVertexArray(vao_);
   if (ebo_) {
@@ -127,22 +140,6 @@ void GpuMesh::draw(unsigned mode) const {
     glDrawArrays(mode, 0, count_);
   }
   glBindVertexArray(0);
-}
-
-std::optional<Antialiasing> parseAntialiasing(const std::string& name) {
-  if (name == "none") return Antialiasing::kNone;
-  if (name == "fxaa") return Antialiasing::kFxaa;
-  if (name == "msaa") return Antialiasing::kMsaa;
-  return std::nullopt;
-}
-
-const char* antialiasingName(Antialiasing aa) {
-  switch (aa) {
-    case Antialiasing::kNone: return "none";
-    case Antialiasing::kFxaa: return "fxaa";
-    case Antialiasing::kMsaa: return "msaa";
-  }
-  return "?";
 }
 
 namespace {
@@ -217,6 +214,7 @@ struct Framebuffer::Fxaa {
 
 Framebuffer::Framebuffer(int width, int height, Antialiasing aa, int msaa_samples)
     : width_(width), height_(height), aa_(aa) {
+  GF_ASSERT_GL_THREAD();
   if (width < 1 || height < 1 || width > 4096 || height > 4096) {
     throw GlError("frame size must be 1..4096 pixels each way");
   }
@@ -235,6 +233,7 @@ Framebuffer::Framebuffer(int width, int height, Antialiasing aa, int msaa_sample
 }
 
 Framebuffer::~Framebuffer() {
+  GF_ASSERT_GL_THREAD();
   fxaa_.reset();
   const unsigned fbos[] = {scene_fbo_, output_fbo_};
   glDeleteFramebuffers(2, fbos);
@@ -243,12 +242,14 @@ Framebuffer::~Framebuffer() {
 }
 
 void Framebuffer::bind() {
+  GF_ASSERT_GL_THREAD();
   glBindFramebuffer(GL_FRAMEBUFFER, scene_fbo_);
   glViewport(0, 0, width_, height_);
   resolved_ = false;
 }
 
 void Framebuffer::resolve(const std::optional<PixelRect>& edges) {
+  GF_ASSERT_GL_THREAD();
   resolved_ = true;
   glViewport(0, 0, width_, height_);
   if (aa_ == Antialiasing::kMsaa) {
@@ -291,6 +292,7 @@ void Framebuffer::resolve(const std::optional<PixelRect>& edges) {
 }
 
 void Framebuffer::read(Image& out) {
+  GF_ASSERT_GL_THREAD();
   if (!resolved_) resolve();
   glBindFramebuffer(GL_READ_FRAMEBUFFER, aa_ == Antialiasing::kMsaa ? output_fbo_ : scene_fbo_);
   out.width = width_;
@@ -314,21 +316,25 @@ void Framebuffer::read(Image& out) {
 }
 
 Backdrop::Backdrop(int width, int height, int samples) : width_(width), height_(height), samples_(samples) {
+  GF_ASSERT_GL_THREAD();
   fbo_ = colourDepthTarget(width, height, samples, colour_, depth_, "backdrop");
 }
 
 Backdrop::~Backdrop() {
+  GF_ASSERT_GL_THREAD();
   glDeleteFramebuffers(1, &fbo_);
   const unsigned buffers[] = {colour_, depth_};
   glDeleteRenderbuffers(2, buffers);
 }
 
 void Backdrop::bind() const {
+  GF_ASSERT_GL_THREAD();
   glBindFramebuffer(GL_FRAMEBUFFER, fbo_);
   glViewport(0, 0, width_, height_);
 }
 
 void Backdrop::restoreInto(unsigned target) const {
+  GF_ASSERT_GL_THREAD();
   glBindFramebuffer(GL_READ_FRAMEBUFFER, fbo_);
   glBindFramebuffer(GL_DRAW_FRAMEBUFFER, target);
   glBlitFramebuffer(0, 0, width_, height_, 0, 0, width_, height_, GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT,
@@ -338,6 +344,7 @@ void Backdrop::restoreInto(unsigned target) const {
 }
 
 ShadowMap::ShadowMap(int size) : size_(size) {
+  GF_ASSERT_GL_THREAD();
   depth_ = texture2D(GL_DEPTH_COMPONENT24, size, size, GL_DEPTH_COMPONENT, GL_FLOAT, GL_CLAMP_TO_BORDER);
   const float white[] = {1, 1, 1, 1};
   glTexParameterfv(GL_TEXTURE_2D, GL_TEXTURE_BORDER_COLOR, white);
@@ -355,16 +362,19 @@ ShadowMap::ShadowMap(int size) : size_(size) {
 }
 
 ShadowMap::~ShadowMap() {
+  GF_ASSERT_GL_THREAD();
   glDeleteFramebuffers(1, &fbo_);
   glDeleteTextures(1, &depth_);
 }
 
 void ShadowMap::bindForDrawing() const {
+  GF_ASSERT_GL_THREAD();
   glBindFramebuffer(GL_FRAMEBUFFER, fbo_);
   glViewport(0, 0, size_, size_);
 }
 
 void ShadowMap::bindTexture(int unit) const {
+  GF_ASSERT_GL_THREAD();
   glActiveTexture(GL_TEXTURE0 + unit);
   glBindTexture(GL_TEXTURE_2D, depth_);
 }

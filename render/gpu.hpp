@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "render/image.hpp"
+#include "render/view_desc.hpp"
 
 namespace gf::render {
 
@@ -60,15 +61,6 @@ class GpuMesh {
   std::size_t capacity_ = 0;
   bool dynamic_ = false;
 };
-
-/// How a frame is anti-aliased. FXAA is a post-process pass over the finished scene; on fig8 at
-/// 1280x720 it adds 3.5 ms to a frame where 4x MSAA adds 21 ms (llvmpipe shades, stores and
-/// resolves every sample on the CPU).
-enum class Antialiasing { kNone, kFxaa, kMsaa };
-
-/// Parses "none", "fxaa" or "msaa"; nullopt for anything else.
-std::optional<Antialiasing> parseAntialiasing(const std::string& name);
-const char* antialiasingName(Antialiasing aa);
 
 /// A rectangle of pixels in GL's convention (origin bottom left): [x0, x1) x [y0, y1).
 struct PixelRect {

@@ -4,6 +4,7 @@
 
 #include <Eigen/Core>
 
+#include "render/context.hpp"
 #include "render/gl.hpp"
 #include "render/gpu.hpp"
 #include "render/shaders.hpp"
@@ -64,6 +65,7 @@ struct ImGuiLayer::Gl {
 };
 
 ImGuiLayer::ImGuiLayer(int width, int height, float font_px) : width_(width), height_(height) {
+  GF_ASSERT_GL_THREAD();
   ImGuiContext* previous = ImGui::GetCurrentContext();
   context_ = ImGui::CreateContext();
   ImGui::SetCurrentContext(context_);
@@ -92,11 +94,13 @@ ImGuiLayer::ImGuiLayer(int width, int height, float font_px) : width_(width), he
 }
 
 ImGuiLayer::~ImGuiLayer() {
+  GF_ASSERT_GL_THREAD();
   gl_.reset();
   ImGui::DestroyContext(context_);
 }
 
 void ImGuiLayer::beginFrame(double dt_s, const InputState& input) {
+  GF_ASSERT_GL_THREAD();
   ImGui::SetCurrentContext(context_);
   ImGuiIO& io = ImGui::GetIO();
   io.DisplaySize = ImVec2(static_cast<float>(width_), static_cast<float>(height_));
@@ -112,6 +116,7 @@ void ImGuiLayer::beginFrame(double dt_s, const InputState& input) {
 }
 
 void ImGuiLayer::render() {
+  GF_ASSERT_GL_THREAD();
   ImGui::Render();
   drawLists(*ImGui::GetDrawData());
 }

@@ -8,12 +8,13 @@
 #include <deque>
 #include <numbers>
 
+#include "render/context.hpp"
 #include "render/scene_renderer.hpp"
+#include "sim/assert.hpp"
 
 namespace gf::render {
 namespace {
 
-constexpr double kDegPerRad = 180.0 / std::numbers::pi;
 constexpr ImGuiWindowFlags kPanelFlags = ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize |
                                          ImGuiWindowFlags_NoCollapse | ImGuiWindowFlags_AlwaysAutoResize |
                                          ImGuiWindowFlags_NoSavedSettings | ImGuiWindowFlags_NoFocusOnAppearing;
@@ -26,11 +27,6 @@ struct RunningAction {
 };
 
 }  // namespace
-
-const std::vector<std::string>& widgetFields() {
-  static const std::vector<std::string> kFields = {"god_finger", "n_sgo", "r_max", "alpha", "tau_a", "friction"};
-  return kFields;
-}
 
 struct Overlay::Impl {
   sim::SceneDesc scene;
@@ -48,10 +44,22 @@ struct Overlay::Impl {
 
   Impl(const sim::SceneDesc& s, const OverlaySettings& o, int w, int h)
       : scene(s), settings(o), layer(w, h, o.font_px * std::max(1.0f, h / 720.0f)), width(w), height(h) {
+    checkSliderSpans();
     for (const sim::FingerDesc& f : scene.fingers) {
       patch.push_back(f.patch);
-      n_sgo_when_on.push_back(f.patch.n_sgo > 0 ? f.patch.n_sgo : 8);
+      n_sgo_when_on.push_back(f.patch.n_sgo > 0 ? f.patch.n_sgo : sim::PatchSettings{}.n_sgo);
       force_history.emplace_back();
+    }
+  }
+
+  // Every slider spans legal values only (what a slider gives needs no further check).
+  static void checkSliderSpans() {
+    for (const OverlayWidget& w : kOverlayWidgets) {
+      if (w.field == "god_finger") continue;
+      const sim::Setting<sim::FingerDesc>* s = sim::findSetting(sim::fingerSettings(), w.field);
+      GF_ASSERT(s != nullptr && s->live && "an overlay slider shows a live finger setting of sim/settings.cpp");
+      GF_ASSERT(!sim::checkGiven(*s, w.lo / w.shown_per_unit) && !sim::checkGiven(*s, w.hi / w.shown_per_unit) &&
+                "an overlay slider spans legal values only: narrow it in render/view_desc.hpp");
     }
   }
 
@@ -84,8 +92,8 @@ struct Overlay::Impl {
   }
 
   // Every panel of one frame; returns the settings changes made.
-  std::vector<SettingsCommand> panels(const sim::Snapshot& snap, const RenderTimings& timings) {
-    std::vector<SettingsCommand> commands;
+  std::vector<sim::SettingsCommand> panels(const sim::Snapshot& snap, const RenderTimings& timings) {
+    std::vector<sim::SettingsCommand> commands;
     scenePanel(snap);
     fingerPanel(commands);
     timingPanel(snap, timings);
@@ -107,7 +115,7 @@ struct Overlay::Impl {
     ImGui::End();
   }
 
-  void fingerPanel(std::vector<SettingsCommand>& commands) {
+  void fingerPanel(std::vector<sim::SettingsCommand>& commands) {
     ImGui::SetNextWindowPos(ImVec2(10, below_scene_panel));
     ImGui::Begin("fingers", nullptr, kPanelFlags);
     for (std::size_t i = 0; i < patch.size(); ++i) {
@@ -124,17 +132,18 @@ struct Overlay::Impl {
       }
       remember(name + "/god_finger");
       ImGui::PushItemWidth(ImGui::GetFontSize() * 11);
+      const OverlayWidget& count = *findOverlayWidget("n_sgo");
       int n = on ? p.n_sgo : n_sgo_when_on[i];
-      if (ImGui::SliderInt("n_SGO", &n, 3, 32, "%d", ImGuiSliderFlags_AlwaysClamp)) {
+      if (ImGui::SliderInt(count.label, &n, static_cast<int>(count.lo), static_cast<int>(count.hi), count.format,
+                           ImGuiSliderFlags_AlwaysClamp)) {
         n_sgo_when_on[i] = n;
         if (on) p.n_sgo = n;
         changed = true;
       }
       remember(name + "/n_sgo");
-      changed |= slider("r_max (mm)", name + "/r_max", p.r_max, 1000.0, 1.0, 30.0, "%.1f");
-      changed |= slider("alpha", name + "/alpha", p.alpha, 1.0, 1.0, 5.0, "%.2f");
-      changed |= slider("tau_a (deg)", name + "/tau_a", p.tau_a, kDegPerRad, 0.0, 90.0, "%.0f");
-      changed |= slider("friction", name + "/friction", p.friction, 1.0, 0.0, 2.0, "%.2f");
+      for (const OverlayWidget& w : kOverlayWidgets) {
+        if (w.field != "god_finger" && w.field != "n_sgo") changed |= slider(w, name, p);
+      }
       ImGui::PopItemWidth();
       if (changed) commands.push_back({static_cast<int>(i), p});
       ImGui::PopID();
@@ -143,14 +152,19 @@ struct Overlay::Impl {
     ImGui::End();
   }
 
-  // A slider showing value * scale; writes back value when moved or typed.
-  bool slider(const char* label, const std::string& id, double& value, double scale, float lo, float hi,
-              const char* format) {
-    float shown = static_cast<float>(value * scale);
-    const bool changed = ImGui::SliderFloat(label, &shown, lo, hi, format, ImGuiSliderFlags_AlwaysClamp);
-    remember(id);
-    if (changed) value = shown / scale;
-    return changed;
+  // The slider of widget `w` for the setting of the same name, shown in its unit times
+  // w.shown_per_unit; writes the setting back when moved or typed.
+  bool slider(const OverlayWidget& w, const std::string& finger, sim::PatchSettings& p) {
+    const sim::Setting<sim::FingerDesc>& s = *sim::findSetting(sim::fingerSettings(), w.field);
+    sim::FingerDesc f;
+    f.patch = p;
+    float shown = static_cast<float>(sim::givenValue(s, f) * w.shown_per_unit);
+    const bool changed = ImGui::SliderFloat(w.label, &shown, w.lo, w.hi, w.format, ImGuiSliderFlags_AlwaysClamp);
+    remember(finger + "/" + std::string(w.field));
+    if (!changed) return false;
+    sim::setGiven(s, f, shown / w.shown_per_unit);
+    p = f.patch;
+    return true;
   }
 
   void timingPanel(const sim::Snapshot& snap, const RenderTimings& timings) {
@@ -218,11 +232,12 @@ Overlay::Overlay(const sim::SceneDesc& scene, const OverlaySettings& settings, i
 
 Overlay::~Overlay() = default;
 
-std::vector<SettingsCommand> Overlay::draw(const sim::Snapshot& snapshot, const RenderTimings& timings) {
+std::vector<sim::SettingsCommand> Overlay::draw(const sim::Snapshot& snapshot, const RenderTimings& timings) {
+  GF_ASSERT_GL_THREAD();
   Impl& o = *impl_;
   const double dt = o.last_time >= 0.0 && snapshot.time > o.last_time ? snapshot.time - o.last_time : 1.0 / 60.0;
   o.layer.beginFrame(dt, o.scriptedInput(snapshot.time));
-  std::vector<SettingsCommand> commands = o.panels(snapshot, timings);
+  std::vector<sim::SettingsCommand> commands = o.panels(snapshot, timings);
   o.layer.render();
   o.last_time = snapshot.time;
   return commands;

@@ -21,33 +21,33 @@ Vec3 alongPath(const Vec3* first, const Vec3* last, double s) {
   return *(last - 1);
 }
 
+}  // namespace
+
 // Projects a world point onto the body surface; returns the lifted point and the face normal.
-struct Projected {
-  Vec3 point, normal;
-};
-Projected project(const Vec3& world, const sim::Mesh& mesh, const sim::BodySnapshot& pose, double lift) {
+PatchMeshBuilder::Projected PatchMeshBuilder::project(const Vec3& world, const sim::Mesh& mesh,
+                                                      const sim::Pose& pose) const {
   const Vec3 local = pose.orientation.conjugate() * (world - pose.position);
   const sim::SurfacePoint sp = mesh.closestPoint(local, 0.0);
   if (sp.face < 0) return {world, Vec3::UnitY()};
   const Vec3 n = pose.orientation * mesh.faceNormal(sp.face);
-  return {pose.orientation * sp.point + pose.position + lift * n, n};
+  return {pose.toWorld(sp.point) + settings_.lift * n, n};
 }
 
-}  // namespace
-
-void buildPatchMesh(const sim::ContactSnapshot& contact, const sim::Mesh& mesh,
-                    const sim::BodySnapshot& pose, const PatchMeshSettings& settings,
-                    std::vector<Vertex>& triangles, std::vector<Vertex>& outline) {
+void PatchMeshBuilder::build(const sim::ContactSnapshot& contact, const sim::Mesh& mesh, const sim::Pose& pose,
+                             std::vector<Vertex>& triangles, std::vector<Vertex>& outline) {
+  const PatchMeshSettings& settings = settings_;
   const int paths = static_cast<int>(contact.path_offsets.size()) - 1;
   if (paths < 2) return;
   const int rings = std::max(1, settings.rings), sub = std::max(0, settings.rays_between) + 1;
   // grid[r][ring]: ray r (paths x sub rays around), sample `ring` from the centre outwards.
   const int rays = paths * sub;
-  std::vector<Projected> grid(static_cast<std::size_t>(rays) * (rings + 1));
-  std::vector<Vec3> resampled(static_cast<std::size_t>(paths) * (rings + 1));
+  std::vector<Projected>& grid = grid_;
+  std::vector<Vec3>& resampled = resampled_;
+  grid.resize(static_cast<std::size_t>(rays) * (rings + 1));
+  resampled.resize(static_cast<std::size_t>(paths) * (rings + 1));
   for (int k = 0; k < paths; ++k) {
-    const Vec3* first = contact.path_points.data() + contact.path_offsets[k];
-    const Vec3* last = contact.path_points.data() + contact.path_offsets[k + 1];
+    const Vec3* first = contact.path_points_world.data() + contact.path_offsets[k];
+    const Vec3* last = contact.path_points_world.data() + contact.path_offsets[k + 1];
     for (int j = 0; j <= rings; ++j) resampled[k * (rings + 1) + j] = alongPath(first, last, double(j) / rings);
   }
   for (int r = 0; r < rays; ++r) {
@@ -55,7 +55,7 @@ void buildPatchMesh(const sim::ContactSnapshot& contact, const sim::Mesh& mesh,
     const double w = double(r % sub) / sub;
     for (int j = 0; j <= rings; ++j) {
       const Vec3 p = (1 - w) * resampled[k * (rings + 1) + j] + w * resampled[next * (rings + 1) + j];
-      grid[r * (rings + 1) + j] = project(p, mesh, pose, settings.lift);
+      grid[r * (rings + 1) + j] = project(p, mesh, pose);
     }
   }
   // Fill: a fan around the centre, quads between rings.

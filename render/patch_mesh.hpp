@@ -17,14 +17,31 @@ struct PatchMeshSettings {
   double lift = 0.0002;       ///< m the surface is raised along the body normal (no z-fighting)
 };
 
-/// Builds the patch of `contact` (world frame) as triangles lying on `mesh`, the body's render
-/// surface in its description frame, at the body pose `pose`. The region between neighbouring
-/// walked paths is filled with rays interpolated between them, each sample projected onto the
-/// surface, so the patch bends with the body (over edges and round shapes) instead of floating.
-/// `outline` receives line segments (GL_LINES) of the walked paths and the rim through the SGOs.
-/// Contacts with fewer than two paths produce no triangles.
-void buildPatchMesh(const sim::ContactSnapshot& contact, const sim::Mesh& mesh,
-                    const sim::BodySnapshot& pose, const PatchMeshSettings& settings,
-                    std::vector<Vertex>& triangles, std::vector<Vertex>& outline);
+/// Builds patch surfaces, reusing its scratch arrays from one patch to the next (no allocation
+/// once they have grown to the largest patch). Render thread.
+class PatchMeshBuilder {
+ public:
+  explicit PatchMeshBuilder(const PatchMeshSettings& settings = {}) : settings_(settings) {}
+
+  /// Appends the patch of `contact` (world frame) as triangles lying on `mesh`, the body's
+  /// render surface in its description frame, at the body pose `pose`. The region between
+  /// neighbouring walked paths is filled with rays interpolated between them, each sample
+  /// projected onto the surface, so the patch bends with the body (over edges and round
+  /// shapes) instead of floating. `outline` receives line segments (GL_LINES) of the walked
+  /// paths and the rim through the SGOs. Contacts with fewer than two paths add nothing.
+  void build(const sim::ContactSnapshot& contact, const sim::Mesh& mesh, const sim::Pose& pose,
+             std::vector<Vertex>& triangles, std::vector<Vertex>& outline);
+
+ private:
+  /// A sample projected onto the body surface: lifted point and face normal (world).
+  struct Projected {
+    sim::Vec3 point, normal;
+  };
+  Projected project(const sim::Vec3& world, const sim::Mesh& mesh, const sim::Pose& pose) const;
+
+  PatchMeshSettings settings_;
+  std::vector<Projected> grid_;
+  std::vector<sim::Vec3> resampled_;
+};
 
 }  // namespace gf::render

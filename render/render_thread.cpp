@@ -13,8 +13,7 @@
 #include "render/gl.hpp"
 #include "render/gpu.hpp"
 #include "render/imgui_layer.hpp"
-#include "sim/haptic_loop.hpp"
-#include "sim/world.hpp"
+#include "sim/assert.hpp"
 
 namespace gf::render {
 namespace {
@@ -28,16 +27,23 @@ struct Job {
   std::string close_up_prefix;  // non-empty: close-ups instead of a frame
   std::unique_ptr<ChartSpec> chart;  // non-null: a chart to `chart_path` instead of a frame
   std::string chart_path;
-  std::promise<std::vector<SettingsCommand>> reply;
+  std::promise<std::vector<sim::SettingsCommand>> reply;
   bool wants_reply = false;
 };
 
 // Latest-value handoff: the writer fills `back`, then swaps it with `middle`; the reader swaps
-// `middle` with `front` when it holds something new. Neither side ever waits.
+// `middle` with `front` when it holds something new. Neither side ever waits. One writer
+// thread and one reader thread (asserted for the writer).
 class TripleBuffer {
  public:
-  sim::Snapshot& back() { return slots_[back_]; }
-  void publish() { back_ = middle_.exchange(back_ | kFresh) & kIndex; }
+  sim::Snapshot& back() {
+    GF_ASSERT(writtenHere() && "one thread (the haptic thread) publishes realtime snapshots");
+    return slots_[back_];
+  }
+  void publish() {
+    GF_ASSERT(writtenHere() && "one thread (the haptic thread) publishes realtime snapshots");
+    back_ = middle_.exchange(back_ | kFresh) & kIndex;
+  }
   bool update() {
     if (!(middle_.load() & kFresh)) return false;
     front_ = middle_.exchange(front_) & kIndex;
@@ -46,13 +52,20 @@ class TripleBuffer {
   const sim::Snapshot& front() const { return slots_[front_]; }
 
  private:
+  // The first caller becomes the writer.
+  bool writtenHere() {
+    if (writer_ == std::thread::id()) writer_ = std::this_thread::get_id();
+    return writer_ == std::this_thread::get_id();
+  }
   static constexpr int kFresh = 4, kIndex = 3;
   sim::Snapshot slots_[3];
   int back_ = 0, front_ = 1;
   std::atomic<int> middle_{2};
+  std::thread::id writer_;
 };
 
-// Everything GL, created and destroyed on the render thread.
+// Everything GL, created and destroyed on the render thread. The context is the first member:
+// it is made before and destroyed after every GL object (their destructors assert it).
 struct Gpu {
   GlContext context;
   SceneRenderer scene;
@@ -87,7 +100,7 @@ void drawCloseUps(Gpu& gpu, const sim::SceneDesc& desc, const sim::Snapshot& sna
     const double half = std::max(1.5 * desc.fingers[f].patch.r_max, 1.3 * c.radius) + 0.002;
     gpu.close_up_frame->bind();
     gpu.close_up_frame->resolve(
-        gpu.scene.draw(only, closeUpCamera(c.point, c.outward_normal, half), gpu.close_up_px, gpu.close_up_px));
+        gpu.scene.draw(only, closeUpCamera(c.point_world, c.outward_normal_world, half), gpu.close_up_px, gpu.close_up_px));
     Image image;
     gpu.close_up_frame->read(image);
     writePng(closeUpPath(prefix, desc.fingers[f].name), image);
@@ -134,7 +147,7 @@ struct RenderThread::Impl {
   std::string error;
   TripleBuffer latest;
   std::mutex command_mutex;
-  std::vector<SettingsCommand> commands;
+  std::vector<sim::SettingsCommand> commands;
   std::vector<float> frame_ms;
   Clock::time_point start = Clock::now();
   std::string gl_description;
@@ -148,12 +161,12 @@ struct RenderThread::Impl {
   }
 
   // Draws one frame of the stream and hands it to the encoders; returns the overlay's commands.
-  std::vector<SettingsCommand> drawFrame(Gpu& gpu, const sim::Snapshot& snap) {
+  std::vector<sim::SettingsCommand> drawFrame(Gpu& gpu, const sim::Snapshot& snap) {
     const auto begin = Clock::now();
     gpu.frame.bind();
     // The overlay goes on top of the anti-aliased scene.
     gpu.frame.resolve(gpu.scene.draw(snap, settings.camera, settings.width, settings.height));
-    std::vector<SettingsCommand> made;
+    std::vector<sim::SettingsCommand> made;
     const double last_ms = frame_ms.empty() ? 0.0 : frame_ms.back();
     if (gpu.overlay) made = gpu.overlay->draw(snap, {last_ms});
     Image image;
@@ -179,7 +192,7 @@ struct RenderThread::Impl {
         drawSideJob(gpu, scene, job);
         continue;
       }
-      std::vector<SettingsCommand> made = drawFrame(gpu, job.snapshot);
+      std::vector<sim::SettingsCommand> made = drawFrame(gpu, job.snapshot);
       if (job.wants_reply) job.reply.set_value(std::move(made));
     }
   }
@@ -200,7 +213,7 @@ struct RenderThread::Impl {
       for (const Job& job : side) drawSideJob(gpu, scene, job);
       if (stop) break;
       if (!latest.update()) continue;
-      std::vector<SettingsCommand> made = drawFrame(gpu, latest.front());
+      std::vector<sim::SettingsCommand> made = drawFrame(gpu, latest.front());
       if (made.empty()) continue;
       std::lock_guard lock(command_mutex);
       commands.insert(commands.end(), made.begin(), made.end());
@@ -260,9 +273,9 @@ RenderThread::~RenderThread() {
   }
 }
 
-std::vector<SettingsCommand> RenderThread::submitFrame(const sim::Snapshot& snapshot, bool wait_for_commands) {
+std::vector<sim::SettingsCommand> RenderThread::submitFrame(const sim::Snapshot& snapshot, bool wait_for_commands) {
   Impl& r = *impl_;
-  std::future<std::vector<SettingsCommand>> reply;
+  std::future<std::vector<sim::SettingsCommand>> reply;
   {
     std::unique_lock lock(r.mutex);
     r.changed.wait(lock, [&] { return r.queue.size() < kQueueDepth || !r.error.empty(); });
@@ -302,16 +315,13 @@ void RenderThread::submitChart(const ChartSpec& chart, const std::string& path) 
   r.changed.notify_all();
 }
 
-void RenderThread::publishLatest(const sim::World& world, const sim::HapticTimings& timings) {
-  sim::Snapshot& back = impl_->latest.back();
-  world.snapshot(back);
-  back.timings = timings;
-  impl_->latest.publish();
-}
+sim::Snapshot& RenderThread::latestSlot() { return impl_->latest.back(); }
 
-std::vector<SettingsCommand> RenderThread::takeCommands() {
+void RenderThread::publishLatest() { impl_->latest.publish(); }
+
+std::vector<sim::SettingsCommand> RenderThread::takeCommands() {
   std::unique_lock lock(impl_->command_mutex, std::try_to_lock);
-  std::vector<SettingsCommand> out;
+  std::vector<sim::SettingsCommand> out;
   if (lock.owns_lock() && !impl_->commands.empty()) out.swap(impl_->commands);
   return out;
 }
@@ -326,9 +336,7 @@ RenderStats RenderThread::finish() {
   if (r.thread.joinable()) r.thread.join();
   RenderStats stats;
   stats.gl = r.gl_description;
-  stats.frames = static_cast<long>(r.frame_ms.size());
-  stats.render_ms_median = sim::percentile(r.frame_ms, 0.5);
-  stats.render_ms_p99 = sim::percentile(r.frame_ms, 0.99);
+  stats.frame_ms = r.frame_ms;
   try {
     if (r.png) stats.png = r.png->finish();
     if (r.video) stats.video = r.video->finish();

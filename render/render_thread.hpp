@@ -12,11 +12,8 @@
 #include "render/frame_sinks.hpp"
 #include "render/overlay.hpp"
 #include "render/scene_renderer.hpp"
+#include "sim/settings.hpp"
 #include "sim/snapshot.hpp"
-
-namespace gf::sim {
-class World;
-}
 
 namespace gf::render {
 
@@ -39,9 +36,7 @@ struct FrameOutputSettings {
 
 /// What the render thread did.
 struct RenderStats {
-  long frames = 0;
-  double render_ms_median = 0.0;  ///< draw + overlay + read-back, per frame
-  double render_ms_p99 = 0.0;
+  std::vector<float> frame_ms;    ///< draw + overlay + read-back of each frame drawn (ms)
   double wall_seconds = 0.0;      ///< from start to finish()
   SinkStats png, video;
   std::string gl;                 ///< GL version and renderer
@@ -59,16 +54,19 @@ class RenderThread {
   /// Offline: queues the frame of `snapshot` (blocks while two frames wait). With
   /// `wait_for_commands`, waits until it is drawn and returns the overlay's settings changes,
   /// so scripted input lands on the same haptic step in every run. Throws the thread's error.
-  std::vector<SettingsCommand> submitFrame(const sim::Snapshot& snapshot, bool wait_for_commands);
+  std::vector<sim::SettingsCommand> submitFrame(const sim::Snapshot& snapshot, bool wait_for_commands);
   /// Queues close-ups of every contact in `snapshot`, written as `<prefix>-<finger>.png`.
   void submitCloseUps(const sim::Snapshot& snapshot, const std::string& prefix);
   /// Queues a chart, written as the PNG `path`.
   void submitChart(const ChartSpec& chart, const std::string& path);
-  /// Realtime: publishes the latest state. Never blocks; does not allocate once the buffers
-  /// have grown. Haptic thread only.
-  void publishLatest(const sim::World& world, const sim::HapticTimings& timings);
+  /// Realtime: the snapshot slot the haptic thread fills with its latest state before
+  /// publishLatest() hands it over. Haptic thread only (one publishing thread).
+  sim::Snapshot& latestSlot();
+  /// Realtime: hands the filled slot to the render thread, which draws the newest at its next
+  /// frame. Never blocks; does not allocate (slots keep their storage). Haptic thread only.
+  void publishLatest();
   /// Realtime: settings changes made in the overlay since the last call; never blocks.
-  std::vector<SettingsCommand> takeCommands();
+  std::vector<sim::SettingsCommand> takeCommands();
   /// Draws what is queued, stops the thread and the encoders, rethrows the first error.
   RenderStats finish();
 

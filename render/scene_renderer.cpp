@@ -4,6 +4,7 @@
 #include <cmath>
 #include <numbers>
 
+#include "render/context.hpp"
 #include "render/geometry.hpp"
 #include "render/gl.hpp"
 #include "render/patch_mesh.hpp"
@@ -66,7 +67,7 @@ std::pair<Vec3, double> sceneBounds(const sim::SceneDesc& scene, const std::vect
 }
 
 // Corner k (0..7) of a mesh's bounding box, placed by `pose` (world, m).
-Vec3 boxCorner(const sim::Mesh& m, const sim::BodySnapshot& pose, int k) {
+Vec3 boxCorner(const sim::Mesh& m, const sim::Pose& pose, int k) {
   const Vec3 corner((k & 1 ? m.boundsMax() : m.boundsMin()).x(), (k & 2 ? m.boundsMax() : m.boundsMin()).y(),
                     (k & 4 ? m.boundsMax() : m.boundsMin()).z());
   return pose.position + pose.orientation * corner;
@@ -107,6 +108,7 @@ struct SceneRenderer::Impl {
   Camera backdrop_camera;
   GpuMesh patch_fill{{}, true}, patch_lines{{}, true}, spring_lines{{}, true};
   std::vector<Vertex> fill_vertices, line_vertices, spring_vertices;
+  PatchMeshBuilder patch_builder;
   Vec3 centre = Vec3::Zero();
   double extent = 0.1;
   Eigen::Matrix4f view, view_proj, light_view_proj;  // view, view_proj: this frame's camera
@@ -162,7 +164,7 @@ struct SceneRenderer::Impl {
 
   // Each body's model matrix from the snapshot (ground planes included).
   Eigen::Matrix4f bodyModel(const sim::Snapshot& snap, std::size_t b) const {
-    const sim::BodySnapshot& p = snap.bodies[b];
+    const sim::Pose& p = snap.bodies[b];
     return modelMatrix(p.position, p.orientation, Vec3::Ones());
   }
 
@@ -273,7 +275,7 @@ struct SceneRenderer::Impl {
       add(f.proxy, r);
       add(f.device, r);
       if (!f.contacts.empty()) add(f.proxy + forceArrow(f), r);
-      for (const sim::ContactSnapshot& c : f.contacts) add(c.point, std::max(c.radius, scene.fingers[i].patch.r_max));
+      for (const sim::ContactSnapshot& c : f.contacts) add(c.point_world, std::max(c.radius, scene.fingers[i].patch.r_max));
     }
     if (everywhere) return {0, 0, width, height};
     const auto px = [](double ndc, int size) { return static_cast<int>(std::clamp((0.5 * ndc + 0.5) * size, 0.0, double(size))); };
@@ -285,7 +287,7 @@ struct SceneRenderer::Impl {
   // light grazes the plane.
   void receiverQuad(const sim::Snapshot& snap, std::size_t b) {
     receiver_vertices.clear();
-    const sim::BodySnapshot& g = snap.bodies[b];
+    const sim::Pose& g = snap.bodies[b];
     const Vec3 normal = g.orientation * Vec3::UnitY();
     const double facing = light_dir.dot(normal);
     if (facing < 0.05) return;
@@ -421,7 +423,7 @@ struct SceneRenderer::Impl {
       for (const sim::ContactSnapshot& c : snap.fingers[i].contacts) {
         const std::size_t b = static_cast<std::size_t>(c.body);
         if (b < bodies.size() && bodies[b].mesh) {
-          buildPatchMesh(c, *bodies[b].mesh, snap.bodies[b], {}, fill_vertices, line_vertices);
+          patch_builder.build(c, *bodies[b].mesh, snap.bodies[b], fill_vertices, line_vertices);
         }
       }
       const Eigen::Vector3f colour = fingerColour(static_cast<int>(i));
@@ -457,16 +459,16 @@ struct SceneRenderer::Impl {
     use(lit);
     for (const sim::ContactSnapshot& c : f.contacts) {
       // The god-object's contact point; with n_SGO = 0 it is the whole patch.
-      drawShape(dot_sphere, modelMatrix(c.point, Eigen::Quaterniond::Identity(), Vec3::Constant(1.3 * dot)),
+      drawShape(dot_sphere, modelMatrix(c.point_world, Eigen::Quaterniond::Identity(), Vec3::Constant(1.3 * dot)),
                 Eigen::Vector3f(0.95f, 0.95f, 0.95f), 1.0f);
-      for (const Vec3& s : c.sgos) {
+      for (const Vec3& s : c.sgos_world) {
         drawShape(dot_sphere, modelMatrix(s, Eigen::Quaterniond::Identity(), Vec3::Constant(dot)), colour, 1.0f);
       }
     }
     glDisable(GL_DEPTH_TEST);  // arrows read through the proxy and the body
     for (const sim::ContactSnapshot& c : f.contacts) {
       const double length = std::max(c.radius, 0.6 * scene.fingers[static_cast<std::size_t>(finger)].patch.r_max);
-      drawArrow(c.point, length * c.outward_normal, 0.3 * dot, Eigen::Vector3f(0.95f, 0.95f, 0.95f));
+      drawArrow(c.point_world, length * c.outward_normal_world, 0.3 * dot, Eigen::Vector3f(0.95f, 0.95f, 0.95f));
     }
     if (!f.contacts.empty()) drawArrow(f.proxy, forceArrow(f), 0.6 * dot, Eigen::Vector3f(1.0f, 0.75f, 0.1f));
     glEnable(GL_DEPTH_TEST);
@@ -489,6 +491,7 @@ void SceneRenderer::setSettings(const RenderSettings& settings) {
 const RenderSettings& SceneRenderer::settings() const { return impl_->settings; }
 
 PixelRect SceneRenderer::draw(const sim::Snapshot& snapshot, const Camera& camera, int width, int height) {
+  GF_ASSERT_GL_THREAD();
   GLint target = 0;
   glGetIntegerv(GL_FRAMEBUFFER_BINDING, &target);
   glDisable(GL_CULL_FACE);

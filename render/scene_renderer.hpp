@@ -26,9 +26,10 @@ struct RenderSettings {
 /// Colour of finger i (linear RGB), shared by every view and the overlay.
 Eigen::Vector3f fingerColour(int finger);
 
-/// Draws snapshots of one scene. Construction loads every body's render surface and makes the
-/// GL objects (allocates; throws sim::MeshLoadError or GlError). draw() does not allocate once
-/// its buffers have grown to the largest patch.
+/// Draws snapshots of one scene. Construction builds every body's render surface (meshes come
+/// from the description, loaded once per run) and makes the GL objects (allocates; throws
+/// sim::MeshLoadError or GlError). draw() reuses its vertex and scratch buffers from frame to
+/// frame; they grow to the largest patch drawn.
 class SceneRenderer {
  public:
   SceneRenderer(const sim::SceneDesc& scene, const RenderSettings& settings);

@@ -9,16 +9,14 @@
 
 #include "sim/mesh_import.hpp"
 #include "sim/primitives.hpp"
+#include "sim/settings.hpp"
 
 namespace gf::sim {
 namespace {
 
 // Collision margin of boxes, cylinders, hulls and meshes (m): small, so edges stay sharp.
 constexpr double kMargin = 0.0005;
-// Default walk-mesh resolutions per shape.
-constexpr int kSphereSubdivisions = 4;
-constexpr int kBoxSegments = 4;
-constexpr int kRoundSegments = 64;
+// Half size of the walk mesh of a ground plane (m).
 constexpr double kPlaneHalfSize = 50.0;
 // HACD decomposition: the mesh is normalised to this size, and parts may be this concave in
 // those units (2 % of the size); at most this many vertices per part.
@@ -26,8 +24,8 @@ constexpr double kHacdScale = 1000.0;
 constexpr double kHacdConcavity = 20.0;
 constexpr int kHacdVerticesPerPart = 64;
 
-[[noreturn]] void fail(const BodyDesc& d, const std::string& what) {
-  throw std::invalid_argument("body '" + d.name + "': " + what);
+[[noreturn]] void fail(const BodyDesc& d, const std::string& field, const std::string& why) {
+  throw DescriptionError("body '" + d.name + "'", {field, why});
 }
 
 // Volume, centroid and inertia per unit density of a closed mesh (signed tetrahedra).
@@ -63,8 +61,8 @@ MassProperties massProperties(const Mesh& m) {
 std::shared_ptr<const Mesh> toBodyFrame(const BodyDesc& d, const Mesh& mesh, BodyShapes& out) {
   const MassProperties mp = massProperties(mesh);
   if (d.mass > 0.0 && !(mp.volume > 1e-15)) {
-    fail(d, "mesh '" + d.mesh_path + "' encloses no volume (open or inside-out?): a dynamic "
-            "mesh body needs a closed, outward-wound mesh");
+    fail(d, "mesh", "'" + d.mesh_path + "' encloses no volume (open or inside-out?): a dynamic "
+                    "mesh body needs a closed, outward-wound mesh");
   }
   Eigen::Matrix3d axes = Eigen::Matrix3d::Identity();
   Vec3 principal = Vec3::Zero();
@@ -110,7 +108,7 @@ std::unique_ptr<btCollisionShape> decompose(const BodyDesc& d, const Mesh& m, Bo
   hacd.SetAddExtraDistPoints(false);
   hacd.SetAddNeighboursDistPoints(false);
   hacd.SetAddFacesPoints(false);
-  if (!hacd.Compute() || hacd.GetNClusters() == 0) fail(d, "convex decomposition of '" + d.mesh_path + "' failed");
+  if (!hacd.Compute() || hacd.GetNClusters() == 0) fail(d, "mesh", "convex decomposition of '" + d.mesh_path + "' failed");
   auto compound = std::make_unique<btCompoundShape>();
   for (std::size_t c = 0; c < hacd.GetNClusters(); ++c) {
     std::vector<HACD::Vec3<HACD::Real>> part(hacd.GetNPointsCH(c));
@@ -125,9 +123,7 @@ std::unique_ptr<btCollisionShape> decompose(const BodyDesc& d, const Mesh& m, Bo
 }
 
 void makeMeshShapes(const BodyDesc& d, BodyShapes& out) {
-  if (d.mesh_path.empty()) fail(d, "mesh_path is empty");
-  const Mesh loaded = loadMesh(d.mesh_path, d.mesh_scale);
-  out.walk_mesh = toBodyFrame(d, loaded, out);
+  out.walk_mesh = toBodyFrame(d, *bodyMesh(d), out);
   const Mesh& m = *out.walk_mesh;
   if (d.shape == ShapeKind::kConvexHull) {
     out.shape = hullOf(m.vertices());
@@ -160,45 +156,39 @@ void makeMeshShapes(const BodyDesc& d, BodyShapes& out) {
   out.mesh_interface = std::move(arrays);
 }
 
-int resolution(const BodyDesc& d, int fallback) {
-  return d.walk_resolution > 0 ? d.walk_resolution : fallback;
+int resolution(const BodyDesc& d) {
+  return d.walk_resolution > 0 ? d.walk_resolution : shapeInfo(d.shape).default_resolution;
 }
 
 }  // namespace
 
 BodyShapes makeBodyShapes(const BodyDesc& d) {
-  if (!(d.mass >= 0.0) || !std::isfinite(d.mass)) fail(d, "mass must be finite and >= 0");
-  if (!(d.friction >= 0.0) || !std::isfinite(d.friction)) fail(d, "friction must be finite and >= 0");
-  if (!d.position.allFinite() || !d.orientation.coeffs().allFinite() ||
-      d.orientation.norm() < 1e-9) {
-    fail(d, "pose must be finite with a non-zero orientation");
-  }
+  if (std::optional<FieldError> e = validateBody(d)) throw DescriptionError("body '" + d.name + "'", *e);
   BodyShapes out;
   try {
     switch (d.shape) {
       case ShapeKind::kSphere:
-        out.walk_mesh = std::make_shared<const Mesh>(tessellateSphere(d.radius, resolution(d, kSphereSubdivisions)));
+        out.walk_mesh = std::make_shared<const Mesh>(tessellateSphere(d.radius, resolution(d)));
         out.shape = std::make_unique<btSphereShape>(d.radius);
         break;
       case ShapeKind::kBox:
-        out.walk_mesh = std::make_shared<const Mesh>(tessellateBox(d.half_extents, resolution(d, kBoxSegments)));
+        out.walk_mesh = std::make_shared<const Mesh>(tessellateBox(d.half_extents, resolution(d)));
         out.shape = std::make_unique<btBoxShape>(toBt(d.half_extents));
         out.shape->setMargin(kMargin);
         break;
       case ShapeKind::kCylinder:
         out.walk_mesh = std::make_shared<const Mesh>(
-            tessellateCylinder(d.radius, d.half_height, resolution(d, kRoundSegments)));
+            tessellateCylinder(d.radius, d.half_height, resolution(d)));
         out.shape = std::make_unique<btCylinderShape>(btVector3(d.radius, d.half_height, d.radius));
         out.shape->setMargin(kMargin);
         break;
       case ShapeKind::kCapsule:
         out.walk_mesh = std::make_shared<const Mesh>(
-            tessellateCapsule(d.radius, d.half_height, resolution(d, kRoundSegments)));
+            tessellateCapsule(d.radius, d.half_height, resolution(d)));
         out.shape = std::make_unique<btCapsuleShape>(d.radius, 2.0 * d.half_height);
         break;
       case ShapeKind::kPlane:
-        if (d.mass != 0.0) fail(d, "a plane must be static (mass 0)");
-        out.walk_mesh = std::make_shared<const Mesh>(tessellatePlane(kPlaneHalfSize, resolution(d, 1)));
+        out.walk_mesh = std::make_shared<const Mesh>(tessellatePlane(kPlaneHalfSize, resolution(d)));
         out.shape = std::make_unique<btStaticPlaneShape>(btVector3(0, 1, 0), 0.0);
         break;
       case ShapeKind::kConvexHull:
@@ -207,16 +197,14 @@ BodyShapes makeBodyShapes(const BodyDesc& d) {
         makeMeshShapes(d, out);
         break;
     }
+  } catch (const DescriptionError&) {
+    throw;
   } catch (const MeshLoadError& e) {
-    fail(d, e.what());
-  } catch (const std::invalid_argument& e) {
-    const std::string what = e.what();
-    if (what.rfind("body '", 0) == 0) throw;
-    fail(d, what);
+    fail(d, "mesh", e.what());
+  } catch (const std::invalid_argument& e) {  // geometry the primitives or the mesh builder refuse
+    fail(d, isMeshShape(d.shape) ? "mesh" : std::string(shapeInfo(d.shape).dimensions[0]), e.what());
   }
-  const bool is_mesh = d.shape == ShapeKind::kConvexHull || d.shape == ShapeKind::kConvexDecomposition ||
-                       d.shape == ShapeKind::kConcaveMesh;
-  if (d.mass > 0.0 && !is_mesh) out.shape->calculateLocalInertia(d.mass, out.local_inertia);
+  if (d.mass > 0.0 && !isMeshShape(d.shape)) out.shape->calculateLocalInertia(d.mass, out.local_inertia);
   return out;
 }
 

@@ -36,9 +36,9 @@ bool deepestContact(const btPersistentManifold& m, const btCollisionObject* prox
   // normalWorldOnB points from B towards A; the object is B when the proxy is A.
   const bool proxy_is_a = m.getBody0() == proxy;
   out.object = proxy_is_a ? m.getBody1() : m.getBody0();
-  out.point = proxy_is_a ? p.m_positionWorldOnB : p.m_positionWorldOnA;
-  out.outward_normal = proxy_is_a ? p.m_normalWorldOnB : -p.m_normalWorldOnB;
-  out.distance = p.getDistance();
+  out.point_world = proxy_is_a ? p.m_positionWorldOnB : p.m_positionWorldOnA;
+  out.outward_normal_world = proxy_is_a ? p.m_normalWorldOnB : -p.m_normalWorldOnB;
+  out.separation = p.getDistance();
   out.index = best;
   return true;
 }
@@ -51,8 +51,8 @@ void keepOnlyPoint(btPersistentManifold& m, int index, const PointMaterial& mat,
 }
 
 void injectPoints(btDispatcher& dispatcher, const btCollisionObject* proxy,
-                  const btCollisionObject* object, const btVector3* points, int count,
-                  const btVector3& outward_normal, double distance, const PointMaterial& mat,
+                  const btCollisionObject* object, const btVector3* points_world, int count,
+                  const btVector3& outward_normal_world, double separation, const PointMaterial& mat,
                   const WarmStart* warm, std::vector<btPersistentManifold*>& added) {
   const btTransform proxy_inv = proxy->getWorldTransform().inverse();
   const btTransform object_inv = object->getWorldTransform().inverse();
@@ -60,10 +60,10 @@ void injectPoints(btDispatcher& dispatcher, const btCollisionObject* proxy,
     btPersistentManifold* m = dispatcher.getNewManifold(proxy, object);
     added.push_back(m);
     for (int i = first; i < std::min(count, first + kPointsPerManifold); ++i) {
-      // On B (object): the SGO. On A (proxy): displaced along the normal by the distance.
-      const btVector3 on_b = points[i];
-      const btVector3 on_a = on_b + outward_normal * distance;
-      btManifoldPoint p(proxy_inv * on_a, object_inv * on_b, outward_normal, distance);
+      // On B (object): the SGO. On A (proxy): displaced along the normal by the separation.
+      const btVector3 on_b = points_world[i];
+      const btVector3 on_a = on_b + outward_normal_world * separation;
+      btManifoldPoint p(proxy_inv * on_a, object_inv * on_b, outward_normal_world, separation);
       p.m_positionWorldOnA = on_a;
       p.m_positionWorldOnB = on_b;
       applyMaterial(p, mat, warm[i]);

@@ -36,13 +36,14 @@ class GodFingerDynamicsWorld final : public btDiscreteDynamicsWorld {
   SolveHooks* hooks_;
 };
 
-/// The deepest point of a proxy's manifold, expressed from the touched object's side.
+/// The deepest point of a proxy's manifold, expressed from the touched object's side, as Bullet
+/// reports it this step (world frame). `object` is valid for the step only.
 struct TrueContact {
   const btCollisionObject* object = nullptr;
-  btVector3 point{0, 0, 0};           ///< on the object's surface (world, m)
-  btVector3 outward_normal{0, 1, 0};  ///< from the object towards the proxy (world)
-  double distance = 0.0;              ///< signed separation (m)
-  int index = -1;                     ///< index of the point in the manifold
+  btVector3 point_world{0, 0, 0};           ///< c_p: on the object's surface (m)
+  btVector3 outward_normal_world{0, 1, 0};  ///< from the object towards the proxy (unit)
+  double separation = 0.0;                  ///< c_d: signed, negative when penetrating (m)
+  int index = -1;                           ///< index of the point in the manifold
 };
 
 /// Impulses of one contact point from the previous step, to warm-start the solver (N s).
@@ -67,12 +68,13 @@ bool deepestContact(const btPersistentManifold& m, const btCollisionObject* prox
 void keepOnlyPoint(btPersistentManifold& m, int index, const PointMaterial& mat, const WarmStart& warm);
 
 /// Adds `count` points between proxy (body 0) and object (body 1) at the given object-surface
-/// points, all with the true contact's normal and distance, four per new manifold. The new
+/// points (world frame), all with the true contact's normal and separation (paper, Sec. 3.2),
+/// four per new manifold. The new
 /// manifolds are appended to `added` (reserve it: no allocation then). Point i is warm-started
 /// from warm[i]. Friction directions are fixed by the normal, so cached impulses stay meaningful.
 void injectPoints(btDispatcher& dispatcher, const btCollisionObject* proxy,
-                  const btCollisionObject* object, const btVector3* points, int count,
-                  const btVector3& outward_normal, double distance, const PointMaterial& mat,
+                  const btCollisionObject* object, const btVector3* points_world, int count,
+                  const btVector3& outward_normal_world, double separation, const PointMaterial& mat,
                   const WarmStart* warm, std::vector<btPersistentManifold*>& added);
 
 /// The solved impulses of point i of the points injected from manifold `added[first]` on.

@@ -177,14 +177,14 @@ void resetPatch(int n, Patch& out) {
   out.hit = {};
   out.press_dir.setZero();
   out.radial.clear();
-  out.distance.clear();
+  out.d_i.clear();
   out.radial_stop.clear();
   out.sgos.clear();
   out.path_points.clear();
   out.path_offsets.clear();
   if (out.radial.capacity() < static_cast<std::size_t>(n)) {
     out.radial.reserve(kMaxSgo);
-    out.distance.reserve(kMaxSgo);
+    out.d_i.reserve(kMaxSgo);
     out.radial_stop.reserve(kMaxSgo);
     out.sgos.reserve(kMaxSgo);
     out.path_offsets.reserve(kMaxSgo + 1);
@@ -192,7 +192,23 @@ void resetPatch(int n, Patch& out) {
   }
 }
 
+// The input the patch can be computed from: the preconditions of Eq. 1, Eq. 2 and the walk
+// (what users may set is narrower and checked in settings.cpp).
+bool computable(const PatchSettings& s) {
+  const auto finite = [](double x) { return std::isfinite(x); };
+  return s.n_sgo >= kMinSgo && s.n_sgo <= kMaxSgo && finite(s.r_max) && s.r_max >= 0 && finite(s.d0) &&
+         s.d0 > 0 && finite(s.alpha) && s.alpha > 0 && finite(s.stretch_length) && s.stretch_length > 0 &&
+         finite(s.max_stretch_exponent) && s.max_stretch_exponent >= 0 && s.max_stretch_exponent <= 50 &&
+         finite(s.tau_a) && s.tau_a >= 0 && s.tau_a <= std::numbers::pi && finite(s.friction) &&
+         s.friction >= 0 && s.max_face_crossings >= 0 && s.max_face_crossings <= 1000000 &&
+         finite(s.feature_tolerance) && s.feature_tolerance >= 0;
+}
+
 }  // namespace
+
+void clearPatch(Patch& patch) { resetPatch(0, patch); }
+
+double pressDepth(const Vec3& v, const Vec3& outward_normal) { return -v.dot(outward_normal); }
 
 double contactRadius(double press_depth, double r_max, double d0) {
   if (!(press_depth > 0.0) || !(d0 > 0.0)) return 0.0;
@@ -208,41 +224,22 @@ double stretchedDistance(double radius, const Vec3& v, const Vec3& radial_unit,
   return radius * std::exp(e * std::log(s.alpha));
 }
 
-bool validSettings(const PatchSettings& s, const char** why) {
-  auto fail = [why](const char* w) { return *why = w, false; };
-  auto finite = [](double x) { return std::isfinite(x); };
-  if (s.n_sgo < 3 || s.n_sgo > kMaxSgo) return fail("n_sgo must be in 3..64");
-  if (!finite(s.r_max) || s.r_max < 0) return fail("r_max must be finite and >= 0");
-  if (!finite(s.d0) || s.d0 <= 0) return fail("d0 must be finite and > 0");
-  if (!finite(s.alpha) || s.alpha <= 0) return fail("alpha must be finite and > 0");
-  if (!finite(s.stretch_length) || s.stretch_length <= 0) return fail("stretch_length must be > 0");
-  if (!finite(s.max_stretch_exponent) || s.max_stretch_exponent < 0 || s.max_stretch_exponent > 50) {
-    return fail("max_stretch_exponent must be in 0..50");
-  }
-  if (!finite(s.tau_a) || s.tau_a < 0 || s.tau_a > std::numbers::pi) return fail("tau_a must be in 0..pi");
-  if (!finite(s.friction) || s.friction < 0) return fail("friction must be finite and >= 0");
-  if (s.max_face_crossings < 0 || s.max_face_crossings > 1000000) return fail("max_face_crossings out of range");
-  if (!finite(s.feature_tolerance) || s.feature_tolerance < 0) return fail("feature_tolerance must be >= 0");
-  return true;
-}
-
 void computePatch(const Mesh& mesh, const PatchContact& contact, const Vec3& v,
                   const PatchSettings& s, Patch& out) {
   resetPatch(s.n_sgo, out);
   // Step 1: reject what cannot be computed.
-  const char* why = nullptr;
-  const double nlen = contact.outward_normal.norm();
-  if (!validSettings(s, &why) || !contact.point.allFinite() || !std::isfinite(contact.distance) ||
+  const double nlen = contact.outward_normal_local.norm();
+  if (!computable(s) || !contact.point_local.allFinite() || !std::isfinite(contact.separation) ||
       !v.allFinite() || !std::isfinite(nlen) || nlen < 0.5 || mesh.faceCount() == 0) {
     return;
   }
-  const Vec3 n = contact.outward_normal / nlen;
+  const Vec3 n = contact.outward_normal_local / nlen;
   out.valid = true;
   out.press_dir = -n;
   // Step 2: Eq. 1, the contact radius from the press depth.
-  out.press_depth = v.dot(out.press_dir);
+  out.press_depth = pressDepth(v, n);
   out.radius = contactRadius(out.press_depth, s.r_max, s.d0);
-  out.hit = mesh.closestPoint(contact.point, s.feature_tolerance);
+  out.hit = mesh.closestPoint(contact.point_local, s.feature_tolerance);
   if (!(out.radius > 0.0)) return;
   // Step 3: the walk's angular limit, min(tau_a, atan(theta)) over the active tests.
   double limit = std::numbers::pi;
@@ -261,12 +258,12 @@ void computePatch(const Mesh& mesh, const PatchContact& contact, const Vec3& v,
     const bool usable = start.dir.norm() > kDegenerateLength &&
                         faceAllowed(ctx, start.side * mesh.faceNormal(start.face));
     out.radial.push_back(usable ? start.dir : r);
-    out.distance.push_back(usable ? stretchedDistance(out.radius, v, start.dir, s) : 0.0);
+    out.d_i.push_back(usable ? stretchedDistance(out.radius, v, start.dir, s) : 0.0);
     if (!usable) {
       out.radial_stop.push_back(WalkStop::kDropped);
       continue;
     }
-    Sgo sgo = walk(ctx, start, out.hit.point, out.distance.back(), out);
+    Sgo sgo = walk(ctx, start, out.hit.point, out.d_i.back(), out);
     sgo.radial = i;
     out.radial_stop.push_back(sgo.stop);
     out.sgos.push_back(sgo);

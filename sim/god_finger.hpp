@@ -11,12 +11,14 @@
 
 namespace gf::sim {
 
-/// Largest number of SGOs one finger may ask for.
+/// Fewest and most SGOs a god-finger patch has (the paper asks for at least 3).
+inline constexpr int kMinSgo = 3;
 inline constexpr int kMaxSgo = 64;
 
-/// God-finger settings. Defaults suit a fingertip on objects of a few centimetres.
+/// God-finger settings. Defaults suit a fingertip on objects of a few centimetres. Their legal
+/// ranges are in sim/settings.hpp (fingerSettings()).
 struct PatchSettings {
-  int n_sgo = 8;                    ///< number of radial vectors / SGOs (3..kMaxSgo)
+  int n_sgo = 8;                    ///< number of radial vectors / SGOs (kMinSgo..kMaxSgo)
   double r_max = 0.010;             ///< r_max of Eq. 1: largest contact radius (m)
   double d0 = 0.004;                ///< D'_0 of Eq. 1: press depth scale (m)
   double alpha = 2.0;               ///< alpha of Eq. 2: stretch base (>= 1; 1 = no stretch)
@@ -33,9 +35,9 @@ struct PatchSettings {
 
 /// The contact as collision detection reports it, in the object's local frame.
 struct PatchContact {
-  Vec3 point = Vec3::Zero();           ///< c_p: contact point on the object surface (m)
-  Vec3 outward_normal = Vec3::UnitY(); ///< unit surface normal, from the object to the proxy
-  double distance = 0.0;               ///< c_d: signed separation, negative when penetrating (m)
+  Vec3 point_local = Vec3::Zero();            ///< c_p: contact point on the object surface (m)
+  Vec3 outward_normal_local = Vec3::UnitY();  ///< unit surface normal, from the object to the proxy
+  double separation = 0.0;  ///< c_d: signed separation, negative when penetrating (m)
 };
 
 /// Why the walk of one radial vector ended.
@@ -58,8 +60,9 @@ struct Sgo {
   WalkStop stop = WalkStop::kDistance;
 };
 
-/// Result of one patch computation. Reused between calls: after the first call with a given
-/// n_sgo and path length, computing into the same Patch does not allocate.
+/// Result of one patch computation, in the object's local frame (the mesh's frame). Reused
+/// between calls: after the first call with a given n_sgo and path length, computing into the
+/// same Patch does not allocate.
 struct Patch {
   bool valid = false;                      ///< false when the input was rejected
   double press_depth = 0.0;                ///< v . c_n with c_n into the object (m)
@@ -67,12 +70,20 @@ struct Patch {
   SurfacePoint hit;                        ///< contact point on the mesh with its feature
   Vec3 press_dir = Vec3::Zero();           ///< c_n of the paper: -outward_normal
   std::vector<Vec3> radial;                ///< r_i: unit radial vectors, on their start face
-  std::vector<double> distance;            ///< d_i of Eq. 2 (m)
+  std::vector<double> d_i;                 ///< d_i of Eq. 2: length walked along r_i (m)
   std::vector<WalkStop> radial_stop;       ///< how each radial vector's walk ended
   std::vector<Sgo> sgos;                   ///< SGOs of the radial vectors not dropped
   std::vector<Vec3> path_points;           ///< walked paths, concatenated (m)
   std::vector<std::int32_t> path_offsets;  ///< SGO k's path: [offsets[k], offsets[k+1])
 };
+
+/// Empties `patch`: not valid, no radius, no SGO, keeping its storage. Does not allocate.
+void clearPatch(Patch& patch);
+
+/// The press depth v . c_n (m) of Eq. 1, with c_n = -outward_normal the press direction: > 0
+/// while the device is pressed into the object, <= 0 when it pulls away. Both vectors in one
+/// frame, `outward_normal` of unit length.
+double pressDepth(const Vec3& v, const Vec3& outward_normal);
 
 /// Eq. 1: contact radius (m) for press depth v . c_n (m). Zero when not pressing.
 double contactRadius(double press_depth, double r_max, double d0);
@@ -82,13 +93,12 @@ double contactRadius(double press_depth, double r_max, double d0);
 double stretchedDistance(double radius, const Vec3& v, const Vec3& radial_unit,
                          const PatchSettings& s);
 
-/// True when the settings are usable; otherwise `why` says which field is wrong.
-bool validSettings(const PatchSettings& s, const char** why);
-
 /// Computes the god-finger patch: Eq. 1 radius, n radial vectors mapped onto the faces around
 /// the contact (dropped beyond the thresholds), Eq. 2 distances and the Algorithm 1 walk.
-/// `v` is p_I - p_GO (device minus god-object, m). Non-finite input or invalid settings give
-/// `valid == false` and no SGO. No radius (not pressing) gives no SGO. Any thread.
+/// `v` is p_I - p_GO (device minus god-object, m). Input it cannot compute (non-finite numbers,
+/// n_sgo outside kMinSgo..kMaxSgo, d0, stretch_length or alpha not > 0, a zero normal) gives
+/// `valid == false` and no SGO; the legal ranges users may give are narrower (settings.hpp). No
+/// radius (not pressing) gives no SGO. Any thread.
 void computePatch(const Mesh& mesh, const PatchContact& contact, const Vec3& v,
                   const PatchSettings& settings, Patch& out);
 

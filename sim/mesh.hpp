@@ -28,7 +28,7 @@ struct SurfacePoint {
   Feature feature = Feature::kFace;
   int feature_index = -1;      ///< edge k (corner k to k+1) or corner k of `face`; -1 on a face
   Vec3 point = Vec3::Zero();   ///< closest point, snapped onto the edge or vertex (metres)
-  double distance = 0.0;       ///< distance from the query point to `point` (metres)
+  double query_distance = 0.0;  ///< from the query point to `point` (metres)
 };
 
 /// Link from one triangle edge to the triangle across it.

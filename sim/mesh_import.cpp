@@ -55,4 +55,13 @@ Mesh loadMesh(const std::string& path, double scale, const MeshBuildSettings& se
   return mesh;
 }
 
+std::shared_ptr<const Mesh> MeshCache::load(const std::string& path, double scale) {
+  std::shared_ptr<const Mesh>& slot = meshes_[{path, scale}];
+  if (!slot) {
+    slot = std::make_shared<const Mesh>(loadMesh(path, scale));
+    ++files_read_;
+  }
+  return slot;
+}
+
 }  // namespace gf::sim

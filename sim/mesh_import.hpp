@@ -1,8 +1,11 @@
 // Mesh files (OBJ, PLY, STL, OFF, glTF, and the rest assimp reads) into welded Meshes.
 #pragma once
 
+#include <map>
+#include <memory>
 #include <stdexcept>
 #include <string>
+#include <utility>
 
 #include "sim/mesh.hpp"
 
@@ -28,5 +31,19 @@ RawMesh readMeshFile(const std::string& path, double scale = 1.0);
 /// readMeshFile followed by buildMesh; throws MeshLoadError also when nothing is left after
 /// dropping degenerate triangles.
 Mesh loadMesh(const std::string& path, double scale = 1.0, const MeshBuildSettings& settings = {});
+
+/// Meshes loaded from files, one per (path, scale): a file a run uses several times is read
+/// once. Load time only; one thread.
+class MeshCache {
+ public:
+  /// The mesh of `path` at `scale`, loaded on the first call (throws MeshLoadError).
+  std::shared_ptr<const Mesh> load(const std::string& path, double scale);
+  /// Files read so far.
+  int filesRead() const { return files_read_; }
+
+ private:
+  std::map<std::pair<std::string, double>, std::shared_ptr<const Mesh>> meshes_;
+  int files_read_ = 0;
+};
 
 }  // namespace gf::sim

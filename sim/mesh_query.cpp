@@ -153,7 +153,7 @@ SurfacePoint Mesh::closestPoint(const Vec3& p, double feature_tol) const {
     stack[top++] = dl < dr ? l : r;
   }
   classifyWithTolerance(*this, feature_tol, best);
-  best.distance = (best.point - p).norm();
+  best.query_distance = (best.point - p).norm();
   return best;
 }
 

@@ -68,7 +68,7 @@ Mesh revolve(const std::vector<std::pair<double, double>>& profile, int segments
 
 Mesh tessellateSphere(double radius, int subdivisions) {
   requirePositive(radius, "sphere radius");
-  requireRange(subdivisions, 0, 7, "sphere subdivisions");
+  requireRange(subdivisions, 0, kMaxSphereSubdivisions, "sphere subdivisions");
   const double t = (1.0 + std::sqrt(5.0)) / 2.0;
   std::vector<Vec3> pos = {{-1, t, 0}, {1, t, 0}, {-1, -t, 0}, {1, -t, 0}, {0, -1, t}, {0, 1, t},
                            {0, -1, -t}, {0, 1, -t}, {t, 0, -1}, {t, 0, 1}, {-t, 0, -1}, {-t, 0, 1}};
@@ -101,7 +101,7 @@ Mesh tessellateSphere(double radius, int subdivisions) {
 
 Mesh tessellateBox(const Vec3& h, int segments) {
   requirePositive(h.minCoeff(), "box half extent");
-  requireRange(segments, 1, 256, "box segments");
+  requireRange(segments, kMinBoxSegments, kMaxBoxSegments, "box segments");
   std::vector<Vec3> pos;
   Tris tris;
   const Vec3 x = Vec3::UnitX() * 2 * h.x(), y = Vec3::UnitY() * 2 * h.y(), z = Vec3::UnitZ() * 2 * h.z();
@@ -118,7 +118,7 @@ Mesh tessellateBox(const Vec3& h, int segments) {
 Mesh tessellateCylinder(double radius, double half_height, int segments) {
   requirePositive(radius, "cylinder radius");
   requirePositive(half_height, "cylinder half height");
-  requireRange(segments, 3, 4096, "cylinder segments");
+  requireRange(segments, kMinCylinderSegments, kMaxRoundSegments, "cylinder segments");
   const double arc = 2.0 * std::numbers::pi * radius / segments;
   const int rings = std::clamp(static_cast<int>(std::lround(2.0 * half_height / arc)), 1, 4096);
   std::vector<std::pair<double, double>> profile = {{0.0, -half_height}};
@@ -130,7 +130,7 @@ Mesh tessellateCylinder(double radius, double half_height, int segments) {
 Mesh tessellateCapsule(double radius, double half_height, int segments) {
   requirePositive(radius, "capsule radius");
   requirePositive(half_height, "capsule half height");
-  requireRange(segments, 4, 4096, "capsule segments");
+  requireRange(segments, kMinCapsuleSegments, kMaxRoundSegments, "capsule segments");
   const int cap_rings = std::max(1, segments / 4);
   std::vector<std::pair<double, double>> profile;
   for (int i = 0; i <= cap_rings; ++i) {  // bottom hemisphere, pole to equator
@@ -148,7 +148,7 @@ Mesh tessellateCapsule(double radius, double half_height, int segments) {
 
 Mesh tessellatePlane(double half_size, int segments) {
   requirePositive(half_size, "plane half size");
-  requireRange(segments, 1, 1024, "plane segments");
+  requireRange(segments, kMinPlaneSegments, kMaxPlaneSegments, "plane segments");
   std::vector<Vec3> pos;
   Tris tris;
   addGrid(Vec3(-half_size, 0, half_size), Vec3(2 * half_size, 0, 0), Vec3(0, 0, -2 * half_size),

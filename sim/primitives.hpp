@@ -6,8 +6,14 @@
 
 namespace gf::sim {
 
-/// Icosphere of `radius` (m) centred at the origin; `subdivisions` (0..7) splits each of the
-/// 20 faces into 4^subdivisions triangles.
+/// Tessellation limits of each primitive (the resolutions the functions below accept).
+inline constexpr int kMaxSphereSubdivisions = 7;
+inline constexpr int kMinBoxSegments = 1, kMaxBoxSegments = 256;
+inline constexpr int kMinCylinderSegments = 3, kMinCapsuleSegments = 4, kMaxRoundSegments = 4096;
+inline constexpr int kMinPlaneSegments = 1, kMaxPlaneSegments = 1024;
+
+/// Icosphere of `radius` (m) centred at the origin; `subdivisions` (0..kMaxSphereSubdivisions)
+/// splits each of the 20 faces into 4^subdivisions triangles.
 Mesh tessellateSphere(double radius, int subdivisions);
 
 /// Box with the given half extents (m) centred at the origin; each face is a

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <Eigen/Geometry>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -46,6 +47,9 @@ struct BodyDesc {
   double half_height = 0.05;                 ///< cylinder / capsule half height along y (m)
   std::string mesh_path;                     ///< hull and concave meshes: file to load
   double mesh_scale = 1.0;                   ///< factor from mesh file units to metres
+  /// The file's mesh, welded, times mesh_scale, in the file's frame: loaded once (MeshCache)
+  /// and shared by the World and the renderer. Null: loaded from mesh_path where needed.
+  std::shared_ptr<const Mesh> mesh;
   int walk_resolution = 0;                   ///< tessellation of the walk mesh; 0: per shape default
   double mass = 0.1;                         ///< kg; 0 makes the body static
   double friction = 0.8;                     ///< Coulomb coefficient against other bodies
@@ -82,6 +86,10 @@ struct SceneDesc {
   std::vector<FingerDesc> fingers;
   double duration = 5.0;  ///< simulated seconds
 };
+
+/// The mesh of a mesh-shaped body: `body.mesh`, or the file loaded now when that is null
+/// (throws MeshLoadError). Load-time only.
+std::shared_ptr<const Mesh> bodyMesh(const BodyDesc& body);
 
 /// Each finger's device track, in finger order: what runHapticLoop plays back.
 inline std::vector<DeviceTrack> deviceTracks(const SceneDesc& scene) {

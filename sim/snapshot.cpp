@@ -10,7 +10,7 @@ void interpolateSnapshot(const Snapshot& a, const Snapshot& b, double time, Snap
   out = b;
   out.time = time;
   for (std::size_t i = 0; i < out.bodies.size() && i < a.bodies.size(); ++i) {
-    BodySnapshot& o = out.bodies[i];
+    Pose& o = out.bodies[i];
     o.position = (1 - w) * a.bodies[i].position + w * b.bodies[i].position;
     o.orientation = a.bodies[i].orientation.slerp(w, b.bodies[i].orientation);
   }
@@ -24,13 +24,13 @@ void interpolateSnapshot(const Snapshot& a, const Snapshot& b, double time, Snap
     // Patch points ride with their body from b's pose to the interpolated one.
     for (ContactSnapshot& c : o.contacts) {
       if (c.body < 0 || static_cast<std::size_t>(c.body) >= out.bodies.size()) continue;
-      const BodySnapshot &from = b.bodies[c.body], &to = out.bodies[c.body];
+      const Pose &from = b.bodies[c.body], &to = out.bodies[c.body];
       const Eigen::Quaterniond turn = to.orientation * from.orientation.conjugate();
       const auto carry = [&](Vec3& p) { p = turn * (p - from.position) + to.position; };
-      carry(c.point);
-      c.outward_normal = turn * c.outward_normal;
-      for (Vec3& p : c.sgos) carry(p);
-      for (Vec3& p : c.path_points) carry(p);
+      carry(c.point_world);
+      c.outward_normal_world = turn * c.outward_normal_world;
+      for (Vec3& p : c.sgos_world) carry(p);
+      for (Vec3& p : c.path_points_world) carry(p);
     }
   }
 }

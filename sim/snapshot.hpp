@@ -1,5 +1,6 @@
 // Immutable plain-data picture of the world at one instant: what crosses from the haptic
 // thread to the render thread and the recorders. No Bullet types, no pointers into the World.
+// Every position and direction in a Snapshot is in the world frame.
 #pragma once
 
 #include <Eigen/Geometry>
@@ -10,23 +11,26 @@
 
 namespace gf::sim {
 
-/// One body's pose.
-struct BodySnapshot {
-  Vec3 position = Vec3::Zero();  ///< centre of the description frame (m)
+/// A rigid pose: a point p of the posed frame is at orientation * p + position in the world.
+struct Pose {
+  Vec3 position = Vec3::Zero();  ///< origin of the frame (m)
   Eigen::Quaterniond orientation = Eigen::Quaterniond::Identity();
+  /// A point given in this frame, in the world (m).
+  Vec3 toWorld(const Vec3& local) const { return orientation * local + position; }
 };
 
-/// One contact of one finger with one body, with its patch in world coordinates.
+/// One contact of one finger with one body, with its patch, in the world frame.
 struct ContactSnapshot {
-  int body = -1;                      ///< index into SceneDesc::bodies
-  Vec3 point = Vec3::Zero();          ///< true contact point on the body (m)
-  Vec3 outward_normal = Vec3::UnitY();///< from the body towards the proxy
-  double distance = 0.0;              ///< signed separation (m)
-  double radius = 0.0;                ///< Eq. 1 radius (m)
-  Feature feature = Feature::kFace;
-  std::vector<Vec3> sgos;             ///< SGO positions (m)
-  std::vector<Vec3> path_points;      ///< walked paths, concatenated (m)
-  std::vector<std::int32_t> path_offsets;
+  int body = -1;                             ///< index into SceneDesc::bodies
+  Vec3 point_world = Vec3::Zero();           ///< c_p: the true contact point on the body (m)
+  Vec3 outward_normal_world = Vec3::UnitY(); ///< from the body towards the proxy (unit)
+  double separation = 0.0;                   ///< c_d: signed, negative when penetrating (m)
+  double press_depth = 0.0;                  ///< v . c_n of Eq. 1 (m): > 0 while pressing
+  double radius = 0.0;                       ///< r of Eq. 1 (m); 0 without a patch
+  Feature feature = Feature::kFace;          ///< where c_p lies on the walk mesh
+  std::vector<Vec3> sgos_world;              ///< SGO positions (m)
+  std::vector<Vec3> path_points_world;       ///< walked paths, concatenated (m)
+  std::vector<std::int32_t> path_offsets;    ///< SGO k's path: [offsets[k], offsets[k+1])
 };
 
 /// One finger.
@@ -50,7 +54,7 @@ struct HapticTimings {
 struct Snapshot {
   double time = 0.0;  ///< s
   long step = 0;
-  std::vector<BodySnapshot> bodies;
+  std::vector<Pose> bodies;           ///< each body's description frame
   std::vector<FingerSnapshot> fingers;
   HapticTimings timings;
 };

@@ -4,9 +4,13 @@
 
 #include <array>
 #include <stdexcept>
+#include <thread>
 
+#include "sim/assert.hpp"
 #include "sim/body_factory.hpp"
 #include "sim/contact_injection.hpp"
+#include "sim/contact_record.hpp"
+#include "sim/settings.hpp"
 
 namespace gf::sim {
 namespace {
@@ -30,12 +34,13 @@ struct Body {
 
 // One finger's contact with one body during the current step.
 struct FingerContact {
-  int body = -1;
+  ContactRecord record;  // body frame: what snapshots show, kept until the next step
+  // Bullet's side, valid during the solve only (manifolds are Bullet's and change every step).
   TrueContact truth;
-  btPersistentManifold* manifold = nullptr;  // Bullet's, holding the true point
-  Patch patch;
-  std::array<btVector3, kMaxSgo> sgo_world;
-  std::array<WarmStart, kMaxSgo> sgo_warm;  // by SGO, for this step's solve
+  Vec3 v_local = Vec3::Zero();               // p_I - p_GO in the body frame (Eq. 1, Eq. 2)
+  btPersistentManifold* manifold = nullptr;  // holds the true point; null outside the solve
+  std::array<btVector3, kMaxSgo> sgo_world;  // where the solver sees the SGOs this step
+  std::array<WarmStart, kMaxSgo> sgo_warm;   // by SGO, for this step's solve
   int sgo_count = 0;
   int first_injected = 0;  // index of its first manifold in World::Impl::injected
 };
@@ -65,32 +70,6 @@ struct SavedState {
   btVector3 linear, angular;
 };
 
-void requireFinger(bool ok, const FingerDesc& f, const std::string& what) {
-  if (!ok) throw std::invalid_argument("finger '" + f.name + "': " + what);
-}
-
-void validateFinger(const FingerDesc& f) {
-  const char* why = nullptr;
-  requireFinger(f.patch.n_sgo == 0 || validSettings(f.patch, &why), f, why ? why : "");
-  requireFinger(f.coupling.stiffness > 0 && std::isfinite(f.coupling.stiffness), f,
-                "coupling stiffness must be finite and > 0");
-  requireFinger(f.coupling.damping >= 0 && std::isfinite(f.coupling.damping), f,
-                "coupling damping must be finite and >= 0");
-  requireFinger(f.coupling.max_force > 0 && std::isfinite(f.coupling.max_force), f,
-                "coupling max_force must be finite and > 0");
-  requireFinger(f.proxy.radius > 0 && f.proxy.mass > 0 && f.proxy.contact_stiffness > 0 &&
-                    f.proxy.contact_damping >= 0 && std::isfinite(f.proxy.radius + f.proxy.mass +
-                    f.proxy.contact_stiffness + f.proxy.contact_damping), f,
-                "proxy radius, mass and contact stiffness must be finite and > 0");
-  for (std::size_t k = 0; k < f.device.keyframes.size(); ++k) {
-    const auto& kf = f.device.keyframes[k];
-    requireFinger(std::isfinite(kf.time) && kf.position.allFinite(), f,
-                  "device keyframe " + std::to_string(k) + " is not finite");
-    requireFinger(k == 0 || kf.time > f.device.keyframes[k - 1].time, f,
-                  "device keyframe times must increase (keyframe " + std::to_string(k) + ")");
-  }
-}
-
 }  // namespace
 
 struct World::Impl final : SolveHooks {
@@ -102,7 +81,10 @@ struct World::Impl final : SolveHooks {
   void addBody(int index, const BodyDesc& d);
   void addFinger(int index, const FingerDesc& d);
   void handleProxyManifold(btPersistentManifold& m, const btCollisionObject* proxy);
+  void recordContact(const Finger& f, FingerContact& c) const;
   void computeContactPatch(Finger& f, FingerContact& c);
+  Pose bodyFrame(int body) const;
+  bool ownedHere() const { return std::this_thread::get_id() == owner; }
   void rememberImpulses(Finger& f);
   PatchSettings effectivePatch(const Finger& f) const;
   void saveStates();
@@ -111,6 +93,9 @@ struct World::Impl final : SolveHooks {
   std::vector<btRigidBody*> allRigidBodies() const;
 
   SceneDesc desc;
+  std::thread::id owner = std::this_thread::get_id();
+  // Bullet's parts, each declared after what it points to: the world is destroyed first, and
+  // ~Impl removes every body from it before that.
   btDefaultCollisionConfiguration config;
   btCollisionDispatcher dispatcher{&config};
   btDbvtBroadphase broadphase;
@@ -129,6 +114,7 @@ struct World::Impl final : SolveHooks {
 };
 
 World::Impl::Impl(const SceneDesc& d) : desc(d) {
+  requireValid(desc);
   btGImpactCollisionAlgorithm::registerAlgorithm(&dispatcher);
   world.setGravity(desc.effects.gravity ? toBt(desc.world.gravity) : btVector3(0, 0, 0));
   btContactSolverInfo& info = world.getSolverInfo();
@@ -153,6 +139,7 @@ World::Impl::Impl(const SceneDesc& d) : desc(d) {
 
 World::Impl::~Impl() {
   for (btRigidBody* r : allRigidBodies()) world.removeRigidBody(r);
+  GF_ASSERT(world.getNumCollisionObjects() == 0 && "every body leaves the Bullet world before it is destroyed");
 }
 
 void World::Impl::addBody(int index, const BodyDesc& d) {
@@ -171,7 +158,6 @@ void World::Impl::addBody(int index, const BodyDesc& d) {
 }
 
 void World::Impl::addFinger(int index, const FingerDesc& d) {
-  validateFinger(d);
   Finger& f = fingers[index];
   f.patch = d.patch;
   f.device = d.device.sample(0.0);
@@ -222,13 +208,11 @@ void World::Impl::handleProxyManifold(btPersistentManifold& m, const btCollision
     return;
   }
   FingerContact& c = f.contacts[f.contact_count++];
-  c.body = truth.object->getUserIndex();
   c.truth = truth;
   c.manifold = &m;
   c.sgo_count = 0;
-  c.patch.valid = false;
-  c.patch.sgos.clear();
-  if (desc.effects.god_finger && f.patch.n_sgo > 0 && truth.distance <= 0.0) {
+  recordContact(f, c);
+  if (desc.effects.god_finger && f.patch.n_sgo > 0 && truth.separation <= 0.0) {
     computeContactPatch(f, c);
   }
   // The total contact stiffness and damping are shared by the true contact and its SGOs.
@@ -237,15 +221,15 @@ void World::Impl::handleProxyManifold(btPersistentManifold& m, const btCollision
                           desc.effects.friction ? f.patch.friction : 0.0};
   // Warm start from the previous step's impulses of the same body (Bullet scales them).
   const int slot = static_cast<int>(&c - f.contacts.data());
-  const ContactMemory* mem = f.memory[slot].body == c.body ? &f.memory[slot] : nullptr;
+  const ContactMemory* mem = f.memory[slot].body == c.record.body ? &f.memory[slot] : nullptr;
   keepOnlyPoint(m, truth.index, mat, mem ? mem->truth : WarmStart{});
   if (c.sgo_count > 0) {
     for (int i = 0; i < c.sgo_count; ++i) {
-      c.sgo_warm[i] = mem ? mem->radial[c.patch.sgos[i].radial] : WarmStart{};
+      c.sgo_warm[i] = mem ? mem->radial[c.record.patch.sgos[i].radial] : WarmStart{};
     }
     c.first_injected = static_cast<int>(injected.size());
     injectPoints(dispatcher, proxy, truth.object, c.sgo_world.data(), c.sgo_count,
-                 truth.outward_normal, truth.distance, mat, c.sgo_warm.data(), injected);
+                 truth.outward_normal_world, truth.separation, mat, c.sgo_warm.data(), injected);
     counters.sgos_injected += c.sgo_count;
   }
 }
@@ -257,30 +241,51 @@ void World::Impl::rememberImpulses(Finger& f) {
       mem.body = -1;
       continue;
     }
-    const FingerContact& c = f.contacts[k];
-    mem.body = c.body;
+    FingerContact& c = f.contacts[k];
+    GF_ASSERT(c.manifold != nullptr && "impulses are read between beforeSolve and afterSolve only");
+    mem.body = c.record.body;
     mem.truth = solvedImpulses(c.manifold->getContactPoint(0));
     mem.radial.fill(WarmStart{});
     for (int i = 0; i < c.sgo_count; ++i) {
-      mem.radial[c.patch.sgos[i].radial] = solvedImpulses(injected, c.first_injected, i);
+      mem.radial[c.record.patch.sgos[i].radial] = solvedImpulses(injected, c.first_injected, i);
     }
+    c.manifold = nullptr;  // Bullet may free it at the next collision pass
+    c.truth.object = nullptr;
   }
 }
 
-void World::Impl::computeContactPatch(Finger& f, FingerContact& c) {
-  const Mesh& mesh = *bodies[c.body].shapes.walk_mesh;
+// The contact in the touched body's frame (the frame of its walk mesh), with the press depth
+// of Eq. 1; no patch yet.
+void World::Impl::recordContact(const Finger& f, FingerContact& c) const {
   const btTransform& t = c.truth.object->getWorldTransform();
   const btMatrix3x3 to_local = t.getBasis().transpose();
   const btVector3 v_world = toBt(f.device.position) - f.proxy->getCenterOfMassPosition();
-  const PatchContact local{toEigen(t.invXform(c.truth.point)),
-                           toEigen(to_local * c.truth.outward_normal), c.truth.distance};
-  computePatch(mesh, local, toEigen(to_local * v_world), effectivePatch(f), c.patch);
-  if (!c.patch.valid) {
+  c.v_local = toEigen(to_local * v_world);
+  ContactRecord& r = c.record;
+  r.body = c.truth.object->getUserIndex();
+  r.contact = {toEigen(t.invXform(c.truth.point_world)), toEigen(to_local * c.truth.outward_normal_world),
+               c.truth.separation};
+  r.press_depth = pressDepth(c.v_local, r.contact.outward_normal_local.normalized());
+  clearPatch(r.patch);
+}
+
+void World::Impl::computeContactPatch(Finger& f, FingerContact& c) {
+  ContactRecord& r = c.record;
+  const Mesh& mesh = *bodies[r.body].shapes.walk_mesh;
+  computePatch(mesh, r.contact, c.v_local, effectivePatch(f), r.patch);
+  if (!r.patch.valid) {
     ++counters.invalid_patches;
     return;
   }
-  c.sgo_count = static_cast<int>(c.patch.sgos.size());
-  for (int i = 0; i < c.sgo_count; ++i) c.sgo_world[i] = t * toBt(c.patch.sgos[i].position);
+  const btTransform& t = c.truth.object->getWorldTransform();
+  c.sgo_count = static_cast<int>(r.patch.sgos.size());
+  for (int i = 0; i < c.sgo_count; ++i) c.sgo_world[i] = t * toBt(r.patch.sgos[i].position);
+}
+
+Pose World::Impl::bodyFrame(int body) const {
+  const btTransform& t = bodies[body].rigid->getWorldTransform();
+  const btQuaternion q = t.getRotation();
+  return {toEigen(t.getOrigin()), Eigen::Quaterniond(q.w(), q.x(), q.y(), q.z())};
 }
 
 void World::Impl::afterSolve() {
@@ -330,9 +335,17 @@ void World::Impl::restoreStates() {
 }
 
 World::World(const SceneDesc& desc) : impl_(std::make_unique<Impl>(desc)) {}
-World::~World() = default;
+
+World::~World() {
+  GF_ASSERT(impl_->ownedHere() && "destroy a World on the thread that built it (the haptic thread)");
+}
+
+// Every call into a World checks that it comes from the thread that built it.
+#define GF_ASSERT_OWNER() \
+  GF_ASSERT(impl_->ownedHere() && "call a World only from the thread that built it (the haptic thread); other threads read Snapshots")
 
 void World::step(double dt, std::span<const DeviceSample> devices) {
+  GF_ASSERT_OWNER();
   Impl& w = *impl_;
   for (std::size_t i = 0; i < w.fingers.size(); ++i) {
     Finger& f = w.fingers[i];
@@ -360,11 +373,20 @@ void World::step(double dt, std::span<const DeviceSample> devices) {
   }
 }
 
-double World::time() const { return impl_->time; }
-const SceneDesc& World::desc() const { return impl_->desc; }
-const WorldCounters& World::counters() const { return impl_->counters; }
+double World::time() const {
+  GF_ASSERT_OWNER();
+  return impl_->time;
+}
 
-BodySnapshot World::bodyPose(int body) const {
+const SceneDesc& World::desc() const { return impl_->desc; }  // immutable: any thread
+
+const WorldCounters& World::counters() const {
+  GF_ASSERT_OWNER();
+  return impl_->counters;
+}
+
+Pose World::bodyPose(int body) const {
+  GF_ASSERT_OWNER();
   const Body& b = impl_->bodies[body];
   const btTransform t = b.rigid->getWorldTransform() * b.shapes.desc_from_body.inverse();
   const btQuaternion q = t.getRotation();
@@ -372,20 +394,27 @@ BodySnapshot World::bodyPose(int body) const {
 }
 
 Vec3 World::bodyLinearVelocity(int body) const {
+  GF_ASSERT_OWNER();
   return toEigen(impl_->bodies[body].rigid->getLinearVelocity());
 }
 
 Vec3 World::bodyAngularVelocity(int body) const {
+  GF_ASSERT_OWNER();
   return toEigen(impl_->bodies[body].rigid->getAngularVelocity());
 }
 
 Vec3 World::proxyPosition(int finger) const {
+  GF_ASSERT_OWNER();
   return toEigen(impl_->fingers[finger].proxy->getCenterOfMassPosition());
 }
 
-Vec3 World::couplingForce(int finger) const { return impl_->fingers[finger].force; }
+Vec3 World::couplingForce(int finger) const {
+  GF_ASSERT_OWNER();
+  return impl_->fingers[finger].force;
+}
 
 int World::sgoCount(int finger) const {
+  GF_ASSERT_OWNER();
   const Finger& f = impl_->fingers[finger];
   int n = 0;
   for (int k = 0; k < f.contact_count; ++k) n += f.contacts[k].sgo_count;
@@ -393,6 +422,7 @@ int World::sgoCount(int finger) const {
 }
 
 double World::mechanicalEnergy() const {
+  GF_ASSERT_OWNER();
   double e = 0.0;
   for (const btRigidBody* r : impl_->allRigidBodies()) {
     if (r->getInvMass() == 0.0) continue;
@@ -406,18 +436,20 @@ double World::mechanicalEnergy() const {
 }
 
 void World::applyTorqueImpulse(int body, const Vec3& impulse) {
+  GF_ASSERT_OWNER();
   impl_->bodies[body].rigid->applyTorqueImpulse(toBt(impulse));
 }
 
 void World::setPatchSettings(int finger, const PatchSettings& settings) {
-  const char* why = nullptr;
-  if (settings.n_sgo != 0 && !validSettings(settings, &why)) {
-    throw std::invalid_argument("finger '" + impl_->desc.fingers[finger].name + "': " + why);
+  GF_ASSERT_OWNER();
+  if (std::optional<FieldError> e = validatePatch(settings)) {
+    throw DescriptionError("finger '" + impl_->desc.fingers[finger].name + "'", *e);
   }
   impl_->fingers[finger].patch = settings;
 }
 
 void World::snapshot(Snapshot& out) const {
+  GF_ASSERT_OWNER();
   const Impl& w = *impl_;
   out.time = w.time;
   out.step = w.counters.steps;
@@ -433,23 +465,10 @@ void World::snapshot(Snapshot& out) const {
     fs.feedback_force = w.desc.effects.force_feedback ? Vec3(-f.force) : Vec3::Zero();
     fs.sgo_count = sgoCount(static_cast<int>(i));
     fs.contacts.resize(f.contact_count);
+    // One pose per contact: the body's now, after the step that computed its patch.
     for (int k = 0; k < f.contact_count; ++k) {
-      const FingerContact& c = f.contacts[k];
-      ContactSnapshot& cs = fs.contacts[k];
-      const btTransform& t = c.truth.object->getWorldTransform();
-      cs.body = c.body;
-      cs.point = toEigen(c.truth.point);
-      cs.outward_normal = toEigen(c.truth.outward_normal);
-      cs.distance = c.truth.distance;
-      cs.radius = c.patch.valid ? c.patch.radius : 0.0;
-      cs.feature = c.patch.hit.feature;
-      cs.sgos.clear();
-      cs.path_points.clear();
-      cs.path_offsets.clear();
-      if (c.sgo_count == 0) continue;
-      for (int s = 0; s < c.sgo_count; ++s) cs.sgos.push_back(toEigen(c.sgo_world[s]));
-      for (const Vec3& p : c.patch.path_points) cs.path_points.push_back(toEigen(t * toBt(p)));
-      cs.path_offsets = c.patch.path_offsets;
+      const ContactRecord& r = f.contacts[k].record;
+      toContactSnapshot(r, w.bodyFrame(r.body), fs.contacts[k]);
     }
   }
 }

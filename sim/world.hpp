@@ -1,5 +1,7 @@
 // The Bullet world with god-finger contacts: bodies, proxies, couplings and SGO injection.
-// One thread owns a World: every call below must come from that thread (the haptic thread).
+// One thread owns a World: the thread that builds it (the haptic thread). Every call below but
+// desc() must come from that thread; debug and sanitizer builds assert it. Other threads read
+// Snapshots.
 #pragma once
 
 #include <memory>
@@ -20,8 +22,9 @@ struct WorldCounters {
 
 class World {
  public:
-  /// Builds bodies, proxies and effects from the description. Throws std::invalid_argument
-  /// (naming body or finger and field) for a description that cannot be built. Allocates.
+  /// Builds bodies, proxies and effects from the description; the calling thread owns the
+  /// World. Throws DescriptionError (settings.hpp: body or finger, field, reason) for a
+  /// description that cannot be built. Allocates.
   explicit World(const SceneDesc& desc);
   ~World();
   World(const World&) = delete;
@@ -33,14 +36,16 @@ class World {
 
   /// Simulated time (s).
   double time() const;
+  /// The description it was built from (immutable: any thread).
   const SceneDesc& desc() const;
   const WorldCounters& counters() const;
 
-  /// Fills `out` (reusing its storage) with the current state.
+  /// Fills `out` (reusing its storage) with the current state: bodies, fingers, and each
+  /// contact's record of the last step at its body's current pose.
   void snapshot(Snapshot& out) const;
 
   /// Pose of body i's description frame; linear (m/s) and angular (rad/s) velocity.
-  BodySnapshot bodyPose(int body) const;
+  Pose bodyPose(int body) const;
   Vec3 bodyLinearVelocity(int body) const;
   Vec3 bodyAngularVelocity(int body) const;
   /// Proxy centre and coupling force (N) of finger i.
@@ -54,6 +59,7 @@ class World {
   /// Applies an angular impulse (N m s, world frame) to body i now.
   void applyTorqueImpulse(int body, const Vec3& impulse);
   /// Sets the god-finger settings of finger i from the next step on (n_sgo 0: god-object).
+  /// Throws DescriptionError naming the finger and the first setting that is not legal.
   void setPatchSettings(int finger, const PatchSettings& settings);
 
  private:

@@ -8,9 +8,9 @@
 #include <fstream>
 #include <sstream>
 
-#include "app/live.hpp"
-#include "app/session.hpp"
-#include "tests/app/scene_run.hpp"
+#include "sim/haptic_loop.hpp"
+#include "sim/mesh_import.hpp"
+#include "sim/world.hpp"
 
 namespace gf::app {
 namespace {
@@ -175,75 +175,6 @@ TEST(BundledScenes, EveryOneLoadsAndRuns) {
     EXPECT_EQ(stats.steps, 50) << p;
     EXPECT_EQ(world.counters().nan_recoveries, 0) << p;
   }
-}
-
-std::string readFile(const fs::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
-
-TEST(Session, SameSceneTwiceGivesByteIdenticalTrace) {
-  SessionDesc s = testing::bundled("fig7-side-pick");
-  s.scene.duration = 1.0;
-  const fs::path a = fs::temp_directory_path() / "gf_session_a", b = fs::temp_directory_path() / "gf_session_b";
-  runSession(s, {a.string(), false, false, false, "", ""});
-  runSession(s, {b.string(), false, false, false, "", ""});
-  const std::string ta = readFile(a / "trace.csv");
-  EXPECT_GT(ta.size(), 1000u);
-  EXPECT_EQ(ta, readFile(b / "trace.csv"));
-  EXPECT_TRUE(fs::exists(a / "summary.json"));
-  EXPECT_EQ(ta.substr(0, ta.find('\n')),
-            "t,box.px,box.py,box.pz,box.qx,box.qy,box.qz,box.qw,left.fx,left.fy,left.fz,left.n_sgo,"
-            "right.fx,right.fy,right.fz,right.n_sgo");
-}
-
-TEST(Live, AnswersEachLineAndReportsBadCommands) {
-  LiveOptions o;
-  o.scene_path = std::string(GF_SOURCE_DIR) + "/assets/scenes/fig7-side-pick.toml";
-  o.out_dir = (fs::temp_directory_path() / "gf_live").string();
-  std::istringstream in(
-      "step 600\nset fingers.left.n_sgo=0\nmove right 0.05 0.05 0 0.1\nstep 10\nsnapshot s1\n"
-      "jump\nset fingers.left.n_sgo=2\nquit\nstep\n");
-  std::ostringstream out;
-  EXPECT_EQ(runLive(o, in, out), 1) << "two bad lines";
-  std::vector<std::string> lines;
-  std::istringstream answers(out.str());
-  for (std::string l; std::getline(answers, l);) lines.push_back(l);
-  ASSERT_EQ(lines.size(), 9u) << out.str();  // ready + 8 answers; nothing after quit
-  EXPECT_NE(lines[1].find("\"t\":0.6"), std::string::npos) << lines[1];
-  EXPECT_EQ(lines[2], "ok fingers.left.n_sgo=0");
-  EXPECT_EQ(lines[6].rfind("error: <stdin>:6: unknown command 'jump'", 0), 0u) << lines[6];
-  EXPECT_NE(lines[7].find("<stdin>:7"), std::string::npos) << lines[7];
-  EXPECT_NE(lines[7].find("fingers.left.n_sgo"), std::string::npos) << lines[7];
-  EXPECT_TRUE(fs::exists(fs::path(o.out_dir) / "contacts" / "s1.json"));
-}
-
-}  // namespace
-}  // namespace gf::app
-
-namespace gf::app {
-namespace {
-
-// The command line: a bad scene or override exits non-zero and leaves an earlier run's files.
-TEST(Command, BadInputExitsNonZeroAndKeepsEarlierOutputs) {
-  namespace fs = std::filesystem;
-  const fs::path out = fs::temp_directory_path() / "gf_command_out";
-  fs::remove_all(out);
-  fs::create_directories(out);
-  std::ofstream(out / "trace.csv") << "earlier\n";
-  const std::string bin = std::string(GF_BINARY_DIR) + "/godfinger";
-  const std::string run = bin + " run " + GF_SOURCE_DIR + "/assets/scenes/fig5-push-ball.toml --out " +
-                          out.string() + " ";
-  EXPECT_NE(std::system((run + "--set fingers.index.n_sgo=nan 2>/dev/null").c_str()), 0);
-  EXPECT_NE(std::system((run + "--set bodies.ball.mesh_file=x 2>/dev/null").c_str()), 0);
-  EXPECT_NE(std::system((bin + " run no-such-scene --out " + out.string() + " 2>/dev/null").c_str()), 0);
-  std::ifstream in(out / "trace.csv");
-  std::string line;
-  std::getline(in, line);
-  EXPECT_EQ(line, "earlier");
-  EXPECT_FALSE(fs::exists(out / "summary.json"));
 }
 
 }  // namespace

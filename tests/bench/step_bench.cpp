@@ -2,24 +2,22 @@
 // Run: build/release/gf_bench [--benchmark_out=FILE --benchmark_out_format=csv]
 #include <benchmark/benchmark.h>
 
-#include "app/builtin_scenes.hpp"
 #include "sim/god_finger.hpp"
-#include "sim/haptic_loop.hpp"
 #include "sim/primitives.hpp"
+#include "tests/sim/test_context.hpp"
 
 namespace {
 
 using namespace gf;
 
-// One haptic step of the pinch while the lifted cylinder is held (t >= 3.5 s).
+// One haptic step of the Fig. 8 pinch (the bundled scene, 20 solver iterations) while the
+// lifted cylinder is held (t >= 3.5 s).
 void BM_PinchStep(benchmark::State& state) {
-  const sim::SceneDesc scene = app::pinchScene({static_cast<int>(state.range(0)), 3.5});
-  sim::World world(scene);
-  std::vector<sim::DeviceTrack> devices;
-  devices = sim::deviceTracks(scene);
-  sim::runHapticLoop(world, devices, {1000.0, scene.duration}, nullptr);
+  testing::TestContext ctx("fig8-pinch-oscillation", static_cast<int>(state.range(0)));
+  ctx.simulate(3.5);
+  sim::World& world = ctx.world();
   std::vector<sim::DeviceSample> samples;
-  for (const sim::DeviceTrack& d : devices) samples.push_back(d.sample(world.time()));
+  for (const sim::DeviceTrack& d : sim::deviceTracks(ctx.scene())) samples.push_back(d.sample(world.time()));
   for (auto _ : state) world.step(0.001, samples);
   state.counters["sgo_per_step"] = benchmark::Counter(
       static_cast<double>(world.sgoCount(0) + world.sgoCount(1)));

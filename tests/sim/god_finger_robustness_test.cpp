@@ -22,15 +22,15 @@ void expectSane(const Mesh& mesh, const PatchSettings& s, const Patch& p) {
     const Sgo& sgo = p.sgos[k];
     ASSERT_TRUE(sgo.position.allFinite());
     EXPECT_TRUE(std::isfinite(sgo.walked));
-    EXPECT_LE(sgo.walked, p.distance[sgo.radial] * (1 + 1e-9) + 1e-15);
-    EXPECT_LT(mesh.closestPoint(sgo.position, 0.0).distance, 1e-9 * scale) << "left the surface";
+    EXPECT_LE(sgo.walked, p.d_i[sgo.radial] * (1 + 1e-9) + 1e-15);
+    EXPECT_LT(mesh.closestPoint(sgo.position, 0.0).query_distance, 1e-9 * scale) << "left the surface";
     const int points = p.path_offsets[k + 1] - p.path_offsets[k];
     EXPECT_LE(points, s.max_face_crossings + 2) << "walk is bounded";
     for (int i = p.path_offsets[k]; i < p.path_offsets[k + 1]; ++i) {
       ASSERT_TRUE(p.path_points[i].allFinite());
     }
   }
-  for (double d : p.distance) EXPECT_TRUE(std::isfinite(d));
+  for (double d : p.d_i) EXPECT_TRUE(std::isfinite(d));
 }
 
 Vec3 randomUnit(std::mt19937& rng) {
@@ -49,8 +49,8 @@ TEST(PatchRobustness, RejectsNonFiniteInputAndBadSettings) {
   EXPECT_TRUE(p.valid);
   const double nan = std::numeric_limits<double>::quiet_NaN();
   const double inf = std::numeric_limits<double>::infinity();
-  const PatchContact bad[] = {{Vec3(nan, 0, 0), Vec3::UnitY(), 0}, {good.point, Vec3(0, inf, 0), 0},
-                              {good.point, Vec3::Zero(), 0}, {good.point, Vec3::UnitY(), nan}};
+  const PatchContact bad[] = {{Vec3(nan, 0, 0), Vec3::UnitY(), 0}, {good.point_local, Vec3(0, inf, 0), 0},
+                              {good.point_local, Vec3::Zero(), 0}, {good.point_local, Vec3::UnitY(), nan}};
   for (const PatchContact& c : bad) {
     computePatch(box, c, v, s, p);
     EXPECT_FALSE(p.valid);

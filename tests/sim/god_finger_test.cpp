@@ -74,8 +74,8 @@ TEST(Patch, PlanarFaceDistancesFollowEquation2Exactly) {
   for (const Sgo& sgo : p.sgos) {
     const Vec3& r = p.radial[sgo.radial];
     const double expected = p.radius * std::pow(2.0, -v.dot(r) / 0.004);
-    EXPECT_NEAR(p.distance[sgo.radial], expected, 1e-15);
-    EXPECT_NEAR((sgo.position - c.point).norm(), expected, 1e-14);
+    EXPECT_NEAR(p.d_i[sgo.radial], expected, 1e-15);
+    EXPECT_NEAR((sgo.position - c.point_local).norm(), expected, 1e-14);
     EXPECT_NEAR(sgo.position.y(), 0.0, 1e-15);
     EXPECT_EQ(sgo.stop, WalkStop::kDistance);
     if (expected > longest) longest = expected, longest_dir = r;
@@ -106,7 +106,7 @@ TEST_F(BoxEdge, FaceHitSpreadsOverTheEdgeWhenTauAboveTheDihedral) {
   EXPECT_GT(onSideFace(), 0);
   for (const Sgo& sgo : p_.sgos) {
     EXPECT_EQ(sgo.stop, WalkStop::kDistance);
-    EXPECT_NEAR(sgo.walked, p_.distance[sgo.radial], 1e-12);
+    EXPECT_NEAR(sgo.walked, p_.d_i[sgo.radial], 1e-12);
     if (box_.faceNormal(sgo.face).x() > 0.99) {
       // Down the side: the part walked beyond the edge appears as the drop below the top.
       EXPECT_NEAR(sgo.position.x(), 0.05, 1e-12);
@@ -126,7 +126,7 @@ TEST_F(BoxEdge, FaceHitStopsAtASharpEdge) {  // paper Fig. 2c
     if (sgo.stop == WalkStop::kAngularThreshold) {
       ++stopped;
       EXPECT_NEAR(sgo.position.x(), 0.05, 1e-12) << "stopped on the edge";
-      EXPECT_LT(sgo.walked, p_.distance[sgo.radial]);
+      EXPECT_LT(sgo.walked, p_.d_i[sgo.radial]);
     }
   }
   EXPECT_GT(stopped, 0);
@@ -155,7 +155,7 @@ TEST_F(BoxEdge, EdgeHitProjectsOnBothFacesWithinTau) {
   EXPECT_EQ(p_.sgos.size(), 16u) << "no vector dropped";
   EXPECT_GT(onSideFace(), 0);
   EXPECT_LT(onSideFace(), 16);
-  for (const Sgo& sgo : p_.sgos) EXPECT_NEAR(sgo.walked, p_.distance[sgo.radial], 1e-12);
+  for (const Sgo& sgo : p_.sgos) EXPECT_NEAR(sgo.walked, p_.d_i[sgo.radial], 1e-12);
 }
 
 TEST_F(BoxEdge, EdgeHitDropsVectorsOfFacesBeyondTau) {
@@ -201,11 +201,11 @@ TEST(Patch, WalkOnFineSphereFollowsGeodesics) {
   computePatch(sphere, {radius * n, n, -0.001}, v, s, p);
   ASSERT_EQ(p.sgos.size(), 16u);
   for (const Sgo& sgo : p.sgos) {
-    EXPECT_NEAR(sgo.walked, p.distance[sgo.radial], 1e-12);
+    EXPECT_NEAR(sgo.walked, p.d_i[sgo.radial], 1e-12);
     const double arc = radius * std::acos(std::clamp(sgo.position.normalized().dot(
                                                          p.hit.point.normalized()), -1.0, 1.0));
-    EXPECT_NEAR(arc, p.distance[sgo.radial], 0.02 * p.distance[sgo.radial]);
-    EXPECT_LT(sphere.closestPoint(sgo.position, 0.0).distance, 1e-12) << "stays on the surface";
+    EXPECT_NEAR(arc, p.d_i[sgo.radial], 0.02 * p.d_i[sgo.radial]);
+    EXPECT_LT(sphere.closestPoint(sgo.position, 0.0).query_distance, 1e-12) << "stays on the surface";
   }
 }
 

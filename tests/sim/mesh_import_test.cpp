@@ -93,5 +93,22 @@ TEST_F(MeshImport, BadScaleIsAnError) {
   EXPECT_THROW(loadMesh(write("tet2.obj", kObj), NAN), MeshLoadError);
 }
 
+// A file used twice at one scale is read once; another scale is another mesh. The cached mesh
+// stays usable after the file is gone (the World and the renderer never read it again).
+TEST_F(MeshImport, CacheReadsEachFileOncePerScale) {
+  const std::string path = write("tet.obj", kObj);
+  MeshCache cache;
+  const std::shared_ptr<const Mesh> a = cache.load(path, 1.0), b = cache.load(path, 1.0);
+  EXPECT_EQ(a.get(), b.get());
+  EXPECT_EQ(cache.filesRead(), 1);
+  const std::shared_ptr<const Mesh> c = cache.load(path, 2.0);
+  EXPECT_NE(a.get(), c.get());
+  EXPECT_EQ(cache.filesRead(), 2);
+  fs::remove(path);
+  EXPECT_EQ(cache.load(path, 1.0).get(), a.get());
+  EXPECT_EQ(a->faceCount(), 4);
+  EXPECT_THROW(cache.load((dir_ / "missing.obj").string(), 1.0), MeshLoadError);
+}
+
 }  // namespace
 }  // namespace gf::sim

@@ -118,7 +118,7 @@ TEST(MeshQuery, ClassifiesFaceEdgeAndVertexHitsOnABox) {
   const SurfacePoint face = box.closestPoint(Vec3(0.01, 0.2, 0.02), tol);
   EXPECT_EQ(face.feature, Feature::kFace);
   EXPECT_NEAR(face.point.y(), 0.05, 1e-15);
-  EXPECT_NEAR(face.distance, 0.15, 1e-12);
+  EXPECT_NEAR(face.query_distance, 0.15, 1e-12);
   const SurfacePoint edge = box.closestPoint(Vec3(0.1, 0.1, 0.01), tol);
   EXPECT_EQ(edge.feature, Feature::kEdge);
   EXPECT_TRUE(edge.point.isApprox(Vec3(0.05, 0.05, 0.01), 1e-12));
@@ -157,7 +157,7 @@ TEST(MeshQuery, BvhMatchesBruteForce) {
                                                 sphere.corner(f, 2)));
     }
     const SurfacePoint sp = sphere.closestPoint(p, 0.0);
-    EXPECT_NEAR(sp.distance, brute, 1e-12);
+    EXPECT_NEAR(sp.query_distance, brute, 1e-12);
     EXPECT_NEAR(referenceDistance(p, sphere.corner(sp.face, 0), sphere.corner(sp.face, 1),
                                   sphere.corner(sp.face, 2)),
                 brute, 1e-12);

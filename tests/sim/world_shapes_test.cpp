@@ -6,6 +6,7 @@
 
 #include "sim/haptic_loop.hpp"
 #include "sim/primitives.hpp"
+#include "sim/settings.hpp"
 #include "sim/world.hpp"
 
 namespace gf::sim {
@@ -73,7 +74,7 @@ TEST(WorldShapes, EveryShapeTakesSgosWhenPressed) {
     Snapshot snap;
     world.snapshot(snap);
     ASSERT_EQ(snap.fingers[0].contacts.size(), 1u);
-    for (const Vec3& p : snap.fingers[0].contacts[0].sgos) {
+    for (const Vec3& p : snap.fingers[0].contacts[0].sgos_world) {
       EXPECT_NEAR(p.y(), 2 * half_height[i], 0.01) << "SGOs lie on the touched top";
     }
   }
@@ -91,8 +92,9 @@ TEST(WorldShapes, DynamicMeshBodiesNeedAClosedMesh) {
   try {
     World w(pressScene(sheet, 0.0));
     FAIL();
-  } catch (const std::invalid_argument& e) {
+  } catch (const DescriptionError& e) {
     EXPECT_NE(std::string(e.what()).find("body 'sheet'"), std::string::npos) << e.what();
+    EXPECT_EQ(e.error().field, "mesh");
     EXPECT_NE(std::string(e.what()).find("encloses no volume"), std::string::npos) << e.what();
   }
   std::filesystem::remove(path);

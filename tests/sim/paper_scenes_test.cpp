@@ -5,12 +5,27 @@
 #include <cmath>
 #include <numbers>
 
-#include "tests/app/scene_run.hpp"
+#include "tests/sim/test_context.hpp"
 
-namespace gf::app::testing {
+namespace gf::testing {
 namespace {
 
 constexpr double kRadToDeg = 180.0 / std::numbers::pi;
+
+// Runs bundled scene `name` with every finger at n_sgo for `duration` (0: the scene's),
+// calling observe(world) after each step.
+template <class Observer>
+void runScene(const std::string& name, int n_sgo, double duration, Observer&& observe) {
+  TestContext ctx(name, n_sgo);
+  ctx.simulate(duration > 0.0 ? duration : ctx.scene().duration, observe);
+}
+
+int bodyIndex(const sim::World& w, const std::string& name) {
+  for (std::size_t i = 0; i < w.desc().bodies.size(); ++i) {
+    if (w.desc().bodies[i].name == name) return static_cast<int>(i);
+  }
+  return -1;
+}
 
 // Fig. 5: roll ratio = rotation angle x radius / distance travelled.
 double rollRatio(int n_sgo) {
@@ -19,7 +34,7 @@ double rollRatio(int n_sgo) {
   bool first = true;
   runScene("fig5-push-ball", n_sgo, 0.0, [&](const sim::World& w) {
     const int b = bodyIndex(w, "ball");
-    const sim::BodySnapshot p = w.bodyPose(b);
+    const sim::Pose p = w.bodyPose(b);
     if (first) start_x = p.position.x(), last = p.orientation, first = false;
     angle += Eigen::AngleAxisd(p.orientation * last.inverse()).angle();  // accumulated rotation
     last = p.orientation;
@@ -47,7 +62,7 @@ Lift lift(const std::string& scene, const std::string& body, int n_sgo) {
   Lift l;
   double y0 = NAN;
   runScene(scene, n_sgo, 0.0, [&](const sim::World& w) {
-    const sim::BodySnapshot p = w.bodyPose(bodyIndex(w, body));
+    const sim::Pose p = w.bodyPose(bodyIndex(w, body));
     if (std::isnan(y0)) y0 = p.position.y();
     l.height = p.position.y() - y0;
     l.final_tilt = Eigen::AngleAxisd(p.orientation).angle() * kRadToDeg;
@@ -127,4 +142,4 @@ TEST(PaperScenes, ConcaveMeshIsTouchedAndMoved) {
 }
 
 }  // namespace
-}  // namespace gf::app::testing
+}  // namespace gf::testing

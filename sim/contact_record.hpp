@@ -1,0 +1,24 @@
+// One finger's contact with one body, as the World keeps it during a step: everything in the
+// body's own frame, computed once; and the one function that puts it into a Snapshot, in the
+// world frame at one pose. `godfinger run`, `live` and `patch` all go through it.
+#pragma once
+
+#include "sim/god_finger.hpp"
+#include "sim/snapshot.hpp"
+
+namespace gf::sim {
+
+/// A contact and its god-finger patch, in the frame of the touched body's walk mesh.
+struct ContactRecord {
+  int body = -1;             ///< index into SceneDesc::bodies
+  PatchContact contact;      ///< c_p, outward normal (body frame) and separation c_d
+  double press_depth = 0.0;  ///< v . c_n (m), Eq. 1's input: > 0 while pressing
+  Patch patch;               ///< radius, SGOs and walked paths (body frame); none for a god-object
+};
+
+/// `record` at `body_frame`, the pose of the frame it is local to: point, normal, SGOs and paths
+/// transformed to the world frame with that one pose. Reuses the storage of `out`; does not
+/// allocate once it has held as many SGOs and path points. Any thread.
+void toContactSnapshot(const ContactRecord& record, const Pose& body_frame, ContactSnapshot& out);
+
+}  // namespace gf::sim

@@ -1,0 +1,338 @@
+#include "sim/settings.hpp"
+
+#include <cmath>
+#include <numbers>
+#include <sstream>
+#include <type_traits>
+
+#include "sim/primitives.hpp"
+
+namespace gf::sim {
+namespace {
+
+constexpr double kAny = HUGE_VAL;  // a vector component may be any finite number
+constexpr double kRadPerDeg = std::numbers::pi / 180.0;
+constexpr double kBig = 1e3;  // m: nothing in a haptic scene is larger
+
+// The member reached from `object` through the member pointers First, Rest...
+template <auto First, auto... Rest, class T>
+constexpr auto& reach(T& object) {
+  if constexpr (sizeof...(Rest) == 0) {
+    return object.*First;
+  } else {
+    return reach<Rest...>(object.*First);
+  }
+}
+
+// A number or integer setting stored at the member path M...
+template <class Desc, auto... M>
+Setting<Desc> scalar(std::string_view name, std::string_view unit, double min, double max) {
+  Setting<Desc> s;
+  s.name = name;
+  s.unit = unit;
+  using Stored = std::remove_cvref_t<decltype(reach<M...>(std::declval<Desc&>()))>;
+  s.kind = std::is_integral_v<Stored> ? SettingKind::kInteger : SettingKind::kNumber;
+  s.min = min;
+  s.max = max;
+  s.get = [](const Desc& d) { return static_cast<double>(reach<M...>(d)); };
+  s.set = [](Desc& d, double v) { reach<M...>(d) = static_cast<Stored>(v); };
+  return s;
+}
+
+// A vector setting stored at the member path M...
+template <class Desc, auto... M>
+Setting<Desc> vector(std::string_view name, std::string_view unit, double min, double max) {
+  Setting<Desc> s;
+  s.name = name;
+  s.unit = unit;
+  s.kind = SettingKind::kVector;
+  s.min = min;
+  s.max = max;
+  s.get_vector = [](const Desc& d) { return Vec3(reach<M...>(d)); };
+  s.set_vector = [](Desc& d, const Vec3& v) { reach<M...>(d) = v; };
+  return s;
+}
+
+template <class S>
+S live(S s) {
+  s.live = true;
+  return s;
+}
+
+template <class S>
+S aboveMin(S s) {
+  s.min_excluded = true;
+  return s;
+}
+
+template <class S>
+S degrees(S s) {
+  s.si_per_unit = kRadPerDeg;
+  return s;
+}
+
+template <class S>
+S withRule(S s, const char* (*rule)(double)) {
+  s.rule = rule;
+  return s;
+}
+
+const char* nSgoRule(double n) {
+  static const std::string reason = "must be 0 (god-object) or " + std::to_string(kMinSgo) + ".." +
+                                    std::to_string(kMaxSgo);
+  return n == 0.0 || n >= kMinSgo ? nullptr : reason.c_str();
+}
+
+// Formats a number as a reason shows it (6 significant digits).
+std::string shown(double x) {
+  std::ostringstream s;
+  s << x;
+  return s.str();
+}
+
+std::string rangeReason(const SettingKind kind, double min, double max, bool min_excluded, double got) {
+  if (kind == SettingKind::kInteger) {
+    return "must be in " + shown(min) + ".." + shown(max) + ", got " + shown(got);
+  }
+  return std::string("must be in ") + (min_excluded ? "(" : "[") + shown(min) + ", " + shown(max) + "], got " +
+         shown(got);
+}
+
+template <class Desc>
+std::optional<FieldError> firstBadSetting(std::span<const Setting<Desc>> table, const Desc& desc, bool live_only) {
+  for (const Setting<Desc>& s : table) {
+    if (live_only && !s.live) continue;
+    const std::optional<std::string> why = s.kind == SettingKind::kVector
+                                               ? checkGiven(s, Vec3(s.get_vector(desc) / s.si_per_unit))
+                                               : checkGiven(s, givenValue(s, desc));
+    if (why) return FieldError{std::string(s.name), *why};
+  }
+  return std::nullopt;
+}
+
+// "body 'ball': mass: must be ..." (appended piece by piece: GCC 12 misreads the one-line
+// concatenation under -Wrestrict, PR 105329).
+std::string descriptionMessage(const std::string& subject, const FieldError& e) {
+  std::string m = subject;
+  m.append(": ").append(e.field);
+  if (e.index >= 0) m.append(" ").append(std::to_string(e.index));
+  return m.append(": ").append(e.reason);
+}
+
+}  // namespace
+
+DescriptionError::DescriptionError(std::string subject, FieldError error)
+    : std::invalid_argument(descriptionMessage(subject, error)), subject_(std::move(subject)), error_(std::move(error)) {}
+
+std::span<const Setting<SceneDesc>> sceneSettings() {
+  using S = SceneDesc;
+  static const Setting<S> kTable[] = {
+      scalar<S, &S::duration>("duration", "s", 1e-3, 1e6),
+      scalar<S, &S::world, &WorldSettings::haptic_rate_hz>("haptic_rate", "Hz", 10.0, 1e5),
+      vector<S, &S::world, &WorldSettings::gravity>("world.gravity", "m/s^2", -kAny, kAny),
+      scalar<S, &S::world, &WorldSettings::solver_iterations>("world.solver_iterations", "", 1, 10000),
+      scalar<S, &S::world, &WorldSettings::linear_damping>("world.linear_damping", "1/s", 0.0, 1e3),
+      scalar<S, &S::world, &WorldSettings::angular_damping>("world.angular_damping", "1/s", 0.0, 1e3),
+  };
+  return kTable;
+}
+
+std::span<const Setting<BodyDesc>> bodySettings() {
+  using B = BodyDesc;
+  static const Setting<B> kTable[] = {
+      scalar<B, &B::radius>("radius", "m", 1e-4, kBig),
+      scalar<B, &B::half_height>("half_height", "m", 1e-4, kBig),
+      vector<B, &B::half_extents>("half_extents", "m", 1e-4, kBig),
+      scalar<B, &B::mesh_scale>("scale", "", 1e-9, 1e9),
+      scalar<B, &B::walk_resolution>("walk_resolution", "", 0, 4096),
+      scalar<B, &B::mass>("mass", "kg", 1e-6, 1e6),
+      scalar<B, &B::friction>("friction", "", 0.0, 100.0),
+      scalar<B, &B::restitution>("restitution", "", 0.0, 1.0),
+      vector<B, &B::position>("position", "m", -kAny, kAny),
+      vector<B, &B::colour>("colour", "", 0.0, 1.0),
+  };
+  return kTable;
+}
+
+std::span<const Setting<FingerDesc>> fingerSettings() {
+  using F = FingerDesc;
+  using P = PatchSettings;
+  static const Setting<F> kTable[] = {
+      live(withRule(scalar<F, &F::patch, &P::n_sgo>("n_sgo", "", 0, kMaxSgo), nSgoRule)),
+      live(scalar<F, &F::patch, &P::r_max>("r_max", "m", 0.0, 1.0)),
+      live(scalar<F, &F::patch, &P::d0>("d0", "m", 1e-6, 1.0)),
+      live(scalar<F, &F::patch, &P::alpha>("alpha", "", 1.0, 100.0)),
+      live(scalar<F, &F::patch, &P::stretch_length>("stretch_length", "m", 1e-6, 1.0)),
+      live(scalar<F, &F::patch, &P::max_stretch_exponent>("max_stretch_exponent", "", 0.0, 50.0)),
+      live(degrees(scalar<F, &F::patch, &P::tau_a>("tau_a", "deg", 0.0, 180.0))),
+      live(scalar<F, &F::patch, &P::friction>("friction", "", 0.0, 100.0)),
+      scalar<F, &F::proxy, &ProxySettings::radius>("proxy_radius", "m", 1e-4, 0.1),
+      scalar<F, &F::proxy, &ProxySettings::mass>("proxy_mass", "kg", 1e-4, 10.0),
+      scalar<F, &F::proxy, &ProxySettings::contact_stiffness>("contact_stiffness", "N/m", 1.0, 1e8),
+      scalar<F, &F::proxy, &ProxySettings::contact_damping>("contact_damping", "N s/m", 0.0, 1e6),
+      aboveMin(scalar<F, &F::coupling, &CouplingSettings::stiffness>("coupling_stiffness", "N/m", 0.0, 1e6)),
+      scalar<F, &F::coupling, &CouplingSettings::damping>("coupling_damping", "N s/m", 0.0, 1e5),
+      aboveMin(scalar<F, &F::coupling, &CouplingSettings::max_force>("max_force", "N", 0.0, 1e4)),
+  };
+  return kTable;
+}
+
+template <class Desc>
+std::optional<std::string> checkGiven(const Setting<Desc>& s, double given) {
+  if (!std::isfinite(given)) return "must be finite";
+  if (s.kind == SettingKind::kInteger && given != std::trunc(given)) return "expected an integer, got " + shown(given);
+  const bool below = s.min_excluded ? !(given > s.min) : !(given >= s.min);
+  if (below || !(given <= s.max)) return rangeReason(s.kind, s.min, s.max, s.min_excluded, given);
+  if (s.rule) {
+    if (const char* why = s.rule(given)) return std::string(why);
+  }
+  return std::nullopt;
+}
+
+template <class Desc>
+std::optional<std::string> checkGiven(const Setting<Desc>& s, const Vec3& given) {
+  if (!given.allFinite()) return "must be finite";
+  for (int i = 0; i < 3; ++i) {
+    const bool below = s.min_excluded ? !(given[i] > s.min) : !(given[i] >= s.min);
+    if (below || !(given[i] <= s.max)) {
+      return "every component " + rangeReason(s.kind, s.min, s.max, s.min_excluded, given[i]);
+    }
+  }
+  return std::nullopt;
+}
+
+template <class Desc>
+std::string jsonKey(const Setting<Desc>& s) {
+  std::string key(s.name);
+  for (char& c : key) c = c == '.' ? '_' : c;
+  if (s.unit == "m" || s.unit == "deg" || s.unit == "kg" || s.unit == "s") {
+    key.append("_").append(s.unit);
+  } else if (s.unit == "N") {
+    key.append("_n");
+  } else if (s.unit == "Hz") {
+    key.append("_hz");
+  } else if (s.unit == "N/m") {
+    key.append("_n_per_m");
+  } else if (s.unit == "N s/m") {
+    key.append("_ns_per_m");
+  } else if (s.unit == "1/s") {
+    key.append("_per_s");
+  } else if (s.unit == "m/s^2") {
+    key.append("_m_per_s2");
+  }
+  return key;
+}
+
+#define GF_INSTANTIATE(Desc)                                                                  \
+  template std::optional<std::string> checkGiven(const Setting<Desc>&, double);               \
+  template std::optional<std::string> checkGiven(const Setting<Desc>&, const Vec3&);          \
+  template std::string jsonKey(const Setting<Desc>&);
+GF_INSTANTIATE(SceneDesc)
+GF_INSTANTIATE(BodyDesc)
+GF_INSTANTIATE(FingerDesc)
+#undef GF_INSTANTIATE
+
+std::span<const ShapeInfo> shapeInfos() {
+  using K = ShapeKind;
+  static const ShapeInfo kShapes[] = {
+      {K::kSphere, "sphere", "", {"radius", ""}, 4, 1, kMaxSphereSubdivisions},
+      {K::kBox, "box", "", {"half_extents", ""}, 4, kMinBoxSegments, kMaxBoxSegments},
+      {K::kCylinder, "cylinder", "", {"radius", "half_height"}, 64, kMinCylinderSegments, kMaxRoundSegments},
+      {K::kCapsule, "capsule", "", {"radius", "half_height"}, 64, kMinCapsuleSegments, kMaxRoundSegments},
+      {K::kPlane, "plane", "", {"", ""}, 1, kMinPlaneSegments, kMaxPlaneSegments},
+      {K::kConvexHull, "mesh", "convex_hull", {"", ""}, 0, 0, 0},
+      {K::kConvexDecomposition, "mesh", "decomposition", {"", ""}, 0, 0, 0},
+      {K::kConcaveMesh, "mesh", "concave", {"", ""}, 0, 0, 0},
+  };
+  return kShapes;
+}
+
+const ShapeInfo& shapeInfo(ShapeKind kind) { return shapeInfos()[static_cast<std::size_t>(kind)]; }
+
+bool isMeshShape(ShapeKind kind) { return !shapeInfo(kind).collision.empty(); }
+
+std::span<const EffectSwitch> effectSwitches() {
+  static const EffectSwitch kEffects[] = {
+      {"gravity", &EffectSet::gravity},
+      {"friction", &EffectSet::friction},
+      {"god_finger", &EffectSet::god_finger},
+      {"tangential_stretch", &EffectSet::tangential_stretch},
+      {"angular_threshold", &EffectSet::angular_threshold},
+      {"friction_cone", &EffectSet::friction_cone},
+      {"force_feedback", &EffectSet::force_feedback},
+  };
+  return kEffects;
+}
+
+std::optional<FieldError> validateScene(const SceneDesc& scene) {
+  return firstBadSetting(sceneSettings(), scene, false);
+}
+
+std::optional<FieldError> validateBody(const BodyDesc& body) {
+  // A static body (mass 0) has no mass setting to check.
+  const Setting<BodyDesc>* mass = findSetting(bodySettings(), "mass");
+  for (const Setting<BodyDesc>& s : bodySettings()) {
+    if (&s == mass && body.mass == 0.0) continue;
+    const std::optional<std::string> why = s.kind == SettingKind::kVector ? checkGiven(s, s.get_vector(body))
+                                                                          : checkGiven(s, givenValue(s, body));
+    if (why) return FieldError{std::string(s.name), *why};
+  }
+  const ShapeInfo& shape = shapeInfo(body.shape);
+  if (body.shape == ShapeKind::kPlane && body.mass != 0.0) return FieldError{"mass", "a plane must be static (mass 0)"};
+  if (body.walk_resolution != 0 &&
+      (body.walk_resolution < shape.min_resolution || body.walk_resolution > shape.max_resolution)) {
+    return FieldError{"walk_resolution", shape.max_resolution == 0
+                                             ? "a mesh is walked as loaded; remove the field"
+                                             : "must be 0 (the default, " + std::to_string(shape.default_resolution) +
+                                                   ") or in " + std::to_string(shape.min_resolution) + ".." +
+                                                   std::to_string(shape.max_resolution) + " for a " +
+                                                   std::string(shape.shape)};
+  }
+  if (isMeshShape(body.shape) && body.mesh_path.empty() && !body.mesh) return FieldError{"mesh", "is empty"};
+  if (!body.orientation.coeffs().allFinite() || body.orientation.norm() < 1e-9) {
+    return FieldError{"orientation", "must be finite and not zero"};
+  }
+  return std::nullopt;
+}
+
+std::optional<FieldError> validateTrack(const DeviceTrack& track) {
+  for (std::size_t k = 0; k < track.keyframes.size(); ++k) {
+    const DeviceTrack::Keyframe& f = track.keyframes[k];
+    const int index = static_cast<int>(k);
+    if (!std::isfinite(f.time) || f.time < 0.0 || f.time > 1e6) {
+      return FieldError{"keyframes.t", "must be in [0, 1e+06] s, got " + shown(f.time), index};
+    }
+    if (k > 0 && !(f.time > track.keyframes[k - 1].time)) {
+      return FieldError{"keyframes.t", "keyframe times must increase strictly", index};
+    }
+    if (!f.position.allFinite()) return FieldError{"keyframes.p", "must be finite", index};
+  }
+  return std::nullopt;
+}
+
+std::optional<FieldError> validateFinger(const FingerDesc& finger) {
+  if (std::optional<FieldError> e = firstBadSetting(fingerSettings(), finger, false)) return e;
+  if (std::optional<FieldError> e = validateTrack(finger.device)) {
+    e->field = "device." + e->field;
+    return e;
+  }
+  return std::nullopt;
+}
+
+std::optional<FieldError> validatePatch(const PatchSettings& patch) {
+  FingerDesc finger;
+  finger.patch = patch;
+  return firstBadSetting(fingerSettings(), finger, true);
+}
+
+void requireValid(const SceneDesc& scene) {
+  if (std::optional<FieldError> e = validateScene(scene)) throw DescriptionError("scene", *e);
+  for (const BodyDesc& b : scene.bodies) {
+    if (std::optional<FieldError> e = validateBody(b)) throw DescriptionError("body '" + b.name + "'", *e);
+  }
+  for (const FingerDesc& f : scene.fingers) {
+    if (std::optional<FieldError> e = validateFinger(f)) throw DescriptionError("finger '" + f.name + "'", *e);
+  }
+}
+
+}  // namespace gf::sim

@@ -1,0 +1,148 @@
+// The settings tables: one validator per setting, units, JSON names and the rules between
+// fields that the World, the scene reader, the command line, `live` and the overlay all use.
+#include "sim/settings.hpp"
+
+#include <gtest/gtest.h>
+
+#include <numbers>
+#include <set>
+
+namespace gf::sim {
+namespace {
+
+const Setting<FingerDesc>& finger(std::string_view name) { return *findSetting(fingerSettings(), name); }
+
+TEST(Settings, NamesAreUniqueAndDefaultsAreLegal) {
+  std::set<std::string_view> names;
+  for (const auto& s : fingerSettings()) EXPECT_TRUE(names.insert(s.name).second) << s.name;
+  names.clear();
+  for (const auto& s : bodySettings()) EXPECT_TRUE(names.insert(s.name).second) << s.name;
+  names.clear();
+  for (const auto& s : sceneSettings()) EXPECT_TRUE(names.insert(s.name).second) << s.name;
+  EXPECT_FALSE(validateFinger(FingerDesc{}));
+  EXPECT_FALSE(validateBody(BodyDesc{}));
+  EXPECT_FALSE(validateScene(SceneDesc{}));
+  EXPECT_FALSE(validatePatch(PatchSettings{}));
+}
+
+TEST(Settings, NSgoIsZeroOrTheLegalPatchCount) {
+  const Setting<FingerDesc>& n = finger("n_sgo");
+  EXPECT_EQ(n.kind, SettingKind::kInteger);
+  EXPECT_FALSE(checkGiven(n, 0.0)) << "0: a god-object";
+  EXPECT_FALSE(checkGiven(n, kMinSgo));
+  EXPECT_FALSE(checkGiven(n, kMaxSgo));
+  EXPECT_EQ(checkGiven(n, 2.0).value_or(""), "must be 0 (god-object) or 3..64");
+  EXPECT_EQ(checkGiven(n, 65.0).value_or(""), "must be in 0..64, got 65");
+  EXPECT_EQ(checkGiven(n, 8.5).value_or(""), "expected an integer, got 8.5");
+  EXPECT_EQ(checkGiven(n, std::nan("")).value_or(""), "must be finite");
+}
+
+TEST(Settings, AnglesAreGivenInDegreesAndStoredInRadians) {
+  const Setting<FingerDesc>& tau = finger("tau_a");
+  EXPECT_EQ(tau.unit, "deg");
+  FingerDesc f;
+  setGiven(tau, f, 90.0);
+  EXPECT_DOUBLE_EQ(f.patch.tau_a, std::numbers::pi / 2);
+  EXPECT_NEAR(givenValue(tau, f), 90.0, 1e-12);
+  EXPECT_FALSE(checkGiven(tau, 180.0));
+  EXPECT_EQ(checkGiven(tau, 181.0).value_or(""), "must be in [0, 180], got 181");
+  f.patch.tau_a = 3.2;  // rad, beyond 180 degrees
+  ASSERT_TRUE(validateFinger(f));
+  EXPECT_EQ(validateFinger(f)->field, "tau_a");
+}
+
+TEST(Settings, ExcludedMinimumsAndJsonNamesCarryTheUnit) {
+  EXPECT_EQ(checkGiven(finger("coupling_stiffness"), 0.0).value_or(""), "must be in (0, 1e+06], got 0");
+  EXPECT_FALSE(checkGiven(finger("coupling_stiffness"), 800.0));
+  EXPECT_EQ(jsonKey(finger("r_max")), "r_max_m");
+  EXPECT_EQ(jsonKey(finger("tau_a")), "tau_a_deg");
+  EXPECT_EQ(jsonKey(finger("n_sgo")), "n_sgo");
+  EXPECT_EQ(jsonKey(finger("max_force")), "max_force_n");
+  EXPECT_EQ(jsonKey(finger("contact_damping")), "contact_damping_ns_per_m");
+  EXPECT_EQ(jsonKey(*findSetting(sceneSettings(), "world.gravity")), "world_gravity_m_per_s2");
+}
+
+TEST(Settings, LiveSettingsAreTheGodFingerOnes) {
+  for (const Setting<FingerDesc>& s : fingerSettings()) {
+    FingerDesc f;
+    setGiven(s, f, s.kind == SettingKind::kInteger ? kMaxSgo : s.max);
+    const bool patch_changed = f.patch.n_sgo != PatchSettings{}.n_sgo || f.patch.r_max != PatchSettings{}.r_max ||
+                               f.patch.d0 != PatchSettings{}.d0 || f.patch.alpha != PatchSettings{}.alpha ||
+                               f.patch.stretch_length != PatchSettings{}.stretch_length ||
+                               f.patch.max_stretch_exponent != PatchSettings{}.max_stretch_exponent ||
+                               f.patch.tau_a != PatchSettings{}.tau_a || f.patch.friction != PatchSettings{}.friction;
+    EXPECT_EQ(s.live, patch_changed) << s.name << ": live exactly when it is a god-finger (PatchSettings) field";
+  }
+}
+
+TEST(Settings, BodyRulesBetweenFields) {
+  BodyDesc plane;
+  plane.shape = ShapeKind::kPlane;
+  plane.mass = 0.0;
+  EXPECT_FALSE(validateBody(plane)) << "a static plane";
+  plane.mass = 1.0;
+  ASSERT_TRUE(validateBody(plane));
+  EXPECT_EQ(validateBody(plane)->reason, "a plane must be static (mass 0)");
+  BodyDesc sphere;
+  sphere.shape = ShapeKind::kSphere;
+  sphere.walk_resolution = shapeInfo(ShapeKind::kSphere).max_resolution + 1;
+  ASSERT_TRUE(validateBody(sphere));
+  EXPECT_EQ(validateBody(sphere)->field, "walk_resolution");
+  BodyDesc box;
+  box.mass = -1.0;
+  ASSERT_TRUE(validateBody(box));
+  EXPECT_EQ(validateBody(box)->field, "mass");
+  box.mass = 0.0;
+  EXPECT_FALSE(validateBody(box)) << "mass 0: static";
+  box.half_extents.y() = 0.0;
+  ASSERT_TRUE(validateBody(box));
+  EXPECT_EQ(validateBody(box)->field, "half_extents");
+}
+
+TEST(Settings, TracksNeedIncreasingFiniteKeyframes) {
+  DeviceTrack t;
+  t.keyframes = {{0.0, Vec3::Zero()}, {0.5, Vec3::Ones()}, {0.5, Vec3::Zero()}};
+  std::optional<FieldError> e = validateTrack(t);
+  ASSERT_TRUE(e);
+  EXPECT_EQ(e->field, "keyframes.t");
+  EXPECT_EQ(e->index, 2);
+  t.keyframes[2].time = 1.0;
+  t.keyframes[1].position.x() = std::nan("");
+  e = validateTrack(t);
+  ASSERT_TRUE(e);
+  EXPECT_EQ(e->field, "keyframes.p");
+  EXPECT_EQ(e->index, 1);
+}
+
+TEST(Settings, DescriptionErrorsNameSubjectFieldAndReason) {
+  SceneDesc scene;
+  FingerDesc f;
+  f.name = "left";
+  f.coupling.max_force = 0.0;
+  scene.fingers.push_back(f);
+  try {
+    requireValid(scene);
+    FAIL() << "accepted max_force 0";
+  } catch (const DescriptionError& e) {
+    EXPECT_EQ(e.subject(), "finger 'left'");
+    EXPECT_EQ(e.error().field, "max_force");
+    EXPECT_STREQ(e.what(), "finger 'left': max_force: must be in (0, 10000], got 0");
+  }
+}
+
+TEST(Settings, ShapesAndEffectsComeFromTables) {
+  ASSERT_EQ(shapeInfos().size(), 8u);
+  for (std::size_t i = 0; i < shapeInfos().size(); ++i) {
+    EXPECT_EQ(static_cast<std::size_t>(shapeInfos()[i].kind), i) << "rows in ShapeKind order";
+  }
+  EXPECT_TRUE(isMeshShape(ShapeKind::kConcaveMesh));
+  EXPECT_FALSE(isMeshShape(ShapeKind::kCapsule));
+  EffectSet e;
+  for (const EffectSwitch& s : effectSwitches()) e.*s.on = false;
+  EXPECT_FALSE(e.gravity || e.friction || e.god_finger || e.tangential_stretch || e.angular_threshold ||
+               e.friction_cone || e.force_feedback)
+      << "every physics effect has a row";
+}
+
+}  // namespace
+}  // namespace gf::sim
