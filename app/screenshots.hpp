@@ -1,6 +1,7 @@
 // The table of reference pictures: fixed (scene, time, camera) pairs rendered offline. The
 // visual-regression test compares them with the goldens in screenshots/; `godfinger
-// screenshots --bless` writes new goldens; the README shows them.
+// screenshots --out screenshots` (from the repository root) writes new goldens; the README
+// shows them.
 #pragma once
 
 #include <string>

@@ -20,7 +20,7 @@ struct SinkStats {
   long bytes = 0;             ///< bytes written
 };
 
-/// frames/000000.png, 000001.png, ... in `folder`, encoded by a writer thread (zlib level 1) so
+/// frames/000000.png, 000001.png, ... in `folder`, encoded by a writer thread (libdeflate level 1) so
 /// the render thread only waits when `queue_depth` frames are already pending.
 class PngSequenceWriter {
  public:

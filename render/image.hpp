@@ -21,8 +21,8 @@ class ImageError : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
-/// Encodes `image` as PNG bytes: each row filtered with PNG's "Up" filter, then deflated into a
-/// zlib stream by libdeflate at `zlib_level` (1 = fastest, 12 = smallest). Any thread; allocates.
+/// Encodes `image` as PNG bytes: rows unfiltered (filter type 0), deflated into a zlib stream
+/// by libdeflate at `zlib_level` (1 = fastest, 12 = smallest). Any thread; allocates.
 std::vector<std::uint8_t> encodePng(const Image& image, int zlib_level = 1);
 
 /// Writes encodePng(image) to `path` through a temporary file and a rename, so a reader never

@@ -24,32 +24,25 @@ constexpr auto& reach(T& object) {
   }
 }
 
-// A number or integer setting stored at the member path M...
+// The setting stored at the member path M... of Desc: its kind follows the member's type
+// (Vec3: a vector, an integer type: an integer, else a number).
 template <class Desc, auto... M>
-Setting<Desc> scalar(std::string_view name, std::string_view unit, double min, double max) {
-  Setting<Desc> s;
-  s.name = name;
-  s.unit = unit;
+Setting<Desc> row(std::string_view name, std::string_view unit, double min, double max) {
   using Stored = std::remove_cvref_t<decltype(reach<M...>(std::declval<Desc&>()))>;
-  s.kind = std::is_integral_v<Stored> ? SettingKind::kInteger : SettingKind::kNumber;
-  s.min = min;
-  s.max = max;
-  s.get = [](const Desc& d) { return static_cast<double>(reach<M...>(d)); };
-  s.set = [](Desc& d, double v) { reach<M...>(d) = static_cast<Stored>(v); };
-  return s;
-}
-
-// A vector setting stored at the member path M...
-template <class Desc, auto... M>
-Setting<Desc> vector(std::string_view name, std::string_view unit, double min, double max) {
   Setting<Desc> s;
   s.name = name;
   s.unit = unit;
-  s.kind = SettingKind::kVector;
   s.min = min;
   s.max = max;
-  s.get_vector = [](const Desc& d) { return Vec3(reach<M...>(d)); };
-  s.set_vector = [](Desc& d, const Vec3& v) { reach<M...>(d) = v; };
+  if constexpr (std::is_same_v<Stored, Vec3>) {
+    s.kind = SettingKind::kVector;
+    s.get_vector = [](const Desc& d) { return Vec3(reach<M...>(d)); };
+    s.set_vector = [](Desc& d, const Vec3& v) { reach<M...>(d) = v; };
+  } else {
+    s.kind = std::is_integral_v<Stored> ? SettingKind::kInteger : SettingKind::kNumber;
+    s.get = [](const Desc& d) { return static_cast<double>(reach<M...>(d)); };
+    s.set = [](Desc& d, double v) { reach<M...>(d) = static_cast<Stored>(v); };
+  }
   return s;
 }
 
@@ -127,12 +120,12 @@ DescriptionError::DescriptionError(std::string subject, FieldError error)
 std::span<const Setting<SceneDesc>> sceneSettings() {
   using S = SceneDesc;
   static const Setting<S> kTable[] = {
-      scalar<S, &S::duration>("duration", "s", 1e-3, 1e6),
-      scalar<S, &S::world, &WorldSettings::haptic_rate_hz>("haptic_rate", "Hz", 10.0, 1e5),
-      vector<S, &S::world, &WorldSettings::gravity>("world.gravity", "m/s^2", -kAny, kAny),
-      scalar<S, &S::world, &WorldSettings::solver_iterations>("world.solver_iterations", "", 1, 10000),
-      scalar<S, &S::world, &WorldSettings::linear_damping>("world.linear_damping", "1/s", 0.0, 1e3),
-      scalar<S, &S::world, &WorldSettings::angular_damping>("world.angular_damping", "1/s", 0.0, 1e3),
+      row<S, &S::duration>("duration", "s", 1e-3, 1e6),
+      row<S, &S::world, &WorldSettings::haptic_rate_hz>("haptic_rate", "Hz", 10.0, 1e5),
+      row<S, &S::world, &WorldSettings::gravity>("world.gravity", "m/s^2", -kAny, kAny),
+      row<S, &S::world, &WorldSettings::solver_iterations>("world.solver_iterations", "", 1, 10000),
+      row<S, &S::world, &WorldSettings::linear_damping>("world.linear_damping", "1/s", 0.0, 1e3),
+      row<S, &S::world, &WorldSettings::angular_damping>("world.angular_damping", "1/s", 0.0, 1e3),
   };
   return kTable;
 }
@@ -140,16 +133,16 @@ std::span<const Setting<SceneDesc>> sceneSettings() {
 std::span<const Setting<BodyDesc>> bodySettings() {
   using B = BodyDesc;
   static const Setting<B> kTable[] = {
-      scalar<B, &B::radius>("radius", "m", 1e-4, kBig),
-      scalar<B, &B::half_height>("half_height", "m", 1e-4, kBig),
-      vector<B, &B::half_extents>("half_extents", "m", 1e-4, kBig),
-      scalar<B, &B::mesh_scale>("scale", "", 1e-9, 1e9),
-      scalar<B, &B::walk_resolution>("walk_resolution", "", 0, 4096),
-      scalar<B, &B::mass>("mass", "kg", 1e-6, 1e6),
-      scalar<B, &B::friction>("friction", "", 0.0, 100.0),
-      scalar<B, &B::restitution>("restitution", "", 0.0, 1.0),
-      vector<B, &B::position>("position", "m", -kAny, kAny),
-      vector<B, &B::colour>("colour", "", 0.0, 1.0),
+      row<B, &B::radius>("radius", "m", 1e-4, kBig),
+      row<B, &B::half_height>("half_height", "m", 1e-4, kBig),
+      row<B, &B::half_extents>("half_extents", "m", 1e-4, kBig),
+      row<B, &B::mesh_scale>("scale", "", 1e-9, 1e9),
+      row<B, &B::walk_resolution>("walk_resolution", "", 0, 4096),
+      row<B, &B::mass>("mass", "kg", 1e-6, 1e6),
+      row<B, &B::friction>("friction", "", 0.0, 100.0),
+      row<B, &B::restitution>("restitution", "", 0.0, 1.0),
+      row<B, &B::position>("position", "m", -kAny, kAny),
+      row<B, &B::colour>("colour", "", 0.0, 1.0),
   };
   return kTable;
 }
@@ -158,21 +151,21 @@ std::span<const Setting<FingerDesc>> fingerSettings() {
   using F = FingerDesc;
   using P = PatchSettings;
   static const Setting<F> kTable[] = {
-      live(withRule(scalar<F, &F::patch, &P::n_sgo>("n_sgo", "", 0, kMaxSgo), nSgoRule)),
-      live(scalar<F, &F::patch, &P::r_max>("r_max", "m", 0.0, 1.0)),
-      live(scalar<F, &F::patch, &P::d0>("d0", "m", 1e-6, 1.0)),
-      live(scalar<F, &F::patch, &P::alpha>("alpha", "", 1.0, 100.0)),
-      live(scalar<F, &F::patch, &P::stretch_length>("stretch_length", "m", 1e-6, 1.0)),
-      live(scalar<F, &F::patch, &P::max_stretch_exponent>("max_stretch_exponent", "", 0.0, 50.0)),
-      live(degrees(scalar<F, &F::patch, &P::tau_a>("tau_a", "deg", 0.0, 180.0))),
-      live(scalar<F, &F::patch, &P::friction>("friction", "", 0.0, 100.0)),
-      scalar<F, &F::proxy, &ProxySettings::radius>("proxy_radius", "m", 1e-4, 0.1),
-      scalar<F, &F::proxy, &ProxySettings::mass>("proxy_mass", "kg", 1e-4, 10.0),
-      scalar<F, &F::proxy, &ProxySettings::contact_stiffness>("contact_stiffness", "N/m", 1.0, 1e8),
-      scalar<F, &F::proxy, &ProxySettings::contact_damping>("contact_damping", "N s/m", 0.0, 1e6),
-      aboveMin(scalar<F, &F::coupling, &CouplingSettings::stiffness>("coupling_stiffness", "N/m", 0.0, 1e6)),
-      scalar<F, &F::coupling, &CouplingSettings::damping>("coupling_damping", "N s/m", 0.0, 1e5),
-      aboveMin(scalar<F, &F::coupling, &CouplingSettings::max_force>("max_force", "N", 0.0, 1e4)),
+      live(withRule(row<F, &F::patch, &P::n_sgo>("n_sgo", "", 0, kMaxSgo), nSgoRule)),
+      live(row<F, &F::patch, &P::r_max>("r_max", "m", 0.0, 1.0)),
+      live(row<F, &F::patch, &P::d0>("d0", "m", 1e-6, 1.0)),
+      live(row<F, &F::patch, &P::alpha>("alpha", "", 1.0, 100.0)),
+      live(row<F, &F::patch, &P::stretch_length>("stretch_length", "m", 1e-6, 1.0)),
+      live(row<F, &F::patch, &P::max_stretch_exponent>("max_stretch_exponent", "", 0.0, 50.0)),
+      live(degrees(row<F, &F::patch, &P::tau_a>("tau_a", "deg", 0.0, 180.0))),
+      live(row<F, &F::patch, &P::friction>("friction", "", 0.0, 100.0)),
+      row<F, &F::proxy, &ProxySettings::radius>("proxy_radius", "m", 1e-4, 0.1),
+      row<F, &F::proxy, &ProxySettings::mass>("proxy_mass", "kg", 1e-4, 10.0),
+      row<F, &F::proxy, &ProxySettings::contact_stiffness>("contact_stiffness", "N/m", 1.0, 1e8),
+      row<F, &F::proxy, &ProxySettings::contact_damping>("contact_damping", "N s/m", 0.0, 1e6),
+      aboveMin(row<F, &F::coupling, &CouplingSettings::stiffness>("coupling_stiffness", "N/m", 0.0, 1e6)),
+      row<F, &F::coupling, &CouplingSettings::damping>("coupling_damping", "N s/m", 0.0, 1e5),
+      aboveMin(row<F, &F::coupling, &CouplingSettings::max_force>("max_force", "N", 0.0, 1e4)),
   };
   return kTable;
 }

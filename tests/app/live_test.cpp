@@ -11,25 +11,62 @@ namespace {
 
 namespace fs = std::filesystem;
 
-TEST(Live, AnswersEachLineAndReportsBadCommands) {
+// What a live session of fig7-side-pick answers to `input`, a line each, with its exit code.
+struct Answers {
+  std::vector<std::string> lines;
+  int exit_code = 0;
+  std::string out_dir;
+};
+
+Answers runFig7SidePick(const std::string& input, const std::string& out_name) {
   LiveOptions o;
   o.scene_path = std::string(GF_SOURCE_DIR) + "/assets/scenes/fig7-side-pick.toml";
-  o.out_dir = (fs::temp_directory_path() / "gf_live").string();
-  std::istringstream in(
-      "step 600\nset fingers.left.n_sgo=0\nmove right 0.05 0.05 0 0.1\nstep 10\nsnapshot s1\n"
-      "jump\nset fingers.left.n_sgo=2\nquit\nstep\n");
+  o.out_dir = (fs::temp_directory_path() / out_name).string();
+  std::istringstream in(input);
   std::ostringstream out;
-  EXPECT_EQ(runLive(o, in, out), 1) << "two bad lines";
-  std::vector<std::string> lines;
+  Answers a;
+  a.exit_code = runLive(o, in, out);
+  a.out_dir = o.out_dir;
   std::istringstream answers(out.str());
-  for (std::string l; std::getline(answers, l);) lines.push_back(l);
-  ASSERT_EQ(lines.size(), 9u) << out.str();  // ready + 8 answers; nothing after quit
+  for (std::string l; std::getline(answers, l);) a.lines.push_back(l);
+  return a;
+}
+
+TEST(Live, AnswersEachLineAndReportsBadCommands) {
+  const Answers a = runFig7SidePick(
+      "step 600\nset fingers.left.n_sgo=0\nmove right 0.05 0.05 0 0.1\nstep 10\nsnapshot s1\n"
+      "jump\nset fingers.left.n_sgo=2\nquit\nstep\n",
+      "gf_live");
+  const std::vector<std::string>& lines = a.lines;
+  EXPECT_EQ(a.exit_code, 1) << "two bad lines";
+  ASSERT_EQ(lines.size(), 9u);  // ready + 8 answers; nothing after quit
   EXPECT_NE(lines[1].find("\"t\":0.6"), std::string::npos) << lines[1];
   EXPECT_EQ(lines[2], "ok fingers.left.n_sgo=0");
   EXPECT_EQ(lines[6].rfind("error: <stdin>:6: unknown command 'jump'", 0), 0u) << lines[6];
   EXPECT_NE(lines[7].find("<stdin>:7"), std::string::npos) << lines[7];
   EXPECT_NE(lines[7].find("fingers.left.n_sgo"), std::string::npos) << lines[7];
-  EXPECT_TRUE(fs::exists(fs::path(o.out_dir) / "contacts" / "s1.json"));
+  EXPECT_TRUE(fs::exists(fs::path(a.out_dir) / "contacts" / "s1.json"));
 }
+
+// `set` takes the live finger settings only, in the unit of the scene files, and checks each
+// with its validator.
+TEST(Live, SetChecksEachLiveSettingWithItsValidator) {
+  const Answers a = runFig7SidePick(
+      "set fingers.left.tau_a=30\nset fingers.left.proxy_mass=1\nset fingers.left.n_sgo=2\n"
+      "set fingers.left.r_max=x\nset fingers.thumb.n_sgo=4\nstep 400\n",
+      "gf_live_set");
+  const std::vector<std::string>& lines = a.lines;
+  EXPECT_EQ(a.exit_code, 1);
+  ASSERT_EQ(lines.size(), 7u);
+  EXPECT_EQ(lines[1], "ok fingers.left.tau_a=30");
+  EXPECT_NE(lines[2].find("FIELD one of n_sgo, r_max, d0, alpha, stretch_length, max_stretch_exponent, tau_a, friction"),
+            std::string::npos)
+      << lines[2];
+  EXPECT_NE(lines[3].find("fingers.left.n_sgo: must be 0 (god-object) or 3..64"), std::string::npos) << lines[3];
+  EXPECT_NE(lines[4].find("expected a number, got 'x'"), std::string::npos) << lines[4];
+  EXPECT_NE(lines[5].find("no finger called 'thumb'"), std::string::npos) << lines[5];
+  EXPECT_EQ(lines[6].rfind("ok {", 0), 0u) << lines[6];
+}
+
 }  // namespace
 }  // namespace gf::app

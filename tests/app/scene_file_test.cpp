@@ -8,6 +8,7 @@
 #include <fstream>
 #include <sstream>
 
+#include "render/geometry.hpp"
 #include "sim/haptic_loop.hpp"
 #include "sim/mesh_import.hpp"
 #include "sim/world.hpp"
@@ -160,6 +161,42 @@ TEST(SceneFile, DeviceCsvErrorsNameTheLine) {
     EXPECT_EQ(e.line(), 3);
     EXPECT_EQ(e.field(), "y");
   }
+}
+
+// Two bodies on one mesh file share one loaded mesh; the World and the renderer use it without
+// reading the file again (it is gone by then).
+TEST(SceneFile, EachMeshFileIsReadOnceAndShared) {
+  const fs::path dir = fs::temp_directory_path() / "gf_scene_file_mesh_once";
+  fs::create_directories(dir);
+  std::ofstream(dir / "tet.obj") << "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\n";
+  const std::string ball = "shape = \"sphere\"\nradius = 0.03\nmass = 0.1";
+  std::string text = replaced(ball, "shape = \"mesh\"\nmesh = \"tet.obj\"\nscale = 0.05\ncollision = \"concave\"\nmass = 0.1");
+  text += "[bodies.other]\nshape = \"mesh\"\nmesh = \"tet.obj\"\nscale = 0.05\nstatic = true\n";
+  const SessionDesc s = parseSceneText(text, "scene.toml", dir.string());
+  ASSERT_EQ(s.scene.bodies.size(), 3u);
+  ASSERT_TRUE(s.scene.bodies[1].mesh);
+  EXPECT_EQ(s.scene.bodies[1].mesh.get(), s.scene.bodies[2].mesh.get());
+  fs::remove_all(dir);
+  sim::World world(s.scene);
+  EXPECT_NEAR((world.bodyPose(1).position - s.scene.bodies[1].position).norm(), 0.0, 1e-12);
+  EXPECT_EQ(render::bodyRenderMesh(s.scene.bodies[2]).get(), s.scene.bodies[2].mesh.get());
+}
+
+// Rules of the settings' validators reach the scene file's errors: per-shape ranges, legal
+// values of scripted overlay input.
+TEST(SceneFile, ValidatorErrorsNameTheField) {
+  const InputError a = errorOf(replaced("radius = 0.03", "radius = 0.03\nwalk_resolution = 9"));
+  EXPECT_EQ(a.field(), "bodies.ball.walk_resolution");
+  EXPECT_EQ(a.line(), 9) << a.what();
+  EXPECT_NE(std::string(a.what()).find("1..7 for a sphere"), std::string::npos) << a.what();
+  const std::string overlay = replaced("\"god_finger\"]", "\"god_finger\", \"overlay\"]") +
+                              "[render]\nactions = [{ t = 0.1, widget = \"left/tau_a\", value = \"200\" }]\n";
+  const InputError b = errorOf(overlay);
+  EXPECT_EQ(b.field(), "render.actions.value");
+  EXPECT_NE(std::string(b.what()).find("tau_a must be in [0, 180], got 200"), std::string::npos) << b.what();
+  const InputError c = errorOf(kMinimal, {"fingers.left.coupling_stiffness=0"});
+  EXPECT_EQ(c.field(), "fingers.left.coupling_stiffness");
+  EXPECT_NE(std::string(c.what()).find("(0, 1e+06]"), std::string::npos) << c.what();
 }
 
 TEST(BundledScenes, EveryOneLoadsAndRuns) {

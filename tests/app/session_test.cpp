@@ -39,21 +39,71 @@ TEST(Session, SameSceneTwiceGivesByteIdenticalTrace) {
             "right.fx,right.fy,right.fz,right.n_sgo");
 }
 
+// Options writing into a fresh temporary folder `name`, without progress lines.
+SessionOptions freshOutput(const std::string& name) {
+  const fs::path out = fs::temp_directory_path() / name;
+  fs::remove_all(out);
+  SessionOptions options;
+  options.out_dir = out.string();
+  options.progress = false;
+  return options;
+}
+
+nlohmann::json readJson(const fs::path& path) {
+  std::ifstream in(path);
+  return nlohmann::json::parse(in);
+}
+
+// Every key of `j`, at any depth.
+void collectKeys(const nlohmann::json& j, std::vector<std::string>& keys) {
+  if (j.is_object()) {
+    for (const auto& [k, v] : j.items()) {
+      keys.push_back(k);
+      collectKeys(v, keys);
+    }
+  } else if (j.is_array()) {
+    for (const auto& v : j) collectKeys(v, keys);
+  }
+}
+
+// The press depth reaches contacts/*.json with the separation, in the world frame; the radius
+// there is Eq. 1 of that press depth; every angle in every JSON file is in degrees.
+TEST(Session, ContactsCarryPressDepthAndAnglesAreInDegrees) {
+  const std::vector<std::string> overrides = {"duration=1.0", "record.contacts=[0.8]"};
+  SessionOptions options = freshOutput("gf_session_contacts");
+  options.close_ups = false;
+  runSession(loadSceneFile(resolveScenePath("fig7-side-pick"), overrides), options);
+  const fs::path out(options.out_dir);
+  const nlohmann::json contacts = readJson(out / "contacts" / "t0.800.json");
+  EXPECT_EQ(contacts["frame"], "world");
+  ASSERT_EQ(contacts["fingers"].size(), 2u);
+  for (const nlohmann::json& f : contacts["fingers"]) {
+    ASSERT_EQ(f["contacts"].size(), 1u);
+    const nlohmann::json& c = f["contacts"][0];
+    const double press = c["press_depth_m"];
+    EXPECT_GT(press, 0.004) << "the devices are 4 mm past the proxies' resting place and the box gives";
+    EXPECT_LT(c["separation_m"].get<double>(), 0.0);
+    EXPECT_NEAR(c["radius_m"].get<double>(), 0.01 * -std::expm1(-press / 0.004), 1e-12) << "Eq. 1";
+    EXPECT_FALSE(c.contains("distance_m"));
+  }
+  const nlohmann::json summary = readJson(out / "summary.json");
+  EXPECT_NEAR(summary["fingers"][0]["tau_a_deg"].get<double>(), 60.0, 1e-9);
+  std::vector<std::string> keys;
+  collectKeys(contacts, keys);
+  collectKeys(summary, keys);
+  for (const std::string& k : keys) EXPECT_FALSE(k.ends_with("_rad")) << k;
+}
+
 // A 0.5 s offline session gives a frame at every 1/60 s (t = 0 included), close-ups beside
 // the contact JSON, and the overlay's scripted clicks change the running simulation.
 TEST(Session, WritesEveryFrameAndAppliesScriptedInput) {
   const std::vector<std::string> overrides = {"duration=0.6", "record.contacts=[0.4]", "render.width=320",
       "render.height=180",
       "render.actions=[{t = 0.3, widget = \"left/god_finger\", value = \"off\"}]"};
-  SessionDesc s =
-      loadSceneFile(std::string(GF_SOURCE_DIR) + "/assets/scenes/overlay-demo.toml", overrides);
-  const fs::path out = fs::temp_directory_path() / "gf_render_session";
-  fs::remove_all(out);
-  SessionOptions options;
-  options.out_dir = out.string();
-  options.progress = false;
+  SessionOptions options = freshOutput("gf_render_session");
   options.frames = true;
-  runSession(s, options);
+  runSession(loadSceneFile(resolveScenePath("overlay-demo"), overrides), options);
+  const fs::path out(options.out_dir);
   int frames = 0;
   for (const auto& e : fs::directory_iterator(out / "frames")) frames += e.path().extension() == ".png";
   EXPECT_EQ(frames, 37);  // k / 60 s for k = 0..36
@@ -63,8 +113,7 @@ TEST(Session, WritesEveryFrameAndAppliesScriptedInput) {
   const render::Image frame = render::readPng((out / "frames" / "000036.png").string());
   EXPECT_EQ(frame.width, 320);
   EXPECT_EQ(frame.height, 180);
-  std::ifstream in(out / "summary.json");
-  const nlohmann::json summary = nlohmann::json::parse(in);
+  const nlohmann::json summary = readJson(out / "summary.json");
   ASSERT_EQ(summary["overlay_changes"].size(), 1u);
   EXPECT_EQ(summary["overlay_changes"][0]["finger"], "left");
   EXPECT_EQ(summary["overlay_changes"][0]["n_sgo"], 0);
