@@ -33,10 +33,10 @@ void FrameDriver::apply(sim::World& world, const std::vector<sim::SettingsComman
 
 // Realtime: the latest state, written straight into the render thread's free slot.
 void FrameDriver::publishLatest(const sim::World& world) {
-  sim::Snapshot& slot = renderer_.latestSlot();
-  world.snapshot(slot);
-  slot.timings = live_ ? live_->summary() : sim::HapticTimings{};
-  renderer_.publishLatest();
+  renderer_.publishLatest([&](sim::Snapshot& slot) {
+    world.snapshot(slot);
+    slot.timings = live_ ? live_->summary() : sim::HapticTimings{};
+  });
 }
 
 void FrameDriver::start(sim::World& world) {

@@ -107,6 +107,9 @@ class Live {
     track.keyframes.push_back({t, devices_[f].sample(t).position});
     if (seconds > 0.0) track.keyframes.push_back({t + seconds, target});
     else track.keyframes.back().position = target;
+    if (const std::optional<sim::FieldError> e = sim::validateTrack(track)) {
+      throw std::invalid_argument("move: " + e->reason);
+    }
     devices_[f] = track;
     out_ << "ok " << finger << " to " << x << ' ' << y << ' ' << z << " by t=" << t + seconds << '\n';
   }

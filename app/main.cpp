@@ -32,11 +32,15 @@ struct RunArgs {
   std::string video, camera;
 };
 
+const gf::sim::Setting<gf::sim::FingerDesc>& fingerSetting(std::string_view name) {
+  return *gf::sim::findSetting(gf::sim::fingerSettings(), name);
+}
+
 struct PatchArgs {
   std::string mesh, out, point, normal, push;
   double scale = 1.0;
-  gf::sim::PatchSettings settings;
-  double tau_a_deg = 60.0;
+  gf::sim::FingerDesc finger;  ///< its god-finger settings, tau_a aside
+  double tau_a_deg = gf::sim::givenValue(fingerSetting("tau_a"), gf::sim::FingerDesc{});
 };
 
 // A command-line check by the validator of setting `name` of `table` (the value in its unit).
@@ -77,12 +81,12 @@ void addPatch(CLI::App& app, PatchArgs& a) {
   p->add_option("--point", a.point, "Contact point X,Y,Z on the mesh (m)")->required();
   p->add_option("--normal", a.normal, "Outward surface normal X,Y,Z at the point")->required();
   p->add_option("--push", a.push, "Coupling vector v = device - god-object X,Y,Z (m)")->required();
-  p->add_option("--n-sgo", a.settings.n_sgo, "Number of SGOs")->check(fingerCheck("n_sgo"));
-  p->add_option("--r-max", a.settings.r_max, "Largest contact radius r_max (m)")->check(fingerCheck("r_max"));
-  p->add_option("--d0", a.settings.d0, "Press depth scale D'_0 (m)")->check(fingerCheck("d0"));
-  p->add_option("--alpha", a.settings.alpha, "Stretch base alpha of Eq. 2")->check(fingerCheck("alpha"));
+  p->add_option("--n-sgo", a.finger.patch.n_sgo, "Number of SGOs")->check(fingerCheck("n_sgo"));
+  p->add_option("--r-max", a.finger.patch.r_max, "Largest contact radius r_max (m)")->check(fingerCheck("r_max"));
+  p->add_option("--d0", a.finger.patch.d0, "Press depth scale D'_0 (m)")->check(fingerCheck("d0"));
+  p->add_option("--alpha", a.finger.patch.alpha, "Stretch base alpha of Eq. 2")->check(fingerCheck("alpha"));
   p->add_option("--tau-a", a.tau_a_deg, "Angular threshold tau_a (degrees)")->check(fingerCheck("tau_a"));
-  p->add_option("--friction", a.settings.friction, "Friction coefficient theta")->check(fingerCheck("friction"));
+  p->add_option("--friction", a.finger.patch.friction, "Friction coefficient theta")->check(fingerCheck("friction"));
   p->add_option("--out", a.out, "Output folder (created if missing)")->required();
 }
 
@@ -131,9 +135,7 @@ void writePatchCloseUp(const PatchArgs& a, const std::shared_ptr<const gf::sim::
   body.mesh = mesh;  // drawn from the mesh already loaded
   body.mass = 0.0;
   scene.bodies.push_back(body);
-  gf::sim::FingerDesc finger;
-  finger.patch = a.settings;
-  scene.fingers.push_back(finger);
+  scene.fingers.push_back(a.finger);
   gf::sim::Snapshot snap;
   snap.bodies.resize(1);  // the mesh frame is the world frame
   gf::sim::toContactSnapshot(record, snap.bodies[0], snap.fingers.emplace_back().contacts.emplace_back());
@@ -149,20 +151,22 @@ int patchCommand(PatchArgs& a) {
     throw InputError("command line", 0, 0, "--normal", "must not be zero");
   }
   record.contact.outward_normal_local.normalize();
-  if (a.settings.n_sgo < gf::sim::kMinSgo) {
+  if (a.finger.patch.n_sgo < gf::sim::kMinSgo) {
     throw InputError("command line", 0, 0, "--n-sgo", "a patch needs at least " + std::to_string(gf::sim::kMinSgo) + " SGOs");
   }
-  a.settings.tau_a = a.tau_a_deg * std::numbers::pi / 180.0;
+  gf::sim::setGiven(fingerSetting("tau_a"), a.finger, a.tau_a_deg);
+  const gf::sim::PatchSettings& settings = a.finger.patch;
   std::shared_ptr<const gf::sim::Mesh> mesh;
   try {
     mesh = std::make_shared<const gf::sim::Mesh>(gf::sim::loadMesh(a.mesh, a.scale));
   } catch (const gf::sim::MeshLoadError& e) {
     throw InputError("command line", 0, 0, "--mesh", e.what());
   }
-  gf::sim::computePatch(*mesh, record.contact, push, a.settings, record.patch);
+  gf::sim::computePatch(*mesh, record.contact, push, settings, record.patch);
   record.press_depth = record.patch.press_depth;
+  if (record.patch.valid) record.contact.point_local = record.patch.hit.point;  // c_p on the mesh
   const gf::sim::Patch& patch = record.patch;
-  nlohmann::json j = gf::app::patchJson(patch, a.settings);
+  nlohmann::json j = gf::app::patchJson(patch, settings);
   j["mesh"] = a.mesh;
   j["scale"] = a.scale;
   std::error_code ec;

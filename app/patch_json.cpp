@@ -1,5 +1,7 @@
 #include "app/patch_json.hpp"
 
+#include <cmath>
+
 #include "sim/settings.hpp"
 
 namespace gf::app {
@@ -11,6 +13,11 @@ nlohmann::json vec(const sim::Vec3& v) { return {v.x(), v.y(), v.z()}; }
 constexpr const char* kFeatureNames[] = {"face", "edge", "vertex"};
 constexpr const char* kStopNames[] = {"distance",  "angular_threshold", "friction_cone", "boundary",
                                       "crossing_limit", "degenerate",   "dropped"};
+
+static_assert(std::size(kFeatureNames) == static_cast<std::size_t>(sim::Feature::kVertex) + 1,
+              "a name for every sim::Feature");
+static_assert(std::size(kStopNames) == static_cast<std::size_t>(sim::WalkStop::kDropped) + 1,
+              "a name for every sim::WalkStop");
 
 const char* featureName(sim::Feature f) { return kFeatureNames[static_cast<std::size_t>(f)]; }
 const char* stopName(sim::WalkStop s) { return kStopNames[static_cast<std::size_t>(s)]; }
@@ -25,17 +32,30 @@ nlohmann::json paths(const std::vector<sim::Vec3>& points, const std::vector<std
   return out;
 }
 
-}  // namespace
-
-nlohmann::json fingerSettingsJson(const sim::FingerDesc& finger, bool live_only) {
+// The settings of `table` in `desc`, keyed by jsonKey(), in the unit users give them.
+template <class Desc>
+nlohmann::json settingsJson(std::span<const sim::Setting<Desc>> table, const Desc& desc, bool live_only) {
   nlohmann::json out = nlohmann::json::object();
-  for (const sim::Setting<sim::FingerDesc>& s : sim::fingerSettings()) {
+  for (const sim::Setting<Desc>& s : table) {
     if (live_only && !s.live) continue;
-    const double v = sim::givenValue(s, finger);
-    out[sim::jsonKey(s)] = s.kind == sim::SettingKind::kInteger ? nlohmann::json(static_cast<long>(v)) : nlohmann::json(v);
+    if (s.kind == sim::SettingKind::kVector) {
+      out[sim::jsonKey(s)] = vec(s.get_vector(desc) / s.si_per_unit);
+    } else if (s.kind == sim::SettingKind::kInteger) {
+      out[sim::jsonKey(s)] = std::lround(sim::givenValue(s, desc));
+    } else {
+      out[sim::jsonKey(s)] = sim::givenValue(s, desc);
+    }
   }
   return out;
 }
+
+}  // namespace
+
+nlohmann::json fingerSettingsJson(const sim::FingerDesc& finger, bool live_only) {
+  return settingsJson(sim::fingerSettings(), finger, live_only);
+}
+
+nlohmann::json sceneSettingsJson(const sim::SceneDesc& scene) { return settingsJson(sim::sceneSettings(), scene, false); }
 
 nlohmann::json patchJson(const sim::Patch& p, const sim::PatchSettings& s) {
   nlohmann::json radial = nlohmann::json::array();

@@ -4,14 +4,20 @@
 
 #include <nlohmann/json.hpp>
 
+#include "sim/god_finger.hpp"
 #include "sim/scene_desc.hpp"
 #include "sim/snapshot.hpp"
 
 namespace gf::app {
 
 /// A finger's settings as JSON, named as fingerSettings() names them with their unit
-/// ("r_max_m", "tau_a_deg"): every one, or only the live (god-finger) ones.
+/// ("r_max_m", "tau_a_deg"), in the unit users give them: every one, or only the live
+/// (god-finger) ones.
 nlohmann::json fingerSettingsJson(const sim::FingerDesc& finger, bool live_only);
+
+/// The scene-wide settings (sceneSettings()) as JSON: "duration_s", "haptic_rate_hz",
+/// "world_solver_iterations", ...
+nlohmann::json sceneSettingsJson(const sim::SceneDesc& scene);
 
 /// A patch in the mesh's own frame ("frame": "mesh"): press depth, radius, radial vectors with
 /// their d_i and stops, SGOs with their faces, and the walked paths (one polyline per SGO).

@@ -38,7 +38,7 @@ using CameraDesc = render::Camera;
 struct SessionDesc {
   sim::SceneDesc scene;
   std::string summary;       ///< one line for `godfinger list`
-  std::string source;        ///< the file it came from ("" for built-in scenes)
+  std::string source;        ///< the file it came from ("" for scenes made in code)
   std::vector<std::string> overrides;  ///< the --set FIELD=VALUE applied, in order
   RecordSettings record;
   ViewSettings view;

@@ -317,7 +317,7 @@ void RenderThread::submitChart(const ChartSpec& chart, const std::string& path) 
 
 sim::Snapshot& RenderThread::latestSlot() { return impl_->latest.back(); }
 
-void RenderThread::publishLatest() { impl_->latest.publish(); }
+void RenderThread::publishSlot() { impl_->latest.publish(); }
 
 std::vector<sim::SettingsCommand> RenderThread::takeCommands() {
   std::unique_lock lock(impl_->command_mutex, std::try_to_lock);

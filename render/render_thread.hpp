@@ -59,18 +59,23 @@ class RenderThread {
   void submitCloseUps(const sim::Snapshot& snapshot, const std::string& prefix);
   /// Queues a chart, written as the PNG `path`.
   void submitChart(const ChartSpec& chart, const std::string& path);
-  /// Realtime: the snapshot slot the haptic thread fills with its latest state before
-  /// publishLatest() hands it over. Haptic thread only (one publishing thread).
-  sim::Snapshot& latestSlot();
-  /// Realtime: hands the filled slot to the render thread, which draws the newest at its next
-  /// frame. Never blocks; does not allocate (slots keep their storage). Haptic thread only.
-  void publishLatest();
+  /// Realtime: `fill(snapshot)` writes the latest state into the free slot of the triple
+  /// buffer, which is then handed to the render thread (it draws the newest at its next frame).
+  /// The slot is the caller's only inside `fill`. Never blocks; does not allocate once the
+  /// slots have grown. Haptic thread only (one publishing thread).
+  template <class Fill>
+  void publishLatest(Fill&& fill) {
+    fill(latestSlot());
+    publishSlot();
+  }
   /// Realtime: settings changes made in the overlay since the last call; never blocks.
   std::vector<sim::SettingsCommand> takeCommands();
   /// Draws what is queued, stops the thread and the encoders, rethrows the first error.
   RenderStats finish();
 
  private:
+  sim::Snapshot& latestSlot();
+  void publishSlot();
   struct Impl;
   std::unique_ptr<Impl> impl_;
 };

@@ -8,7 +8,8 @@
 #include <string>
 #include <string_view>
 
-#include "sim/god_finger.hpp"
+#include "sim/mesh.hpp"
+#include "sim/patch_settings.hpp"
 
 namespace gf::render {
 

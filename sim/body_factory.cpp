@@ -7,6 +7,7 @@
 #include <span>
 #include <stdexcept>
 
+#include "sim/assert.hpp"
 #include "sim/mesh_import.hpp"
 #include "sim/primitives.hpp"
 #include "sim/settings.hpp"
@@ -163,7 +164,7 @@ int resolution(const BodyDesc& d) {
 }  // namespace
 
 BodyShapes makeBodyShapes(const BodyDesc& d) {
-  if (std::optional<FieldError> e = validateBody(d)) throw DescriptionError("body '" + d.name + "'", *e);
+  GF_ASSERT(!validateBody(d) && "build bodies from a checked description (World checks it with requireValid)");
   BodyShapes out;
   try {
     switch (d.shape) {

@@ -22,8 +22,10 @@ struct BodyShapes {
   btTransform desc_from_body = btTransform::getIdentity();
 };
 
-/// Creates shapes for `desc`. Throws std::invalid_argument (or MeshLoadError) naming the field
-/// and body when the description cannot be built. Allocates; call at load time only.
+/// Creates shapes for `desc`, whose settings must be legal (validateBody; the World checks the
+/// whole scene first). Throws DescriptionError naming the body and field when its geometry
+/// cannot be built (an unreadable mesh, an open mesh for a dynamic body). Allocates; call at
+/// load time only.
 BodyShapes makeBodyShapes(const BodyDesc& desc);
 
 inline btVector3 toBt(const Vec3& v) { return {v.x(), v.y(), v.z()}; }

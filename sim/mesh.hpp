@@ -19,7 +19,7 @@ enum class EdgeKind : std::uint8_t {
   kNonManifold,  ///< three or more triangles: the neighbour is the most coplanar one (see below)
 };
 
-/// Which feature of a triangle a surface point lies on.
+/// Which feature of a triangle a surface point lies on (kVertex last: JSON names them in order).
 enum class Feature : std::uint8_t { kFace, kEdge, kVertex };
 
 /// A point on the mesh surface with the feature it lies on.

@@ -9,7 +9,8 @@
 
 #include "sim/coupling.hpp"
 #include "sim/device.hpp"
-#include "sim/god_finger.hpp"
+#include "sim/mesh.hpp"
+#include "sim/patch_settings.hpp"
 
 namespace gf::sim {
 

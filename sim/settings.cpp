@@ -5,6 +5,7 @@
 #include <sstream>
 #include <type_traits>
 
+#include "sim/assert.hpp"
 #include "sim/primitives.hpp"
 
 namespace gf::sim {
@@ -91,10 +92,11 @@ std::string rangeReason(const SettingKind kind, double min, double max, bool min
          shown(got);
 }
 
-template <class Desc>
-std::optional<FieldError> firstBadSetting(std::span<const Setting<Desc>> table, const Desc& desc, bool live_only) {
+// The first setting of `table` whose value in `desc` is not legal, skipping those `skip` names.
+template <class Desc, class Skip>
+std::optional<FieldError> firstBadSetting(std::span<const Setting<Desc>> table, const Desc& desc, Skip&& skip) {
   for (const Setting<Desc>& s : table) {
-    if (live_only && !s.live) continue;
+    if (skip(s)) continue;
     const std::optional<std::string> why = s.kind == SettingKind::kVector
                                                ? checkGiven(s, Vec3(s.get_vector(desc) / s.si_per_unit))
                                                : checkGiven(s, givenValue(s, desc));
@@ -196,23 +198,18 @@ std::optional<std::string> checkGiven(const Setting<Desc>& s, const Vec3& given)
 
 template <class Desc>
 std::string jsonKey(const Setting<Desc>& s) {
+  // The suffix JSON names give each unit.
+  static constexpr std::pair<std::string_view, std::string_view> kSuffixes[] = {
+      {"", ""},         {"m", "_m"},        {"deg", "_deg"},         {"kg", "_kg"},        {"s", "_s"},
+      {"N", "_n"},      {"Hz", "_hz"},      {"N/m", "_n_per_m"},     {"N s/m", "_ns_per_m"},
+      {"1/s", "_per_s"}, {"m/s^2", "_m_per_s2"},
+  };
   std::string key(s.name);
   for (char& c : key) c = c == '.' ? '_' : c;
-  if (s.unit == "m" || s.unit == "deg" || s.unit == "kg" || s.unit == "s") {
-    key.append("_").append(s.unit);
-  } else if (s.unit == "N") {
-    key.append("_n");
-  } else if (s.unit == "Hz") {
-    key.append("_hz");
-  } else if (s.unit == "N/m") {
-    key.append("_n_per_m");
-  } else if (s.unit == "N s/m") {
-    key.append("_ns_per_m");
-  } else if (s.unit == "1/s") {
-    key.append("_per_s");
-  } else if (s.unit == "m/s^2") {
-    key.append("_m_per_s2");
+  for (const auto& [unit, suffix] : kSuffixes) {
+    if (unit == s.unit) return key.append(suffix);
   }
+  GF_ASSERT(false && "every unit of a setting has a JSON suffix in jsonKey()");
   return key;
 }
 
@@ -257,19 +254,14 @@ std::span<const EffectSwitch> effectSwitches() {
   return kEffects;
 }
 
-std::optional<FieldError> validateScene(const SceneDesc& scene) {
-  return firstBadSetting(sceneSettings(), scene, false);
-}
+constexpr auto kNone = [](const auto&) { return false; };
+
+std::optional<FieldError> validateScene(const SceneDesc& scene) { return firstBadSetting(sceneSettings(), scene, kNone); }
 
 std::optional<FieldError> validateBody(const BodyDesc& body) {
   // A static body (mass 0) has no mass setting to check.
-  const Setting<BodyDesc>* mass = findSetting(bodySettings(), "mass");
-  for (const Setting<BodyDesc>& s : bodySettings()) {
-    if (&s == mass && body.mass == 0.0) continue;
-    const std::optional<std::string> why = s.kind == SettingKind::kVector ? checkGiven(s, s.get_vector(body))
-                                                                          : checkGiven(s, givenValue(s, body));
-    if (why) return FieldError{std::string(s.name), *why};
-  }
+  const auto static_mass = [&](const Setting<BodyDesc>& s) { return s.name == "mass" && body.mass == 0.0; };
+  if (std::optional<FieldError> e = firstBadSetting(bodySettings(), body, static_mass)) return e;
   const ShapeInfo& shape = shapeInfo(body.shape);
   if (body.shape == ShapeKind::kPlane && body.mass != 0.0) return FieldError{"mass", "a plane must be static (mass 0)"};
   if (body.walk_resolution != 0 &&
@@ -304,7 +296,7 @@ std::optional<FieldError> validateTrack(const DeviceTrack& track) {
 }
 
 std::optional<FieldError> validateFinger(const FingerDesc& finger) {
-  if (std::optional<FieldError> e = firstBadSetting(fingerSettings(), finger, false)) return e;
+  if (std::optional<FieldError> e = firstBadSetting(fingerSettings(), finger, kNone)) return e;
   if (std::optional<FieldError> e = validateTrack(finger.device)) {
     e->field = "device." + e->field;
     return e;
@@ -315,7 +307,7 @@ std::optional<FieldError> validateFinger(const FingerDesc& finger) {
 std::optional<FieldError> validatePatch(const PatchSettings& patch) {
   FingerDesc finger;
   finger.patch = patch;
-  return firstBadSetting(fingerSettings(), finger, true);
+  return firstBadSetting(fingerSettings(), finger, [](const Setting<FingerDesc>& s) { return !s.live; });
 }
 
 void requireValid(const SceneDesc& scene) {

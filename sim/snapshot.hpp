@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "sim/god_finger.hpp"
+#include "sim/mesh.hpp"
 
 namespace gf::sim {
 

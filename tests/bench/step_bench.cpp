@@ -13,7 +13,7 @@ using namespace gf;
 // One haptic step of the Fig. 8 pinch (the bundled scene) while the lifted cylinder is held
 // (t >= 3.5 s): n_SGO per finger, and the solver iterations (the scene's 20, or 10).
 void BM_PinchStep(benchmark::State& state) {
-  testing::TestContext ctx("fig8-pinch-oscillation", static_cast<int>(state.range(0)),
+  test_support::TestContext ctx("fig8-pinch-oscillation", static_cast<int>(state.range(0)),
                            {"world.solver_iterations=" + std::to_string(state.range(1))});
   ctx.simulate(3.5);
   sim::World& world = ctx.world();

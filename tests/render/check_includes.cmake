@@ -4,7 +4,7 @@ cmake_minimum_required(VERSION 3.25)
 # the primitive tessellations, and the assert macro. World, haptic loop, Bullet glue: never.
 # Run by ctest: cmake -DRENDER_DIR=<repo>/render -P check_includes.cmake
 set(allowed
-  "sim/snapshot.hpp" "sim/scene_desc.hpp" "sim/settings.hpp" "sim/god_finger.hpp" "sim/mesh.hpp"
+  "sim/snapshot.hpp" "sim/scene_desc.hpp" "sim/settings.hpp" "sim/patch_settings.hpp" "sim/mesh.hpp"
   "sim/primitives.hpp" "sim/assert.hpp")
 file(GLOB sources "${RENDER_DIR}/*.hpp" "${RENDER_DIR}/*.cpp")
 set(bad "")

@@ -7,7 +7,7 @@
 
 #include "tests/sim/test_context.hpp"
 
-namespace gf::testing {
+namespace gf::test_support {
 namespace {
 
 constexpr double kRadToDeg = 180.0 / std::numbers::pi;
@@ -20,12 +20,7 @@ void runScene(const std::string& name, int n_sgo, double duration, Observer&& ob
   ctx.simulate(duration > 0.0 ? duration : ctx.scene().duration, observe);
 }
 
-int bodyIndex(const sim::World& w, const std::string& name) {
-  for (std::size_t i = 0; i < w.desc().bodies.size(); ++i) {
-    if (w.desc().bodies[i].name == name) return static_cast<int>(i);
-  }
-  return -1;
-}
+int bodyIndex(const sim::World& w, const std::string& name) { return indexOf(w.desc().bodies, name); }
 
 // Fig. 5: roll ratio = rotation angle x radius / distance travelled.
 double rollRatio(int n_sgo) {
@@ -142,4 +137,4 @@ TEST(PaperScenes, ConcaveMeshIsTouchedAndMoved) {
 }
 
 }  // namespace
-}  // namespace gf::testing
+}  // namespace gf::test_support

@@ -11,10 +11,19 @@
 #include "sim/haptic_loop.hpp"
 #include "sim/world.hpp"
 
-namespace gf::testing {
+namespace gf::test_support {
 
 /// Keeps every finger's n_sgo as the scene file gives it.
 inline constexpr int kSceneSgo = -1;
+
+/// Index of the body or finger called `name` in `items` (-1 when there is none).
+template <class Items>
+int indexOf(const Items& items, const std::string& name) {
+  for (std::size_t i = 0; i < items.size(); ++i) {
+    if (items[i].name == name) return static_cast<int>(i);
+  }
+  return -1;
+}
 
 class TestContext {
  public:
@@ -37,30 +46,20 @@ class TestContext {
   int body(const std::string& name) const { return indexOf(scene_.bodies, name); }
   int finger(const std::string& name) const { return indexOf(scene_.fingers, name); }
 
-  /// The scene `name` with overrides, every finger at n_sgo unless kSceneSgo.
+  /// The scene `name` with overrides, every finger at n_sgo unless kSceneSgo (checked by the
+  /// World when it is built).
   static sim::SceneDesc load(const std::string& name, int n_sgo, const std::vector<std::string>& overrides) {
-    const std::string path = app::resolveScenePath(name);
-    std::vector<std::string> all = overrides;
+    sim::SceneDesc scene = app::loadSceneFile(app::resolveScenePath(name), overrides).scene;
     if (n_sgo != kSceneSgo) {
-      for (const sim::FingerDesc& f : app::loadSceneFile(path, overrides).scene.fingers) {
-        all.push_back("fingers." + f.name + ".n_sgo=" + std::to_string(n_sgo));
-      }
+      for (sim::FingerDesc& f : scene.fingers) f.patch.n_sgo = n_sgo;
     }
-    return app::loadSceneFile(path, all).scene;
+    return scene;
   }
 
  private:
-  template <class Items>
-  static int indexOf(const Items& items, const std::string& name) {
-    for (std::size_t i = 0; i < items.size(); ++i) {
-      if (items[i].name == name) return static_cast<int>(i);
-    }
-    return -1;
-  }
-
   sim::SceneDesc scene_;
   sim::World world_;
   std::vector<sim::DeviceTrack> devices_;
 };
 
-}  // namespace gf::testing
+}  // namespace gf::test_support
