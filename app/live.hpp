@@ -20,7 +20,7 @@ struct LiveOptions {
 /// Runs commands from `in` until `quit` or end of input, answering each on `out`:
 ///   move FINGER X Y Z [SECONDS]   device to (X, Y, Z) m, straight, over SECONDS (default 0)
 ///   set fingers.NAME.FIELD=VALUE  a live finger setting of sim/settings.hpp (n_sgo, r_max, d0,
-///                                 alpha, stretch_length, max_stretch_exponent, tau_a in
+///                                 alpha, stretch_length, max_stretch, tau_a in
 ///                                 degrees, friction), checked by its validator
 ///   step [N]                      N haptic steps (default 1), then the state
 ///   state                         the state: time, and per finger proxy, force, SGOs

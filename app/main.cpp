@@ -39,6 +39,7 @@ const gf::sim::Setting<gf::sim::FingerDesc>& fingerSetting(std::string_view name
 struct PatchArgs {
   std::string mesh, out, point, normal, push;
   double scale = 1.0;
+  double rounding = 0.0;  ///< collision margin rounding the mesh's edges (m)
   gf::sim::FingerDesc finger;  ///< its god-finger settings, tau_a aside
   double tau_a_deg = gf::sim::givenValue(fingerSetting("tau_a"), gf::sim::FingerDesc{});
 };
@@ -81,6 +82,9 @@ void addPatch(CLI::App& app, PatchArgs& a) {
   p->add_option("--point", a.point, "Contact point X,Y,Z on the mesh (m)")->required();
   p->add_option("--normal", a.normal, "Outward surface normal X,Y,Z at the point")->required();
   p->add_option("--push", a.push, "Coupling vector v = device - god-object X,Y,Z (m)")->required();
+  p->add_option("--rounding", a.rounding, "Collision margin rounding the mesh's edges and corners (m): a point "
+                                          "this close to an edge, with a normal between its faces', is an edge hit")
+      ->check(CLI::Range(0.0, 0.01));
   p->add_option("--n-sgo", a.finger.patch.n_sgo, "Number of SGOs")->check(fingerCheck("n_sgo"));
   p->add_option("--r-max", a.finger.patch.r_max, "Largest contact radius r_max (m)")->check(fingerCheck("r_max"));
   p->add_option("--d0", a.finger.patch.d0, "Press depth scale D'_0 (m)")->check(fingerCheck("d0"));
@@ -145,7 +149,7 @@ void writePatchCloseUp(const PatchArgs& a, const std::shared_ptr<const gf::sim::
 int patchCommand(PatchArgs& a) {
   gf::sim::ContactRecord record;
   record.body = 0;
-  record.contact = {parseVec3("--point", a.point), parseVec3("--normal", a.normal), 0.0};
+  record.contact = {parseVec3("--point", a.point), parseVec3("--normal", a.normal), 0.0, a.rounding};
   const gf::sim::Vec3 push = parseVec3("--push", a.push);
   if (record.contact.outward_normal_local.norm() < 1e-9) {
     throw InputError("command line", 0, 0, "--normal", "must not be zero");

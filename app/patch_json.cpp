@@ -11,8 +11,8 @@ nlohmann::json vec(const sim::Vec3& v) { return {v.x(), v.y(), v.z()}; }
 
 // Names of sim::Feature and sim::WalkStop values, in enum order.
 constexpr const char* kFeatureNames[] = {"face", "edge", "vertex"};
-constexpr const char* kStopNames[] = {"distance",  "angular_threshold", "friction_cone", "boundary",
-                                      "crossing_limit", "degenerate",   "dropped"};
+constexpr const char* kStopNames[] = {"distance",       "angular_threshold", "friction_cone", "boundary",
+                                      "crossing_limit", "degenerate",        "facing_away",   "dropped"};
 
 static_assert(std::size(kFeatureNames) == static_cast<std::size_t>(sim::Feature::kVertex) + 1,
               "a name for every sim::Feature");
@@ -65,7 +65,7 @@ nlohmann::json patchJson(const sim::Patch& p, const sim::PatchSettings& s) {
   nlohmann::json sgos = nlohmann::json::array();
   for (const sim::Sgo& g : p.sgos) {
     sgos.push_back({{"position", vec(g.position)}, {"face", g.face}, {"radial", g.radial},
-                    {"walked_m", g.walked}, {"stop", stopName(g.stop)}});
+                    {"walked_m", g.walked}, {"stop", stopName(g.stop)}, {"load_share", g.load_share}});
   }
   sim::FingerDesc finger;
   finger.patch = s;
@@ -75,6 +75,7 @@ nlohmann::json patchJson(const sim::Patch& p, const sim::PatchSettings& s) {
           {"hit", {{"point", vec(p.hit.point)}, {"face", p.hit.face},
                    {"feature", featureName(p.hit.feature)}, {"feature_index", p.hit.feature_index}}},
           {"press_dir", vec(p.press_dir)},
+          {"ring_tangent", vec(p.ring_tangent)},
           {"press_depth_m", p.press_depth},
           {"radius_m", p.radius},
           {"radial", radial},

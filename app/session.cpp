@@ -50,7 +50,8 @@ nlohmann::json summaryJson(const SessionDesc& session, const sim::World& world,
                         {"max_lateness_us", stats.max_lateness_us},
                         {"fifo_priority", stats.fifo_priority},
                         {"nan_recoveries", c.nan_recoveries},
-                        {"invalid_patches", c.invalid_patches}, {"sgos_injected", c.sgos_injected}}},
+                        {"invalid_patches", c.invalid_patches}, {"sgos_injected", c.sgos_injected},
+                        {"crossing_limit_stops", c.crossing_limit_stops}}},
           {"wall_time_s", stats.wall_seconds}};
 }
 

@@ -206,6 +206,13 @@ BodyShapes makeBodyShapes(const BodyDesc& d) {
     fail(d, isMeshShape(d.shape) ? "mesh" : std::string(shapeInfo(d.shape).dimensions[0]), e.what());
   }
   if (d.mass > 0.0 && !isMeshShape(d.shape)) out.shape->calculateLocalInertia(d.mass, out.local_inertia);
+  // Boxes and cylinders round inside their extents, hulls and GImpact meshes outside their
+  // vertices; a sphere's or capsule's margin is its radius (no rounding of the walk mesh), and
+  // a static triangle mesh has none.
+  const bool rounded = d.shape == ShapeKind::kBox || d.shape == ShapeKind::kCylinder ||
+                       d.shape == ShapeKind::kConvexHull || d.shape == ShapeKind::kConvexDecomposition ||
+                       (d.shape == ShapeKind::kConcaveMesh && d.mass > 0.0);
+  out.rounding = rounded ? kMargin : 0.0;
   return out;
 }
 

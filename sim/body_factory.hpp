@@ -18,6 +18,10 @@ struct BodyShapes {
   std::vector<std::unique_ptr<btCollisionShape>> parts;  ///< children of a compound `shape`
   std::unique_ptr<btCollisionShape> shape;
   btVector3 local_inertia{0, 0, 0};  ///< kg m^2, principal
+  /// Radius (m) with which the collision shape rounds the walk mesh's edges and corners (its
+  /// collision margin; 0 where the shape is the exact surface: sphere, capsule, plane, static
+  /// triangle mesh). Contacts near an edge land up to this far from it (PatchContact::rounding).
+  double rounding = 0.0;
   /// Transform from the description's frame (mesh file frame, scaled) to the body frame.
   btTransform desc_from_body = btTransform::getIdentity();
 };

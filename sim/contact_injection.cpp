@@ -1,6 +1,7 @@
 #include "sim/contact_injection.hpp"
 
 #include <algorithm>
+#include <cmath>
 
 namespace gf::sim {
 namespace {
@@ -8,7 +9,8 @@ namespace {
 // Bullet's persistent manifolds hold this many points.
 constexpr int kPointsPerManifold = MANIFOLD_CACHE_SIZE;
 
-void applyMaterial(btManifoldPoint& p, const PointMaterial& mat, const WarmStart& warm) {
+void applyMaterial(btManifoldPoint& p, const PointMaterial& mat, const WarmStart& warm,
+                   const btVector3& lateral) {
   p.m_combinedFriction = mat.friction;
   p.m_combinedRollingFriction = 0.0;
   p.m_combinedSpinningFriction = 0.0;
@@ -18,7 +20,14 @@ void applyMaterial(btManifoldPoint& p, const PointMaterial& mat, const WarmStart
       BT_CONTACT_FLAG_CONTACT_STIFFNESS_DAMPING | BT_CONTACT_FLAG_LATERAL_FRICTION_INITIALIZED;
   p.m_combinedContactStiffness1 = mat.stiffness;
   p.m_combinedContactDamping1 = mat.damping;
-  btPlaneSpace1(p.m_normalWorldOnB, p.m_lateralFrictionDir1, p.m_lateralFrictionDir2);
+  const btVector3& n = p.m_normalWorldOnB;
+  const btVector3 along = lateral - lateral.dot(n) * n;
+  if (along.length2() > btScalar(1e-6) * lateral.length2() && along.length2() > btScalar(0)) {
+    p.m_lateralFrictionDir1 = along.normalized();
+    p.m_lateralFrictionDir2 = n.cross(p.m_lateralFrictionDir1);
+  } else {
+    btPlaneSpace1(n, p.m_lateralFrictionDir1, p.m_lateralFrictionDir2);
+  }
   p.m_appliedImpulse = warm.normal;
   p.m_appliedImpulseLateral1 = warm.lateral1;
   p.m_appliedImpulseLateral2 = warm.lateral2;
@@ -43,17 +52,19 @@ bool deepestContact(const btPersistentManifold& m, const btCollisionObject* prox
   return true;
 }
 
-void keepOnlyPoint(btPersistentManifold& m, int index, const PointMaterial& mat, const WarmStart& warm) {
+void keepOnlyPoint(btPersistentManifold& m, int index, const PointMaterial& mat, const WarmStart& warm,
+                   const btVector3& lateral) {
   btManifoldPoint kept = m.getContactPoint(index);
-  applyMaterial(kept, mat, warm);
+  applyMaterial(kept, mat, warm, lateral);
   m.clearManifold();
   m.addManifoldPoint(kept);
 }
 
 void injectPoints(btDispatcher& dispatcher, const btCollisionObject* proxy,
                   const btCollisionObject* object, const btVector3* points_world, int count,
-                  const btVector3& outward_normal_world, double separation, const PointMaterial& mat,
-                  const WarmStart* warm, std::vector<btPersistentManifold*>& added) {
+                  const btVector3& outward_normal_world, const btVector3& lateral, double separation,
+                  const PointMaterial* materials, const WarmStart* warm,
+                  std::vector<btPersistentManifold*>& added) {
   const btTransform proxy_inv = proxy->getWorldTransform().inverse();
   const btTransform object_inv = object->getWorldTransform().inverse();
   for (int first = 0; first < count; first += kPointsPerManifold) {
@@ -66,10 +77,22 @@ void injectPoints(btDispatcher& dispatcher, const btCollisionObject* proxy,
       btManifoldPoint p(proxy_inv * on_a, object_inv * on_b, outward_normal_world, separation);
       p.m_positionWorldOnA = on_a;
       p.m_positionWorldOnB = on_b;
-      applyMaterial(p, mat, warm[i]);
+      applyMaterial(p, materials[i], warm[i], lateral);
       m->addManifoldPoint(p);
     }
   }
+}
+
+WarmStart warmStartByAngle(const WarmStart* remembered, int n_old, int i, int n) {
+  if (n_old == n) return remembered[i];
+  if (n_old <= 0 || n <= 0) return {};
+  const double x = static_cast<double>(i) * n_old / n;
+  const int i0 = static_cast<int>(x) % n_old, i1 = (i0 + 1) % n_old;
+  const double w = x - std::floor(x), scale = static_cast<double>(n_old) / n;
+  const WarmStart& a = remembered[i0];
+  const WarmStart& b = remembered[i1];
+  return {scale * ((1 - w) * a.normal + w * b.normal), scale * ((1 - w) * a.lateral1 + w * b.lateral1),
+          scale * ((1 - w) * a.lateral2 + w * b.lateral2)};
 }
 
 WarmStart solvedImpulses(const btManifoldPoint& p) {

@@ -53,6 +53,12 @@ struct WarmStart {
   double lateral2 = 0.0;
 };
 
+/// The warm start of radial `i` of an n-vector ring from the impulses of an n_old-vector ring
+/// (radial j at angle 2 pi j / n_old): radial i itself when n is unchanged, else interpolated
+/// between the two remembered radials around its angle and scaled by n_old / n (the load spreads
+/// over more or fewer points). Nothing remembered (n_old 0): zero.
+WarmStart warmStartByAngle(const WarmStart* remembered, int n_old, int i, int n);
+
 /// Compliant material of one injected or kept point.
 struct PointMaterial {
   double stiffness = 0.0;  ///< N/m
@@ -64,18 +70,23 @@ struct PointMaterial {
 /// either way: the normal and point are turned to the object's side. False when m is empty.
 bool deepestContact(const btPersistentManifold& m, const btCollisionObject* proxy, TrueContact& out);
 
-/// Leaves only point `index` in `m`, made compliant with `mat`, warm-started from `warm`.
-void keepOnlyPoint(btPersistentManifold& m, int index, const PointMaterial& mat, const WarmStart& warm);
+/// Leaves only point `index` in `m`, made compliant with `mat`, warm-started from `warm`. Its
+/// first friction direction is `lateral` projected on its tangent plane (zero: Bullet's basis
+/// of the normal).
+void keepOnlyPoint(btPersistentManifold& m, int index, const PointMaterial& mat, const WarmStart& warm,
+                   const btVector3& lateral);
 
 /// Adds `count` points between proxy (body 0) and object (body 1) at the given object-surface
 /// points (world frame), all with the true contact's normal and separation (paper, Sec. 3.2),
-/// four per new manifold. The new
-/// manifolds are appended to `added` (reserve it: no allocation then). Point i is warm-started
-/// from warm[i]. Friction directions are fixed by the normal, so cached impulses stay meaningful.
+/// four per new manifold. The new manifolds are appended to `added` (reserve it: no allocation
+/// then). Point i has materials[i] and is warm-started from warm[i]. The first friction
+/// direction is `lateral` on the tangent plane (the ring's frame, carried from step to step),
+/// so cached impulses stay meaningful; zero: Bullet's basis of the normal.
 void injectPoints(btDispatcher& dispatcher, const btCollisionObject* proxy,
                   const btCollisionObject* object, const btVector3* points_world, int count,
-                  const btVector3& outward_normal_world, double separation, const PointMaterial& mat,
-                  const WarmStart* warm, std::vector<btPersistentManifold*>& added);
+                  const btVector3& outward_normal_world, const btVector3& lateral, double separation,
+                  const PointMaterial* materials, const WarmStart* warm,
+                  std::vector<btPersistentManifold*>& added);
 
 /// The solved impulses of point i of the points injected from manifold `added[first]` on.
 WarmStart solvedImpulses(const std::vector<btPersistentManifold*>& added, int first, int i);

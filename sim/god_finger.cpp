@@ -11,14 +11,32 @@ namespace {
 
 // Below this length a direction has vanished (unit vectors; dimensionless).
 constexpr double kDegenerateLength = 1e-12;
+// Entry scores (dot products of unit vectors) closer than this are a tie.
+constexpr double kScoreTolerance = 1e-9;
+// A walk direction this close to parallel to an edge (dot product with the edge's inward
+// normal) runs along it rather than out through it.
+constexpr double kParallelRate = 1e-9;
+// A walk may cross this many edges per mean edge length of its start face in d_i, on top of
+// PatchSettings::max_face_crossings: a straight line crosses at most about 4 edges per edge
+// length of a regular triangulation, so a fine mesh keeps the full radius.
+constexpr double kCrossingsPerEdgeLength = 8.0;
+constexpr double kMaxCrossings = 1e6;  // whatever the mesh: every walk ends
+// An SGO's load share uses a lever of at least this fraction of r (an SGO that stopped at the
+// contact would otherwise take the whole load).
+constexpr double kMinLeverFraction = 0.05;
+// The reference direction of the ring must keep this fraction of its length on the tangent
+// plane to be used.
+constexpr double kMinReferenceFraction = 1e-3;
 
 // The faces a radial vector may start on, and the walk's angular limit.
 struct WalkContext {
   const Mesh& mesh;
   const PatchSettings& s;
-  Vec3 normal;       // outward contact normal (unit)
-  double cos_limit;  // a face is allowed while cos(angle to normal) > cos_limit
+  Vec3 normal;        // outward contact normal (unit)
+  double cos_limit;   // a face is within the thresholds while cos(angle to normal) >= cos_limit
   bool has_limit;
+  double cos_facing;  // a face with cos(angle to normal) <= this faces away from the press
+  double cos_start;   // at an edge or vertex hit, faces this well aligned are start faces
 };
 
 // Orthonormal tangent basis of a unit normal (Duff et al., JCGT 2017, branchless form).
@@ -41,15 +59,30 @@ Vec3 rotateOnto(const Vec3& x, const Vec3& a, const Vec3& b) {
   return c * x + k.cross(x) + (k.dot(x) / (1.0 + c)) * k;
 }
 
+// Cosine of an angle widened by the comparison tolerance (clamped at pi).
+double cosWithTolerance(double angle) {
+  return std::cos(std::min(angle + kAngleTolerance, std::numbers::pi));
+}
+
+bool withinThresholds(const WalkContext& ctx, const Vec3& oriented_normal) {
+  return !ctx.has_limit || oriented_normal.dot(ctx.normal) >= ctx.cos_limit;
+}
+
+bool facesAway(const WalkContext& ctx, const Vec3& oriented_normal) {
+  return oriented_normal.dot(ctx.normal) <= ctx.cos_facing;
+}
+
+// A face the walk may enter: within the thresholds and not facing away.
 bool faceAllowed(const WalkContext& ctx, const Vec3& oriented_normal) {
-  return !ctx.has_limit || oriented_normal.dot(ctx.normal) > ctx.cos_limit;
+  return withinThresholds(ctx, oriented_normal) && !facesAway(ctx, oriented_normal);
 }
 
 // Which test stops the walk at a face with the given oriented normal.
 WalkStop stopReason(const WalkContext& ctx, const Vec3& oriented_normal) {
+  if (withinThresholds(ctx, oriented_normal)) return WalkStop::kFacingAway;
   const double angle = std::acos(std::clamp(oriented_normal.dot(ctx.normal), -1.0, 1.0));
-  return ctx.s.angular_threshold && angle >= ctx.s.tau_a ? WalkStop::kAngularThreshold
-                                                          : WalkStop::kFrictionCone;
+  return ctx.s.angular_threshold && angle > ctx.s.tau_a + kAngleTolerance ? WalkStop::kAngularThreshold
+                                                                           : WalkStop::kFrictionCone;
 }
 
 // How far direction d points into face f from the hit's edge or vertex (+inf on a face hit).
@@ -88,44 +121,72 @@ bool faceHasVertex(const Mesh& m, int f, std::int32_t v) {
   return t[0] == v || t[1] == v || t[2] == v;
 }
 
+// Calls visit(f) for the hit face and every other face around the hit's edge or vertex.
+template <class Visit>
+void forEachFaceAroundHit(const Mesh& m, const SurfacePoint& hit, Visit&& visit) {
+  visit(hit.face);
+  if (hit.feature == Feature::kFace) return;
+  const auto& hit_tri = m.triangles()[hit.face];
+  const std::int32_t v = hit_tri[hit.feature_index];
+  const std::int32_t w = hit.feature == Feature::kEdge ? hit_tri[(hit.feature_index + 1) % 3] : v;
+  for (const std::int32_t* f = m.vertexFacesBegin(v); f != m.vertexFacesEnd(v); ++f) {
+    if (*f != hit.face && faceHasVertex(m, *f, w)) visit(*f);
+  }
+}
+
+// Winding sign of face f around the hit (side of the hit face times the relative winding).
+double sideOf(const Mesh& m, const SurfacePoint& hit, double side, int f) {
+  return side * (f == hit.face ? 1.0 : relativeSide(m, hit.face, f));
+}
+
 // The start of one radial vector: its face, winding sign there and in-plane direction.
 struct Start {
   int face = -1;
   double side = 1.0;
   Vec3 dir = Vec3::Zero();
+  bool usable = false;  // a start face, or a face around the hit within the thresholds
 };
 
-// Paper Fig. 3: maps radial vector r onto the face around the hit it points into.
+// Paper Fig. 3: maps radial vector r onto the face around the hit it points into. Exact ties of
+// the entry score (a vector along the hit edge enters both faces at 0) go to a usable face,
+// then to the face better aligned with the normal: the same on either side of the edge.
 Start startFace(const WalkContext& ctx, const SurfacePoint& hit, double side, const Vec3& r) {
   const Mesh& m = ctx.mesh;
   Start best;
-  double best_score = -std::numeric_limits<double>::infinity();
-  auto consider = [&](int f) {
-    const double sf = side * (f == hit.face ? 1.0 : relativeSide(m, hit.face, f));
-    const Vec3 dir = rotateOnto(r, ctx.normal, sf * m.faceNormal(f));
+  double best_score = -std::numeric_limits<double>::infinity(), best_align = -2.0;
+  forEachFaceAroundHit(m, hit, [&](int f) {
+    const double sf = sideOf(m, hit, side, f);
+    const Vec3 nf = sf * m.faceNormal(f);
+    const double align = nf.dot(ctx.normal);
+    const bool usable = f == hit.face && hit.feature == Feature::kFace ? true
+                        : align >= ctx.cos_start || faceAllowed(ctx, nf);
+    const Vec3 dir = rotateOnto(r, ctx.normal, nf);
     const double score = enterScore(m, hit, f, dir);
-    if (score > best_score) best_score = score, best = {f, sf, dir};
-  };
-  consider(hit.face);
-  if (hit.feature == Feature::kFace) return best;
-  const auto& hit_tri = m.triangles()[hit.face];
-  const std::int32_t v = hit_tri[hit.feature_index];
-  const std::int32_t w = hit.feature == Feature::kEdge ? hit_tri[(hit.feature_index + 1) % 3] : v;
-  for (const std::int32_t* f = m.vertexFacesBegin(v); f != m.vertexFacesEnd(v); ++f) {
-    if (*f != hit.face && faceHasVertex(m, *f, w)) consider(*f);
-  }
+    const bool tie = std::abs(score - best_score) <= kScoreTolerance;
+    if ((!tie && score > best_score) || (tie && (usable > best.usable || (usable == best.usable && align > best_align)))) {
+      best_score = score, best_align = align, best = {f, sf, dir, usable};
+    }
+  });
   return best;
+}
+
+// Mean edge length of face f (m).
+double meanEdge(const Mesh& m, int f) {
+  return ((m.corner(f, 1) - m.corner(f, 0)).norm() + (m.corner(f, 2) - m.corner(f, 1)).norm() +
+          (m.corner(f, 0) - m.corner(f, 2)).norm()) / 3.0;
 }
 
 // Algorithm 1: walks distance d from the hit along dir, crossing edges while the next face stays
 // within the angular limit. Appends the path; returns the SGO.
 Sgo walk(const WalkContext& ctx, const Start& start, const Vec3& from, double d, Patch& out) {
   const Mesh& m = ctx.mesh;
-  Sgo sgo{from, start.face, -1, 0.0, WalkStop::kDistance};
+  Sgo sgo{from, start.face, -1, 0.0, WalkStop::kDistance, 0.0};
   Vec3 dir = start.dir;
   double side = start.side, remaining = d;
+  const double extra = std::min(kMaxCrossings, std::ceil(kCrossingsPerEdgeLength * d / meanEdge(m, start.face)));
+  const long budget = ctx.s.max_face_crossings + static_cast<long>(extra);
   out.path_points.push_back(from);
-  for (int crossings = 0;; ++crossings) {
+  for (long crossings = 0;; ++crossings) {
     // r_i <- projection of r_i on f (Alg. 1, line 3), kept unit length.
     const Vec3& nf = m.faceNormal(sgo.face);
     dir -= dir.dot(nf) * nf;
@@ -139,7 +200,7 @@ Sgo walk(const WalkContext& ctx, const Start& start, const Vec3& from, double d,
     for (int k = 0; k < 3; ++k) {
       const Vec3& in = m.edgeInwardNormal(sgo.face, k);
       const double rate = dir.dot(in);
-      if (rate >= 0.0) continue;
+      if (rate >= -kParallelRate) continue;
       const double gap = std::max(0.0, (sgo.position - m.corner(sgo.face, k)).dot(in));
       if (const double t = gap / -rate; t < t_exit) t_exit = t, k_exit = k;
     }
@@ -157,7 +218,7 @@ Sgo walk(const WalkContext& ctx, const Start& start, const Vec3& from, double d,
     out.path_points.push_back(sgo.position);
     const FaceLink& link = m.link(sgo.face, k_exit);
     if (link.face < 0) return sgo.stop = WalkStop::kBoundary, sgo;
-    if (crossings >= ctx.s.max_face_crossings) return sgo.stop = WalkStop::kCrossingLimit, sgo;
+    if (crossings >= budget) return sgo.stop = WalkStop::kCrossingLimit, sgo;
     const double next_side = link.flipped ? -side : side;
     const Vec3 next_normal = next_side * m.faceNormal(link.face);
     if (!faceAllowed(ctx, next_normal)) return sgo.stop = stopReason(ctx, next_normal), sgo;
@@ -171,11 +232,26 @@ Sgo walk(const WalkContext& ctx, const Start& start, const Vec3& from, double d,
   }
 }
 
+// The load shares of the SGOs: inversely proportional to their distance from the contact
+// across the normal, so sum_i share_i (p_i - c) is sum_i of unit directions, zero for a
+// balanced ring whatever its stretch.
+void shareLoad(const Vec3& centre, const Vec3& n, double radius, Patch& out) {
+  double total = 0.0;
+  for (Sgo& sgo : out.sgos) {
+    const Vec3 offset = sgo.position - centre;
+    const double lever = (offset - offset.dot(n) * n).norm();
+    sgo.load_share = 1.0 / std::max(lever, kMinLeverFraction * radius);
+    total += sgo.load_share;
+  }
+  for (Sgo& sgo : out.sgos) sgo.load_share /= total;
+}
+
 void resetPatch(int n, Patch& out) {
   out.valid = false;
   out.press_depth = out.radius = 0.0;
   out.hit = {};
   out.press_dir.setZero();
+  out.ring_tangent.setZero();
   out.radial.clear();
   out.d_i.clear();
   out.radial_stop.clear();
@@ -198,7 +274,7 @@ bool computable(const PatchSettings& s) {
   const auto finite = [](double x) { return std::isfinite(x); };
   return s.n_sgo >= kMinSgo && s.n_sgo <= kMaxSgo && finite(s.r_max) && s.r_max >= 0 && finite(s.d0) &&
          s.d0 > 0 && finite(s.alpha) && s.alpha > 0 && finite(s.stretch_length) && s.stretch_length > 0 &&
-         finite(s.max_stretch_exponent) && s.max_stretch_exponent >= 0 && s.max_stretch_exponent <= 50 &&
+         finite(s.max_stretch) && s.max_stretch >= 1 &&
          finite(s.tau_a) && s.tau_a >= 0 && s.tau_a <= std::numbers::pi && finite(s.friction) &&
          s.friction >= 0 && s.max_face_crossings >= 0 && s.max_face_crossings <= 1000000 &&
          finite(s.feature_tolerance) && s.feature_tolerance >= 0;
@@ -216,12 +292,60 @@ double contactRadius(double press_depth, double r_max, double d0) {
   return r_max * -std::expm1(-press_depth / d0);
 }
 
-double stretchedDistance(double radius, const Vec3& v, const Vec3& radial_unit,
+double stretchedDistance(double radius, const Vec3& v_tangential, const Vec3& radial_unit,
                          const PatchSettings& s) {
-  if (!s.tangential_stretch) return radius;
-  const double e = std::clamp(-v.dot(radial_unit) / s.stretch_length, -s.max_stretch_exponent,
-                              s.max_stretch_exponent);
-  return radius * std::exp(e * std::log(s.alpha));
+  if (!s.tangential_stretch || s.alpha == 1.0) return radius;
+  // log(d_i / r) = -(v_t . r_i) / stretch_length * log(alpha), kept within +-log(max_stretch).
+  const double bound = std::log(s.max_stretch);
+  const double x = -v_tangential.dot(radial_unit) / s.stretch_length * std::log(s.alpha);
+  return radius * std::exp(std::clamp(x, -bound, bound));
+}
+
+SurfacePoint contactFeature(const Mesh& m, const PatchContact& c, double tol) {
+  SurfacePoint hit = m.closestPoint(c.point_local, tol);
+  const double nlen = c.outward_normal_local.norm();
+  if (hit.face < 0 || !(c.rounding > 0.0) || !(nlen > 0.5)) return hit;
+  const Vec3 n = c.outward_normal_local / nlen;
+  const Vec3& p = c.point_local;
+  const double turned = -std::sin(kAngleTolerance);  // n . t below this: n turned away from t
+  // The feature lies within the rounding of p: an edge or corner of a face around the hit
+  // face's corners (the hit face itself need not touch it).
+  SurfacePoint edge_hit;
+  double edge_distance = std::numeric_limits<double>::infinity();
+  for (int hk = 0; hk < 3; ++hk) {
+    const std::int32_t hv = m.triangles()[hit.face][hk];
+    for (const std::int32_t* g = m.vertexFacesBegin(hv); g != m.vertexFacesEnd(hv); ++g) {
+      for (int k = 0; k < 3; ++k) {
+        // A rounded corner: n in the interior of the vertex's normal cone, where every edge
+        // leaving the vertex points away from n.
+        const Vec3& v = m.corner(*g, k);
+        if ((p - v).norm() <= std::numbers::sqrt2 * c.rounding + tol) {
+          const std::int32_t vi = m.triangles()[*g][k];
+          bool inside = true;
+          for (const std::int32_t* h = m.vertexFacesBegin(vi); h != m.vertexFacesEnd(vi) && inside; ++h) {
+            for (int j = 0; j < 3; ++j) {
+              const Vec3 e = m.corner(*h, j) - v;
+              if (m.triangles()[*h][j] != vi && !(n.dot(e) < turned * e.norm())) inside = false;
+            }
+          }
+          if (inside) return {*g, Feature::kVertex, k, v, (p - v).norm()};
+        }
+        // A rounded edge: n turned from both faces towards the edge (off each face's inward
+        // direction), the point within the rounding of the edge.
+        const FaceLink& link = m.link(*g, k);
+        if (link.face < 0) continue;
+        const Vec3 e = m.corner(*g, (k + 1) % 3) - v;
+        const Vec3 on_edge = v + std::clamp((p - v).dot(e) / e.squaredNorm(), 0.0, 1.0) * e;
+        const double distance = (p - on_edge).norm();
+        if (distance > c.rounding + tol || distance >= edge_distance) continue;
+        if (n.dot(m.edgeInwardNormal(*g, k)) < turned && n.dot(m.edgeInwardNormal(link.face, link.edge)) < turned) {
+          edge_hit = {*g, Feature::kEdge, k, on_edge, distance};
+          edge_distance = distance;
+        }
+      }
+    }
+  }
+  return edge_hit.face >= 0 ? edge_hit : hit;
 }
 
 void computePatch(const Mesh& mesh, const PatchContact& contact, const Vec3& v,
@@ -230,35 +354,53 @@ void computePatch(const Mesh& mesh, const PatchContact& contact, const Vec3& v,
   // Step 1: reject what cannot be computed.
   const double nlen = contact.outward_normal_local.norm();
   if (!computable(s) || !contact.point_local.allFinite() || !std::isfinite(contact.separation) ||
-      !v.allFinite() || !std::isfinite(nlen) || nlen < 0.5 || mesh.faceCount() == 0) {
+      !std::isfinite(contact.rounding) || !contact.ring_reference_local.allFinite() || !v.allFinite() ||
+      !std::isfinite(nlen) || nlen < 0.5 || mesh.faceCount() == 0) {
     return;
   }
   const Vec3 n = contact.outward_normal_local / nlen;
   out.valid = true;
   out.press_dir = -n;
-  // Step 2: Eq. 1, the contact radius from the press depth.
+  // Step 2: Eq. 1, the contact radius from the press depth; the hit's feature.
   out.press_depth = pressDepth(v, n);
   out.radius = contactRadius(out.press_depth, s.r_max, s.d0);
-  out.hit = mesh.closestPoint(contact.point_local, s.feature_tolerance);
+  out.hit = contactFeature(mesh, contact, s.feature_tolerance);
   if (!(out.radius > 0.0)) return;
-  // Step 3: the walk's angular limit, min(tau_a, atan(theta)) over the active tests.
+  // Step 3: the walk's angular limit, min(tau_a, atan(theta)) over the active tests, and the
+  // start faces: the hit face, or at an edge or vertex the faces best aligned with n.
   double limit = std::numbers::pi;
   if (s.angular_threshold) limit = std::min(limit, s.tau_a);
   if (s.friction_cone) limit = std::min(limit, std::atan(s.friction));
-  const WalkContext ctx{mesh, s, n, std::cos(limit), limit < std::numbers::pi};
+  WalkContext ctx{mesh, s, n, cosWithTolerance(limit), limit < std::numbers::pi,
+                  std::sin(kAngleTolerance), 1.0};
   const double side = mesh.faceNormal(out.hit.face).dot(n) < 0.0 ? -1.0 : 1.0;
+  double best_align = -1.0;
+  forEachFaceAroundHit(mesh, out.hit, [&](int f) {
+    best_align = std::max(best_align, sideOf(mesh, out.hit, side, f) * mesh.faceNormal(f).dot(n));
+  });
+  ctx.cos_start = cosWithTolerance(std::acos(std::clamp(best_align, -1.0, 1.0)));
+  // The ring of radial vectors: radial 0 along the reference carried from the last step.
   Vec3 t1, t2;
-  tangentBasis(n, t1, t2);
+  const Vec3& ref = contact.ring_reference_local;
+  const Vec3 ref_t = ref - ref.dot(n) * n;
+  if (ref_t.norm() > kMinReferenceFraction * ref.norm() && ref_t.norm() > kDegenerateLength) {
+    t1 = ref_t.normalized();
+    t2 = n.cross(t1);
+  } else {
+    tangentBasis(n, t1, t2);
+  }
+  out.ring_tangent = t1;
+  // Eq. 2 reads the tangential part of v: pressing alone stretches nothing.
+  const Vec3 v_t = v - v.dot(n) * n;
   // Step 4: per radial vector, its start face (Fig. 3), Eq. 2 distance and the walk (Alg. 1).
   out.path_offsets.push_back(0);
   for (int i = 0; i < s.n_sgo; ++i) {
     const double angle = 2.0 * std::numbers::pi * i / s.n_sgo;
     const Vec3 r = std::cos(angle) * t1 + std::sin(angle) * t2;
     const Start start = startFace(ctx, out.hit, side, r);
-    const bool usable = start.dir.norm() > kDegenerateLength &&
-                        faceAllowed(ctx, start.side * mesh.faceNormal(start.face));
+    const bool usable = start.usable && start.dir.norm() > kDegenerateLength;
     out.radial.push_back(usable ? start.dir : r);
-    out.d_i.push_back(usable ? stretchedDistance(out.radius, v, start.dir, s) : 0.0);
+    out.d_i.push_back(usable ? stretchedDistance(out.radius, v_t, r, s) : 0.0);
     if (!usable) {
       out.radial_stop.push_back(WalkStop::kDropped);
       continue;
@@ -269,6 +411,7 @@ void computePatch(const Mesh& mesh, const PatchContact& contact, const Vec3& v,
     out.sgos.push_back(sgo);
     out.path_offsets.push_back(static_cast<std::int32_t>(out.path_points.size()));
   }
+  if (!out.sgos.empty()) shareLoad(out.hit.point, n, out.radius, out);
 }
 
 }  // namespace gf::sim

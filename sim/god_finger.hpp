@@ -17,6 +17,14 @@ struct PatchContact {
   Vec3 point_local = Vec3::Zero();            ///< c_p: contact point on the object surface (m)
   Vec3 outward_normal_local = Vec3::UnitY();  ///< unit surface normal, from the object to the proxy
   double separation = 0.0;  ///< c_d: signed separation, negative when penetrating (m)
+  /// Collision margin of the shape that reported the contact (m): its edges and corners are
+  /// rounded with this radius, so an edge or vertex contact lands up to this far (sqrt(2) times
+  /// for a corner) from the mesh feature, with a normal between the faces' normals. 0: sharp.
+  double rounding = 0.0;
+  /// Radial vector 0 points along this direction projected onto the contact's tangent plane:
+  /// pass the previous step's Patch::ring_tangent so the ring does not turn between steps.
+  /// Zero (or along the normal): a fixed tangent basis of the normal.
+  Vec3 ring_reference_local = Vec3::Zero();
 };
 
 /// Why the walk of one radial vector ended.
@@ -25,8 +33,10 @@ enum class WalkStop : std::uint8_t {
   kAngularThreshold,  ///< next face beyond tau_a (paper Fig. 2c)
   kFrictionCone,      ///< next face outside the friction cone
   kBoundary,          ///< reached a boundary edge of an open mesh
-  kCrossingLimit,     ///< crossed max_face_crossings edges
+  kCrossingLimit,     ///< used up its budget of edge crossings (PatchSettings::max_face_crossings)
   kDegenerate,        ///< direction vanished on a face (numerically degenerate geometry)
+  kFacingAway,        ///< next face turned 90 degrees or more from the contact normal: an SGO
+                      ///< there could not push along it, whatever the thresholds
   kDropped,           ///< radial vector dropped at an edge or vertex contact (paper Fig. 3b);
                       ///< keep it last: app/patch_json.cpp names every value up to it
 };
@@ -38,6 +48,10 @@ struct Sgo {
   int radial = -1;               ///< index of its radial vector
   double walked = 0.0;           ///< length of the walked path (m)
   WalkStop stop = WalkStop::kDistance;
+  /// Its share of the load of the patch's SGOs (they sum to 1): inversely proportional to its
+  /// distance from the contact across the normal, so the load's centre stays at the contact
+  /// whatever Eq. 2 stretches (exactly when the radial vectors are balanced, none dropped).
+  double load_share = 0.0;
 };
 
 /// Result of one patch computation, in the object's local frame (the mesh's frame). Reused
@@ -49,6 +63,7 @@ struct Patch {
   double radius = 0.0;                     ///< r of Eq. 1 (m)
   SurfacePoint hit;                        ///< contact point on the mesh with its feature
   Vec3 press_dir = Vec3::Zero();           ///< c_n of the paper: -outward_normal
+  Vec3 ring_tangent = Vec3::Zero();        ///< direction of radial vector 0 (unit, tangent plane)
   std::vector<Vec3> radial;                ///< r_i: unit radial vectors, on their start face
   std::vector<double> d_i;                 ///< d_i of Eq. 2: length walked along r_i (m)
   std::vector<WalkStop> radial_stop;       ///< how each radial vector's walk ended
@@ -56,6 +71,10 @@ struct Patch {
   std::vector<Vec3> path_points;           ///< walked paths, concatenated (m)
   std::vector<std::int32_t> path_offsets;  ///< SGO k's path: [offsets[k], offsets[k+1])
 };
+
+/// Tolerance (rad) of every angle comparison of the patch: threshold ties and whether a normal
+/// differs from a face's normal. Far above the rounding of float contact normals (~1e-7).
+inline constexpr double kAngleTolerance = 1e-5;
 
 /// Empties `patch`: not valid, no radius, no SGO, keeping its storage. Does not allocate.
 void clearPatch(Patch& patch);
@@ -68,13 +87,26 @@ double pressDepth(const Vec3& v, const Vec3& outward_normal);
 /// Eq. 1: contact radius (m) for press depth v . c_n (m). Zero when not pressing.
 double contactRadius(double press_depth, double r_max, double d0);
 
-/// Eq. 2, with the exponent made dimensionless by `stretch_length` and clamped:
-/// d_i = r * alpha^clamp(-(v . r_i) / stretch_length).
-double stretchedDistance(double radius, const Vec3& v, const Vec3& radial_unit,
+/// Eq. 2 with the exponent made dimensionless by `stretch_length`, bounded by max_stretch:
+/// d_i = clamp(r * alpha^(-(v_t . r_i) / stretch_length), r / max_stretch, r * max_stretch).
+/// `v_tangential` is the part of v in the contact's tangent plane and `radial_unit` the radial
+/// vector r_i in that plane (before it is mapped onto a face), so pressing alone stretches
+/// nothing.
+double stretchedDistance(double radius, const Vec3& v_tangential, const Vec3& radial_unit,
                          const PatchSettings& s);
+
+/// Classifies the surface point of `contact` on `mesh`: the closest point, promoted to an edge
+/// (vertex) hit when the contact normal points strictly between the faces around that edge
+/// (vertex) and the reported point lies within the rounding (sqrt(2) rounding for a vertex)
+/// plus `feature_tolerance` of it; the point is then snapped onto the feature.
+SurfacePoint contactFeature(const Mesh& mesh, const PatchContact& contact, double feature_tolerance);
 
 /// Computes the god-finger patch: Eq. 1 radius, n radial vectors mapped onto the faces around
 /// the contact (dropped beyond the thresholds), Eq. 2 distances and the Algorithm 1 walk.
+/// Angles are compared with a tolerance of kAngleTolerance, so exact ties (a 45-degree normal
+/// at a 90-degree edge with friction 1, tau_a 0 on a flat face) keep the face. The faces the
+/// contact lies on (the hit face; at an edge or vertex, the faces best aligned with the normal)
+/// always count; no SGO walks onto a face turned 90 degrees or more from the contact normal.
 /// `v` is p_I - p_GO (device minus god-object, m). Input it cannot compute (non-finite numbers,
 /// n_sgo outside kMinSgo..kMaxSgo, d0, stretch_length or alpha not > 0, a zero normal) gives
 /// `valid == false` and no SGO; the legal ranges users may give are narrower (settings.hpp). No

@@ -10,19 +10,25 @@ inline constexpr int kMaxSgo = 64;
 
 /// God-finger settings. Defaults suit a fingertip on objects of a few centimetres. Their legal
 /// ranges are in sim/settings.hpp (fingerSettings()).
+///
+/// tau_a and the friction cone: the walk stops at a face turned more than min(tau_a,
+/// atan(friction)) from the contact normal. At the defaults (tau_a 30 degrees, friction 1, a
+/// 45-degree cone) tau_a is the bound; the cone takes over below friction tan(30) = 0.577.
 struct PatchSettings {
   int n_sgo = 8;                    ///< number of radial vectors / SGOs (kMinSgo..kMaxSgo)
   double r_max = 0.010;             ///< r_max of Eq. 1: largest contact radius (m)
   double d0 = 0.004;                ///< D'_0 of Eq. 1: press depth scale (m)
   double alpha = 2.0;               ///< alpha of Eq. 2: stretch base (>= 1; 1 = no stretch)
   double stretch_length = 0.004;    ///< length making Eq. 2's exponent dimensionless (m)
-  double max_stretch_exponent = 3;  ///< |exponent| of Eq. 2 is clamped to this (dimensionless)
-  double tau_a = 1.0471975511965976;  ///< tau_a: angular threshold (rad; default 60 deg)
+  double max_stretch = 2.0;         ///< Eq. 2's d_i is kept within [r / max_stretch, r max_stretch]
+  double tau_a = 0.5235987755982988;  ///< tau_a: angular threshold (rad; default 30 deg)
   double friction = 1.0;            ///< theta: friction coefficient of the finger pad
   bool tangential_stretch = true;   ///< effect switch: Eq. 2 stretch (off: d_i = r)
   bool angular_threshold = true;    ///< effect switch: stop at faces beyond tau_a
   bool friction_cone = true;        ///< effect switch: stop at faces beyond atan(theta)
-  int max_face_crossings = 256;     ///< bound on edges one walk may cross
+  /// Edges one walk may cross: this many plus 8 per mean edge length of the start face in d_i,
+  /// so a fine mesh keeps the full radius; a walk that runs out stops (WalkStop::kCrossingLimit).
+  int max_face_crossings = 64;
   double feature_tolerance = 1e-7;  ///< distance (m) within which a hit is an edge/vertex hit
 };
 

@@ -21,6 +21,9 @@ constexpr int kMaxContactsPerFinger = 4;
 constexpr int kFingerGroup = 1 << 6;
 // Bullet user index marking a proxy (bodies carry their index, >= 0).
 constexpr int kProxyTag = -1;
+// A patch starts when the proxy touches (separation <= 0) and lasts while the separation stays
+// below this (m): a few micrometres of gap in one step do not drop the contact area.
+constexpr double kPatchReleaseGap = 1e-4;
 
 btTransform poseOf(const Vec3& p, const Eigen::Quaterniond& q) {
   const Eigen::Quaterniond n = q.normalized();
@@ -32,7 +35,8 @@ struct Body {
   std::unique_ptr<btRigidBody> rigid;
 };
 
-// One finger's contact with one body during the current step.
+// One finger's contact with one body during the current step: the deepest point over every
+// manifold between the proxy and the body (one per child hull of a compound).
 struct FingerContact {
   ContactRecord record;  // body frame: what snapshots show, kept until the next step
   // Bullet's side, valid during the solve only (manifolds are Bullet's and change every step).
@@ -41,16 +45,20 @@ struct FingerContact {
   btPersistentManifold* manifold = nullptr;  // holds the true point; null outside the solve
   std::array<btVector3, kMaxSgo> sgo_world;  // where the solver sees the SGOs this step
   std::array<WarmStart, kMaxSgo> sgo_warm;   // by SGO, for this step's solve
+  std::array<PointMaterial, kMaxSgo> sgo_material;
   int sgo_count = 0;
   int first_injected = 0;  // index of its first manifold in World::Impl::injected
 };
 
-// Solved impulses of a finger's contacts, kept from one step to the next. Keyed by body and
-// radial index: SGO i of a patch sits near SGO i of the previous step's patch.
+// What a finger's contact with one body leaves for the next step: the solved impulses (to warm
+// -start the solver), the ring's frame and whether it had a patch.
 struct ContactMemory {
   int body = -1;
   WarmStart truth;
-  std::array<WarmStart, kMaxSgo> radial;
+  int n_sgo = 0;                           // radial vectors of the patch the impulses belong to
+  std::array<WarmStart, kMaxSgo> radial;   // by radial index: radial i at angle 2 pi i / n_sgo
+  Vec3 ring_tangent_local = Vec3::Zero();  // radial 0's direction, body frame
+  bool had_patch = false;
 };
 
 struct Finger {
@@ -62,6 +70,14 @@ struct Finger {
   std::array<FingerContact, kMaxContactsPerFinger> contacts;
   int contact_count = 0;
   std::array<ContactMemory, kMaxContactsPerFinger> memory;
+  int memory_count = 0;
+
+  const ContactMemory* memoryOf(int body) const {
+    for (int k = 0; k < memory_count; ++k) {
+      if (memory[k].body == body) return &memory[k];
+    }
+    return nullptr;
+  }
 };
 
 // Last finite state of a rigid body, for rolling back a step that produced NaN.
@@ -80,8 +96,9 @@ struct World::Impl final : SolveHooks {
 
   void addBody(int index, const BodyDesc& d);
   void addFinger(int index, const FingerDesc& d);
-  void handleProxyManifold(btPersistentManifold& m, const btCollisionObject* proxy);
-  void recordContact(const Finger& f, FingerContact& c) const;
+  void gatherProxyManifold(btPersistentManifold& m, const btCollisionObject* proxy);
+  void handleContact(Finger& f, FingerContact& c);
+  void recordContact(const Finger& f, const ContactMemory* mem, FingerContact& c) const;
   void computeContactPatch(Finger& f, FingerContact& c);
   Pose bodyFrame(int body) const;
   bool ownedHere() const { return std::this_thread::get_id() == owner; }
@@ -192,59 +209,90 @@ void World::Impl::beforeSolve() {
     btPersistentManifold& m = *dispatcher.getManifoldByIndexInternal(i);
     const btCollisionObject* b0 = m.getBody0();
     const btCollisionObject* b1 = m.getBody1();
-    if (b0->getUserIndex() == kProxyTag) handleProxyManifold(m, b0);
-    else if (b1->getUserIndex() == kProxyTag) handleProxyManifold(m, b1);
+    if (b0->getUserIndex() == kProxyTag) gatherProxyManifold(m, b0);
+    else if (b1->getUserIndex() == kProxyTag) gatherProxyManifold(m, b1);
+  }
+  for (Finger& f : fingers) {
+    for (int k = 0; k < f.contact_count; ++k) handleContact(f, f.contacts[k]);
   }
 }
 
-void World::Impl::handleProxyManifold(btPersistentManifold& m, const btCollisionObject* proxy) {
-  Finger& f = fingers[proxy->getUserIndex2()];
-  const FingerDesc& fd = desc.fingers[proxy->getUserIndex2()];
+// Groups the manifolds of a proxy by touched body: the deepest point of all of them is the
+// finger's contact with that body; the other manifolds are emptied for this step.
+void World::Impl::gatherProxyManifold(btPersistentManifold& m, const btCollisionObject* proxy) {
+  const int finger = proxy->getUserIndex2();
+  Finger& f = fingers[finger];
   TrueContact truth;
   if (!deepestContact(m, proxy, truth)) return;
+  const int body = truth.object->getUserIndex();
+  for (int k = 0; k < f.contact_count; ++k) {
+    FingerContact& c = f.contacts[k];
+    if (c.truth.object->getUserIndex() != body) continue;
+    if (truth.separation < c.truth.separation) {
+      c.manifold->clearManifold();
+      c.truth = truth;
+      c.manifold = &m;
+    } else {
+      m.clearManifold();
+    }
+    return;
+  }
   if (f.contact_count == kMaxContactsPerFinger) {  // beyond the tracked contacts: a god-object
+    const FingerDesc& fd = desc.fingers[finger];
     keepOnlyPoint(m, truth.index, {fd.proxy.contact_stiffness, fd.proxy.contact_damping,
-                                   desc.effects.friction ? f.patch.friction : 0.0}, {});
+                                   desc.effects.friction ? f.patch.friction : 0.0}, {}, btVector3(0, 0, 0));
     return;
   }
   FingerContact& c = f.contacts[f.contact_count++];
   c.truth = truth;
   c.manifold = &m;
+}
+
+void World::Impl::handleContact(Finger& f, FingerContact& c) {
+  const FingerDesc& fd = desc.fingers[&f - fingers.data()];
+  const ContactMemory* mem = f.memoryOf(c.truth.object->getUserIndex());
   c.sgo_count = 0;
-  recordContact(f, c);
-  if (desc.effects.god_finger && f.patch.n_sgo > 0 && truth.separation <= 0.0) {
-    computeContactPatch(f, c);
+  recordContact(f, mem, c);
+  // A patch starts on touching and survives a small gap (kPatchReleaseGap).
+  const bool touching = c.truth.separation <= 0.0 ||
+                        (mem && mem->had_patch && c.truth.separation <= kPatchReleaseGap);
+  if (desc.effects.god_finger && f.patch.n_sgo > 0 && touching) computeContactPatch(f, c);
+  // The total contact stiffness and damping are shared by the true contact and its SGOs: the
+  // true contact takes 1 / (1 + n), the SGOs the rest by their load shares.
+  const double friction = desc.effects.friction ? f.patch.friction : 0.0;
+  const double k = fd.proxy.contact_stiffness, d = fd.proxy.contact_damping;
+  const double truth_share = 1.0 / (1 + c.sgo_count);
+  const btTransform& t = c.truth.object->getWorldTransform();
+  const btVector3 lateral = c.sgo_count > 0 ? t.getBasis() * toBt(c.record.patch.ring_tangent) : btVector3(0, 0, 0);
+  keepOnlyPoint(*c.manifold, c.truth.index, {k * truth_share, d * truth_share, friction},
+                mem ? mem->truth : WarmStart{}, lateral);
+  c.truth.index = 0;  // keepOnlyPoint left the true point alone in its manifold
+  if (c.sgo_count == 0) return;
+  const int n = f.patch.n_sgo;
+  for (int i = 0; i < c.sgo_count; ++i) {
+    const Sgo& sgo = c.record.patch.sgos[i];
+    const double share = (1.0 - truth_share) * sgo.load_share;
+    c.sgo_material[i] = {k * share, d * share, friction};
+    c.sgo_warm[i] = mem ? warmStartByAngle(mem->radial.data(), mem->n_sgo, sgo.radial, n) : WarmStart{};
   }
-  // The total contact stiffness and damping are shared by the true contact and its SGOs.
-  const double share = 1.0 / (1 + c.sgo_count);
-  const PointMaterial mat{fd.proxy.contact_stiffness * share, fd.proxy.contact_damping * share,
-                          desc.effects.friction ? f.patch.friction : 0.0};
-  // Warm start from the previous step's impulses of the same body (Bullet scales them).
-  const int slot = static_cast<int>(&c - f.contacts.data());
-  const ContactMemory* mem = f.memory[slot].body == c.record.body ? &f.memory[slot] : nullptr;
-  keepOnlyPoint(m, truth.index, mat, mem ? mem->truth : WarmStart{});
-  if (c.sgo_count > 0) {
-    for (int i = 0; i < c.sgo_count; ++i) {
-      c.sgo_warm[i] = mem ? mem->radial[c.record.patch.sgos[i].radial] : WarmStart{};
-    }
-    c.first_injected = static_cast<int>(injected.size());
-    injectPoints(dispatcher, proxy, truth.object, c.sgo_world.data(), c.sgo_count,
-                 truth.outward_normal_world, truth.separation, mat, c.sgo_warm.data(), injected);
-    counters.sgos_injected += c.sgo_count;
-  }
+  c.first_injected = static_cast<int>(injected.size());
+  injectPoints(dispatcher, f.proxy.get(), c.truth.object, c.sgo_world.data(), c.sgo_count,
+               c.truth.outward_normal_world, lateral, c.truth.separation, c.sgo_material.data(),
+               c.sgo_warm.data(), injected);
+  counters.sgos_injected += c.sgo_count;
 }
 
 void World::Impl::rememberImpulses(Finger& f) {
-  for (int k = 0; k < kMaxContactsPerFinger; ++k) {
-    ContactMemory& mem = f.memory[k];
-    if (k >= f.contact_count) {
-      mem.body = -1;
-      continue;
-    }
+  f.memory_count = f.contact_count;
+  for (int k = 0; k < f.contact_count; ++k) {
     FingerContact& c = f.contacts[k];
     GF_ASSERT(c.manifold != nullptr && "impulses are read between beforeSolve and afterSolve only");
+    ContactMemory& mem = f.memory[k];
     mem.body = c.record.body;
     mem.truth = solvedImpulses(c.manifold->getContactPoint(0));
+    mem.had_patch = c.sgo_count > 0;
+    mem.n_sgo = c.sgo_count > 0 ? f.patch.n_sgo : 0;
+    mem.ring_tangent_local = c.record.patch.ring_tangent;
     mem.radial.fill(WarmStart{});
     for (int i = 0; i < c.sgo_count; ++i) {
       mem.radial[c.record.patch.sgos[i].radial] = solvedImpulses(injected, c.first_injected, i);
@@ -255,8 +303,8 @@ void World::Impl::rememberImpulses(Finger& f) {
 }
 
 // The contact in the touched body's frame (the frame of its walk mesh), with the press depth
-// of Eq. 1; no patch yet.
-void World::Impl::recordContact(const Finger& f, FingerContact& c) const {
+// of Eq. 1 and the ring's reference carried from the last step; no patch yet.
+void World::Impl::recordContact(const Finger& f, const ContactMemory* mem, FingerContact& c) const {
   const btTransform& t = c.truth.object->getWorldTransform();
   const btMatrix3x3 to_local = t.getBasis().transpose();
   const btVector3 v_world = toBt(f.device.position) - f.proxy->getCenterOfMassPosition();
@@ -264,7 +312,8 @@ void World::Impl::recordContact(const Finger& f, FingerContact& c) const {
   ContactRecord& r = c.record;
   r.body = c.truth.object->getUserIndex();
   r.contact = {toEigen(t.invXform(c.truth.point_world)), toEigen(to_local * c.truth.outward_normal_world),
-               c.truth.separation};
+               c.truth.separation, bodies[r.body].shapes.rounding,
+               mem ? mem->ring_tangent_local : Vec3::Zero()};
   r.press_depth = pressDepth(c.v_local, r.contact.outward_normal_local.normalized());
   clearPatch(r.patch);
 }
@@ -279,7 +328,10 @@ void World::Impl::computeContactPatch(Finger& f, FingerContact& c) {
   }
   const btTransform& t = c.truth.object->getWorldTransform();
   c.sgo_count = static_cast<int>(r.patch.sgos.size());
-  for (int i = 0; i < c.sgo_count; ++i) c.sgo_world[i] = t * toBt(r.patch.sgos[i].position);
+  for (int i = 0; i < c.sgo_count; ++i) {
+    c.sgo_world[i] = t * toBt(r.patch.sgos[i].position);
+    counters.crossing_limit_stops += r.patch.sgos[i].stop == WalkStop::kCrossingLimit;
+  }
 }
 
 Pose World::Impl::bodyFrame(int body) const {

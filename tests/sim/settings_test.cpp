@@ -44,9 +44,10 @@ TEST(Settings, AnglesAreGivenInDegreesAndStoredInRadians) {
   setGiven(tau, f, 90.0);
   EXPECT_DOUBLE_EQ(f.patch.tau_a, std::numbers::pi / 2);
   EXPECT_NEAR(givenValue(tau, f), 90.0, 1e-12);
-  EXPECT_FALSE(checkGiven(tau, 180.0));
-  EXPECT_EQ(checkGiven(tau, 181.0).value_or(""), "must be in [0, 180], got 181");
-  f.patch.tau_a = 3.2;  // rad, beyond 180 degrees
+  EXPECT_FALSE(checkGiven(tau, 90.0));
+  // Beyond 90 degrees a face turns away from the press: no SGO may stand there anyway.
+  EXPECT_EQ(checkGiven(tau, 91.0).value_or(""), "must be in [0, 90], got 91");
+  f.patch.tau_a = 1.6;  // rad, beyond 90 degrees
   ASSERT_TRUE(validateFinger(f));
   EXPECT_EQ(validateFinger(f)->field, "tau_a");
 }
@@ -65,11 +66,12 @@ TEST(Settings, ExcludedMinimumsAndJsonNamesCarryTheUnit) {
 TEST(Settings, LiveSettingsAreTheGodFingerOnes) {
   for (const Setting<FingerDesc>& s : fingerSettings()) {
     FingerDesc f;
-    setGiven(s, f, s.kind == SettingKind::kInteger ? kMaxSgo : s.max);
+    const double extreme = s.kind == SettingKind::kInteger ? kMaxSgo : s.max;
+    setGiven(s, f, extreme != givenValue(s, FingerDesc{}) ? extreme : s.min);
     const bool patch_changed = f.patch.n_sgo != PatchSettings{}.n_sgo || f.patch.r_max != PatchSettings{}.r_max ||
                                f.patch.d0 != PatchSettings{}.d0 || f.patch.alpha != PatchSettings{}.alpha ||
                                f.patch.stretch_length != PatchSettings{}.stretch_length ||
-                               f.patch.max_stretch_exponent != PatchSettings{}.max_stretch_exponent ||
+                               f.patch.max_stretch != PatchSettings{}.max_stretch ||
                                f.patch.tau_a != PatchSettings{}.tau_a || f.patch.friction != PatchSettings{}.friction;
     EXPECT_EQ(s.live, patch_changed) << s.name << ": live exactly when it is a god-finger (PatchSettings) field";
   }
