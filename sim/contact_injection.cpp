@@ -9,8 +9,7 @@ namespace {
 // Bullet's persistent manifolds hold this many points.
 constexpr int kPointsPerManifold = MANIFOLD_CACHE_SIZE;
 
-void applyMaterial(btManifoldPoint& p, const PointMaterial& mat, const WarmStart& warm,
-                   const btVector3& lateral) {
+void applyMaterial(btManifoldPoint& p, const PointMaterial& mat, const WarmStart& warm) {
   p.m_combinedFriction = mat.friction;
   p.m_combinedRollingFriction = 0.0;
   p.m_combinedSpinningFriction = 0.0;
@@ -20,14 +19,7 @@ void applyMaterial(btManifoldPoint& p, const PointMaterial& mat, const WarmStart
       BT_CONTACT_FLAG_CONTACT_STIFFNESS_DAMPING | BT_CONTACT_FLAG_LATERAL_FRICTION_INITIALIZED;
   p.m_combinedContactStiffness1 = mat.stiffness;
   p.m_combinedContactDamping1 = mat.damping;
-  const btVector3& n = p.m_normalWorldOnB;
-  const btVector3 along = lateral - lateral.dot(n) * n;
-  if (along.length2() > btScalar(1e-6) * lateral.length2() && along.length2() > btScalar(0)) {
-    p.m_lateralFrictionDir1 = along.normalized();
-    p.m_lateralFrictionDir2 = n.cross(p.m_lateralFrictionDir1);
-  } else {
-    btPlaneSpace1(n, p.m_lateralFrictionDir1, p.m_lateralFrictionDir2);
-  }
+  btPlaneSpace1(p.m_normalWorldOnB, p.m_lateralFrictionDir1, p.m_lateralFrictionDir2);
   p.m_appliedImpulse = warm.normal;
   p.m_appliedImpulseLateral1 = warm.lateral1;
   p.m_appliedImpulseLateral2 = warm.lateral2;
@@ -52,17 +44,16 @@ bool deepestContact(const btPersistentManifold& m, const btCollisionObject* prox
   return true;
 }
 
-void keepOnlyPoint(btPersistentManifold& m, int index, const PointMaterial& mat, const WarmStart& warm,
-                   const btVector3& lateral) {
+void keepOnlyPoint(btPersistentManifold& m, int index, const PointMaterial& mat, const WarmStart& warm) {
   btManifoldPoint kept = m.getContactPoint(index);
-  applyMaterial(kept, mat, warm, lateral);
+  applyMaterial(kept, mat, warm);
   m.clearManifold();
   m.addManifoldPoint(kept);
 }
 
 void injectPoints(btDispatcher& dispatcher, const btCollisionObject* proxy,
                   const btCollisionObject* object, const btVector3* points_world, int count,
-                  const btVector3& outward_normal_world, const btVector3& lateral, double separation,
+                  const btVector3& outward_normal_world, double separation,
                   const PointMaterial* materials, const WarmStart* warm,
                   std::vector<btPersistentManifold*>& added) {
   const btTransform proxy_inv = proxy->getWorldTransform().inverse();
@@ -77,7 +68,7 @@ void injectPoints(btDispatcher& dispatcher, const btCollisionObject* proxy,
       btManifoldPoint p(proxy_inv * on_a, object_inv * on_b, outward_normal_world, separation);
       p.m_positionWorldOnA = on_a;
       p.m_positionWorldOnB = on_b;
-      applyMaterial(p, materials[i], warm[i], lateral);
+      applyMaterial(p, materials[i], warm[i]);
       m->addManifoldPoint(p);
     }
   }

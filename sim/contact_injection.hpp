@@ -70,21 +70,19 @@ struct PointMaterial {
 /// either way: the normal and point are turned to the object's side. False when m is empty.
 bool deepestContact(const btPersistentManifold& m, const btCollisionObject* proxy, TrueContact& out);
 
-/// Leaves only point `index` in `m`, made compliant with `mat`, warm-started from `warm`. Its
-/// first friction direction is `lateral` projected on its tangent plane (zero: Bullet's basis
-/// of the normal).
-void keepOnlyPoint(btPersistentManifold& m, int index, const PointMaterial& mat, const WarmStart& warm,
-                   const btVector3& lateral);
+/// Leaves only point `index` in `m`, made compliant with `mat`, warm-started from `warm`.
+void keepOnlyPoint(btPersistentManifold& m, int index, const PointMaterial& mat, const WarmStart& warm);
 
 /// Adds `count` points between proxy (body 0) and object (body 1) at the given object-surface
 /// points (world frame), all with the true contact's normal and separation (paper, Sec. 3.2),
 /// four per new manifold. The new manifolds are appended to `added` (reserve it: no allocation
-/// then). Point i has materials[i] and is warm-started from warm[i]. The first friction
-/// direction is `lateral` on the tangent plane (the ring's frame, carried from step to step),
-/// so cached impulses stay meaningful; zero: Bullet's basis of the normal.
+/// then). Point i has materials[i] and is warm-started from warm[i]. Friction directions are
+/// Bullet's basis of the normal (fixed in the world, not turning with the ring or the body:
+/// Bullet's two-direction friction is a pyramid, whose capacity would turn with them), so
+/// cached impulses stay meaningful.
 void injectPoints(btDispatcher& dispatcher, const btCollisionObject* proxy,
                   const btCollisionObject* object, const btVector3* points_world, int count,
-                  const btVector3& outward_normal_world, const btVector3& lateral, double separation,
+                  const btVector3& outward_normal_world, double separation,
                   const PointMaterial* materials, const WarmStart* warm,
                   std::vector<btPersistentManifold*>& added);
 

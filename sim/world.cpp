@@ -240,7 +240,7 @@ void World::Impl::gatherProxyManifold(btPersistentManifold& m, const btCollision
   if (f.contact_count == kMaxContactsPerFinger) {  // beyond the tracked contacts: a god-object
     const FingerDesc& fd = desc.fingers[finger];
     keepOnlyPoint(m, truth.index, {fd.proxy.contact_stiffness, fd.proxy.contact_damping,
-                                   desc.effects.friction ? f.patch.friction : 0.0}, {}, btVector3(0, 0, 0));
+                                   desc.effects.friction ? f.patch.friction : 0.0}, {});
     return;
   }
   FingerContact& c = f.contacts[f.contact_count++];
@@ -262,10 +262,8 @@ void World::Impl::handleContact(Finger& f, FingerContact& c) {
   const double friction = desc.effects.friction ? f.patch.friction : 0.0;
   const double k = fd.proxy.contact_stiffness, d = fd.proxy.contact_damping;
   const double truth_share = 1.0 / (1 + c.sgo_count);
-  const btTransform& t = c.truth.object->getWorldTransform();
-  const btVector3 lateral = c.sgo_count > 0 ? t.getBasis() * toBt(c.record.patch.ring_tangent) : btVector3(0, 0, 0);
   keepOnlyPoint(*c.manifold, c.truth.index, {k * truth_share, d * truth_share, friction},
-                mem ? mem->truth : WarmStart{}, lateral);
+                mem ? mem->truth : WarmStart{});
   c.truth.index = 0;  // keepOnlyPoint left the true point alone in its manifold
   if (c.sgo_count == 0) return;
   const int n = f.patch.n_sgo;
@@ -277,7 +275,7 @@ void World::Impl::handleContact(Finger& f, FingerContact& c) {
   }
   c.first_injected = static_cast<int>(injected.size());
   injectPoints(dispatcher, f.proxy.get(), c.truth.object, c.sgo_world.data(), c.sgo_count,
-               c.truth.outward_normal_world, lateral, c.truth.separation, c.sgo_material.data(),
+               c.truth.outward_normal_world, c.truth.separation, c.sgo_material.data(),
                c.sgo_warm.data(), injected);
   counters.sgos_injected += c.sgo_count;
 }

@@ -2,6 +2,8 @@
 // Run: build/release/gf_bench [--benchmark_out=FILE --benchmark_out_format=csv]
 #include <benchmark/benchmark.h>
 
+#include <algorithm>
+
 #include "sim/god_finger.hpp"
 #include "sim/primitives.hpp"
 #include "tests/sim/test_context.hpp"
@@ -42,6 +44,35 @@ void BM_Patch(benchmark::State& state) {
   state.SetItemsProcessed(static_cast<std::int64_t>(state.iterations()) * s.n_sgo);
 }
 BENCHMARK(BM_Patch)->Arg(8)->Arg(16)->Arg(64)->Unit(benchmark::kNanosecond);
+
+// The patch on fine meshes, pressed to the full 10 mm radius: a 100 352-face plane (98 um
+// squares; arg 0) and a 327 680-face sphere of 3 cm radius (0.2 mm edges; arg 1). The walk
+// crosses about r / edge length faces per SGO, so the time per SGO grows with the mesh's
+// fineness; counters report the crossing-limit stops (none expected) and the mean walked length.
+void BM_PatchFineMesh(benchmark::State& state) {
+  const bool sphere = state.range(0) == 1;
+  const sim::Mesh mesh = sphere ? sim::tessellateSphere(0.03, 7) : sim::tessellatePlane(0.011, 224);
+  sim::PatchSettings s;
+  s.n_sgo = static_cast<int>(state.range(1));
+  s.d0 = 1e-4;  // r = r_max = 10 mm
+  const sim::Vec3 n = sphere ? sim::Vec3(0.3, 0.8, -0.5).normalized() : sim::Vec3::UnitY();
+  const sim::PatchContact c{sphere ? sim::Vec3(0.03 * n) : sim::Vec3(0.00013, 0, -0.00021), n, -2e-4};
+  const sim::Vec3 v = -0.004 * n;
+  sim::Patch p;
+  for (auto _ : state) {
+    sim::computePatch(mesh, c, v, s, p);
+    benchmark::DoNotOptimize(p.sgos.data());
+  }
+  state.SetItemsProcessed(static_cast<std::int64_t>(state.iterations()) * s.n_sgo);
+  int limit = 0;
+  double walked = 0.0;
+  for (const sim::Sgo& g : p.sgos) limit += g.stop == sim::WalkStop::kCrossingLimit, walked += g.walked;
+  state.counters["faces"] = mesh.faceCount();
+  state.counters["crossing_limit_stops"] = limit;
+  state.counters["walked_mm"] = 1000.0 * walked / static_cast<double>(std::max<std::size_t>(1, p.sgos.size()));
+}
+BENCHMARK(BM_PatchFineMesh)->ArgsProduct({{0, 1}, {8, 64}})->ArgNames({"sphere", "n_sgo"})
+    ->Unit(benchmark::kMicrosecond);
 
 }  // namespace
 
