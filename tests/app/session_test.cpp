@@ -88,6 +88,7 @@ TEST(Session, ContactsCarryPressDepthAndAnglesAreInDegrees) {
   }
   const nlohmann::json summary = readJson(out / "summary.json");
   EXPECT_NEAR(summary["fingers"][0]["tau_a_deg"].get<double>(), 45.0, 1e-9);
+  EXPECT_EQ(summary["counters"]["crossing_limit_stops"].get<long>(), 0) << "every walk within its budget";
   std::vector<std::string> keys;
   collectKeys(contacts, keys);
   collectKeys(summary, keys);
