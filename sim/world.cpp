@@ -264,7 +264,6 @@ void World::Impl::handleContact(Finger& f, FingerContact& c) {
   const double truth_share = 1.0 / (1 + c.sgo_count);
   keepOnlyPoint(*c.manifold, c.truth.index, {k * truth_share, d * truth_share, friction},
                 mem ? mem->truth : WarmStart{});
-  c.truth.index = 0;  // keepOnlyPoint left the true point alone in its manifold
   if (c.sgo_count == 0) return;
   const int n = f.patch.n_sgo;
   for (int i = 0; i < c.sgo_count; ++i) {
