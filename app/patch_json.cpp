@@ -40,6 +40,8 @@ nlohmann::json settingsJson(std::span<const sim::Setting<Desc>> table, const Des
     if (live_only && !s.live) continue;
     if (s.kind == sim::SettingKind::kVector) {
       out[sim::jsonKey(s)] = vec(s.get_vector(desc) / s.si_per_unit);
+    } else if (s.kind == sim::SettingKind::kChoice) {
+      out[sim::jsonKey(s)] = std::string(sim::choiceName(s, desc));
     } else if (s.kind == sim::SettingKind::kInteger) {
       out[sim::jsonKey(s)] = std::lround(sim::givenValue(s, desc));
     } else {

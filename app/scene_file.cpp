@@ -86,6 +86,12 @@ class Reader {
       s.set_vector(desc, v * s.si_per_unit);
       return true;
     }
+    if (s.kind == sim::SettingKind::kChoice) {
+      const int index = n->is_string() ? sim::choiceIndex(s, n->as_string()->get()) : -1;
+      if (index < 0) fail(n, key, "expected one of " + sim::choiceList(s));
+      s.set(desc, index);
+      return true;
+    }
     if (s.kind == sim::SettingKind::kInteger && !n->is_integer()) {
       fail(n, key, std::string("expected an integer, got ") + typeName(*n));
     }
@@ -207,6 +213,7 @@ class Reader {
   static const char* kindName(const sim::Setting<Desc>& s) {
     return s.kind == sim::SettingKind::kVector    ? "an array [x, y, z]"
            : s.kind == sim::SettingKind::kInteger ? "an integer"
+           : s.kind == sim::SettingKind::kChoice  ? "a name"
                                                   : "a number";
   }
   double checkedNumber(const toml::node& n, const std::string& key, double lo, double hi) const {

@@ -53,7 +53,7 @@ void keepOnlyPoint(btPersistentManifold& m, int index, const PointMaterial& mat,
 
 void injectPoints(btDispatcher& dispatcher, const btCollisionObject* proxy,
                   const btCollisionObject* object, const btVector3* points_world, int count,
-                  const btVector3& outward_normal_world, double separation,
+                  const btVector3& outward_normal_world, const double* separations,
                   const PointMaterial* materials, const WarmStart* warm,
                   std::vector<btPersistentManifold*>& added) {
   const btTransform proxy_inv = proxy->getWorldTransform().inverse();
@@ -64,8 +64,8 @@ void injectPoints(btDispatcher& dispatcher, const btCollisionObject* proxy,
     for (int i = first; i < std::min(count, first + kPointsPerManifold); ++i) {
       // On B (object): the SGO. On A (proxy): displaced along the normal by the separation.
       const btVector3 on_b = points_world[i];
-      const btVector3 on_a = on_b + outward_normal_world * separation;
-      btManifoldPoint p(proxy_inv * on_a, object_inv * on_b, outward_normal_world, separation);
+      const btVector3 on_a = on_b + outward_normal_world * separations[i];
+      btManifoldPoint p(proxy_inv * on_a, object_inv * on_b, outward_normal_world, separations[i]);
       p.m_positionWorldOnA = on_a;
       p.m_positionWorldOnB = on_b;
       applyMaterial(p, materials[i], warm[i]);

@@ -74,15 +74,13 @@ bool deepestContact(const btPersistentManifold& m, const btCollisionObject* prox
 void keepOnlyPoint(btPersistentManifold& m, int index, const PointMaterial& mat, const WarmStart& warm);
 
 /// Adds `count` points between proxy (body 0) and object (body 1) at the given object-surface
-/// points (world frame), all with the true contact's normal and separation (paper, Sec. 3.2),
-/// four per new manifold. The new manifolds are appended to `added` (reserve it: no allocation
-/// then). Point i has materials[i] and is warm-started from warm[i]. Friction directions are
-/// Bullet's basis of the normal (fixed in the world, not turning with the ring or the body:
-/// Bullet's two-direction friction is a pyramid, whose capacity would turn with them), so
-/// cached impulses stay meaningful.
+/// points (world frame), all with the true contact's normal (paper, Sec. 3.2), point i with
+/// separation separations[i] (m, negative when penetrating), four per new manifold. The new manifolds are appended to `added` (reserve it: no allocation
+/// then). Point i has materials[i] and is warm-started from warm[i]. A finger's points carry
+/// friction 0: their contact's friction is one FrictionBlock (sim/patch_friction.hpp).
 void injectPoints(btDispatcher& dispatcher, const btCollisionObject* proxy,
                   const btCollisionObject* object, const btVector3* points_world, int count,
-                  const btVector3& outward_normal_world, double separation,
+                  const btVector3& outward_normal_world, const double* separations,
                   const PointMaterial* materials, const WarmStart* warm,
                   std::vector<btPersistentManifold*>& added);
 

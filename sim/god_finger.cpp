@@ -232,10 +232,10 @@ Sgo walk(const WalkContext& ctx, const Start& start, const Vec3& from, double d,
   }
 }
 
-// The load shares of the SGOs: inversely proportional to their distance from the contact
-// across the normal, so sum_i share_i (p_i - c) is sum_i of unit directions, zero for a
-// balanced ring whatever its stretch.
-void shareLoad(const Vec3& centre, const Vec3& n, double radius, Patch& out) {
+// Ring: the load shares of the SGOs, inversely proportional to their distance from the contact
+// across the normal, so sum_i share_i (p_i - c) is sum_i of unit directions, zero for a balanced
+// ring whatever its stretch; the contact takes 1 / (1 + SGOs).
+void shareRingLoad(const Vec3& centre, const Vec3& n, double radius, Patch& out) {
   double total = 0.0;
   for (Sgo& sgo : out.sgos) {
     const Vec3 offset = sgo.position - centre;
@@ -243,7 +243,52 @@ void shareLoad(const Vec3& centre, const Vec3& n, double radius, Patch& out) {
     sgo.load_share = 1.0 / std::max(lever, kMinLeverFraction * radius);
     total += sgo.load_share;
   }
-  for (Sgo& sgo : out.sgos) sgo.load_share /= total;
+  const double count = static_cast<double>(out.sgos.size());
+  out.centre_share = 1.0 / (1.0 + count);
+  for (Sgo& sgo : out.sgos) sgo.load_share *= (1.0 - out.centre_share) / total;
+}
+
+// The point at arc length `at` along the polyline [first, last).
+Vec3 alongPath(const Vec3* first, const Vec3* last, double at) {
+  for (const Vec3* p = first; p + 1 < last; ++p) {
+    const double len = (p[1] - p[0]).norm();
+    if (at <= len && len > 0.0) return p[0] + (at / len) * (p[1] - p[0]);
+    at -= len;
+  }
+  return last[-1];
+}
+
+// Filled: rings - 1 points along the path just walked to `end` (walked length w), and the areas
+// of the annular sectors of angle `sector` each point stands for: ring k between (k - 1/2) w /
+// rings and (k + 1/2) w / rings, the last out to w, the contact's disc within w / (2 rings).
+void fillPath(int rings, double sector, Sgo& end, Patch& out) {
+  const double w = end.walked, step = w / rings;
+  const auto annulus = [&](double a, double b) { return 0.5 * sector * (b * b - a * a); };
+  out.centre_area += annulus(0.0, 0.5 * step);
+  const Vec3* first = out.path_points.data() + out.path_offsets.back();
+  const Vec3* last = out.path_points.data() + out.path_points.size();
+  for (int k = 1; k < rings; ++k) {
+    Sgo p = end;
+    p.position = alongPath(first, last, k * step);
+    p.walked = k * step;
+    p.stop = WalkStop::kDistance;
+    p.ring = k;
+    p.area = annulus((k - 0.5) * step, (k + 0.5) * step);
+    out.inner.push_back(p);
+  }
+  end.ring = rings;
+  end.area = annulus((rings - 0.5) * step, w);
+}
+
+// Filled: every point's share in proportion to its area.
+void shareFilledLoad(Patch& out) {
+  double total = out.centre_area;
+  for (const Sgo& p : out.sgos) total += p.area;
+  for (const Sgo& p : out.inner) total += p.area;
+  if (!(total > 0.0)) return shareRingLoad(out.hit.point, -out.press_dir, out.radius, out);
+  out.centre_share = out.centre_area / total;
+  for (Sgo& p : out.sgos) p.load_share = p.area / total;
+  for (Sgo& p : out.inner) p.load_share = p.area / total;
 }
 
 void resetPatch(int n, Patch& out) {
@@ -256,6 +301,9 @@ void resetPatch(int n, Patch& out) {
   out.d_i.clear();
   out.radial_stop.clear();
   out.sgos.clear();
+  out.inner.clear();
+  out.centre_share = 1.0;
+  out.centre_area = 0.0;
   out.path_points.clear();
   out.path_offsets.clear();
   if (out.radial.capacity() < static_cast<std::size_t>(n)) {
@@ -263,6 +311,7 @@ void resetPatch(int n, Patch& out) {
     out.d_i.reserve(kMaxSgo);
     out.radial_stop.reserve(kMaxSgo);
     out.sgos.reserve(kMaxSgo);
+    out.inner.reserve(kMaxSgo * (kMaxRings - 1));
     out.path_offsets.reserve(kMaxSgo + 1);
     out.path_points.reserve(kMaxSgo * 8);
   }
@@ -277,7 +326,7 @@ bool computable(const PatchSettings& s) {
          finite(s.max_stretch) && s.max_stretch >= 1 &&
          finite(s.tau_a) && s.tau_a >= 0 && s.tau_a <= std::numbers::pi && finite(s.friction) &&
          s.friction >= 0 && s.max_face_crossings >= 0 && s.max_face_crossings <= 1000000 &&
-         finite(s.feature_tolerance) && s.feature_tolerance >= 0;
+         finite(s.feature_tolerance) && s.feature_tolerance >= 0 && s.rings >= 1 && s.rings <= kMaxRings;
 }
 
 }  // namespace
@@ -392,6 +441,7 @@ void computePatch(const Mesh& mesh, const PatchContact& contact, const Vec3& v,
   out.ring_tangent = t1;
   // Eq. 2 reads the tangential part of v: pressing alone stretches nothing.
   const Vec3 v_t = v - v.dot(n) * n;
+  const bool filled = s.fill == PatchFill::kFilled;
   // Step 4: per radial vector, its start face (Fig. 3), Eq. 2 distance and the walk (Alg. 1).
   out.path_offsets.push_back(0);
   for (int i = 0; i < s.n_sgo; ++i) {
@@ -407,11 +457,17 @@ void computePatch(const Mesh& mesh, const PatchContact& contact, const Vec3& v,
     }
     Sgo sgo = walk(ctx, start, out.hit.point, out.d_i.back(), out);
     sgo.radial = i;
+    if (filled) fillPath(s.rings, 2.0 * std::numbers::pi / s.n_sgo, sgo, out);
     out.radial_stop.push_back(sgo.stop);
     out.sgos.push_back(sgo);
     out.path_offsets.push_back(static_cast<std::int32_t>(out.path_points.size()));
   }
-  if (!out.sgos.empty()) shareLoad(out.hit.point, n, out.radius, out);
+  if (out.sgos.empty()) return;
+  if (filled) {
+    shareFilledLoad(out);
+  } else {
+    shareRingLoad(out.hit.point, n, out.radius, out);
+  }
 }
 
 }  // namespace gf::sim

@@ -48,10 +48,17 @@ struct Sgo {
   int radial = -1;               ///< index of its radial vector
   double walked = 0.0;           ///< length of the walked path (m)
   WalkStop stop = WalkStop::kDistance;
-  /// Its share of the load of the patch's SGOs (they sum to 1): inversely proportional to its
+  /// Its share of the patch's load, stiffness and damping: with Patch::centre_share and the
+  /// other points' shares it sums to 1. Ring: the SGOs share n / (n + 1) inversely to their
   /// distance from the contact across the normal, so the load's centre stays at the contact
   /// whatever Eq. 2 stretches (exactly when the radial vectors are balanced, none dropped).
+  /// Filled: in proportion to `area`, so a flat press gives a uniform pressure.
   double load_share = 0.0;
+  /// Filled patch: which point of its path it is, 1 .. rings (rings: the walk's end); its
+  /// stretch of the patch (m^2): the annular sector of angle 2 pi / n_sgo between the
+  /// midpoints to its path neighbours (out to the walk's end for the last). 0 for a ring.
+  int ring = 0;
+  double area = 0.0;
 };
 
 /// Result of one patch computation, in the object's local frame (the mesh's frame). Reused
@@ -68,6 +75,13 @@ struct Patch {
   std::vector<double> d_i;                 ///< d_i of Eq. 2: length walked along r_i (m)
   std::vector<WalkStop> radial_stop;       ///< how each radial vector's walk ended
   std::vector<Sgo> sgos;                   ///< SGOs of the radial vectors not dropped
+  /// Filled patch: the points along the walked paths short of their ends, rings 1 .. rings-1
+  /// of each path in path order (SGOs as well: the World injects them with `sgos`).
+  std::vector<Sgo> inner;
+  /// The contact point's share of the load (ring: 1 / (1 + SGOs); filled: its disc's area over
+  /// the patch's), and the area (m^2) it stands for in a filled patch (0 for a ring).
+  double centre_share = 1.0;
+  double centre_area = 0.0;
   std::vector<Vec3> path_points;           ///< walked paths, concatenated (m)
   std::vector<std::int32_t> path_offsets;  ///< SGO k's path: [offsets[k], offsets[k+1])
 };
@@ -110,7 +124,10 @@ SurfacePoint contactFeature(const Mesh& mesh, const PatchContact& contact, doubl
 /// `v` is p_I - p_GO (device minus god-object, m). Input it cannot compute (non-finite numbers,
 /// n_sgo outside kMinSgo..kMaxSgo, d0, stretch_length or alpha not > 0, a zero normal) gives
 /// `valid == false` and no SGO; the legal ranges users may give are narrower (settings.hpp). No
-/// radius (not pressing) gives no SGO. Any thread.
+/// radius (not pressing) gives no SGO. A filled patch (settings.fill) also places settings.rings
+/// - 1 points along each walked path at k / rings of its length, and weights every point by
+/// the area it stands for; what a walk did not reach (dropped vectors, walks stopped at a
+/// threshold or boundary) counts for nothing. Any thread.
 void computePatch(const Mesh& mesh, const PatchContact& contact, const Vec3& v,
                   const PatchSettings& settings, Patch& out);
 

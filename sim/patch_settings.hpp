@@ -2,7 +2,25 @@
 // description and the overlay. Their legal ranges and validators are in sim/settings.hpp.
 #pragma once
 
+#include <cstdint>
+
 namespace gf::sim {
+
+/// How a finger touches a body (`contact_model` in scene files).
+enum class ContactModel : std::uint8_t {
+  kGodObject,   ///< "god_object": one point, friction against sliding only
+  kSoftFinger,  ///< "soft_finger": one point with a torsional friction limit (condim 4)
+  kGodFinger,   ///< "god_finger": the paper's patch of SGOs (n_sgo 0: a god-object)
+};
+
+/// Where a god-finger patch puts its points (`patch` in scene files).
+enum class PatchFill : std::uint8_t {
+  kRing,    ///< "ring": the paper's SGOs where the walks end, and the contact
+  kFilled,  ///< "filled": also `rings` points along each walked path; weights by area
+};
+
+/// Most points a filled patch puts along one walked path.
+inline constexpr int kMaxRings = 8;
 
 /// Fewest and most SGOs a god-finger patch has (the paper asks for at least 3).
 inline constexpr int kMinSgo = 3;
@@ -15,6 +33,10 @@ inline constexpr int kMaxSgo = 64;
 /// atan(friction)) from the contact normal. At the defaults (tau_a 30 degrees, friction 1, a
 /// 45-degree cone) tau_a is the bound; the cone takes over below friction tan(30) = 0.577.
 struct PatchSettings {
+  ContactModel model = ContactModel::kGodFinger;
+  PatchFill fill = PatchFill::kRing;
+  int rings = 3;                    ///< filled patch: points per walked path (1..kMaxRings)
+  double torsional_friction = 0.005;  ///< soft finger: torsion limit per newton of normal force (m)
   int n_sgo = 8;                    ///< number of radial vectors / SGOs (kMinSgo..kMaxSgo)
   double r_max = 0.010;             ///< r_max of Eq. 1: largest contact radius (m)
   double d0 = 0.004;                ///< D'_0 of Eq. 1: press depth scale (m)
@@ -31,5 +53,10 @@ struct PatchSettings {
   int max_face_crossings = 64;
   double feature_tolerance = 1e-7;  ///< distance (m) within which a hit is an edge/vertex hit
 };
+
+/// The model a finger's settings give: n_sgo 0 makes the god-finger a god-object.
+inline ContactModel effectiveModel(const PatchSettings& s) {
+  return s.model == ContactModel::kGodFinger && s.n_sgo == 0 ? ContactModel::kGodObject : s.model;
+}
 
 }  // namespace gf::sim

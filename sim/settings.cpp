@@ -40,12 +40,26 @@ Setting<Desc> row(std::string_view name, std::string_view unit, double min, doub
     s.get_vector = [](const Desc& d) { return Vec3(reach<M...>(d)); };
     s.set_vector = [](Desc& d, const Vec3& v) { reach<M...>(d) = v; };
   } else {
-    s.kind = std::is_integral_v<Stored> ? SettingKind::kInteger : SettingKind::kNumber;
+    s.kind = std::is_enum_v<Stored>       ? SettingKind::kChoice
+             : std::is_integral_v<Stored> ? SettingKind::kInteger
+                                          : SettingKind::kNumber;
     s.get = [](const Desc& d) { return static_cast<double>(reach<M...>(d)); };
     s.set = [](Desc& d, double v) { reach<M...>(d) = static_cast<Stored>(v); };
   }
   return s;
 }
+
+// A kChoice setting: its names, in enum order.
+template <class S>
+S named(S s, std::span<const std::string_view> choices) {
+  s.choices = choices;
+  s.min = 0;
+  s.max = static_cast<double>(choices.size()) - 1;
+  return s;
+}
+
+constexpr std::string_view kContactModelNames[] = {"god_object", "soft_finger", "god_finger"};
+constexpr std::string_view kPatchFillNames[] = {"ring", "filled"};
 
 template <class S>
 S live(S s) {
@@ -85,7 +99,7 @@ std::string shown(double x) {
 }
 
 std::string rangeReason(const SettingKind kind, double min, double max, bool min_excluded, double got) {
-  if (kind == SettingKind::kInteger) {
+  if (kind == SettingKind::kInteger || kind == SettingKind::kChoice) {
     return "must be in " + shown(min) + ".." + shown(max) + ", got " + shown(got);
   }
   return std::string("must be in ") + (min_excluded ? "(" : "[") + shown(min) + ", " + shown(max) + "], got " +
@@ -153,6 +167,10 @@ std::span<const Setting<FingerDesc>> fingerSettings() {
   using F = FingerDesc;
   using P = PatchSettings;
   static const Setting<F> kTable[] = {
+      named(row<F, &F::patch, &P::model>("contact_model", "", 0, 0), kContactModelNames),
+      named(row<F, &F::patch, &P::fill>("patch", "", 0, 0), kPatchFillNames),
+      row<F, &F::patch, &P::rings>("rings", "", 1, kMaxRings),
+      row<F, &F::patch, &P::torsional_friction>("torsional_friction", "m", 0.0, 0.1),
       live(withRule(row<F, &F::patch, &P::n_sgo>("n_sgo", "", 0, kMaxSgo), nSgoRule)),
       live(row<F, &F::patch, &P::r_max>("r_max", "m", 0.0, 1.0)),
       live(row<F, &F::patch, &P::d0>("d0", "m", 1e-6, 1.0)),
@@ -175,7 +193,7 @@ std::span<const Setting<FingerDesc>> fingerSettings() {
 template <class Desc>
 std::optional<std::string> checkGiven(const Setting<Desc>& s, double given) {
   if (!std::isfinite(given)) return "must be finite";
-  if (s.kind == SettingKind::kInteger && given != std::trunc(given)) return "expected an integer, got " + shown(given);
+  if ((s.kind == SettingKind::kInteger || s.kind == SettingKind::kChoice) && given != std::trunc(given)) return "expected an integer, got " + shown(given);
   const bool below = s.min_excluded ? !(given > s.min) : !(given >= s.min);
   if (below || !(given <= s.max)) return rangeReason(s.kind, s.min, s.max, s.min_excluded, given);
   if (s.rule) {

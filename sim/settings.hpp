@@ -37,7 +37,12 @@ class DescriptionError : public std::invalid_argument {
 };
 
 /// What a setting holds.
-enum class SettingKind : std::uint8_t { kNumber, kInteger, kVector };
+enum class SettingKind : std::uint8_t {
+  kNumber,
+  kInteger,
+  kVector,
+  kChoice,  ///< one of `choices`, given by name, stored as its index (an enum)
+};
 
 /// One setting of a description type (SceneDesc, BodyDesc or FingerDesc).
 template <class Desc>
@@ -50,6 +55,7 @@ struct Setting {
   bool min_excluded = false;  ///< (min, max] instead of [min, max]
   bool live = false;          ///< may change while a session runs (`live` set, the overlay)
   double si_per_unit = 1.0;   ///< stored value = given value * si_per_unit (degrees to radians)
+  std::span<const std::string_view> choices;  ///< kChoice: the names, in enum order
   /// A further condition on the given value, or null; returns why the value breaks it.
   const char* (*rule)(double given) = nullptr;
   double (*get)(const Desc&) = nullptr;  ///< kNumber, kInteger: the stored value
@@ -91,6 +97,27 @@ double givenValue(const Setting<Desc>& setting, const Desc& desc) {
 template <class Desc>
 void setGiven(const Setting<Desc>& setting, Desc& desc, double given) {
   setting.set(desc, given * setting.si_per_unit);
+}
+
+/// The index of `name` among a kChoice setting's choices, or -1.
+template <class Desc>
+int choiceIndex(const Setting<Desc>& setting, std::string_view name) {
+  for (std::size_t i = 0; i < setting.choices.size(); ++i) {
+    if (setting.choices[i] == name) return static_cast<int>(i);
+  }
+  return -1;
+}
+/// The name of a kChoice setting's value in `desc`.
+template <class Desc>
+std::string_view choiceName(const Setting<Desc>& setting, const Desc& desc) {
+  return setting.choices[static_cast<std::size_t>(setting.get(desc))];
+}
+/// The names of a kChoice setting, quoted and separated by commas: "\"a\", \"b\"".
+template <class Desc>
+std::string choiceList(const Setting<Desc>& setting) {
+  std::string out;
+  for (std::string_view c : setting.choices) out.append(out.empty() ? "\"" : ", \"").append(c).append("\"");
+  return out;
 }
 
 /// The name of a setting in JSON: its name with its unit ("r_max_m", "tau_a_deg", "n_sgo").

@@ -10,6 +10,7 @@
 #include "sim/body_factory.hpp"
 #include "sim/contact_injection.hpp"
 #include "sim/contact_record.hpp"
+#include "sim/patch_friction.hpp"
 #include "sim/settings.hpp"
 
 namespace gf::sim {
@@ -24,6 +25,12 @@ constexpr int kProxyTag = -1;
 // A patch starts when the proxy touches (separation <= 0) and lasts while the separation stays
 // below this (m): a few micrometres of gap in one step do not drop the contact area.
 constexpr double kPatchReleaseGap = 1e-4;
+// Points a patch injects besides the true contact: the SGOs and a filled patch's inner points.
+constexpr int kMaxPatchPoints = kMaxSgo * kMaxRings;
+// The pad plane keeps the orientation the finger met the body with (the proxy does not turn)
+// while the contact normal stays within this angle of it (rad), and follows beyond: a tilt of
+// the body loads one side of the pad, a finger moved around a curved body keeps its pad on it.
+constexpr double kPadFollowAngle = 0.2617993877991494;  // 15 degrees
 
 btTransform poseOf(const Vec3& p, const Eigen::Quaterniond& q) {
   const Eigen::Quaterniond n = q.normalized();
@@ -43,11 +50,15 @@ struct FingerContact {
   TrueContact truth;
   Vec3 v_local = Vec3::Zero();               // p_I - p_GO in the body frame (Eq. 1, Eq. 2)
   btPersistentManifold* manifold = nullptr;  // holds the true point; null outside the solve
-  std::array<btVector3, kMaxSgo> sgo_world;  // where the solver sees the SGOs this step
-  std::array<WarmStart, kMaxSgo> sgo_warm;   // by SGO, for this step's solve
-  std::array<PointMaterial, kMaxSgo> sgo_material;
+  // The injected points: the patch's SGOs, then a filled patch's inner points.
+  std::array<btVector3, kMaxPatchPoints> sgo_world;  // where the solver sees them this step
+  std::array<double, kMaxPatchPoints> sgo_separation;  // their depth below the pad plane (m)
+  std::array<WarmStart, kMaxPatchPoints> sgo_warm;
+  std::array<PointMaterial, kMaxPatchPoints> sgo_material;
   int sgo_count = 0;
   int first_injected = 0;  // index of its first manifold in World::Impl::injected
+  int block = -1;          // its friction block this step
+  Vec3 pad_normal = Vec3::UnitY();  // world
 };
 
 // What a finger's contact with one body leaves for the next step: the solved impulses (to warm
@@ -55,10 +66,15 @@ struct FingerContact {
 struct ContactMemory {
   int body = -1;
   WarmStart truth;
-  int n_sgo = 0;                           // radial vectors of the patch the impulses belong to
-  std::array<WarmStart, kMaxSgo> radial;   // by radial index: radial i at angle 2 pi i / n_sgo
+  int n_sgo = 0;  // radial vectors of the patch the impulses belong to
+  // By ring (a filled patch's point k of its path in layer k - 1; a ring's SGOs in layer 0)
+  // and radial index: radial i at angle 2 pi i / n_sgo.
+  std::array<std::array<WarmStart, kMaxSgo>, kMaxRings> layers;
   Vec3 ring_tangent_local = Vec3::Zero();  // radial 0's direction, body frame
   bool had_patch = false;
+  Vec3 pad_normal = Vec3::UnitY();    // the pad plane's normal (world)
+  btVector3 friction_force{0, 0, 0};  // the friction block's impulses (warm start)
+  double friction_torque = 0.0;
 };
 
 struct Finger {
@@ -99,7 +115,7 @@ struct World::Impl final : SolveHooks {
   void gatherProxyManifold(btPersistentManifold& m, const btCollisionObject* proxy);
   void handleContact(Finger& f, FingerContact& c);
   void recordContact(const Finger& f, const ContactMemory* mem, FingerContact& c) const;
-  void computeContactPatch(Finger& f, FingerContact& c);
+  void computeContactPatch(Finger& f, FingerContact& c, const ContactMemory* mem);
   Pose bodyFrame(int body) const;
   bool ownedHere() const { return std::this_thread::get_id() == owner; }
   void rememberImpulses(Finger& f);
@@ -116,7 +132,7 @@ struct World::Impl final : SolveHooks {
   btDefaultCollisionConfiguration config;
   btCollisionDispatcher dispatcher{&config};
   btDbvtBroadphase broadphase;
-  btSequentialImpulseConstraintSolver solver;
+  PatchFrictionSolver solver;
   GodFingerDynamicsWorld world{&dispatcher, &broadphase, &solver, &config, this};
   std::vector<Body> bodies;
   std::vector<Finger> fingers;
@@ -204,6 +220,7 @@ PatchSettings World::Impl::effectivePatch(const Finger& f) const {
 
 void World::Impl::beforeSolve() {
   for (Finger& f : fingers) f.contact_count = 0;
+  solver.clearBlocks();
   const int n = dispatcher.getNumManifolds();  // injected manifolds are appended after these
   for (int i = 0; i < n; ++i) {
     btPersistentManifold& m = *dispatcher.getManifoldByIndexInternal(i);
@@ -248,35 +265,72 @@ void World::Impl::gatherProxyManifold(btPersistentManifold& m, const btCollision
   c.manifold = &m;
 }
 
+// Where layer and radial of a patch point keep its impulses in ContactMemory::layers.
+int layerOf(const Sgo& p) { return p.ring > 0 ? p.ring - 1 : 0; }
+
 void World::Impl::handleContact(Finger& f, FingerContact& c) {
   const FingerDesc& fd = desc.fingers[&f - fingers.data()];
   const ContactMemory* mem = f.memoryOf(c.truth.object->getUserIndex());
   c.sgo_count = 0;
   recordContact(f, mem, c);
+  ContactModel model = effectiveModel(f.patch);
+  if (model == ContactModel::kGodFinger && !desc.effects.god_finger) model = ContactModel::kGodObject;
   // A patch starts on touching and survives a small gap (kPatchReleaseGap).
   const bool touching = c.truth.separation <= 0.0 ||
                         (mem && mem->had_patch && c.truth.separation <= kPatchReleaseGap);
-  if (desc.effects.god_finger && f.patch.n_sgo > 0 && touching) computeContactPatch(f, c);
-  // The total contact stiffness and damping are shared by the true contact and its SGOs: the
-  // true contact takes 1 / (1 + n), the SGOs the rest by their load shares.
-  const double friction = desc.effects.friction ? f.patch.friction : 0.0;
+  if (model == ContactModel::kGodFinger && touching) computeContactPatch(f, c, mem);
+  // The total contact stiffness and damping are shared by the true contact and the patch's
+  // points by their load shares; friction is the contact's block (below), not the points'.
+  const Patch& patch = c.record.patch;
   const double k = fd.proxy.contact_stiffness, d = fd.proxy.contact_damping;
-  const double truth_share = 1.0 / (1 + c.sgo_count);
-  keepOnlyPoint(*c.manifold, c.truth.index, {k * truth_share, d * truth_share, friction},
-                mem ? mem->truth : WarmStart{});
-  if (c.sgo_count == 0) return;
+  const double truth_share = c.sgo_count > 0 ? patch.centre_share : 1.0;
+  keepOnlyPoint(*c.manifold, c.truth.index, {k * truth_share, d * truth_share, 0.0}, mem ? mem->truth : WarmStart{});
   const int n = f.patch.n_sgo;
+  btVector3 centre = truth_share * c.truth.point_world;
   for (int i = 0; i < c.sgo_count; ++i) {
-    const Sgo& sgo = c.record.patch.sgos[i];
-    const double share = (1.0 - truth_share) * sgo.load_share;
-    c.sgo_material[i] = {k * share, d * share, friction};
-    c.sgo_warm[i] = mem ? warmStartByAngle(mem->radial.data(), mem->n_sgo, sgo.radial, n) : WarmStart{};
+    const Sgo& p = i < static_cast<int>(patch.sgos.size()) ? patch.sgos[i] : patch.inner[i - patch.sgos.size()];
+    c.sgo_material[i] = {k * p.load_share, d * p.load_share, 0.0};
+    c.sgo_warm[i] = mem ? warmStartByAngle(mem->layers[layerOf(p)].data(), mem->n_sgo, p.radial, n) : WarmStart{};
+    centre += p.load_share * c.sgo_world[i];
   }
-  c.first_injected = static_cast<int>(injected.size());
-  injectPoints(dispatcher, f.proxy.get(), c.truth.object, c.sgo_world.data(), c.sgo_count,
-               c.truth.outward_normal_world, c.truth.separation, c.sgo_material.data(),
-               c.sgo_warm.data(), injected);
-  counters.sgos_injected += c.sgo_count;
+  if (c.sgo_count > 0) {
+    c.first_injected = static_cast<int>(injected.size());
+    injectPoints(dispatcher, f.proxy.get(), c.truth.object, c.sgo_world.data(), c.sgo_count,
+                 c.truth.outward_normal_world, c.sgo_separation.data(), c.sgo_material.data(), c.sgo_warm.data(),
+                 injected);
+    counters.sgos_injected += c.sgo_count;
+  }
+  // The friction block: sliding limit mu N at the load's centre, and the torsion limit of the
+  // model: none (god-object), mu_t N (soft finger), or the points' own (god-finger).
+  FrictionBlock block;
+  block.proxy = f.proxy.get();
+  block.object = c.truth.object;
+  // The load's centre moved onto the contact's tangent plane: on a curved body the points'
+  // centroid lies inside it, and friction acts on the surface.
+  const btVector3 off = centre - c.truth.point_world;
+  block.centre = c.truth.point_world + off - off.dot(c.truth.outward_normal_world) * c.truth.outward_normal_world;
+  block.normal = c.truth.outward_normal_world;
+  block.friction = desc.effects.friction ? f.patch.friction : 0.0;
+  block.torsion = !desc.effects.friction                   ? 0.0
+                  : model == ContactModel::kSoftFinger     ? f.patch.torsional_friction
+                  : model == ContactModel::kGodFinger      ? -1.0
+                                                           : 0.0;
+  if (mem) {
+    block.warm_force = mem->friction_force;
+    block.warm_torque = mem->friction_torque;
+  }
+  c.block = solver.addBlock(block);
+  const btVector3& nw = block.normal;
+  const auto lever = [&](const btVector3& p) {
+    const btVector3 r = p - block.centre;
+    return (r - r.dot(nw) * nw).length();
+  };
+  const bool proxy_is_a = c.manifold->getBody0() == f.proxy.get();
+  solver.addPoint({&c.manifold->getContactPoint(0), lever(c.truth.point_world), proxy_is_a});
+  for (int i = 0; i < c.sgo_count; ++i) {
+    const btPersistentManifold& m = *injected[static_cast<std::size_t>(c.first_injected + i / MANIFOLD_CACHE_SIZE)];
+    solver.addPoint({&m.getContactPoint(i % MANIFOLD_CACHE_SIZE), lever(c.sgo_world[i]), true});
+  }
 }
 
 void World::Impl::rememberImpulses(Finger& f) {
@@ -285,15 +339,21 @@ void World::Impl::rememberImpulses(Finger& f) {
     FingerContact& c = f.contacts[k];
     GF_ASSERT(c.manifold != nullptr && "impulses are read between beforeSolve and afterSolve only");
     ContactMemory& mem = f.memory[k];
+    const Patch& patch = c.record.patch;
     mem.body = c.record.body;
     mem.truth = solvedImpulses(c.manifold->getContactPoint(0));
     mem.had_patch = c.sgo_count > 0;
     mem.n_sgo = c.sgo_count > 0 ? f.patch.n_sgo : 0;
-    mem.ring_tangent_local = c.record.patch.ring_tangent;
-    mem.radial.fill(WarmStart{});
+    mem.ring_tangent_local = patch.ring_tangent;
+    mem.pad_normal = c.pad_normal;
+    for (auto& layer : mem.layers) layer.fill(WarmStart{});
     for (int i = 0; i < c.sgo_count; ++i) {
-      mem.radial[c.record.patch.sgos[i].radial] = solvedImpulses(injected, c.first_injected, i);
+      const Sgo& p = i < static_cast<int>(patch.sgos.size()) ? patch.sgos[i] : patch.inner[i - patch.sgos.size()];
+      mem.layers[layerOf(p)][p.radial] = solvedImpulses(injected, c.first_injected, i);
     }
+    const FrictionBlock& block = solver.block(c.block);
+    mem.friction_force = block.solved ? block.force : btVector3(0, 0, 0);
+    mem.friction_torque = block.solved ? block.torque : 0.0;
     c.manifold = nullptr;  // Bullet may free it at the next collision pass
     c.truth.object = nullptr;
   }
@@ -315,7 +375,13 @@ void World::Impl::recordContact(const Finger& f, const ContactMemory* mem, Finge
   clearPatch(r.patch);
 }
 
-void World::Impl::computeContactPatch(Finger& f, FingerContact& c) {
+// The patch of a god-finger contact, its points in the world and their depths. Every point has
+// the contact's depth (the paper, Sec. 3.2) while the body's surface keeps the orientation the
+// finger met it with; a tilt of the surface since (the contact normal turned from the pad's
+// normal, which the proxy, not turning, keeps) deepens the points on one side and lifts the
+// others by their offset along the turn, so the pad pushes back. Beyond kPadFollowAngle the pad
+// turns with the surface: a finger moved around a curved body keeps its pad on it.
+void World::Impl::computeContactPatch(Finger& f, FingerContact& c, const ContactMemory* mem) {
   ContactRecord& r = c.record;
   const Mesh& mesh = *bodies[r.body].shapes.walk_mesh;
   computePatch(mesh, r.contact, c.v_local, effectivePatch(f), r.patch);
@@ -323,12 +389,23 @@ void World::Impl::computeContactPatch(Finger& f, FingerContact& c) {
     ++counters.invalid_patches;
     return;
   }
-  const btTransform& t = c.truth.object->getWorldTransform();
-  c.sgo_count = static_cast<int>(r.patch.sgos.size());
-  for (int i = 0; i < c.sgo_count; ++i) {
-    c.sgo_world[i] = t * toBt(r.patch.sgos[i].position);
-    counters.crossing_limit_stops += r.patch.sgos[i].stop == WalkStop::kCrossingLimit;
+  const Vec3 n = toEigen(c.truth.outward_normal_world);
+  Vec3 pad = mem && mem->had_patch ? mem->pad_normal : n;
+  if (pad.dot(n) < std::cos(kPadFollowAngle)) {
+    const Vec3 across = pad - pad.dot(n) * n;
+    pad = across.norm() > 1e-12 ? Vec3(std::cos(kPadFollowAngle) * n + std::sin(kPadFollowAngle) * across.normalized()) : n;
   }
+  c.pad_normal = pad;
+  const btTransform& t = c.truth.object->getWorldTransform();
+  const btVector3 tilt = toBt(pad) - c.truth.outward_normal_world;
+  const auto place = [&](const Sgo& p) {
+    const int i = c.sgo_count++;
+    c.sgo_world[i] = t * toBt(p.position);
+    c.sgo_separation[i] = c.truth.separation - (c.sgo_world[i] - c.truth.point_world).dot(tilt);
+    counters.crossing_limit_stops += p.stop == WalkStop::kCrossingLimit;
+  };
+  for (const Sgo& p : r.patch.sgos) place(p);
+  for (const Sgo& p : r.patch.inner) place(p);
 }
 
 Pose World::Impl::bodyFrame(int body) const {

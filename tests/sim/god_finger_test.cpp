@@ -352,8 +352,9 @@ TEST(Patch, StretchIsBoundedAndTheLoadCentreStaysAtTheContact) {
       Patch p;
       computePatch(plane, c, v, settingsWith(n, 2.0), p);
       ASSERT_EQ(p.sgos.size(), static_cast<std::size_t>(n));
-      Vec3 centre = Vec3::Zero();
-      double total = 0.0;
+      Vec3 centre = p.centre_share * p.hit.point;
+      double total = p.centre_share;
+      EXPECT_DOUBLE_EQ(p.centre_share, 1.0 / (n + 1));
       for (const Sgo& sgo : p.sgos) {
         EXPECT_LE(p.d_i[sgo.radial], 2.0 * p.radius * (1 + 1e-12));
         EXPECT_GE(p.d_i[sgo.radial], 0.5 * p.radius * (1 - 1e-12));
