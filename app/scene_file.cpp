@@ -3,6 +3,7 @@
 #include <toml++/toml.h>
 
 #include <algorithm>
+#include <charconv>
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
@@ -526,7 +527,71 @@ void readRecord(Reader& parent, SessionDesc& s) {
   r.finish();
 }
 
-// "--set a.b.c=VALUE": VALUE is read as TOML, or as a string when it is not valid TOML.
+// One `[[loads]]` entry: the body it acts on (by name), then force, torque, start, ramp and stop.
+sim::LoadDesc readLoad(Reader& r, const std::vector<sim::BodyDesc>& bodies) {
+  sim::LoadDesc load;
+  const toml::node* b = r.find("body");
+  if (!b) r.fail(nullptr, "body", "missing (the name of a dynamic body)");
+  if (!b->is_string()) {
+    r.fail(b, "body", std::string("expected a body name (a string), got ") + typeName(*b));
+  }
+  load.body_name = b->as_string()->get();
+  const auto named = std::find_if(bodies.begin(), bodies.end(),
+                                  [&](const sim::BodyDesc& d) { return d.name == load.body_name; });
+  if (named == bodies.end()) {
+    std::vector<std::string> names;
+    for (const sim::BodyDesc& d : bodies) names.push_back(d.name);
+    r.fail(b, "body", "no body called '" + load.body_name + "' (one of " + join(names) + ")");
+  }
+  load.body = static_cast<int>(named - bodies.begin());
+  if (!r.has("force") && !r.has("torque")) {
+    r.fail(nullptr, "force",
+           "missing: give force = [x, y, z] (N), torque = [x, y, z] (N m) or both");
+  }
+  for (const sim::Setting<sim::LoadDesc>& s : sim::loadSettings()) {
+    r.setting(s, load, std::string(s.name));
+  }
+  r.failOn(sim::validateLoad(load, bodies));
+  r.finish();
+  return load;
+}
+
+// `[[loads]]`: known external loads, named `loads.INDEX` in errors and --set.
+void readLoads(Reader& parent, sim::SceneDesc& scene) {
+  const toml::node* n = parent.find("loads");
+  if (!n) return;
+  const toml::array* a = n->as_array();
+  if (!a) {
+    parent.fail(n, "loads",
+                std::string("expected an array of tables ([[loads]]), got ") + typeName(*n));
+  }
+  for (std::size_t i = 0; i < a->size(); ++i) {
+    const std::string key = "loads." + std::to_string(i);
+    const toml::node& e = *a->get(i);
+    if (!e.is_table()) parent.fail(&e, key, std::string("expected a table, got ") + typeName(e));
+    Reader r(*e.as_table(), parent.field(key), parent.file());
+    scene.loads.push_back(readLoad(r, scene.bodies));
+  }
+}
+
+// The element of array `a` that `part` (digits) names, or throws naming the field walked so far.
+std::size_t arrayIndex(const toml::array& a, const std::string& part, const std::string& where,
+                       const std::string& walked) {
+  std::size_t i = 0;
+  const auto [end, ec] = std::from_chars(part.data(), part.data() + part.size(), i);
+  if (ec != std::errc() || end != part.data() + part.size()) {
+    throw InputError(where, 0, 0, walked,
+                     "is an array: expected an element index, got '" + part + "'");
+  }
+  if (i >= a.size()) {
+    throw InputError(where, 0, 0, walked,
+                     "no element " + part + " (the array has " + std::to_string(a.size()) + ")");
+  }
+  return i;
+}
+
+// "--set a.b.c=VALUE": VALUE is read as TOML, or as a string when it is not valid TOML. A part
+// of the path may be an element index of an array (`loads.0.torque`).
 void applyOverride(toml::table& root, const std::string& text) {
   const std::string where = "--set " + text;
   const std::size_t eq = text.find('=');
@@ -539,14 +604,19 @@ void applyOverride(toml::table& root, const std::string& text) {
     if (parts.back().empty()) throw InputError(where, 0, 0, key, "empty name in the field path");
     a = b + 1;
   }
-  toml::table* t = &root;
+  toml::node* at = &root;  // a table or an array
   std::string walked;
   for (std::size_t i = 0; i + 1 < parts.size(); ++i) {
     walked += (walked.empty() ? "" : ".") + parts[i];
-    toml::node* n = t->get(parts[i]);
-    if (!n) n = t->insert(parts[i], toml::table{}).first->second.as_table();
-    if (!n->is_table()) throw InputError(where, 0, 0, walked, "is not a table");
-    t = n->as_table();
+    toml::node* n = nullptr;
+    if (toml::array* a = at->as_array()) {
+      n = a->get(arrayIndex(*a, parts[i], where, walked));
+    } else {
+      n = at->as_table()->get(parts[i]);
+      if (!n) n = at->as_table()->insert(parts[i], toml::table{}).first->second.as_table();
+    }
+    if (!n->is_table() && !n->is_array()) throw InputError(where, 0, 0, walked, "is not a table");
+    at = n;
   }
   toml::table parsed;
   try {
@@ -560,7 +630,12 @@ void applyOverride(toml::table& root, const std::string& text) {
       throw InputError(where, 0, 0, key, std::string(e.description()));
     }
   }
-  t->insert_or_assign(parts.back(), std::move(*parsed.get("v")));
+  if (toml::array* a = at->as_array()) {
+    const std::size_t i = arrayIndex(*a, parts.back(), where, key);
+    a->replace(a->cbegin() + static_cast<std::ptrdiff_t>(i), std::move(*parsed.get("v")));
+  } else {
+    at->as_table()->insert_or_assign(parts.back(), std::move(*parsed.get("v")));
+  }
 }
 
 // The scene-wide settings: `duration` and `haptic_rate` at the top, the rest in [world].
@@ -597,6 +672,7 @@ SessionDesc readSession(toml::table& root, const std::string& source, const std:
   if (s.scene.bodies.empty()) r.fail(nullptr, "bodies", "missing: a scene needs at least one body");
   for (const auto& [name, t] : r.namedTables("fingers")) s.scene.fingers.push_back(readFinger(name, *t, r, base_dir));
   for (const auto& [name, t] : r.namedTables("cameras")) s.cameras.push_back(readCamera(name, *t, r));
+  readLoads(r, s.scene);
   readRecord(r, s);
   readView(r, s);
   r.finish();

@@ -39,8 +39,13 @@ TraceWriter::TraceWriter(const sim::World& world, long expected_rows) {
   for (const sim::FingerDesc& f : d.fingers) {
     for (const char* c : {".fx", ".fy", ".fz", ".n_sgo"}) text_.append(1, ',').append(f.name).append(c);
   }
+  for (int b : dynamic_bodies_) {
+    for (const char* c : {".vx", ".vy", ".vz", ".wx", ".wy", ".wz"}) {
+      text_.append(1, ',').append(d.bodies[static_cast<std::size_t>(b)].name).append(c);
+    }
+  }
   text_ += '\n';
-  const std::size_t per_row = 24 * (1 + 7 * dynamic_bodies_.size() + 4 * d.fingers.size());
+  const std::size_t per_row = 24 * (1 + 13 * dynamic_bodies_.size() + 4 * d.fingers.size());
   text_.reserve(text_.size() + per_row * static_cast<std::size_t>(std::max(0L, expected_rows)));
 }
 
@@ -57,6 +62,13 @@ void TraceWriter::record(const sim::World& world) {
   for (int f = 0; f < static_cast<int>(world.desc().fingers.size()); ++f) {
     const sim::Vec3 force = world.couplingForce(f);
     for (double x : {force.x(), force.y(), force.z(), double(world.sgoCount(f))}) {
+      text_ += ',';
+      appendNumber(text_, x);
+    }
+  }
+  for (int b : dynamic_bodies_) {
+    const sim::Vec3 v = world.bodyLinearVelocity(b), w = world.bodyAngularVelocity(b);
+    for (double x : {v.x(), v.y(), v.z(), w.x(), w.y(), w.z()}) {
       text_ += ',';
       appendNumber(text_, x);
     }

@@ -11,9 +11,12 @@ namespace gf::app {
 class TraceWriter {
  public:
   /// Prepares the header for the world's dynamic bodies and fingers; reserves `expected_rows`.
+  /// Columns: t; per dynamic body its pose (.px .py .pz .qx .qy .qz .qw); per finger its
+  /// coupling force and SGO count (.fx .fy .fz .n_sgo); per dynamic body its linear (.vx .vy
+  /// .vz, m/s) and angular (.wx .wy .wz, rad/s, world frame) velocity.
   TraceWriter(const sim::World& world, long expected_rows);
 
-  /// Appends the row of the world's current state.
+  /// Appends the row of the world's current state; does not allocate within `expected_rows`.
   void record(const sim::World& world);
 
   /// Writes header and rows to `path` through a temporary file renamed into place, so an

@@ -9,4 +9,10 @@ std::shared_ptr<const Mesh> bodyMesh(const BodyDesc& body) {
   return std::make_shared<const Mesh>(loadMesh(body.mesh_path, body.mesh_scale));
 }
 
+double loadFactor(const LoadDesc& load, double t) {
+  if (t < load.start || t >= load.stop) return 0.0;
+  if (t < load.start + load.ramp) return (t - load.start) / load.ramp;  // never reached with ramp 0
+  return 1.0;
+}
+
 }  // namespace gf::sim

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <Eigen/Geometry>
+#include <limits>
 #include <memory>
 #include <string>
 #include <vector>
@@ -69,6 +70,23 @@ struct FingerDesc {
   DeviceTrack device;       ///< where the device is at each time
 };
 
+/// A known external load on one dynamic body: a force through its centre of mass and a torque,
+/// both fixed in the world frame, switched on at `start`, grown linearly over `ramp` and held
+/// until `stop`. Applied with every effect set (it is part of the scene, not an effect).
+struct LoadDesc {
+  int body = -1;               ///< index into SceneDesc::bodies; the body must be dynamic
+  std::string body_name;       ///< the body's name as the scene file gives it (for messages)
+  Vec3 force = Vec3::Zero();   ///< N, world frame, through the centre of mass
+  Vec3 torque = Vec3::Zero();  ///< N m, world frame
+  double start = 0.0;          ///< s: zero before
+  double ramp = 0.0;           ///< s: grows linearly from zero over this time; 0: a step
+  double stop = std::numeric_limits<double>::infinity();  ///< s: zero at and after; +inf: never
+};
+
+/// Fraction of `load` acting at time `t` (s): 0 before start, (t - start) / ramp during the
+/// ramp, 1 after it, 0 at and after stop. Pure; any thread; does not allocate.
+double loadFactor(const LoadDesc& load, double t);
+
 /// World-wide physics settings.
 struct WorldSettings {
   Vec3 gravity = Vec3(0, -9.81, 0);  ///< m/s^2, y up
@@ -85,6 +103,7 @@ struct SceneDesc {
   EffectSet effects;
   std::vector<BodyDesc> bodies;
   std::vector<FingerDesc> fingers;
+  std::vector<LoadDesc> loads;  ///< known external loads, applied at every step
   double duration = 5.0;  ///< simulated seconds
 };
 

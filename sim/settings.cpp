@@ -163,6 +163,18 @@ std::span<const Setting<BodyDesc>> bodySettings() {
   return kTable;
 }
 
+std::span<const Setting<LoadDesc>> loadSettings() {
+  using L = LoadDesc;
+  static const Setting<L> kTable[] = {
+      row<L, &L::force>("force", "N", -kAny, kAny),
+      row<L, &L::torque>("torque", "N m", -kAny, kAny),
+      row<L, &L::start>("start", "s", 0.0, 1e6),
+      row<L, &L::ramp>("ramp", "s", 0.0, 1e6),
+      row<L, &L::stop>("stop", "s", 0.0, 1e6),
+  };
+  return kTable;
+}
+
 std::span<const Setting<FingerDesc>> fingerSettings() {
   using F = FingerDesc;
   using P = PatchSettings;
@@ -220,7 +232,7 @@ std::string jsonKey(const Setting<Desc>& s) {
   static constexpr std::pair<std::string_view, std::string_view> kSuffixes[] = {
       {"", ""},         {"m", "_m"},        {"deg", "_deg"},         {"kg", "_kg"},        {"s", "_s"},
       {"N", "_n"},      {"Hz", "_hz"},      {"N/m", "_n_per_m"},     {"N s/m", "_ns_per_m"},
-      {"1/s", "_per_s"}, {"m/s^2", "_m_per_s2"},
+      {"1/s", "_per_s"}, {"m/s^2", "_m_per_s2"}, {"N m", "_nm"},
   };
   std::string key(s.name);
   for (char& c : key) c = c == '.' ? '_' : c;
@@ -238,6 +250,7 @@ std::string jsonKey(const Setting<Desc>& s) {
 GF_INSTANTIATE(SceneDesc)
 GF_INSTANTIATE(BodyDesc)
 GF_INSTANTIATE(FingerDesc)
+GF_INSTANTIATE(LoadDesc)
 #undef GF_INSTANTIATE
 
 std::span<const ShapeInfo> shapeInfos() {
@@ -328,6 +341,27 @@ std::optional<FieldError> validatePatch(const PatchSettings& patch) {
   return firstBadSetting(fingerSettings(), finger, [](const Setting<FingerDesc>& s) { return !s.live; });
 }
 
+std::optional<FieldError> validateLoad(const LoadDesc& load, std::span<const BodyDesc> bodies) {
+  if (load.body < 0 || load.body >= static_cast<int>(bodies.size())) {
+    return FieldError{"body", "no body of index " + std::to_string(load.body) + " (the scene has " +
+                                  std::to_string(bodies.size()) + ")"};
+  }
+  if (bodies[static_cast<std::size_t>(load.body)].mass == 0.0) {
+    return FieldError{"body", "'" + bodies[static_cast<std::size_t>(load.body)].name +
+                                  "' is static (mass 0): a load needs a dynamic body"};
+  }
+  // A load without a stop (+inf) has no stop time to check.
+  const auto never_stops = [&](const Setting<LoadDesc>& s) {
+    return s.name == "stop" && load.stop == HUGE_VAL;
+  };
+  if (std::optional<FieldError> e = firstBadSetting(loadSettings(), load, never_stops)) return e;
+  if (!(load.stop > load.start)) {
+    return FieldError{"stop",
+                      "must be after start (" + shown(load.start) + " s), got " + shown(load.stop)};
+  }
+  return std::nullopt;
+}
+
 void requireValid(const SceneDesc& scene) {
   if (std::optional<FieldError> e = validateScene(scene)) throw DescriptionError("scene", *e);
   for (const BodyDesc& b : scene.bodies) {
@@ -335,6 +369,11 @@ void requireValid(const SceneDesc& scene) {
   }
   for (const FingerDesc& f : scene.fingers) {
     if (std::optional<FieldError> e = validateFinger(f)) throw DescriptionError("finger '" + f.name + "'", *e);
+  }
+  for (std::size_t i = 0; i < scene.loads.size(); ++i) {
+    if (std::optional<FieldError> e = validateLoad(scene.loads[i], scene.bodies)) {
+      throw DescriptionError("load " + std::to_string(i), *e);
+    }
   }
 }
 

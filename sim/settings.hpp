@@ -22,12 +22,12 @@ struct FieldError {
   int index = -1;      ///< element of an array field (keyframe k); -1 for a plain field
 };
 
-/// A description that cannot be built: which body or finger, which field, and why. what() reads
-/// "body 'cylinder': mass: must be in [1e-06, 1e+06], got -1".
+/// A description that cannot be built: which body, finger or load, which field, and why. what()
+/// reads "body 'cylinder': mass: must be in [1e-06, 1e+06], got -1".
 class DescriptionError : public std::invalid_argument {
  public:
   DescriptionError(std::string subject, FieldError error);
-  /// "body 'NAME'", "finger 'NAME'" or "scene".
+  /// "body 'NAME'", "finger 'NAME'", "load INDEX" or "scene".
   const std::string& subject() const { return subject_; }
   const FieldError& error() const { return error_; }
 
@@ -44,7 +44,7 @@ enum class SettingKind : std::uint8_t {
   kChoice,  ///< one of `choices`, given by name, stored as its index (an enum)
 };
 
-/// One setting of a description type (SceneDesc, BodyDesc or FingerDesc).
+/// One setting of a description type (SceneDesc, BodyDesc, FingerDesc or LoadDesc).
 template <class Desc>
 struct Setting {
   std::string_view name;   ///< key in scene files, --set, `live`, the overlay and JSON
@@ -70,6 +70,9 @@ std::span<const Setting<SceneDesc>> sceneSettings();
 std::span<const Setting<BodyDesc>> bodySettings();
 /// Settings of a finger (`fingers.NAME.*`) other than its device; the god-finger ones are live.
 std::span<const Setting<FingerDesc>> fingerSettings();
+
+/// Settings of a load (`loads.INDEX.*`) other than its body: force, torque, start, ramp, stop.
+std::span<const Setting<LoadDesc>> loadSettings();
 
 /// The setting called `name` in `table`, or null.
 template <class Desc>
@@ -161,8 +164,12 @@ std::optional<FieldError> validatePatch(const PatchSettings& patch);
 /// The first keyframe of `track` that is not legal ("keyframes.t" or "keyframes.p", with its
 /// index): times finite, in [0, 1e6] s and strictly increasing; positions finite.
 std::optional<FieldError> validateTrack(const DeviceTrack& track);
-/// Throws DescriptionError naming the scene, body or finger of the first field of `scene` that
-/// is not legal.
+/// The first field of `load` that is not legal: its body (one of `bodies`, dynamic), every load
+/// setting (finite; start, ramp and stop in [0, 1e6] s, stop +inf when there is none), then
+/// stop after start.
+std::optional<FieldError> validateLoad(const LoadDesc& load, std::span<const BodyDesc> bodies);
+/// Throws DescriptionError naming the scene, body, finger or load of the first field of `scene`
+/// that is not legal.
 void requireValid(const SceneDesc& scene);
 
 /// A change of one finger's god-finger settings, made away from the haptic thread (the

@@ -120,6 +120,7 @@ struct World::Impl final : SolveHooks {
   bool ownedHere() const { return std::this_thread::get_id() == owner; }
   void rememberImpulses(Finger& f);
   PatchSettings effectivePatch(const Finger& f) const;
+  void applyLoads();
   void saveStates();
   bool statesFinite() const;
   void restoreStates();
@@ -426,6 +427,17 @@ std::vector<btRigidBody*> World::Impl::allRigidBodies() const {
   return out;
 }
 
+// The scene's loads at the step's start time; Bullet clears applied forces after each step.
+void World::Impl::applyLoads() {
+  for (const LoadDesc& load : desc.loads) {
+    const double factor = loadFactor(load, time);
+    if (factor == 0.0) continue;
+    btRigidBody& r = *bodies[static_cast<std::size_t>(load.body)].rigid;
+    r.applyCentralForce(toBt(factor * load.force));
+    r.applyTorque(toBt(factor * load.torque));
+  }
+}
+
 void World::Impl::saveStates() {
   std::size_t i = 0;
   auto save = [&](const btRigidBody& r) {
@@ -484,6 +496,7 @@ void World::step(double dt, std::span<const DeviceSample> devices) {
                                  toEigen(f.proxy->getLinearVelocity()));
     f.proxy->applyCentralForce(toBt(f.force));
   }
+  w.applyLoads();
   w.saveStates();
   w.world.stepSimulation(dt, 0, dt);
   if (dt != w.steps_dt) {

@@ -24,7 +24,7 @@ struct WorldCounters {
 class World {
  public:
   /// Builds bodies, proxies and effects from the description; the calling thread owns the
-  /// World. Throws DescriptionError (settings.hpp: body or finger, field, reason) for a
+  /// World. Throws DescriptionError (settings.hpp: body, finger or load, field, reason) for a
   /// description that cannot be built. Allocates.
   explicit World(const SceneDesc& desc);
   ~World();
@@ -32,7 +32,8 @@ class World {
   World& operator=(const World&) = delete;
 
   /// One haptic step of `dt` seconds (no substeps) with each finger's device sample, in finger
-  /// order. Does not allocate in steady state.
+  /// order; the scene's loads act over the step at their value at time() before it. Does not
+  /// allocate in steady state.
   void step(double dt, std::span<const DeviceSample> devices);
 
   /// Simulated time (s).

@@ -4,10 +4,12 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <sstream>
+#include <vector>
 
 #include "app/scene_file.hpp"
 #include "render/image.hpp"
@@ -36,7 +38,7 @@ TEST(Session, SameSceneTwiceGivesByteIdenticalTrace) {
   EXPECT_TRUE(fs::exists(a / "summary.json"));
   EXPECT_EQ(ta.substr(0, ta.find('\n')),
             "t,box.px,box.py,box.pz,box.qx,box.qy,box.qz,box.qw,left.fx,left.fy,left.fz,left.n_sgo,"
-            "right.fx,right.fy,right.fz,right.n_sgo");
+            "right.fx,right.fy,right.fz,right.n_sgo,box.vx,box.vy,box.vz,box.wx,box.wy,box.wz");
 }
 
 // Options writing into a fresh temporary folder `name`, without progress lines.
@@ -120,6 +122,51 @@ TEST(Session, WritesEveryFrameAndAppliesScriptedInput) {
   EXPECT_EQ(summary["overlay_changes"][0]["n_sgo"], 0);
   // The click lands on the frame after the press: (ceil(0.3 * 60) + 2) / 60 s.
   EXPECT_NEAR(summary["overlay_changes"][0]["t"].get<double>(), 20.0 / 60.0, 1e-3);
+}
+
+// The cells of one CSV line.
+std::vector<std::string> cellsOf(const std::string& line) {
+  std::vector<std::string> cells;
+  std::stringstream in(line);
+  for (std::string cell; std::getline(in, cell, ',');) cells.push_back(cell);
+  return cells;
+}
+
+// A free ball (no gravity, no finger) under a known force and torque: trace.csv's velocity
+// columns read v = F t / m and w = tau t / I (I = 2/5 m r^2) at every row, to rounding.
+TEST(Session, TraceHasTheVelocitiesOfALoadedBody) {
+  const std::string text = R"(name = "loaded"
+duration = 0.5
+effects = []
+[bodies.ball]
+shape = "sphere"
+radius = 0.04
+mass = 0.5
+position = [0, 1, 0]
+[[loads]]
+body = "ball"
+force = [0.3, 0, -0.1]
+torque = [0, 2e-3, 0]
+)";
+  SessionOptions options = freshOutput("gf_session_loaded");
+  runSession(parseSceneText(text, "loaded.toml", ""), options);
+  std::stringstream trace(readFile(fs::path(options.out_dir) / "trace.csv"));
+  std::string line;
+  std::getline(trace, line);
+  EXPECT_EQ(line,
+            "t,ball.px,ball.py,ball.pz,ball.qx,ball.qy,ball.qz,ball.qw,"
+            "ball.vx,ball.vy,ball.vz,ball.wx,ball.wy,ball.wz");
+  const double m = 0.5, inertia = 0.4 * m * 0.04 * 0.04;
+  int rows = 0;
+  for (; std::getline(trace, line); ++rows) {
+    const std::vector<std::string> c = cellsOf(line);
+    ASSERT_EQ(c.size(), 14u) << line;
+    const double t = std::stod(c[0]);
+    const double expected[6] = {0.3 * t / m, 0.0, -0.1 * t / m, 0.0, 2e-3 * t / inertia, 0.0};
+    for (int k = 0; k < 6; ++k)
+      EXPECT_NEAR(std::stod(c[8 + k]), expected[k], 1e-12 * (1 + std::abs(expected[k]))) << line;
+  }
+  EXPECT_EQ(rows, 500);
 }
 
 }  // namespace

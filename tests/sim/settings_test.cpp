@@ -4,8 +4,10 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <numbers>
 #include <set>
+#include <vector>
 
 namespace gf::sim {
 namespace {
@@ -19,6 +21,8 @@ TEST(Settings, NamesAreUniqueAndDefaultsAreLegal) {
   for (const auto& s : bodySettings()) EXPECT_TRUE(names.insert(s.name).second) << s.name;
   names.clear();
   for (const auto& s : sceneSettings()) EXPECT_TRUE(names.insert(s.name).second) << s.name;
+  names.clear();
+  for (const auto& s : loadSettings()) EXPECT_TRUE(names.insert(s.name).second) << s.name;
   EXPECT_FALSE(validateFinger(FingerDesc{}));
   EXPECT_FALSE(validateBody(BodyDesc{}));
   EXPECT_FALSE(validateScene(SceneDesc{}));
@@ -130,6 +134,58 @@ TEST(Settings, DescriptionErrorsNameSubjectFieldAndReason) {
     EXPECT_EQ(e.error().field, "max_force");
     EXPECT_STREQ(e.what(), "finger 'left': max_force: must be in (0, 10000], got 0");
   }
+}
+
+// Each kind of bad load: its body (missing, static), a value that is not finite, negative
+// start or ramp, a stop not after the start. No stop (+inf) is legal.
+TEST(Settings, LoadRules) {
+  BodyDesc ground, ball;
+  ground.name = "ground";
+  ground.mass = 0.0;
+  ball.name = "ball";
+  const std::vector<BodyDesc> bodies = {ground, ball};
+  LoadDesc good;
+  good.body = 1;
+  good.force = Vec3(0, 0, 1);
+  EXPECT_FALSE(validateLoad(good, bodies)) << "no stop: +inf";
+  struct Case {
+    void (*change)(LoadDesc&);
+    std::string field, reason;
+  };
+  const Case cases[] = {
+      {[](LoadDesc& l) { l.body = 2; }, "body", "no body of index 2 (the scene has 2)"},
+      {[](LoadDesc& l) { l.body = -1; }, "body", "no body of index -1 (the scene has 2)"},
+      {[](LoadDesc& l) { l.body = 0; }, "body",
+       "'ground' is static (mass 0): a load needs a dynamic body"},
+      {[](LoadDesc& l) { l.force.y() = std::nan(""); }, "force", "must be finite"},
+      {[](LoadDesc& l) { l.torque.z() = HUGE_VAL; }, "torque", "must be finite"},
+      {[](LoadDesc& l) { l.start = HUGE_VAL; }, "start", "must be finite"},
+      {[](LoadDesc& l) { l.ramp = std::nan(""); }, "ramp", "must be finite"},
+      {[](LoadDesc& l) { l.stop = std::nan(""); }, "stop", "must be finite"},
+      {[](LoadDesc& l) { l.stop = -HUGE_VAL; }, "stop", "must be finite"},
+      {[](LoadDesc& l) { l.start = -0.1; }, "start", "must be in [0, 1e+06], got -0.1"},
+      {[](LoadDesc& l) { l.ramp = -1.0; }, "ramp", "must be in [0, 1e+06], got -1"},
+      {[](LoadDesc& l) {
+         l.start = 0.5;
+         l.stop = 0.5;
+       },
+       "stop", "must be after start (0.5 s), got 0.5"},
+      {[](LoadDesc& l) {
+         l.start = 0.5;
+         l.stop = 0.2;
+       },
+       "stop", "must be after start (0.5 s), got 0.2"},
+  };
+  for (const Case& c : cases) {
+    LoadDesc bad = good;
+    c.change(bad);
+    const std::optional<FieldError> e = validateLoad(bad, bodies);
+    ASSERT_TRUE(e) << c.reason;
+    EXPECT_EQ(e->field, c.field);
+    EXPECT_EQ(e->reason, c.reason);
+  }
+  EXPECT_EQ(jsonKey(*findSetting(loadSettings(), "torque")), "torque_nm");
+  EXPECT_EQ(jsonKey(*findSetting(loadSettings(), "force")), "force_n");
 }
 
 TEST(Settings, ShapesAndEffectsComeFromTables) {

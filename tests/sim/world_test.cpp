@@ -4,6 +4,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <cstring>
 #include <numbers>
 #include <thread>
@@ -207,6 +208,149 @@ TEST(WorldSnapshot, ContactsCarryPressDepthAndSgosOnTheirPaths) {
       EXPECT_EQ(c.sgos_world[k], c.path_points_world[static_cast<std::size_t>(c.path_offsets[k + 1] - 1)]);
     }
   }
+}
+
+// Known external loads on a free body: no gravity (every effect off: loads are not an effect),
+// no contact, no damping, stepped at 1 kHz. Bullet's semi-implicit Euler adds F dt / m to v each
+// step, then moves by the new v: after n steps v = F t / m exactly (to rounding) and
+// x = x0 + F t (t + dt) / (2 m), the closed form F t^2 / (2 m) plus F t dt / (2 m).
+constexpr double kLoadDt = 1e-3;      // s
+constexpr double kLoadRelTol = 1e-9;  // relative, for what is exact up to rounding
+
+SceneDesc freeBodyScene(const BodyDesc& body, const LoadDesc& load) {
+  SceneDesc s;
+  s.name = "free-body";
+  for (const EffectSwitch& e : effectSwitches()) s.effects.*e.on = false;
+  s.bodies = {body};
+  s.loads = {load};
+  return s;
+}
+
+BodyDesc freeSphere() {
+  BodyDesc b;
+  b.name = "ball";
+  b.shape = ShapeKind::kSphere;
+  b.radius = 0.04;
+  b.mass = 0.5;
+  b.position = Vec3(0.1, 0.2, 0.3);
+  return b;
+}
+
+void stepFor(World& w, double seconds) {
+  const long n = std::lround(seconds / kLoadDt);
+  for (long k = 0; k < n; ++k) w.step(kLoadDt, {});
+}
+
+// |a - b| within `rel` of |b| in every component (b not zero).
+void expectNearRelative(const Vec3& a, const Vec3& b, double rel, const char* what) {
+  for (int i = 0; i < 3; ++i) EXPECT_NEAR(a[i], b[i], rel * b.norm()) << what << " component " << i;
+}
+
+TEST(WorldLoads, ConstantForceAndTorqueOnAFreeSphereMatchTheClosedForm) {
+  const BodyDesc ball = freeSphere();
+  LoadDesc load;
+  load.body = 0;
+  load.force = Vec3(0.3, -0.2, 0.1);     // N
+  load.torque = Vec3(0.0, 2e-3, -1e-3);  // N m
+  World w(freeBodyScene(ball, load));
+  const double t = 1.0, m = ball.mass, inertia = 0.4 * m * ball.radius * ball.radius;  // 2/5 m r^2
+  stepFor(w, t);
+  ASSERT_EQ(w.time(), t);
+  expectNearRelative(w.bodyLinearVelocity(0), load.force * t / m, kLoadRelTol, "v = F t / m");
+  expectNearRelative(w.bodyAngularVelocity(0), load.torque * t / inertia, kLoadRelTol,
+                     "w = I^-1 tau t");
+  const Vec3 moved = w.bodyPose(0).position - ball.position;
+  expectNearRelative(moved, load.force * t * (t + kLoadDt) / (2 * m), kLoadRelTol,
+                     "semi-implicit Euler");
+  // The closed form x - x0 = F t^2 / (2 m), within the integrator's F t dt / (2 m): dt / t = 1e-3.
+  expectNearRelative(moved, load.force * t * t / (2 * m), 1.01 * kLoadDt / t,
+                     "x = x0 + F t^2 / (2 m)");
+}
+
+TEST(WorldLoads, TorqueAboutAPrincipalAxisOfABoxMatchesTheClosedForm) {
+  BodyDesc box;
+  box.name = "box";
+  box.half_extents = Vec3(0.05, 0.02, 0.03);
+  box.mass = 0.4;
+  LoadDesc load;
+  load.body = 0;
+  load.torque = Vec3(0, 0, 1e-3);  // about z, a principal axis: no gyroscopic term
+  World w(freeBodyScene(box, load));
+  const Vec3 h = box.half_extents;
+  const double iz =
+      box.mass / 3.0 * (h.x() * h.x() + h.y() * h.y());  // m (a^2 + b^2) / 12, a = 2 h
+  stepFor(w, 0.5);
+  expectNearRelative(w.bodyAngularVelocity(0), load.torque * 0.5 / iz, kLoadRelTol,
+                     "w = tau t / I_z");
+  EXPECT_EQ(w.bodyLinearVelocity(0), Vec3::Zero()) << "a torque alone does not move the centre";
+}
+
+// During the ramp F(t) = F (t - start) / ramp, so v = F (t - start)^2 / (2 m ramp); summed at
+// each step's start time it is F (t - start) (t - start - dt) / (2 m ramp) exactly. After the
+// ramp v grows by F / m per second from F ramp / (2 m).
+TEST(WorldLoads, RampedForceMatchesTheRampClosedForm) {
+  const BodyDesc ball = freeSphere();
+  LoadDesc load;
+  load.body = 0;
+  load.force = Vec3(1.0, 0.0, -0.5);
+  load.start = 0.25;
+  load.ramp = 0.5;
+  World w(freeBodyScene(ball, load));
+  const double m = ball.mass;
+  stepFor(w, 0.25);
+  EXPECT_EQ(w.bodyLinearVelocity(0), Vec3::Zero()) << "nothing before start";
+  stepFor(w, 0.25);  // t = 0.5, half way up the ramp
+  const double u = w.time() - load.start;
+  expectNearRelative(w.bodyLinearVelocity(0), load.force * u * (u - kLoadDt) / (2 * m * load.ramp),
+                     kLoadRelTol, "the discrete ramp");
+  // Closed form within F u dt / (2 m ramp), relative dt / u = 4e-3.
+  expectNearRelative(w.bodyLinearVelocity(0), load.force * u * u / (2 * m * load.ramp),
+                     1.01 * kLoadDt / u, "v = F (t - start)^2 / (2 m ramp)");
+  stepFor(w, 0.5);  // t = 1.0: 0.25 s past the ramp
+  const Vec3 held = load.force * (load.ramp / 2 + 0.25) / m;
+  // The discrete ramp falls short of F ramp / (2 m) by F dt / (2 m).
+  expectNearRelative(w.bodyLinearVelocity(0), held - load.force * kLoadDt / (2 * m), kLoadRelTol,
+                     "after the ramp");
+}
+
+TEST(WorldLoads, AStoppedLoadStopsActing) {
+  const BodyDesc ball = freeSphere();
+  LoadDesc load;
+  load.body = 0;
+  load.force = Vec3(0.0, 0.2, 0.0);
+  load.torque = Vec3(1e-3, 0.0, 0.0);
+  load.start = 0.1;
+  load.stop = 0.4;
+  World w(freeBodyScene(ball, load));
+  stepFor(w, 0.4);
+  const Vec3 v = w.bodyLinearVelocity(0), omega = w.bodyAngularVelocity(0);
+  expectNearRelative(v, load.force * 0.3 / ball.mass, kLoadRelTol, "v after 0.3 s of load");
+  stepFor(w, 0.6);
+  EXPECT_EQ(w.bodyLinearVelocity(0), v) << "no force from stop on";
+  // (Bullet's implicit gyroscopic step re-rounds w as the sphere's world inertia turns.)
+  expectNearRelative(w.bodyAngularVelocity(0), omega, kLoadRelTol, "no torque from stop on");
+}
+
+// The World checks loads in the same validator as the scene file (settings.cpp).
+TEST(WorldErrors, BadLoadsNameTheLoadAndField) {
+  LoadDesc load;
+  load.body = 0;
+  load.force = Vec3(1, 0, 0);
+  load.ramp = -1.0;
+  try {
+    World w(freeBodyScene(freeSphere(), load));
+    FAIL();
+  } catch (const DescriptionError& e) {
+    EXPECT_EQ(e.subject(), "load 0");
+    EXPECT_EQ(e.error().field, "ramp");
+    EXPECT_STREQ(e.what(), "load 0: ramp: must be in [0, 1e+06], got -1");
+  }
+  BodyDesc ground = freeSphere();
+  ground.mass = 0.0;
+  load.ramp = 0.0;
+  EXPECT_THROW(World w(freeBodyScene(ground, load)), DescriptionError) << "a static body";
+  load.body = 1;
+  EXPECT_THROW(World w(freeBodyScene(freeSphere(), load)), DescriptionError) << "no body 1";
 }
 
 #if defined(GF_ENABLE_ASSERTS)
