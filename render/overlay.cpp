@@ -115,6 +115,16 @@ struct Overlay::Impl {
     ImGui::End();
   }
 
+  // Which contact model the finger uses, as scene files name it.
+  static const char* modelLabel(const sim::PatchSettings& p) {
+    switch (sim::effectiveModel(p)) {
+      case sim::ContactModel::kGodObject: return "(god_object)";
+      case sim::ContactModel::kSoftFinger: return "(soft_finger)";
+      case sim::ContactModel::kGodFinger: return p.fill == sim::PatchFill::kFilled ? "(god_finger, filled)" : "(god_finger, ring)";
+    }
+    return "";
+  }
+
   void fingerPanel(std::vector<sim::SettingsCommand>& commands) {
     ImGui::SetNextWindowPos(ImVec2(10, below_scene_panel));
     ImGui::Begin("fingers", nullptr, kPanelFlags);
@@ -124,6 +134,8 @@ struct Overlay::Impl {
       ImGui::TextColored(ImGui::ColorConvertU32ToFloat4(imguiColour(fingerColour(static_cast<int>(i)))),
                          "finger %s", name.c_str());
       sim::PatchSettings& p = patch[i];
+      ImGui::SameLine();
+      ImGui::TextUnformatted(modelLabel(p));
       bool changed = false;
       bool on = p.n_sgo > 0;
       if (ImGui::Checkbox("god-finger", &on)) {

@@ -16,6 +16,7 @@ void toContactSnapshot(const ContactRecord& record, const Pose& body_frame, Cont
   out.path_offsets.clear();
   if (p.sgos.empty()) return;
   for (const Sgo& s : p.sgos) out.sgos_world.push_back(body_frame.toWorld(s.position));
+  for (const Sgo& s : p.inner) out.sgos_world.push_back(body_frame.toWorld(s.position));
   for (const Vec3& q : p.path_points) out.path_points_world.push_back(body_frame.toWorld(q));
   out.path_offsets.assign(p.path_offsets.begin(), p.path_offsets.end());
 }

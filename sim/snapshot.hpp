@@ -28,7 +28,7 @@ struct ContactSnapshot {
   double press_depth = 0.0;                  ///< v . c_n of Eq. 1 (m): > 0 while pressing
   double radius = 0.0;                       ///< r of Eq. 1 (m); 0 without a patch
   Feature feature = Feature::kFace;          ///< where c_p lies on the walk mesh
-  std::vector<Vec3> sgos_world;              ///< SGO positions (m)
+  std::vector<Vec3> sgos_world;              ///< SGO positions (m), then a filled patch's inner points
   std::vector<Vec3> path_points_world;       ///< walked paths, concatenated (m)
   std::vector<std::int32_t> path_offsets;    ///< SGO k's path: [offsets[k], offsets[k+1])
 };

@@ -458,3 +458,77 @@ TEST(Patch, WalkOnFineSphereFollowsGeodesics) {
 
 }  // namespace
 }  // namespace gf::sim
+
+namespace gf::sim {
+namespace {
+
+// The filled patch's areas: the sum over its points and the contact's disc.
+double filledArea(const Patch& p) {
+  double a = p.centre_area;
+  for (const Sgo& s : p.sgos) a += s.area;
+  for (const Sgo& s : p.inner) a += s.area;
+  return a;
+}
+
+// On a plane, each point stands for its ring's annular sector and the patch for the whole disc;
+// the shares are the areas over the disc's.
+TEST(FilledPatch, WeightsAreAnnularSectorsSummingToTheDisc) {
+  const Mesh plane = tessellatePlane(1.0, 1);
+  const PatchContact c{Vec3(0.1, 0, 0.05), Vec3::UnitY(), -0.001};
+  for (const int n : {3, 8, 16}) {
+    for (const int rings : {1, 3, 8}) {
+      PatchSettings s = settingsWith(n, 1.0);
+      s.fill = PatchFill::kFilled;
+      s.rings = rings;
+      Patch p;
+      computePatch(plane, c, Vec3(0, -0.004, 0), s, p);
+      ASSERT_EQ(p.sgos.size(), static_cast<std::size_t>(n));
+      ASSERT_EQ(p.inner.size(), static_cast<std::size_t>(n * (rings - 1)));
+      const double r = p.radius, sector = 2.0 * std::numbers::pi / n, step = r / rings;
+      EXPECT_NEAR(p.centre_area, n * 0.5 * sector * 0.25 * step * step, 1e-15);
+      for (const Sgo& g : p.inner) {
+        EXPECT_NEAR((g.position - c.point_local).norm(), g.ring * step, 1e-12);
+        const double a = (g.ring - 0.5) * step, b = (g.ring + 0.5) * step;
+        EXPECT_NEAR(g.area, 0.5 * sector * (b * b - a * a), 1e-15);
+      }
+      for (const Sgo& g : p.sgos) {
+        EXPECT_EQ(g.ring, rings);
+        const double a = (rings - 0.5) * step;
+        EXPECT_NEAR(g.area, 0.5 * sector * (r * r - a * a), 1e-15);
+      }
+      EXPECT_NEAR(filledArea(p), std::numbers::pi * r * r, 1e-14) << "n " << n << " rings " << rings;
+      double shares = p.centre_share;
+      for (const Sgo& g : p.sgos) shares += g.load_share;
+      for (const Sgo& g : p.inner) shares += g.load_share;
+      EXPECT_NEAR(shares, 1.0, 1e-12);
+      EXPECT_NEAR(p.centre_share, p.centre_area / filledArea(p), 1e-12);
+    }
+  }
+}
+
+// Where walks stop short (a box edge beyond tau_a) or vectors are dropped, only what was walked
+// counts: each direction's sectors reach its walked length.
+TEST(FilledPatch, WhatTheWalksDidNotReachIsNotCounted) {
+  const Mesh box = tessellateBox(Vec3(0.05, 0.05, 0.05), 2);
+  PatchSettings s = settingsWith(8, 1.0);
+  s.fill = PatchFill::kFilled;
+  s.rings = 3;
+  // 3 mm from the +x edge of the top face: the walks towards +x stop at the edge (90 degrees).
+  const PatchContact c{Vec3(0.047, 0.05, 0.0), Vec3::UnitY(), -0.001};
+  Patch p;
+  computePatch(box, c, Vec3(0, -0.004, 0), s, p);
+  ASSERT_EQ(p.sgos.size(), 8u);
+  const double sector = 2.0 * std::numbers::pi / 8;
+  double expected = 0.0;
+  int stopped = 0;
+  for (const Sgo& g : p.sgos) {
+    expected += 0.5 * sector * g.walked * g.walked;
+    stopped += g.stop == WalkStop::kAngularThreshold;
+  }
+  EXPECT_EQ(stopped, 3) << "the three vectors towards +x stop at the edge";
+  EXPECT_NEAR(filledArea(p), expected, 1e-14);
+  EXPECT_LT(filledArea(p), std::numbers::pi * p.radius * p.radius * 0.9);
+}
+
+}  // namespace
+}  // namespace gf::sim
