@@ -28,6 +28,28 @@ void BM_PinchStep(benchmark::State& state) {
 BENCHMARK(BM_PinchStep)->ArgsProduct({{0, 8, 16, 64}, {20, 10}})->ArgNames({"n_sgo", "iterations"})
     ->Unit(benchmark::kMicrosecond)->Repetitions(5)->ReportAggregatesOnly(true);
 
+// One step of the same pinch per contact model at the default 10 iterations: 0 god_object,
+// 1 soft_finger, 2 god_finger ring, 3 god_finger filled (3 points per path), at n_SGO 8 and 16.
+void BM_ModelStep(benchmark::State& state) {
+  static const char* const kModels[] = {"god_object", "soft_finger", "god_finger", "god_finger"};
+  const int m = static_cast<int>(state.range(0));
+  std::vector<std::string> overrides = {"world.solver_iterations=10"};
+  for (const char* finger : {"left", "right"}) {
+    overrides.push_back(std::string("fingers.") + finger + ".contact_model=" + kModels[m]);
+    overrides.push_back(std::string("fingers.") + finger + ".patch=" + (m == 3 ? "filled" : "ring"));
+  }
+  test_support::TestContext ctx("fig8-pinch-oscillation", static_cast<int>(state.range(1)), overrides);
+  ctx.simulate(3.5);
+  sim::World& world = ctx.world();
+  std::vector<sim::DeviceSample> samples;
+  for (const sim::DeviceTrack& d : sim::deviceTracks(ctx.scene())) samples.push_back(d.sample(world.time()));
+  for (auto _ : state) world.step(0.001, samples);
+  state.counters["points_per_step"] = benchmark::Counter(
+      static_cast<double>(world.sgoCount(0) + world.sgoCount(1)));
+}
+BENCHMARK(BM_ModelStep)->ArgsProduct({{0, 1, 2, 3}, {8, 16}})->ArgNames({"model", "n_sgo"})
+    ->Unit(benchmark::kMicrosecond)->Repetitions(3)->ReportAggregatesOnly(true);
+
 // The patch alone on the pinch cylinder's walk mesh: time per SGO.
 void BM_Patch(benchmark::State& state) {
   const sim::Mesh mesh = sim::tessellateCylinder(0.03, 0.05, 64);
