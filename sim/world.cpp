@@ -266,6 +266,12 @@ void World::Impl::gatherProxyManifold(btPersistentManifold& m, const btCollision
   c.manifold = &m;
 }
 
+// Injected point i of a patch: its SGOs, then a filled patch's inner points.
+const Sgo& injectedPoint(const Patch& patch, int i) {
+  const auto k = static_cast<std::size_t>(i);
+  return k < patch.sgos.size() ? patch.sgos[k] : patch.inner[k - patch.sgos.size()];
+}
+
 // Where layer and radial of a patch point keep its impulses in ContactMemory::layers.
 int layerOf(const Sgo& p) { return p.ring > 0 ? p.ring - 1 : 0; }
 
@@ -289,7 +295,7 @@ void World::Impl::handleContact(Finger& f, FingerContact& c) {
   const int n = f.patch.n_sgo;
   btVector3 centre = truth_share * c.truth.point_world;
   for (int i = 0; i < c.sgo_count; ++i) {
-    const Sgo& p = i < static_cast<int>(patch.sgos.size()) ? patch.sgos[i] : patch.inner[i - patch.sgos.size()];
+    const Sgo& p = injectedPoint(patch, i);
     c.sgo_material[i] = {k * p.load_share, d * p.load_share, 0.0};
     c.sgo_warm[i] = mem ? warmStartByAngle(mem->layers[layerOf(p)].data(), mem->n_sgo, p.radial, n) : WarmStart{};
     centre += p.load_share * c.sgo_world[i];
@@ -349,7 +355,7 @@ void World::Impl::rememberImpulses(Finger& f) {
     mem.pad_normal = c.pad_normal;
     for (auto& layer : mem.layers) layer.fill(WarmStart{});
     for (int i = 0; i < c.sgo_count; ++i) {
-      const Sgo& p = i < static_cast<int>(patch.sgos.size()) ? patch.sgos[i] : patch.inner[i - patch.sgos.size()];
+      const Sgo& p = injectedPoint(patch, i);
       mem.layers[layerOf(p)][p.radial] = solvedImpulses(injected, c.first_injected, i);
     }
     const FrictionBlock& block = solver.block(c.block);

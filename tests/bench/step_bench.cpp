@@ -12,18 +12,24 @@ namespace {
 
 using namespace gf;
 
-// One haptic step of the Fig. 8 pinch (the bundled scene) while the lifted cylinder is held
-// (t >= 3.5 s): n_SGO per finger, and the solver iterations (the scene's 20, or 10).
-void BM_PinchStep(benchmark::State& state) {
-  test_support::TestContext ctx("fig8-pinch-oscillation", static_cast<int>(state.range(0)),
-                           {"world.solver_iterations=" + std::to_string(state.range(1))});
+// Times one step of the Fig. 8 pinch (the bundled scene, n_SGO per finger, `overrides`) while
+// the lifted cylinder is held (t >= 3.5 s); returns the points both fingers injected per step.
+int timeHeldPinch(benchmark::State& state, int n_sgo, const std::vector<std::string>& overrides) {
+  test_support::TestContext ctx("fig8-pinch-oscillation", n_sgo, overrides);
   ctx.simulate(3.5);
   sim::World& world = ctx.world();
   std::vector<sim::DeviceSample> samples;
   for (const sim::DeviceTrack& d : sim::deviceTracks(ctx.scene())) samples.push_back(d.sample(world.time()));
   for (auto _ : state) world.step(0.001, samples);
-  state.counters["sgo_per_step"] = benchmark::Counter(
-      static_cast<double>(world.sgoCount(0) + world.sgoCount(1)));
+  return world.sgoCount(0) + world.sgoCount(1);
+}
+
+// One haptic step of the Fig. 8 pinch (the bundled scene) while the lifted cylinder is held
+// (t >= 3.5 s): n_SGO per finger, and the solver iterations (the scene's 20, or 10).
+void BM_PinchStep(benchmark::State& state) {
+  const int sgos = timeHeldPinch(state, static_cast<int>(state.range(0)),
+                                  {"world.solver_iterations=" + std::to_string(state.range(1))});
+  state.counters["sgo_per_step"] = benchmark::Counter(static_cast<double>(sgos));
 }
 BENCHMARK(BM_PinchStep)->ArgsProduct({{0, 8, 16, 64}, {20, 10}})->ArgNames({"n_sgo", "iterations"})
     ->Unit(benchmark::kMicrosecond)->Repetitions(5)->ReportAggregatesOnly(true);
@@ -38,14 +44,8 @@ void BM_ModelStep(benchmark::State& state) {
     overrides.push_back(std::string("fingers.") + finger + ".contact_model=" + kModels[m]);
     overrides.push_back(std::string("fingers.") + finger + ".patch=" + (m == 3 ? "filled" : "ring"));
   }
-  test_support::TestContext ctx("fig8-pinch-oscillation", static_cast<int>(state.range(1)), overrides);
-  ctx.simulate(3.5);
-  sim::World& world = ctx.world();
-  std::vector<sim::DeviceSample> samples;
-  for (const sim::DeviceTrack& d : sim::deviceTracks(ctx.scene())) samples.push_back(d.sample(world.time()));
-  for (auto _ : state) world.step(0.001, samples);
-  state.counters["points_per_step"] = benchmark::Counter(
-      static_cast<double>(world.sgoCount(0) + world.sgoCount(1)));
+  const int points = timeHeldPinch(state, static_cast<int>(state.range(1)), overrides);
+  state.counters["points_per_step"] = benchmark::Counter(static_cast<double>(points));
 }
 BENCHMARK(BM_ModelStep)->ArgsProduct({{0, 1, 2, 3}, {8, 16}})->ArgNames({"model", "n_sgo"})
     ->Unit(benchmark::kMicrosecond)->Repetitions(3)->ReportAggregatesOnly(true);
