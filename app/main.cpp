@@ -6,12 +6,14 @@
 #include <exception>
 #include <filesystem>
 #include <iostream>
+#include <thread>
 
 #include "app/live.hpp"
 #include "app/patch_json.hpp"
 #include "app/scene_file.hpp"
 #include "app/screenshots.hpp"
 #include "app/session.hpp"
+#include "app/study.hpp"
 #include "app/trace_writer.hpp"
 #include "render/render_thread.hpp"
 #include "sim/contact_record.hpp"
@@ -197,6 +199,43 @@ int screenshotsCommand(const std::string& out) {
   return 0;
 }
 
+struct StudyArgs {
+  std::string study, out, emit_jobs, collect;
+  std::vector<std::string> overrides;
+  int jobs = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+  bool quick = false;
+};
+
+void addStudy(CLI::App& app, StudyArgs& a) {
+  CLI::App* s = app.add_subcommand("study", "Run an accuracy study: every configuration as a `godfinger run`; write "
+                                             "results.csv, work-precision.png and report.md");
+  s->add_option("study", a.study, "Study file, or the name of a bundled study (assets/studies)")->required();
+  s->add_option("--out", a.out, "Output folder (default: study-NAME; with --collect, the collected folder)");
+  s->add_option("--jobs", a.jobs, "Runs at a time (default: the number of cores); --jobs 1 for published step times")
+      ->check(CLI::Range(1, 256));
+  s->add_option("--set", a.overrides, "Override a scene field in every run, e.g. --set duration=2");
+  s->add_flag("--quick", a.quick, "The study's small grid (for tests)");
+  s->add_option("--emit-jobs", a.emit_jobs, "Write one shell command line per run into this file (for GNU parallel "
+                                            "or a Slurm array) instead of running");
+  s->add_option("--collect", a.collect, "Collect the run folders a job runner wrote under this folder");
+  s->get_option("--emit-jobs")->excludes("--collect");
+}
+
+int studyCommand(const StudyArgs& a) {
+  const gf::app::StudyDesc study = gf::app::loadStudyFile(a.study);
+  const gf::app::StudyPlan plan = gf::app::expandStudy(study, a.quick, a.overrides);
+  gf::app::StudyOptions options;
+  options.out = a.out.empty() ? (a.collect.empty() ? "study-" + study.name : a.collect) : a.out;
+  options.jobs = a.jobs;
+  options.godfinger = std::filesystem::canonical("/proc/self/exe").string();
+  if (!a.emit_jobs.empty()) {
+    gf::app::emitStudyJobs(plan, options, a.emit_jobs);
+    return 0;
+  }
+  if (!a.collect.empty()) return gf::app::collectStudy(plan, a.collect, options.out, true);
+  return gf::app::runStudy(plan, options);
+}
+
 int listCommand() {
   for (const std::string& path : gf::app::bundledScenePaths()) {
     const std::string name = std::filesystem::path(path).stem().string();
@@ -219,6 +258,8 @@ int main(int argc, char** argv) {
   addRun(app, run_args);
   PatchArgs patch_args;
   addPatch(app, patch_args);
+  StudyArgs study_args;
+  addStudy(app, study_args);
   app.add_subcommand("list", "List the bundled scenes");
   gf::app::LiveOptions live;
   CLI::App* live_cmd = app.add_subcommand("live", "Interactive session: one command a line on standard input");
@@ -233,6 +274,7 @@ int main(int argc, char** argv) {
     if (app.got_subcommand("list")) return listCommand();
     if (app.got_subcommand("screenshots")) return screenshotsCommand(shots_out);
     if (app.got_subcommand("patch")) return patchCommand(patch_args);
+    if (app.got_subcommand("study")) return studyCommand(study_args);
     if (app.got_subcommand("live")) {
       live.scene_path = gf::app::resolveScenePath(live.scene_path);
       return gf::app::runLive(live, std::cin, std::cout);

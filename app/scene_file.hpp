@@ -19,13 +19,17 @@ class InputError : public std::runtime_error {
   const std::string& file() const { return file_; }
   int line() const { return line_; }
   const std::string& field() const { return field_; }
+  int column() const { return column_; }
+  const std::string& reason() const { return reason_; }
 
  private:
   static std::string message(const std::string& file, int line, int column, const std::string& field,
                              const std::string& reason);
   std::string file_;
   int line_;
+  int column_;
   std::string field_;
+  std::string reason_;
 };
 
 /// Loads a scene file and applies `overrides` ("fields.path=VALUE", VALUE in TOML syntax or a

@@ -37,6 +37,13 @@ nlohmann::json summaryJson(const SessionDesc& session, const sim::World& world,
   nlohmann::json fingers = nlohmann::json::array();
   for (const sim::FingerDesc& f : scene.fingers) fingers.push_back(fingerJson(f));
   const sim::WorldCounters& c = world.counters();
+  nlohmann::json bodies = nlohmann::json::array();
+  for (std::size_t b = 0; b < scene.bodies.size(); ++b) {
+    if (scene.bodies[b].mass <= 0.0) continue;
+    const sim::Vec3 inertia = world.bodyInertia(static_cast<int>(b));
+    bodies.push_back({{"name", scene.bodies[b].name}, {"mass_kg", scene.bodies[b].mass},
+                      {"inertia_kg_m2", {inertia.x(), inertia.y(), inertia.z()}}});
+  }
   return {{"scene", scene.name},
           {"source", session.source},
           {"overrides", session.overrides},
@@ -44,6 +51,7 @@ nlohmann::json summaryJson(const SessionDesc& session, const sim::World& world,
           {"settings", sceneSettingsJson(scene)},
           {"effects", effectsJson(scene.effects)},
           {"fingers", fingers},
+          {"bodies", bodies},
           {"step_time_us", {{"median", stats.step_median_us}, {"p99", stats.step_p99_us},
                             {"max", stats.step_max_us}}},
           {"counters", {{"steps", stats.steps}, {"deadline_misses", stats.late_steps},
@@ -52,6 +60,8 @@ nlohmann::json summaryJson(const SessionDesc& session, const sim::World& world,
                         {"nan_recoveries", c.nan_recoveries},
                         {"invalid_patches", c.invalid_patches}, {"sgos_injected", c.sgos_injected},
                         {"crossing_limit_stops", c.crossing_limit_stops}}},
+          {"patch_time_us", {{"calls", c.patch_calls},
+                             {"mean", c.patch_calls > 0 ? 1e6 * c.patch_seconds / c.patch_calls : 0.0}}},
           {"wall_time_s", stats.wall_seconds}};
 }
 

@@ -37,7 +37,7 @@ TraceWriter::TraceWriter(const sim::World& world, long expected_rows) {
     }
   }
   for (const sim::FingerDesc& f : d.fingers) {
-    for (const char* c : {".fx", ".fy", ".fz", ".n_sgo"}) text_.append(1, ',').append(f.name).append(c);
+    for (const char* c : {".fx", ".fy", ".fz", ".n_sgo", ".r"}) text_.append(1, ',').append(f.name).append(c);
   }
   for (int b : dynamic_bodies_) {
     for (const char* c : {".vx", ".vy", ".vz", ".wx", ".wy", ".wz"}) {
@@ -45,7 +45,7 @@ TraceWriter::TraceWriter(const sim::World& world, long expected_rows) {
     }
   }
   text_ += '\n';
-  const std::size_t per_row = 24 * (1 + 13 * dynamic_bodies_.size() + 4 * d.fingers.size());
+  const std::size_t per_row = 24 * (1 + 13 * dynamic_bodies_.size() + 5 * d.fingers.size());
   text_.reserve(text_.size() + per_row * static_cast<std::size_t>(std::max(0L, expected_rows)));
 }
 
@@ -61,7 +61,7 @@ void TraceWriter::record(const sim::World& world) {
   }
   for (int f = 0; f < static_cast<int>(world.desc().fingers.size()); ++f) {
     const sim::Vec3 force = world.couplingForce(f);
-    for (double x : {force.x(), force.y(), force.z(), double(world.sgoCount(f))}) {
+    for (double x : {force.x(), force.y(), force.z(), double(world.sgoCount(f)), world.contactRadius(f)}) {
       text_ += ',';
       appendNumber(text_, x);
     }

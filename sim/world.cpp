@@ -3,6 +3,7 @@
 #include <BulletCollision/Gimpact/btGImpactCollisionAlgorithm.h>
 
 #include <array>
+#include <chrono>
 #include <stdexcept>
 #include <thread>
 
@@ -391,7 +392,10 @@ void World::Impl::recordContact(const Finger& f, const ContactMemory* mem, Finge
 void World::Impl::computeContactPatch(Finger& f, FingerContact& c, const ContactMemory* mem) {
   ContactRecord& r = c.record;
   const Mesh& mesh = *bodies[r.body].shapes.walk_mesh;
+  const auto start = std::chrono::steady_clock::now();
   computePatch(mesh, r.contact, c.v_local, effectivePatch(f), r.patch);
+  counters.patch_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  ++counters.patch_calls;
   if (!r.patch.valid) {
     ++counters.invalid_patches;
     return;
@@ -548,6 +552,12 @@ Vec3 World::bodyAngularVelocity(int body) const {
   return toEigen(impl_->bodies[body].rigid->getAngularVelocity());
 }
 
+Vec3 World::bodyInertia(int body) const {
+  GF_ASSERT_OWNER();
+  const btRigidBody& r = *impl_->bodies[body].rigid;
+  return r.getInvMass() > 0.0 ? toEigen(r.getLocalInertia()) : Vec3::Zero();
+}
+
 Vec3 World::proxyPosition(int finger) const {
   GF_ASSERT_OWNER();
   return toEigen(impl_->fingers[finger].proxy->getCenterOfMassPosition());
@@ -564,6 +574,19 @@ int World::sgoCount(int finger) const {
   int n = 0;
   for (int k = 0; k < f.contact_count; ++k) n += f.contacts[k].sgo_count;
   return n;
+}
+
+double World::contactRadius(int finger) const {
+  GF_ASSERT_OWNER();
+  const Finger& f = impl_->fingers[finger];
+  double sum = 0.0;
+  int n = 0;
+  for (int k = 0; k < f.contact_count; ++k) {
+    if (!f.contacts[k].record.patch.valid) continue;
+    sum += f.contacts[k].record.patch.radius;
+    ++n;
+  }
+  return n > 0 ? sum / n : 0.0;
 }
 
 double World::mechanicalEnergy() const {

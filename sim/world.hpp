@@ -19,6 +19,8 @@ struct WorldCounters {
   long invalid_patches = 0;  ///< contacts whose patch input was rejected (no SGO that step)
   long sgos_injected = 0;    ///< sum over steps of SGOs fed to the solver
   long crossing_limit_stops = 0;  ///< SGOs whose walk used up its edge-crossing budget (stopped short)
+  long patch_calls = 0;           ///< patches computed (one per god-finger contact per step)
+  double patch_seconds = 0.0;     ///< wall time spent computing them (steady clock)
 };
 
 class World {
@@ -50,11 +52,16 @@ class World {
   Pose bodyPose(int body) const;
   Vec3 bodyLinearVelocity(int body) const;
   Vec3 bodyAngularVelocity(int body) const;
+  /// Principal moments of inertia of a dynamic body in its own frame (kg m^2), as Bullet
+  /// computed them from its shape and mass; zero for a static body.
+  Vec3 bodyInertia(int body) const;
   /// Proxy centre and coupling force (N) of finger i.
   Vec3 proxyPosition(int finger) const;
   Vec3 couplingForce(int finger) const;
   /// SGOs finger i fed to the solver in the last step, over all its contacts.
   int sgoCount(int finger) const;
+  /// Mean Eq. 1 radius of the finger's patches this step (m); 0 without a patch.
+  double contactRadius(int finger) const;
   /// Kinetic plus gravitational potential energy of the dynamic bodies and proxies (J).
   double mechanicalEnergy() const;
 

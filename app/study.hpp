@@ -1,0 +1,149 @@
+// Accuracy studies: a study file (assets/studies/README.md) names a base scene, the fields to
+// vary, the measures taken from each run's outputs and their references. Every configuration is
+// an ordinary `godfinger run` command line, so any job runner can execute a study; the results
+// are then collected from the run folders into results.csv, a work-precision chart and a report.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "sim/mesh.hpp"
+
+namespace gf::app {
+
+/// Where a value came from in the study file, for errors found later (e.g. by the scene loader).
+struct StudySource {
+  int line = 0, column = 0;
+  std::string field;  ///< dotted path in the study file ("axes.0.values.2")
+};
+
+/// An override of a scene field ("fields.path=VALUE", as `godfinger run --set` takes it).
+struct StudyOverride {
+  std::string text;
+  StudySource source;
+  StudySource field_source;  ///< of an axis value: where the axis names its field
+};
+
+/// Scene fields varied together over a list of values (e.g. both fingers' n_sgo).
+struct StudyAxis {
+  std::vector<std::string> fields;    ///< as for --set; the first names the axis
+  std::vector<StudyOverride> values;  ///< each value in TOML syntax (text without "field=")
+  std::vector<StudyOverride> quick;   ///< the values --quick uses (default: the first)
+};
+
+/// What a measure is computed from, and how its error is formed.
+enum class MeasureKind {
+  kFrictionTorque,  ///< applied torque about `axis` minus inertia times the fitted angular acceleration (N m)
+  kFrictionForce,   ///< applied force minus mass times the fitted acceleration, across `axis` (N)
+  kRollRatio,       ///< rotation angle times the body's radius over the distance travelled
+  kSwing,           ///< largest rotation about `axis` after the window's start (deg)
+  kForceSd,         ///< s.d. of the non-gravity force along `axis` over the window (N)
+  kGeodesicRadius,  ///< mean great-circle distance from the contact point to the SGOs on a sphere (m)
+  kTrajectory,      ///< RMS distance between the body's path and the reference run's (m)
+};
+
+enum class ReferenceKind {
+  kRun,                 ///< the same measure in the study's reference run
+  kTwoThirdsMuFR,       ///< (2/3) mu F r: a uniformly pressed pad's torsion limit
+  kMuFR,                ///< mu F r: every point of the pad at its rim
+  kHertzMuFR,           ///< (3 pi / 16) mu F r: a Hertzian pressure distribution
+  kMuF,                 ///< mu F: Coulomb sliding
+  kRollingPrediction,   ///< 0 (slides) when theta + r/R >= 1, else 1 (rolls)
+  kPatchRadius,         ///< the Eq. 1 radius the patch walked
+};
+
+enum class ErrorKind {
+  kRelative,   ///< measure / reference - 1
+  kAbsolute,   ///< measure - reference (the measure's unit)
+  kDeviation,  ///< measure / reference, for a measure that is itself a distance from the reference
+};
+
+struct StudyMeasure {
+  std::string name;  ///< column prefix (the first measure's columns are measure, reference, error)
+  MeasureKind kind = MeasureKind::kFrictionTorque;
+  ReferenceKind reference = ReferenceKind::kRun;
+  ErrorKind error = ErrorKind::kRelative;
+  std::string body, finger;              ///< scene names (finger: the first when empty)
+  sim::Vec3 axis = sim::Vec3::UnitY();   ///< world axis of the measure
+  double from = 0.0, to = 1e300;         ///< time window (s)
+  double at = 0.0;                       ///< time of the contacts snapshot (geodesic radius)
+  StudySource source;
+};
+
+/// One line of the work-precision chart: its own overrides and axes, crossed with the study's.
+struct StudySeries {
+  std::string name;
+  std::string scene;  ///< resolved path of its scene file
+  std::vector<StudyOverride> set;
+  std::vector<StudyAxis> axes;
+  std::vector<StudyMeasure> measures;
+  std::vector<StudyOverride> reference_set;  ///< the reference run: scene + study set + these
+  std::vector<StudyOverride> reference_quick_set;  ///< and these last with --quick
+  bool has_reference_run = false;
+  bool quick = true;  ///< part of the --quick grid
+};
+
+enum class CostKind { kStep, kPatch };
+
+struct StudyDesc {
+  std::string name, summary, source;
+  CostKind cost = CostKind::kStep;
+  std::vector<StudySeries> series;
+  std::vector<StudyOverride> quick_set;  ///< overrides every --quick run gets last
+};
+
+/// Reads a study file (a path, or the name of a bundled study). Checks the file itself; the
+/// scene fields it names are checked by expandStudy. Throws InputError.
+StudyDesc loadStudyFile(const std::string& name_or_path);
+
+/// The folder of bundled studies: $GODFINGER_STUDIES if set, else the source tree's
+/// assets/studies.
+std::string bundledStudyDir();
+
+/// One run of a study.
+struct StudyRun {
+  std::string id;     ///< folder name under DIR/runs ("003-god_finger-ring")
+  int series = -1;    ///< index into StudyDesc::series; -1 for a reference run
+  std::string scene;  ///< scene file path
+  std::vector<StudyOverride> overrides;
+  std::vector<std::pair<std::string, std::string>> axis_values;  ///< field, value as written
+  int reference = -1;  ///< index of its reference run in the run list (-1: none)
+  int measured_as = 0; ///< the series whose measures it is measured with (its own, or a reference's first user)
+};
+
+struct StudyPlan {
+  StudyDesc study;
+  std::vector<StudyRun> runs;  ///< reference runs first
+};
+
+/// Every configuration: per series, its axes crossed with the study's, plus one reference run
+/// per distinct reference configuration. `extra` (the command's --set) applies to every run
+/// before its axis values. Loads each configuration's scene with its overrides, so an unknown
+/// field or a bad value is reported against the study file line that gave it, before anything
+/// runs. Throws InputError.
+StudyPlan expandStudy(const StudyDesc& study, bool quick, const std::vector<std::string>& extra);
+
+/// The shell command line of one run, writing into `out_dir`/runs/<id>/ (absolute paths, so it
+/// works from any folder), its output in run.log there.
+std::string runCommandLine(const std::string& godfinger, const std::string& out_dir, const StudyRun& run);
+
+struct StudyOptions {
+  std::string out;        ///< DIR
+  int jobs = 1;
+  bool progress = true;   ///< progress lines on stderr
+  std::string godfinger;  ///< the executable runs are started with
+};
+
+/// Runs every configuration (jobs at a time), then collects. Returns the process exit code:
+/// 0 when every run succeeded and was measured.
+int runStudy(const StudyPlan& plan, const StudyOptions& options);
+
+/// Writes one command line per run into `jobs_file`.
+void emitStudyJobs(const StudyPlan& plan, const StudyOptions& options, const std::string& jobs_file);
+
+/// Reads the run folders under `runs_dir` (the --out of the runs) and writes results.csv,
+/// work-precision.png and report.md into `out`. `parallel_times` says the step times were taken
+/// with several runs at once (or are of unknown provenance). Returns 0 when every run was found.
+int collectStudy(const StudyPlan& plan, const std::string& runs_dir, const std::string& out, bool parallel_times);
+
+}  // namespace gf::app

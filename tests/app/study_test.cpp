@@ -1,0 +1,278 @@
+// Accuracy studies: the bundled studies' quick grids, the measures and references on hand-made
+// run folders, the emit / GNU parallel / collect path, and malformed study files.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <numbers>
+#include <sstream>
+
+#include "app/scene_file.hpp"
+#include "app/study.hpp"
+#include "app/study_measure.hpp"
+#include "sim/god_finger.hpp"
+
+namespace gf::app {
+namespace {
+
+namespace fs = std::filesystem;
+
+std::string readFile(const fs::path& p) {
+  std::ifstream in(p);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+std::vector<std::string> split(const std::string& line) {
+  std::vector<std::string> out;
+  std::string cell;
+  bool quoted = false;
+  for (char c : line) {
+    if (c == '"') quoted = !quoted;
+    else if (c == ',' && !quoted) out.push_back(cell), cell.clear();
+    else cell += c;
+  }
+  out.push_back(cell);
+  return out;
+}
+
+// results.csv as rows of named cells.
+struct Csv {
+  std::vector<std::string> header;
+  std::vector<std::vector<std::string>> rows;
+  int column(const std::string& name) const {
+    for (std::size_t i = 0; i < header.size(); ++i) {
+      if (header[i] == name) return static_cast<int>(i);
+    }
+    return -1;
+  }
+};
+
+Csv readCsv(const fs::path& p) {
+  Csv csv;
+  std::istringstream in(readFile(p));
+  std::string line;
+  std::getline(in, line);
+  csv.header = split(line);
+  while (std::getline(in, line)) csv.rows.push_back(split(line));
+  return csv;
+}
+
+fs::path freshDir(const std::string& name) {
+  const fs::path d = fs::temp_directory_path() / name;
+  fs::remove_all(d);
+  return d;
+}
+
+std::string binary() { return std::string(GF_BINARY_DIR) + "/godfinger"; }
+
+StudyOptions options(const fs::path& out, int jobs) {
+  StudyOptions o;
+  o.out = out.string();
+  o.jobs = jobs;
+  o.progress = false;
+  o.godfinger = binary();
+  return o;
+}
+
+class BundledStudy : public testing::TestWithParam<const char*> {};
+
+// Every bundled study's quick grid runs, and results.csv has the issue's columns, one row per
+// run, each measured with a finite error; the chart and the report are written.
+TEST_P(BundledStudy, QuickGridRunsWithEveryColumnAndAFiniteError) {
+  const fs::path out = freshDir(std::string("gf_study_quick_") + GetParam());
+  const StudyPlan plan = expandStudy(loadStudyFile(GetParam()), true, {});
+  ASSERT_EQ(runStudy(plan, options(out, 2)), 0);
+  const Csv csv = readCsv(out / "results.csv");
+  for (const char* c : {"study", "model", "patch", "n_sgo", "rings", "solver_iterations", "haptic_rate_hz",
+                        "walk_resolution", "measure", "reference", "error", "step_us_median", "step_us_p99"}) {
+    EXPECT_GE(csv.column(c), 0) << "no column " << c;
+  }
+  ASSERT_EQ(csv.rows.size(), plan.runs.size());
+  for (const std::vector<std::string>& row : csv.rows) {
+    ASSERT_EQ(row.size(), csv.header.size());
+    EXPECT_EQ(row[static_cast<std::size_t>(csv.column("status"))], "ok") << row.back();
+    EXPECT_TRUE(std::isfinite(std::stod(row[static_cast<std::size_t>(csv.column("error"))]))) << row.back();
+    EXPECT_GT(std::stod(row[static_cast<std::size_t>(csv.column("step_us_median"))]), 0.0) << row.back();
+  }
+  EXPECT_GT(fs::file_size(out / "work-precision.png"), 1000u);
+  EXPECT_NE(readFile(out / "report.md").find("most accurate configuration per budget"), std::string::npos);
+}
+
+INSTANTIATE_TEST_SUITE_P(Study, BundledStudy,
+                         testing::Values("torsion", "sliding", "rolling", "pinch", "geodesic", "timestep", "effects"));
+
+// A hand-made run folder: a pressed puck (the pressed-puck scene) spinning up at a known angular
+// acceleration while the finger presses with a known force.
+struct HandMadeRun {
+  double inertia = 8e-4;    // kg m^2 about y
+  double alpha = 25.0;      // rad/s^2 from the load's start (0.6 s)
+  double press = 4.0;       // N
+  double radius = 0.0075;   // m, the finger's patch
+  double swing_deg = 0.0;   // rotation about x, growing linearly to this by 1 s
+};
+
+void writeRun(const fs::path& dir, const HandMadeRun& h) {
+  fs::create_directories(dir);
+  std::ofstream(dir / "summary.json") << R"({"step_time_us": {"median": 10.0, "p99": 20.0}, )"
+                                      << R"("patch_time_us": {"mean": 1.0, "calls": 1}, )"
+                                      << R"("bodies": [{"name": "puck", "mass_kg": 1.0, "inertia_kg_m2": [0.0005, )"
+                                      << h.inertia << ", 0.0005]}]}\n";
+  std::ofstream t(dir / "trace.csv");
+  t << "t,puck.px,puck.py,puck.pz,puck.qx,puck.qy,puck.qz,puck.qw,index.fx,index.fy,index.fz,index.n_sgo,index.r,"
+       "puck.vx,puck.vy,puck.vz,puck.wx,puck.wy,puck.wz\n";
+  t.precision(17);
+  for (int i = 0; i <= 1000; ++i) {
+    const double time = i * 1e-3, w = time > 0.6 ? h.alpha * (time - 0.6) : 0.0;
+    const double half = 0.5 * h.swing_deg * std::numbers::pi / 180.0 * time;
+    t << time << ",0,0.02,0," << std::sin(half) << ",0,0," << std::cos(half) << ",0," << -h.press << ",0,8,"
+      << h.radius << ",0,0,0,0," << w << ",0\n";
+  }
+}
+
+fs::path writeStudy(const fs::path& dir, const std::string& text) {
+  fs::create_directories(dir);
+  const fs::path p = dir / "study.toml";
+  std::ofstream(p) << "scene = \"" << GF_SOURCE_DIR << "/assets/scenes/pressed-puck.toml\"\n" << text;
+  return p;
+}
+
+// The friction torque is the applied torque minus I alpha; the analytic references use the
+// measured press F and the Eq. 1 radius of the press depth F / k; the error is measure /
+// reference - 1.
+TEST(StudyMeasure, FrictionTorqueAndItsAnalyticReferences) {
+  const fs::path dir = freshDir("gf_study_measure");
+  const fs::path study = writeStudy(dir, R"(
+[[measures]]
+kind = "friction_torque"
+body = "puck"
+window = [0.7, 1.0]
+reference = "two_thirds_mu_f_r"
+[[measures]]
+name = "hertz"
+kind = "friction_torque"
+body = "puck"
+window = [0.7, 1.0]
+reference = "hertz_mu_f_r"
+[[series]]
+name = "only"
+)");
+  const StudyPlan plan = expandStudy(loadStudyFile(study.string()), false, {});
+  ASSERT_EQ(plan.runs.size(), 1u);
+  HandMadeRun h;
+  writeRun(dir / "runs" / plan.runs[0].id, h);
+  const RunOutputs run = readRunOutputs((dir / "runs" / plan.runs[0].id).string(), loadSceneFile(plan.runs[0].scene));
+  const double measured = 0.06 - h.inertia * h.alpha;  // the scene's 0.06 N m from 0.6 s
+  const double r = sim::contactRadius(h.press / 800.0, 0.010, 0.004);  // the scene's finger: k 800 N/m, defaults
+  const MeasureResult a = evaluateMeasure(plan.study.series[0].measures[0], run, nullptr);
+  EXPECT_NEAR(a.measure, measured, 1e-9);
+  EXPECT_NEAR(a.reference, 2.0 / 3.0 * 1.0 * h.press * r, 1e-12);
+  EXPECT_NEAR(a.error, measured / a.reference - 1.0, 1e-9);
+  const MeasureResult b = evaluateMeasure(plan.study.series[0].measures[1], run, nullptr);
+  EXPECT_NEAR(b.reference, 3.0 * std::numbers::pi / 16.0 * h.press * r, 1e-12);
+  EXPECT_NEAR(measureError(ErrorKind::kAbsolute, 3.0, 1.0), 2.0, 0.0);
+  EXPECT_NEAR(measureError(ErrorKind::kDeviation, 3.0, 1.5), 2.0, 0.0);
+}
+
+// A measure against the reference run is looked up in the reference run's folder: collecting
+// hand-made folders gives error = swing - reference swing (absolute, deg) for each run.
+TEST(StudyMeasure, ReferenceRunIsLookedUpWhenCollecting) {
+  const fs::path dir = freshDir("gf_study_collect");
+  const fs::path study = writeStudy(dir, R"(
+[[measures]]
+name = "swing_deg"
+kind = "swing"
+body = "puck"
+axis = [1.0, 0.0, 0.0]
+[reference_run]
+set = ["world.solver_iterations=50"]
+[[series]]
+name = "ring"
+axes = [{ field = "fingers.index.n_sgo", values = [4, 8] }]
+)");
+  const StudyPlan plan = expandStudy(loadStudyFile(study.string()), false, {});
+  ASSERT_EQ(plan.runs.size(), 3u);
+  ASSERT_EQ(plan.runs[0].series, -1) << "the reference run comes first";
+  const double swings[] = {1.0, 4.0, 2.5};
+  for (std::size_t i = 0; i < 3; ++i) {
+    HandMadeRun h;
+    h.swing_deg = swings[i];
+    writeRun(dir / "runs" / plan.runs[i].id, h);
+  }
+  ASSERT_EQ(collectStudy(plan, dir.string(), dir.string(), false), 0);
+  const Csv csv = readCsv(dir / "results.csv");
+  ASSERT_EQ(csv.rows.size(), 3u);
+  for (std::size_t i = 0; i < 3; ++i) {
+    const auto cell = [&](const char* c) { return std::stod(csv.rows[i][static_cast<std::size_t>(csv.column(c))]); };
+    EXPECT_NEAR(cell("measure"), swings[i], 1e-9);
+    EXPECT_NEAR(cell("reference"), swings[0], 1e-9);
+    EXPECT_NEAR(cell("error"), swings[i] - swings[0], 1e-9);
+  }
+  EXPECT_EQ(csv.rows[1][static_cast<std::size_t>(csv.column("fingers.index.n_sgo"))], "4");
+  EXPECT_EQ(csv.rows[2][static_cast<std::size_t>(csv.column("n_sgo"))], "8");
+}
+
+// Emitting the command lines, running them with GNU parallel from another folder and collecting
+// gives the same results as a direct run (all but the step and patch times).
+TEST(StudyJobs, EmitParallelCollectMatchesADirectRun) {
+  ASSERT_EQ(std::system("command -v parallel > /dev/null"), 0) << "GNU parallel is needed (scripts/test installs it)";
+  const fs::path direct = freshDir("gf_study_direct"), emitted = freshDir("gf_study_emitted");
+  const StudyPlan plan = expandStudy(loadStudyFile("torsion"), true, {});
+  ASSERT_EQ(runStudy(plan, options(direct, 1)), 0);
+  fs::create_directories(emitted);
+  const fs::path jobs = emitted / "jobs.txt";
+  emitStudyJobs(plan, options(emitted, 1), jobs.string());
+  const std::string cmd = "cd / && parallel --will-cite -j 2 < " + jobs.string();
+  ASSERT_EQ(std::system(cmd.c_str()), 0);
+  ASSERT_EQ(collectStudy(plan, emitted.string(), emitted.string(), true), 0);
+  const Csv a = readCsv(direct / "results.csv"), b = readCsv(emitted / "results.csv");
+  ASSERT_EQ(a.header, b.header);
+  ASSERT_EQ(a.rows.size(), b.rows.size());
+  for (std::size_t r = 0; r < a.rows.size(); ++r) {
+    for (std::size_t c = 0; c < a.header.size(); ++c) {
+      if (a.header[c] == "step_us_median" || a.header[c] == "step_us_p99" || a.header[c] == "patch_us_mean") continue;
+      EXPECT_EQ(a.rows[r][c], b.rows[r][c]) << a.header[c] << " of " << a.rows[r].back();
+    }
+  }
+}
+
+// A malformed study file is rejected with FILE:LINE:COLUMN: FIELD: reason before anything runs.
+TEST(StudyFile, MalformedStudiesNameFileLineColumnAndField) {
+  const fs::path dir = freshDir("gf_study_bad");
+  const std::string measure = "[[measures]]\nkind = \"friction_torque\"\nbody = \"puck\"\nreference = \"mu_f_r\"\n";
+  struct Case {
+    std::string text, expected;
+  };
+  const Case cases[] = {
+      {measure + "[[series]]\nname = \"a\"\naxes = [{ field = \"fingers.index.nsgo\", values = [4] }]\n",
+       ":8:19: series.0.axes.0.field: 'fingers.index.nsgo=4': fingers.index.nsgo: unknown field"},
+      {measure + "[[series]]\nname = \"a\"\naxes = [{ field = \"fingers.index.n_sgo\", values = [] }]\n",
+       ":8:51: series.0.axes.0.values: empty"},
+      {"[[measures]]\nkind = \"torque\"\nbody = \"puck\"\n[[series]]\nname = \"a\"\n",
+       ":3:8: measures.0.kind: unknown value 'torque'"},
+      {measure + "[[series]]\nname = \"a\"\naxes = [{ field = \"fingers.index.n_sgo\", values = [4, 99] }]\n",
+       ":8:55: series.0.axes.0.values.1: 'fingers.index.n_sgo=99': fingers.index.n_sgo: must be"},
+      {"[[measures]]\nkind = \"swing\"\nbody = \"puck\"\n[[series]]\nname = \"a\"\n",
+       ":2:1: measures.0.reference: 'run' needs a [reference_run]"},
+  };
+  for (const Case& c : cases) {
+    const fs::path study = writeStudy(dir, c.text);
+    try {
+      expandStudy(loadStudyFile(study.string()), false, {});
+      ADD_FAILURE() << "accepted:\n" << c.text;
+    } catch (const InputError& e) {
+      EXPECT_EQ(std::string(e.what()).rfind(study.string() + c.expected, 0), 0u) << e.what();
+    }
+  }
+  // From the command line: a non-zero exit and no output folder.
+  const fs::path out = dir / "out";
+  const std::string cmd = binary() + " study " + (dir / "study.toml").string() + " --out " + out.string() + " 2>/dev/null";
+  EXPECT_NE(std::system(cmd.c_str()), 0);
+  EXPECT_FALSE(fs::exists(out));
+}
+
+}  // namespace
+}  // namespace gf::app
