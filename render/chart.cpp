@@ -3,8 +3,11 @@
 #include <imgui.h>
 
 #include <algorithm>
+#include <array>
+#include <cfloat>
 #include <cmath>
 #include <cstdio>
+#include <string>
 #include <vector>
 
 #include "render/context.hpp"
@@ -12,6 +15,46 @@
 
 namespace gf::render {
 namespace {
+
+constexpr float kMarkerRadiusPx = 4.5f;
+constexpr double kLogPad = 0.04;         // share of a log axis's span (decades) added each side
+constexpr float kMinorDecadePx = 30.0f;  // minor log grid lines only on decades this wide
+constexpr int kMaxDecadeLabels = 12;
+constexpr ImU32 kInk = IM_COL32(30, 30, 30, 255), kGrid = IM_COL32(220, 220, 220, 255);
+constexpr ImU32 kMinorGrid = IM_COL32(238, 238, 238, 255), kOutline = IM_COL32(40, 40, 40, 255);
+constexpr ImU32 kLegendFill = IM_COL32(255, 255, 255, 220);
+constexpr ImU32 kLegendEdge = IM_COL32(170, 170, 170, 255);
+
+struct Range {
+  double lo = 0.0, hi = 1.0;
+};
+
+// Whether `v` can be drawn on a linear (log = false) or log axis.
+bool onAxis(double v, bool log) {
+  return std::isfinite(v) && (!log || v > 0.0);
+}
+
+// One axis: its data range, its scale and the pixels of its two ends.
+struct Axis {
+  Range range;
+  bool log = false;
+  float px_lo = 0.0f, px_hi = 1.0f;  // pixels of range.lo and range.hi
+
+  double coord(double v) const { return log ? std::log10(v) : v; }
+  float pixel(double v) const {
+    const double t = (coord(v) - coord(range.lo)) / (coord(range.hi) - coord(range.lo));
+    return px_lo + static_cast<float>(t) * (px_hi - px_lo);
+  }
+  float decadePx() const {
+    return std::abs(px_hi - px_lo) / static_cast<float>(std::log10(range.hi / range.lo));
+  }
+};
+
+// A tick: a grid line, labelled or not; minor lines are fainter.
+struct Tick {
+  double value;
+  bool labelled, major;
+};
 
 // A "nice" tick step (1, 2 or 5 times a power of ten) giving about `count` ticks over `span`.
 double tickStep(double span, int count) {
@@ -22,28 +65,316 @@ double tickStep(double span, int count) {
   return 10.0 * power;
 }
 
-struct Range {
-  double lo = 0.0, hi = 1.0;
+// The coordinates of the points drawable on both axes.
+struct DrawnValues {
+  std::vector<double> x, y;
 };
 
-void fit(const ChartSpec& chart, Range& x, Range& y) {
-  x = {HUGE_VAL, -HUGE_VAL};
-  y = {HUGE_VAL, -HUGE_VAL};
-  // y from the 0.2 % and 99.8 % quantiles: single-step impacts do not flatten the curves.
-  std::vector<double> ys;
+DrawnValues drawnValues(const ChartSpec& chart) {
+  DrawnValues out;
   for (const ChartSeries& s : chart.series) {
-    for (double v : s.x) x = {std::min(x.lo, v), std::max(x.hi, v)};
-    ys.insert(ys.end(), s.y.begin(), s.y.end());
+    for (std::size_t i = 0; i < std::min(s.x.size(), s.y.size()); ++i) {
+      if (!onAxis(s.x[i], chart.log_x) || !onAxis(s.y[i], chart.log_y)) continue;
+      out.x.push_back(s.x[i]);
+      out.y.push_back(s.y[i]);
+    }
   }
-  if (!ys.empty()) {
-    std::sort(ys.begin(), ys.end());
-    y = {ys[static_cast<std::size_t>(0.002 * (ys.size() - 1))], ys[static_cast<std::size_t>(0.998 * (ys.size() - 1))]};
+  return out;
+}
+
+// Linear x: the data's full span.
+Range fitLinearX(const std::vector<double>& v) {
+  if (v.empty()) return {0.0, 1.0};
+  const auto [lo, hi] = std::minmax_element(v.begin(), v.end());
+  return *hi > *lo ? Range{*lo, *hi} : Range{0.0, 1.0};
+}
+
+// Linear y: the 0.2 % and 99.8 % quantiles (single-step impacts do not flatten the curves),
+// padded by 5 %; or the chart's fixed range.
+Range fitLinearY(std::vector<double> v, const ChartSpec& chart) {
+  if (chart.y_max > chart.y_min) return {chart.y_min, chart.y_max};
+  Range y{0.0, 0.0};
+  if (!v.empty()) {
+    std::sort(v.begin(), v.end());
+    y = {v[static_cast<std::size_t>(0.002 * (v.size() - 1))],
+         v[static_cast<std::size_t>(0.998 * (v.size() - 1))]};
   }
-  if (!(x.hi > x.lo)) x = {0.0, 1.0};
-  if (chart.y_max > chart.y_min) y = {chart.y_min, chart.y_max};
   if (!(y.hi > y.lo)) y = {y.lo - 1.0, y.lo + 1.0};
   const double pad = 0.05 * (y.hi - y.lo);
-  if (!(chart.y_max > chart.y_min)) y = {y.lo - pad, y.hi + pad};
+  return {y.lo - pad, y.hi + pad};
+}
+
+// Log axis: the positive data's full span, snapped outward to decades when it is more than
+// one decade (at least 0.2 decade), then padded by kLogPad of its span in decades.
+Range fitLog(const std::vector<double>& v) {
+  if (v.empty()) return {1.0, 10.0};
+  const auto [lo, hi] = std::minmax_element(v.begin(), v.end());
+  double a = std::log10(*lo), b = std::log10(*hi);
+  if (b - a > 1.0) {
+    a = std::floor(a + 1e-9);
+    b = std::ceil(b - 1e-9);
+  }
+  if (b - a < 0.2) {
+    const double middle = 0.5 * (a + b);
+    a = middle - 0.1;
+    b = middle + 0.1;
+  }
+  const double pad = kLogPad * (b - a);
+  return {std::pow(10.0, a - pad), std::pow(10.0, b + pad)};
+}
+
+Range fitY(const ChartSpec& chart, const std::vector<double>& v) {
+  if (!chart.log_y) return fitLinearY(v, chart);
+  if (chart.y_max > chart.y_min && chart.y_min > 0.0) return {chart.y_min, chart.y_max};
+  return fitLog(v);
+}
+
+std::vector<Tick> linearTicks(Range r, int count) {
+  std::vector<Tick> out;
+  const double step = tickStep(r.hi - r.lo, count);
+  for (double v = std::ceil(r.lo / step) * step; v <= r.hi + 1e-9; v += step) {
+    out.push_back({std::abs(v) < 1e-12 ? 0.0 : v, true, true});
+  }
+  return out;
+}
+
+// Decades (labelled; at most kMaxDecadeLabels of them), minor lines at 2..9 times a decade
+// (with `minor`; 2 and 5 labelled when the axis spans less than a decade) and, when fewer than
+// two ticks would be labelled, labels on every tick.
+std::vector<Tick> logTicks(const Axis& axis) {
+  const double a = std::log10(axis.range.lo), b = std::log10(axis.range.hi), eps = 1e-9;
+  const bool minor = axis.decadePx() >= kMinorDecadePx, sub_decade = b - a < 1.0;
+  const int k0 = static_cast<int>(std::floor(a)), k1 = static_cast<int>(std::ceil(b));
+  const int every = std::max(1, (k1 - k0 + kMaxDecadeLabels - 1) / kMaxDecadeLabels);
+  std::vector<Tick> out;
+  int labelled = 0;
+  for (int k = k0; k <= k1; ++k) {
+    for (int m = 1; m <= 9; ++m) {
+      const double v = m * std::pow(10.0, k), t = std::log10(v);
+      if (t < a - eps || t > b + eps) continue;
+      const bool label =
+          m == 1 ? (k % every + every) % every == 0 : sub_decade && (m == 2 || m == 5);
+      if (m == 1 || minor) out.push_back({v, label, m == 1});
+      labelled += label;
+    }
+  }
+  if (labelled < 2) {
+    for (Tick& tick : out) tick.labelled = true;
+  }
+  return out;
+}
+
+std::vector<Tick> ticks(const Axis& axis, int linear_count) {
+  return axis.log ? logTicks(axis) : linearTicks(axis.range, linear_count);
+}
+
+// "%g", with the exponent unpadded: 1e-05 -> 1e-5, 1e+06 -> 1e6.
+std::string tickText(double v) {
+  char buffer[32];
+  std::snprintf(buffer, sizeof buffer, "%g", v);
+  std::string text = buffer;
+  std::size_t i = text.find('e');
+  if (i == std::string::npos) return text;
+  ++i;
+  if (text[i] == '+') text.erase(i, 1);
+  if (text[i] == '-') ++i;
+  while (i + 1 < text.size() && text[i] == '0') text.erase(i, 1);
+  return text;
+}
+
+// Where the parts of the chart go, in pixels.
+struct Layout {
+  ImVec2 lo, hi;          // the plot's top-left and bottom-right corners
+  ImVec2 title, y_label;  // top-left corners of the texts
+};
+
+Layout layout(const ChartSpec& chart, float font) {
+  Layout l;
+  l.lo = ImVec2(5.5f * font, 2.5f * font);
+  l.hi = ImVec2(static_cast<float>(chart.width) - 1.5f * font,
+                static_cast<float>(chart.height) - 3.5f * font);
+  // A y label that would run into the title gets a line of its own above the plot.
+  const float y_label_end = 0.4f * font + ImGui::CalcTextSize(chart.y_label.c_str()).x;
+  if (!chart.title.empty() && y_label_end > l.lo.x - 0.5f * font) l.lo.y += 1.4f * font;
+  l.title = ImVec2(l.lo.x, 0.6f * font);
+  l.y_label = ImVec2(0.4f * font, l.lo.y - 1.6f * font);
+  return l;
+}
+
+// The chart being drawn: its draw list, fitted axes and plot corners.
+struct Canvas {
+  ImDrawList& d;
+  Axis x, y;
+  ImVec2 lo, hi;
+  float font;
+
+  bool drawable(const ChartSeries& s, std::size_t i) const {
+    return onAxis(s.x[i], x.log) && onAxis(s.y[i], y.log);
+  }
+  ImVec2 at(const ChartSeries& s, std::size_t i) const {
+    return {x.pixel(s.x[i]), y.pixel(s.y[i])};
+  }
+};
+
+Canvas canvas(ImDrawList& d, const ChartSpec& chart, const Layout& l, float font) {
+  const DrawnValues v = drawnValues(chart);
+  const Range xr = chart.log_x ? fitLog(v.x) : fitLinearX(v.x);
+  return {d,
+          {xr, chart.log_x, l.lo.x, l.hi.x},
+          {fitY(chart, v.y), chart.log_y, l.hi.y, l.lo.y},
+          l.lo,
+          l.hi,
+          font};
+}
+
+// Grid lines (minor ones first, so major ones lie on top) and tick labels.
+void drawGrid(const Canvas& c) {
+  const std::vector<Tick> xt = ticks(c.x, 10), yt = ticks(c.y, 6);
+  for (const bool major : {false, true}) {
+    const ImU32 colour = major ? kGrid : kMinorGrid;
+    for (const Tick& t : xt) {
+      if (t.major == major)
+        c.d.AddLine(ImVec2(c.x.pixel(t.value), c.lo.y), ImVec2(c.x.pixel(t.value), c.hi.y), colour);
+    }
+    for (const Tick& t : yt) {
+      if (t.major == major)
+        c.d.AddLine(ImVec2(c.lo.x, c.y.pixel(t.value)), ImVec2(c.hi.x, c.y.pixel(t.value)), colour);
+    }
+  }
+  for (const Tick& t : xt) {
+    if (!t.labelled) continue;
+    const std::string text = tickText(t.value);
+    const float width = ImGui::CalcTextSize(text.c_str()).x;
+    c.d.AddText(ImVec2(c.x.pixel(t.value) - width / 2, c.hi.y + 0.3f * c.font), kInk, text.c_str());
+  }
+  for (const Tick& t : yt) {
+    if (!t.labelled) continue;
+    const std::string text = tickText(t.value);
+    const float width = ImGui::CalcTextSize(text.c_str()).x;
+    c.d.AddText(ImVec2(c.lo.x - width - 0.4f * c.font, c.y.pixel(t.value) - c.font / 2), kInk,
+                text.c_str());
+  }
+}
+
+// Segments between consecutive drawable points.
+void drawLines(const Canvas& c, const ChartSeries& s) {
+  const ImU32 colour = imguiColour(s.colour);
+  for (std::size_t i = 1; i < s.x.size() && i < s.y.size(); ++i) {
+    if (c.drawable(s, i - 1) && c.drawable(s, i))
+      c.d.AddLine(c.at(s, i - 1), c.at(s, i), colour, 1.6f);
+  }
+}
+
+void drawMarker(ImDrawList& d, ImVec2 centre, ImU32 colour) {
+  d.AddCircleFilled(centre, kMarkerRadiusPx, colour, 16);
+  d.AddCircle(centre, kMarkerRadiusPx, kOutline, 16, 1.0f);
+}
+
+void drawMarkers(const Canvas& c, const ChartSeries& s) {
+  const ImU32 colour = imguiColour(s.colour);
+  for (std::size_t i = 0; i < s.x.size() && i < s.y.size(); ++i) {
+    if (c.drawable(s, i)) drawMarker(c.d, c.at(s, i), colour);
+  }
+}
+
+struct Box {
+  ImVec2 lo, hi;
+  bool overlaps(const Box& o) const {
+    return lo.x < o.hi.x && o.lo.x < hi.x && lo.y < o.hi.y && o.lo.y < hi.y;
+  }
+  bool inside(ImVec2 a, ImVec2 b) const {
+    return lo.x >= a.x && lo.y >= a.y && hi.x <= b.x && hi.y <= b.y;
+  }
+};
+
+// The square inside each drawn marker: point labels keep off them.
+std::vector<Box> markerBoxes(const Canvas& c, const ChartSpec& chart) {
+  std::vector<Box> out;
+  const float r = 0.7f * kMarkerRadiusPx;
+  for (const ChartSeries& s : chart.series) {
+    if (s.style == SeriesStyle::kLine) continue;
+    for (std::size_t i = 0; i < s.x.size() && i < s.y.size(); ++i) {
+      if (!c.drawable(s, i)) continue;
+      const ImVec2 p = c.at(s, i);
+      out.push_back({{p.x - r, p.y - r}, {p.x + r, p.y + r}});
+    }
+  }
+  return out;
+}
+
+// A label of `size` for the marker at `p`: up-right of it, else down-right, up-left,
+// down-left, right or left, whichever first lies inside the plot and off `taken`; else the
+// first inside.
+Box placeLabel(const Canvas& c, ImVec2 p, ImVec2 size, const std::vector<Box>& taken) {
+  const float r = 0.75f * kMarkerRadiusPx, right = p.x + r, left = p.x - r - size.x;
+  const float up = p.y - r - size.y, down = p.y + r, level = p.y - size.y / 2;
+  const std::array<ImVec2, 6> corners = {ImVec2(right, up),
+                                         ImVec2(right, down),
+                                         ImVec2(left, up),
+                                         ImVec2(left, down),
+                                         ImVec2(p.x + 1.5f * kMarkerRadiusPx, level),
+                                         ImVec2(p.x - 1.5f * kMarkerRadiusPx - size.x, level)};
+  const Box* fallback = nullptr;
+  std::array<Box, corners.size()> boxes;
+  for (std::size_t i = 0; i < corners.size(); ++i) {
+    boxes[i] = {corners[i], ImVec2(corners[i].x + size.x, corners[i].y + size.y)};
+    if (!boxes[i].inside(c.lo, c.hi)) continue;
+    if (std::none_of(taken.begin(), taken.end(),
+                     [&](const Box& b) { return b.overlaps(boxes[i]); }))
+      return boxes[i];
+    if (!fallback) fallback = &boxes[i];
+  }
+  if (fallback) return *fallback;
+  // Larger than the room left: pushed inside the plot from the up-right place.
+  const ImVec2 lo(std::clamp(right, c.lo.x, std::max(c.lo.x, c.hi.x - size.x)),
+                  std::clamp(up, c.lo.y, std::max(c.lo.y, c.hi.y - size.y)));
+  return {lo, ImVec2(lo.x + size.x, lo.y + size.y)};
+}
+
+// Point labels in small dark text by their markers, each kept off the markers and the labels
+// placed before it.
+void drawPointLabels(const Canvas& c, const ChartSpec& chart) {
+  std::vector<Box> taken = markerBoxes(c, chart);
+  const float size = 0.8f * c.font;
+  for (const ChartSeries& s : chart.series) {
+    for (std::size_t i = 0; i < s.point_labels.size() && i < s.x.size() && i < s.y.size(); ++i) {
+      const char* text = s.point_labels[i].c_str();
+      if (!*text || !c.drawable(s, i)) continue;
+      const Box box = placeLabel(c, c.at(s, i),
+                                 ImGui::GetFont()->CalcTextSizeA(size, FLT_MAX, 0.0f, text), taken);
+      taken.push_back(box);
+      c.d.AddText(ImGui::GetFont(), size, box.lo, kInk, text);
+    }
+  }
+}
+
+// One row per labelled series (its line, marker or both, then its label) on a white
+// semi-opaque box in the plot's top-right corner.
+void drawLegend(const Canvas& c, const ChartSpec& chart) {
+  float text_width = 0.0f;
+  int rows = 0;
+  for (const ChartSeries& s : chart.series) {
+    if (s.label.empty()) continue;
+    text_width = std::max(text_width, ImGui::CalcTextSize(s.label.c_str()).x);
+    ++rows;
+  }
+  if (rows == 0) return;
+  const float f = c.font, row = 1.3f * f, swatch = 2.0f * f;
+  const ImVec2 hi(c.hi.x - 0.5f * f, c.lo.y + 0.5f * f + 0.3f * f + rows * row);
+  const ImVec2 lo(hi.x - (0.5f * f + swatch + 0.5f * f + text_width + 0.5f * f), c.lo.y + 0.5f * f);
+  c.d.AddRectFilled(lo, hi, kLegendFill, 3.0f);
+  c.d.AddRect(lo, hi, kLegendEdge, 3.0f);
+  float y = lo.y + 0.3f * f;
+  for (const ChartSeries& s : chart.series) {
+    if (s.label.empty()) continue;
+    const float x = lo.x + 0.5f * f, middle = y + f / 2;
+    if (s.style != SeriesStyle::kMarkers)
+      c.d.AddLine(ImVec2(x, middle), ImVec2(x + swatch, middle), imguiColour(s.colour), 3.0f);
+    if (s.style != SeriesStyle::kLine)
+      drawMarker(c.d, ImVec2(x + swatch / 2, middle), imguiColour(s.colour));
+    c.d.AddText(ImVec2(x + swatch + 0.5f * f, y), kInk, s.label.c_str());
+    y += row;
+  }
 }
 
 }  // namespace
@@ -51,50 +382,32 @@ void fit(const ChartSpec& chart, Range& x, Range& y) {
 void drawChart(ImGuiLayer& layer, const ChartSpec& chart) {
   GF_ASSERT_GL_THREAD();
   layer.beginFrame(1.0 / 60.0, {});
-  const float w = static_cast<float>(chart.width), h = static_cast<float>(chart.height);
-  ImDrawList* d = ImGui::GetForegroundDrawList();
+  ImDrawList& d = *ImGui::GetForegroundDrawList();
   const float font = ImGui::GetFontSize();
-  const ImVec2 lo(5.5f * font, 2.5f * font), hi(w - 1.5f * font, h - 3.5f * font);
-  const ImU32 ink = IM_COL32(30, 30, 30, 255), faint = IM_COL32(220, 220, 220, 255);
-  d->AddRectFilled(ImVec2(0, 0), ImVec2(w, h), IM_COL32(255, 255, 255, 255));
-  Range xr, yr;
-  fit(chart, xr, yr);
-  const auto px = [&](double x) { return lo.x + static_cast<float>((x - xr.lo) / (xr.hi - xr.lo)) * (hi.x - lo.x); };
-  const auto py = [&](double y) { return hi.y - static_cast<float>((y - yr.lo) / (yr.hi - yr.lo)) * (hi.y - lo.y); };
-  char text[64];
-  // Grid and tick labels.
-  const double xs = tickStep(xr.hi - xr.lo, 10), ys = tickStep(yr.hi - yr.lo, 6);
-  for (double x = std::ceil(xr.lo / xs) * xs; x <= xr.hi + 1e-9; x += xs) {
-    d->AddLine(ImVec2(px(x), lo.y), ImVec2(px(x), hi.y), faint);
-    std::snprintf(text, sizeof text, "%g", std::abs(x) < 1e-12 ? 0.0 : x);
-    d->AddText(ImVec2(px(x) - ImGui::CalcTextSize(text).x / 2, hi.y + 0.3f * font), ink, text);
-  }
-  for (double y = std::ceil(yr.lo / ys) * ys; y <= yr.hi + 1e-9; y += ys) {
-    d->AddLine(ImVec2(lo.x, py(y)), ImVec2(hi.x, py(y)), faint);
-    std::snprintf(text, sizeof text, "%g", std::abs(y) < 1e-12 ? 0.0 : y);
-    d->AddText(ImVec2(lo.x - ImGui::CalcTextSize(text).x - 0.4f * font, py(y) - font / 2), ink, text);
-  }
-  d->AddRect(lo, hi, ink);
-  // Curves, clipped to the plot.
-  d->PushClipRect(lo, hi, true);
+  const Layout l = layout(chart, font);
+  const Canvas c = canvas(d, chart, l, font);
+  d.AddRectFilled(ImVec2(0, 0),
+                  ImVec2(static_cast<float>(chart.width), static_cast<float>(chart.height)),
+                  IM_COL32(255, 255, 255, 255));
+  drawGrid(c);
+  d.AddRect(l.lo, l.hi, kInk);
+  // Data, clipped to the plot: every series' lines, then markers over them, then point labels.
+  d.PushClipRect(l.lo, l.hi, true);
   for (const ChartSeries& s : chart.series) {
-    for (std::size_t i = 1; i < s.x.size() && i < s.y.size(); ++i) {
-      d->AddLine(ImVec2(px(s.x[i - 1]), py(s.y[i - 1])), ImVec2(px(s.x[i]), py(s.y[i])), imguiColour(s.colour), 1.6f);
-    }
+    if (s.style != SeriesStyle::kMarkers) drawLines(c, s);
   }
-  d->PopClipRect();
+  for (const ChartSeries& s : chart.series) {
+    if (s.style != SeriesStyle::kLine) drawMarkers(c, s);
+  }
+  drawPointLabels(c, chart);
+  d.PopClipRect();
   // Title, axis labels, legend.
-  d->AddText(ImVec2(lo.x, 0.6f * font), ink, chart.title.c_str());
-  d->AddText(ImVec2((lo.x + hi.x - ImGui::CalcTextSize(chart.x_label.c_str()).x) / 2, h - 1.6f * font), ink,
-             chart.x_label.c_str());
-  d->AddText(ImVec2(0.4f * font, lo.y - 1.6f * font), ink, chart.y_label.c_str());
-  float legend_y = lo.y + 0.6f * font;
-  for (const ChartSeries& s : chart.series) {
-    const float x = hi.x - 18.0f * font;
-    d->AddLine(ImVec2(x, legend_y + font / 2), ImVec2(x + 2.0f * font, legend_y + font / 2), imguiColour(s.colour), 3.0f);
-    d->AddText(ImVec2(x + 2.5f * font, legend_y), ink, s.label.c_str());
-    legend_y += 1.3f * font;
-  }
+  d.AddText(l.title, kInk, chart.title.c_str());
+  d.AddText(ImVec2((l.lo.x + l.hi.x - ImGui::CalcTextSize(chart.x_label.c_str()).x) / 2,
+                   static_cast<float>(chart.height) - 1.6f * font),
+            kInk, chart.x_label.c_str());
+  d.AddText(l.y_label, kInk, chart.y_label.c_str());
+  drawLegend(c, chart);
   layer.render();
 }
 

@@ -1,4 +1,5 @@
-// Line charts drawn with ImGui's draw lists into a PNG: the Fig. 8 force curve.
+// Charts drawn with ImGui's draw lists into a PNG: the Fig. 8 force curve (lines on linear
+// axes) and work-precision diagrams (markers with point labels on log-log axes).
 #pragma once
 
 #include <Eigen/Core>
@@ -7,25 +8,44 @@
 
 namespace gf::render {
 
-/// One curve.
-struct ChartSeries {
-  std::string label;
-  Eigen::Vector3f colour = Eigen::Vector3f(0.1f, 0.3f, 0.9f);  ///< linear RGB
-  std::vector<double> x, y;
+/// How a series is drawn.
+enum class SeriesStyle {
+  kLine,            ///< segments between consecutive points
+  kMarkers,         ///< a filled circle at each point
+  kLineAndMarkers,  ///< both
 };
 
-/// A chart: axes fitted to the data (y range can be fixed), ticks, labels and a legend.
+/// One curve or set of points. A point is drawn only when both its coordinates can be drawn
+/// on their axes (finite; positive on a log axis); a segment only when both its ends are.
+struct ChartSeries {
+  std::string label;  ///< legend text; empty: not in the legend
+  Eigen::Vector3f colour = Eigen::Vector3f(0.1f, 0.3f, 0.9f);  ///< linear RGB
+  std::vector<double> x, y;
+  SeriesStyle style = SeriesStyle::kLine;
+  /// Empty, or one per point (as many as x): small text up-right of each point's marker, kept
+  /// inside the plot and off other labels and markers. Empty strings are not drawn.
+  std::vector<std::string> point_labels = {};
+};
+
+/// A chart: axes fitted to the data, ticks, labels and a legend in the plot's top-right corner.
+/// A linear x axis spans the data; a linear y axis the 0.2 % to 99.8 % quantiles, padded by 5 %.
+/// A log axis spans the positive data, snapped outward to decades when that is more than one
+/// decade, then padded by 4 % of its span in decades on each side; it has a tick at each decade
+/// (labelled 1e-3, 0.01, 1, 100, ...) and faint minor lines at 2..9 times a decade, the 2 and 5
+/// labelled too when the axis spans less than a decade.
 struct ChartSpec {
   std::string title, x_label, y_label;
   std::vector<ChartSeries> series;
-  double y_min = 0.0, y_max = 0.0;  ///< equal: fitted to the data
-  int width = 1200, height = 600;   ///< pixels
+  /// Fixed y range, used when y_max > y_min (and y_min > 0 on a log axis); otherwise fitted.
+  double y_min = 0.0, y_max = 0.0;
+  bool log_x = false, log_y = false;  ///< logarithmic (base 10) axes
+  int width = 1200, height = 600;     ///< pixels
 };
 
 class ImGuiLayer;
 
 /// Builds the chart as an ImGui frame in `layer` (whose size must match) and renders it over
-/// the bound framebuffer. Render thread only.
+/// the bound framebuffer. Render thread only; allocates.
 void drawChart(ImGuiLayer& layer, const ChartSpec& chart);
 
 }  // namespace gf::render

@@ -357,6 +357,11 @@ void renderCloseUps(const sim::SceneDesc& scene, const sim::Snapshot& snapshot, 
   drawCloseUps(gpu, scene, snapshot, prefix);
 }
 
+void writeChartPng(const ChartSpec& chart, const std::string& path) {
+  GlContext context;
+  drawChartFile(chart, path);
+}
+
 Image renderStill(const sim::SceneDesc& scene, const sim::Snapshot& snapshot, const FrameOutputSettings& settings) {
   Gpu gpu(scene, settings);
   gpu.frame.bind();

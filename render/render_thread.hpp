@@ -89,6 +89,11 @@ std::string closeUpPath(const std::string& prefix, const std::string& finger);
 void renderCloseUps(const sim::SceneDesc& scene, const sim::Snapshot& snapshot,
                     const std::string& prefix, int size_px);
 
+/// Draws `chart` and writes it as the PNG `path`, the way RenderThread::submitChart does, on the
+/// calling thread with a GL context of its own (the thread must not have one already): charts
+/// from commands and tests without a render thread. Throws GlError, ImageError; allocates.
+void writeChartPng(const ChartSpec& chart, const std::string& path);
+
 /// Draws one frame of `snapshot` as `settings` ask (size, camera, effects, overlay) on the
 /// calling thread, with a GL context of its own: stills and visual-regression images.
 Image renderStill(const sim::SceneDesc& scene, const sim::Snapshot& snapshot, const FrameOutputSettings& settings);

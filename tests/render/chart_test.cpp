@@ -1,0 +1,257 @@
+// Charts drawn to PNG through writeChartPng: where points land on fitted log axes, what is not
+// drawn (values a log axis cannot show, unlabelled series in the legend, labels off the plot)
+// and fixed y ranges. Positions are found from the plot's frame in the image.
+#include "render/chart.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <limits>
+#include <string>
+
+#include "render/image.hpp"
+#include "render/render_thread.hpp"
+
+namespace gf::render {
+namespace {
+
+namespace fs = std::filesystem;
+
+const Eigen::Vector3f kRed(1.0f, 0.0f, 0.0f), kBlue(0.0f, 0.0f, 1.0f), kGreen(0.0f, 1.0f, 0.0f);
+constexpr double kLogPad = 0.04;  // ChartSpec: a log axis is padded by 4 % of its decades
+
+// Draws `chart` through writeChartPng into a file of the running test's own, and reads it back.
+Image drawChart(const ChartSpec& chart) {
+  const std::string name = ::testing::UnitTest::GetInstance()->current_test_info()->name();
+  const fs::path path = fs::temp_directory_path() / ("gf_chart_" + name + ".png");
+  writeChartPng(chart, path.string());
+  return readPng(path.string());
+}
+
+const std::uint8_t* pixel(const Image& image, int x, int y) {
+  return &image.rgb[3 * (y * image.width + x)];
+}
+
+// Pure colours only: imguiColour keeps 0 and 1 as they are.
+bool hasColour(const Image& image, int x, int y, const Eigen::Vector3f& colour) {
+  const std::uint8_t* p = pixel(image, x, y);
+  for (int c = 0; c < 3; ++c) {
+    if (std::abs(p[c] - 255 * colour[c]) > 60) return false;
+  }
+  return true;
+}
+
+// Pixels of `colour` in the rectangle [x0, x1) x [y0, y1), clamped to the image.
+int countColour(const Image& image, const Eigen::Vector3f& colour, int x0, int y0, int x1, int y1) {
+  int count = 0;
+  for (int y = std::max(y0, 0); y < std::min(y1, image.height); ++y) {
+    for (int x = std::max(x0, 0); x < std::min(x1, image.width); ++x)
+      count += hasColour(image, x, y, colour);
+  }
+  return count;
+}
+
+bool isWhite(const Image& image, int x, int y) {
+  const std::uint8_t* p = pixel(image, x, y);
+  return p[0] > 250 && p[1] > 250 && p[2] > 250;
+}
+
+// The plot's frame: the rows and columns that are mostly dark grey.
+struct Plot {
+  int left = -1, top = -1, right = -1, bottom = -1;
+  int width() const { return right - left; }
+  int height() const { return bottom - top; }
+};
+
+bool isFrameGrey(const Image& image, int x, int y) {
+  const std::uint8_t* p = pixel(image, x, y);
+  return p[0] < 170 && std::abs(p[0] - p[1]) < 8 && std::abs(p[1] - p[2]) < 8;
+}
+
+Plot findPlot(const Image& image) {
+  Plot plot;
+  for (int y = 0; y < image.height; ++y) {
+    int grey = 0;
+    for (int x = 0; x < image.width; ++x) grey += isFrameGrey(image, x, y);
+    if (grey < 0.6 * image.width) continue;
+    if (plot.top < 0) plot.top = y;
+    plot.bottom = y;
+  }
+  for (int x = 0; x < image.width; ++x) {
+    int grey = 0;
+    for (int y = 0; y < image.height; ++y) grey += isFrameGrey(image, x, y);
+    if (grey < 0.6 * image.height) continue;
+    if (plot.left < 0) plot.left = x;
+    plot.right = x;
+  }
+  return plot;
+}
+
+// Pixel of a value on a log axis spanning the decades [k_lo, k_hi] before padding.
+double logPixel(double v, double k_lo, double k_hi, double px_lo, double px_hi) {
+  const double pad = kLogPad * (k_hi - k_lo),
+               t = (std::log10(v) - k_lo + pad) / (k_hi - k_lo + 2 * pad);
+  return px_lo + t * (px_hi - px_lo);
+}
+
+// Two marker-and-line series on log-log axes, one with values the log y axis cannot show, and
+// an unlabelled marker series. Drawn points fit x to the decades [1e-3, 0.1], y to [0.01, 100].
+ChartSpec workPrecision() {
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  ChartSpec chart;
+  chart.title = "work-precision";
+  chart.x_label = "step time (s)";
+  chart.y_label = "|error| vs (2/3) mu F r";
+  chart.log_x = chart.log_y = true;
+  chart.width = 960;
+  chart.height = 540;
+  chart.series = {
+      {"a",
+       kRed,
+       {1e-3, 1e-2, 1e-1},
+       {100.0, 10.0, 1.0},
+       SeriesStyle::kLineAndMarkers,
+       {"3", "4", "8"}},
+      {"b",
+       kBlue,
+       {2e-3, 2e-2, 5e-2, 7e-2, 9e-2},
+       {0.5, 0.05, 0.0, -1.0, nan},
+       SeriesStyle::kLineAndMarkers,
+       {"3", "4", "8", "16", "32"}},
+      {"", kGreen, {1.5e-3}, {0.02}, SeriesStyle::kMarkers},
+  };
+  return chart;
+}
+
+class WorkPrecisionChart : public ::testing::Test {
+ protected:
+  WorkPrecisionChart() : image_(drawChart(workPrecision())), plot_(findPlot(image_)) {}
+
+  // Pixels of `colour` within 3 px of where (x, y) must be drawn (a marker: 7 x 7 = 49 px).
+  int near(double x, double y, const Eigen::Vector3f& colour) const {
+    const int px = static_cast<int>(std::lround(logPixel(x, -3, -1, plot_.left, plot_.right)));
+    const int py = static_cast<int>(std::lround(logPixel(y, -2, 2, plot_.bottom, plot_.top)));
+    return countColour(image_, colour, px - 3, py - 3, px + 4, py + 4);
+  }
+
+  Image image_;
+  Plot plot_;
+};
+
+TEST_F(WorkPrecisionChart, HasTheRequestedSizeAndAPlotFrame) {
+  EXPECT_EQ(image_.width, 960);
+  EXPECT_EQ(image_.height, 540);
+  EXPECT_GT(plot_.width(), 0.8 * 960);
+  EXPECT_GT(plot_.height(), 0.75 * 540);
+}
+
+// Markers sit where the fitted decades put them (within 3 px): the point at the data's least
+// x and greatest y in the plot's top-left corner, the others along the decades.
+TEST_F(WorkPrecisionChart, MarkersLandWhereTheFittedDecadesPutThem) {
+  EXPECT_GE(near(1e-3, 100.0, kRed), 30);
+  EXPECT_GE(near(1e-2, 10.0, kRed), 30);
+  EXPECT_GE(near(1e-1, 1.0, kRed), 30);
+  EXPECT_GE(near(2e-3, 0.5, kBlue), 30);
+  EXPECT_GE(near(2e-2, 0.05, kBlue), 30);
+  EXPECT_GE(near(1.5e-3, 0.02, kGreen), 30);
+  // The line between two markers passes through their midpoint (a straight line in log-log).
+  EXPECT_GE(near(std::sqrt(2e-3 * 2e-2), std::sqrt(0.5 * 0.05), kBlue), 3);
+}
+
+// Values <= 0 or NaN on a log axis are not drawn, nor are the segments that reach them: no blue
+// right of x = 0.03 in the lower three quarters of the plot (the legend sits above).
+TEST_F(WorkPrecisionChart, ValuesALogAxisCannotShowAreNotDrawn) {
+  const int x0 = static_cast<int>(logPixel(0.03, -3, -1, plot_.left, plot_.right));
+  EXPECT_EQ(
+      countColour(image_, kBlue, x0, plot_.top + plot_.height() / 4, plot_.right, plot_.bottom), 0);
+}
+
+// The legend, in the plot's top-right quarter, lists "a" and "b" but not the unlabelled green
+// series (whose point is drawn: see above).
+TEST_F(WorkPrecisionChart, LegendListsLabelledSeriesOnly) {
+  const int x0 = plot_.left + 3 * plot_.width() / 4, y1 = plot_.top + plot_.height() / 4;
+  EXPECT_GE(countColour(image_, kRed, x0, plot_.top, plot_.right, y1), 20);
+  EXPECT_GE(countColour(image_, kBlue, x0, plot_.top, plot_.right, y1), 20);
+  EXPECT_EQ(countColour(image_, kGreen, x0, plot_.top, plot_.right, y1), 0);
+}
+
+// Point labels at the plot's corners are moved inside it: outside the frame, only the tick
+// labels below and left of the plot are drawn (no title, axis labels or legend here).
+TEST(Chart, PointLabelsStayInsideThePlot) {
+  ChartSpec chart;
+  chart.log_x = chart.log_y = true;
+  chart.width = 640;
+  chart.height = 360;
+  chart.series = {{"",
+                   kRed,
+                   {1.0, 1000.0},
+                   {1.0, 1000.0},
+                   SeriesStyle::kMarkers,
+                   {"a long label at a corner", "a long label at a corner"}}};
+  const Image image = drawChart(chart);
+  const Plot plot = findPlot(image);
+  ASSERT_GT(plot.width(), 0);
+  int ink_outside = 0;
+  for (int y = 0; y < plot.bottom - 1; ++y) {
+    for (int x = 0; x < image.width; ++x) {
+      const bool above = y<plot.top - 1, right = x> plot.right + 1;
+      ink_outside += (above || right) && !isWhite(image, x, y);
+    }
+  }
+  EXPECT_EQ(ink_outside, 0);
+}
+
+// A fixed y range is used as given (no padding): a constant at its middle is drawn on the
+// plot's middle row, on a linear axis (0..10, y = 5) and a log axis (1..100, y = 10).
+TEST(Chart, FixedYRangePutsItsMiddleOnTheMiddleRow) {
+  for (const bool log : {false, true}) {
+    ChartSpec chart;
+    chart.width = 640;
+    chart.height = 360;
+    chart.log_y = log;
+    chart.y_min = log ? 1.0 : 0.0;
+    chart.y_max = log ? 100.0 : 10.0;
+    const double y = log ? 10.0 : 5.0;
+    chart.series = {{"", kBlue, {0.0, 10.0}, {y, y}}};
+    const Image image = drawChart(chart);
+    const Plot plot = findPlot(image);
+    const int x = (plot.left + plot.right) / 2, middle = (plot.top + plot.bottom) / 2;
+    double rows = 0.0;
+    int count = 0;
+    for (int r = plot.top + 2; r < plot.bottom - 1; ++r) {
+      if (!hasColour(image, x, r, kBlue)) continue;
+      rows += r;
+      ++count;
+    }
+    ASSERT_GT(count, 0) << (log ? "log" : "linear");
+    EXPECT_NEAR(rows / count, middle, 1.5) << (log ? "log" : "linear");
+  }
+}
+
+// Nothing drawable on a log axis (zero, negative, NaN): the chart is still written, with the
+// series in the legend only.
+TEST(Chart, NothingDrawableStillWritesTheChart) {
+  ChartSpec chart;
+  chart.log_y = true;
+  chart.width = 640;
+  chart.height = 360;
+  chart.series = {{"none",
+                   kRed,
+                   {1.0, 2.0, 3.0},
+                   {0.0, -1.0, std::numeric_limits<double>::quiet_NaN()},
+                   SeriesStyle::kLineAndMarkers,
+                   {"1", "2", "3"}}};
+  const Image image = drawChart(chart);
+  EXPECT_EQ(image.width, 640);
+  EXPECT_EQ(image.height, 360);
+  const Plot plot = findPlot(image);
+  EXPECT_EQ(
+      countColour(image, kRed, plot.left, plot.top + plot.height() / 4, plot.right, plot.bottom),
+      0);
+  EXPECT_GT(countColour(image, kRed, plot.left, plot.top, plot.right, plot.top + plot.height() / 4),
+            0);
+}
+
+}  // namespace
+}  // namespace gf::render
