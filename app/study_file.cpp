@@ -1,4 +1,5 @@
 // Study files: reading, and expanding a study into its runs.
+#include <charconv>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -38,8 +39,21 @@ StudySource sourceAt(const toml::node& n, const std::string& field) {
   return {static_cast<int>(n.source().begin.line), static_cast<int>(n.source().begin.column), field};
 }
 
-// A TOML value as `--set` reads it.
+// A TOML value as `--set` reads it; numbers in their shortest exact form (0.3, not
+// 0.29999999999999999), floats kept floats.
 std::string tomlText(const toml::node& n) {
+  if (const toml::array* a = n.as_array()) {
+    std::string out = "[";
+    for (std::size_t i = 0; i < a->size(); ++i) out.append(i ? ", " : "").append(tomlText(*a->get(i)));
+    return out + "]";
+  }
+  if (n.is_floating_point()) {
+    char b[32];
+    const auto [end, ec] = std::to_chars(b, b + sizeof b, n.as_floating_point()->get());
+    std::string out(b, ec == std::errc() ? end : b);
+    if (out.find_first_of(".eni") == std::string::npos) out += ".0";
+    return out;
+  }
   std::ostringstream s;
   n.visit([&](const auto& v) { s << v; });
   return s.str();

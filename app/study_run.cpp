@@ -75,6 +75,9 @@ void describe(const StudyPlan& plan, const StudyRun& run, const SessionDesc& s, 
   const sim::SceneDesc& scene = s.scene;
   row.run = &run;
   row.series = run.series < 0 ? "reference" : plan.study.series[static_cast<std::size_t>(run.series)].name;
+  if (run.series < 0 && plan.study.series.size() > 1) {  // whose reference, when series differ
+    row.series.append(" (").append(plan.study.series[static_cast<std::size_t>(run.measured_as)].name).append(")");
+  }
   const sim::FingerDesc* f = nullptr;
   for (const sim::FingerDesc& x : scene.fingers) {
     if (!f && (m.finger.empty() || x.name == m.finger)) f = &x;
@@ -258,12 +261,14 @@ std::string reportMd(const StudyPlan& plan, const std::vector<Row>& rows, bool p
   char b[160];
   for (const Row& r : rows) {
     const MeasureResult x = r.measures.empty() ? MeasureResult{} : r.measures.front();
-    std::snprintf(b, sizeof b, " | %.5g | %.5g | %s |", x.measure, x.reference, errorText(m, x.error).c_str());
+    const std::vector<StudyMeasure>& own = measuresOf(plan, *r.run);  // a series may measure otherwise
+    std::snprintf(b, sizeof b, " | %.5g | %.5g | %s |", x.measure, x.reference, errorText(own.front(), x.error).c_str());
     out.append("| ").append(configurationText(r));
     if (r.status != "ok") out.append(" (").append(r.status).append(")");
     out += b;
     for (std::size_t k = 1; k < measures.size(); ++k) {
-      out.append(1, ' ').append(errorText(measures[k], k < r.measures.size() ? r.measures[k].error : NAN)).append(" |");
+      const StudyMeasure& mk = k < own.size() ? own[k] : measures[k];
+      out.append(1, ' ').append(errorText(mk, k < r.measures.size() ? r.measures[k].error : NAN)).append(" |");
     }
     std::snprintf(b, sizeof b, " %.1f | %.1f | %.2f |\n", r.step_median, r.step_p99, r.patch_mean);
     out += b;
@@ -273,7 +278,7 @@ std::string reportMd(const StudyPlan& plan, const std::vector<Row>& rows, bool p
   for (double budget : {10.0, 20.0, 50.0, 100.0}) {
     const Row* best = nullptr;
     for (const Row& r : rows) {
-      if (r.series == "reference" || r.status != "ok" || !std::isfinite(r.error()) || !(r.cost(study.cost) <= budget)) continue;
+      if (r.run->series < 0 || r.status != "ok" || !std::isfinite(r.error()) || !(r.cost(study.cost) <= budget)) continue;
       if (!best || std::abs(r.error()) < std::abs(best->error())) best = &r;
     }
     if (best) {

@@ -11,6 +11,7 @@ GF_PACKAGES=(
   libgtest-dev libgmock-dev libbenchmark-dev
   libcli11-dev libtomlplusplus-dev nlohmann-json3-dev
   ffmpeg
+  parallel
 )
 
 gf_log() { printf '[godfinger] %s\n' "$*" >&2; }
