@@ -232,7 +232,7 @@ int studyCommand(const StudyArgs& a) {
     gf::app::emitStudyJobs(plan, options, a.emit_jobs);
     return 0;
   }
-  if (!a.collect.empty()) return gf::app::collectStudy(plan, a.collect, options.out, true);
+  if (!a.collect.empty()) return gf::app::collectStudy(plan, a.collect, options.out, false);
   return gf::app::runStudy(plan, options);
 }
 

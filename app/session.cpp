@@ -7,6 +7,8 @@
 #include <cstdio>
 #include <filesystem>
 
+#include <unistd.h>
+
 #include "app/frame_driver.hpp"
 #include "app/patch_json.hpp"
 #include "app/scene_file.hpp"
@@ -29,6 +31,11 @@ nlohmann::json effectsJson(const sim::EffectSet& e) {
   nlohmann::json out = nlohmann::json::object();
   for (const sim::EffectSwitch& s : sim::effectSwitches()) out[std::string(s.name)] = e.*s.on;
   return out;
+}
+
+std::string hostName() {
+  char name[256] = {};
+  return gethostname(name, sizeof name - 1) == 0 ? std::string(name) : std::string();
 }
 
 nlohmann::json summaryJson(const SessionDesc& session, const sim::World& world,
@@ -62,7 +69,10 @@ nlohmann::json summaryJson(const SessionDesc& session, const sim::World& world,
                         {"crossing_limit_stops", c.crossing_limit_stops}}},
           {"patch_time_us", {{"calls", c.patch_calls},
                              {"mean", c.patch_calls > 0 ? 1e6 * c.patch_seconds / c.patch_calls : 0.0}}},
-          {"wall_time_s", stats.wall_seconds}};
+          {"wall_time_s", stats.wall_seconds},
+          // When and where the steps ran, so a study can tell runs that shared a machine.
+          {"finished_unix_s", std::chrono::duration<double>(std::chrono::system_clock::now().time_since_epoch()).count()},
+          {"host", hostName()}};
 }
 
 // forces.csv: the force on each listed body other than gravity (N), from its change of velocity

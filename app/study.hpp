@@ -142,8 +142,10 @@ int runStudy(const StudyPlan& plan, const StudyOptions& options);
 void emitStudyJobs(const StudyPlan& plan, const StudyOptions& options, const std::string& jobs_file);
 
 /// Reads the run folders under `runs_dir` (the --out of the runs) and writes results.csv,
-/// work-precision.png and report.md into `out`. `parallel_times` says the step times were taken
-/// with several runs at once (or are of unknown provenance). Returns 0 when every run was found.
+/// work-precision.png and report.md into `out`. The report says the step times were taken with
+/// several runs at once when `parallel_times` is set or when two runs' steps overlapped on one
+/// host (from their summary.json; also when a run does not say). Returns 0 when every run was
+/// found and measured.
 int collectStudy(const StudyPlan& plan, const std::string& runs_dir, const std::string& out, bool parallel_times);
 
 }  // namespace gf::app

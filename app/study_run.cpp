@@ -12,6 +12,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <map>
+#include <optional>
 #include <set>
 
 #include "app/scene_file.hpp"
@@ -246,9 +247,10 @@ std::string reportMd(const StudyPlan& plan, const std::vector<Row>& rows, bool p
   const StudyMeasure& m = measures.front();
   std::string out = "# Study `" + study.name + "`\n\n" + study.summary + "\n\n";
   out += "Study file: `" + study.source + "`. " + std::to_string(rows.size()) + " runs. ";
-  out += parallel_times ? "Step times were taken with several runs at once (or by an external job runner): they "
-                          "include contention for the cores; use `--jobs 1` for published figures.\n\n"
-                        : "Step times were taken one run at a time (`--jobs 1`).\n\n";
+  out += parallel_times ? "Step times were taken with several runs at once on one machine (or a run does not say "
+                          "when and where it ran): they include contention for the cores; use `--jobs 1` for "
+                          "published figures.\n\n"
+                        : "Step times were taken one run at a time on each machine.\n\n";
   out += "Error: ";
   out += m.error == ErrorKind::kRelative    ? "measure / reference - 1.\n\n"
          : m.error == ErrorKind::kAbsolute  ? "measure - reference, in the measure's unit.\n\n"
@@ -300,6 +302,26 @@ pid_t spawnShell(const std::string& line) {
   return pid;
 }
 
+// True when two runs' steps overlapped in time on one host, or when a run does not say when and
+// where it ran (summary.json's finished_unix_s, wall_time_s and host).
+bool ranAtOnce(const std::vector<std::optional<RunOutputs>>& outputs) {
+  std::map<std::string, std::vector<std::pair<double, double>>> spans;  // host -> [start, end]
+  for (const std::optional<RunOutputs>& o : outputs) {
+    if (!o) continue;
+    const nlohmann::json& s = o->summary;
+    if (!s.contains("finished_unix_s") || !s.contains("wall_time_s") || !s.contains("host")) return true;
+    const double end = s["finished_unix_s"].get<double>();
+    spans[s["host"].get<std::string>()].emplace_back(end - s["wall_time_s"].get<double>(), end);
+  }
+  for (auto& [host, list] : spans) {
+    std::sort(list.begin(), list.end());
+    for (std::size_t i = 1; i < list.size(); ++i) {
+      if (list[i].first < list[i - 1].second) return true;
+    }
+  }
+  return false;
+}
+
 }  // namespace
 
 int collectStudy(const StudyPlan& plan, const std::string& runs_dir, const std::string& out, bool parallel_times) {
@@ -342,6 +364,7 @@ int collectStudy(const StudyPlan& plan, const std::string& runs_dir, const std::
       }
     }
   }
+  parallel_times = parallel_times || ranAtOnce(outputs);
   std::error_code ec;
   fs::create_directories(out, ec);
   if (ec) throw std::runtime_error(out + ": cannot create folder: " + ec.message());
@@ -416,7 +439,7 @@ int runStudy(const StudyPlan& plan, const StudyOptions& options) {
   sigaction(SIGINT, &old_int, nullptr);
   sigaction(SIGTERM, &old_term, nullptr);
   if (g_interrupted) std::fprintf(stderr, "godfinger study: interrupted; collecting the runs that finished\n");
-  const int collected = collectStudy(plan, options.out, options.out, options.jobs > 1);
+  const int collected = collectStudy(plan, options.out, options.out, false);
   if (g_interrupted) return 130;
   return failed.empty() && collected == 0 ? 0 : 1;
 }

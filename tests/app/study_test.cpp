@@ -222,6 +222,8 @@ TEST(StudyJobs, EmitParallelCollectMatchesADirectRun) {
   const fs::path direct = freshDir("gf_study_direct"), emitted = freshDir("gf_study_emitted");
   const StudyPlan plan = expandStudy(loadStudyFile("torsion"), true, {});
   ASSERT_EQ(runStudy(plan, options(direct, 1)), 0);
+  EXPECT_NE(readFile(direct / "report.md").find("taken one run at a time"), std::string::npos)
+      << "runs one after another do not overlap";
   fs::create_directories(emitted);
   const fs::path jobs = emitted / "jobs.txt";
   emitStudyJobs(plan, options(emitted, 1), jobs.string());
