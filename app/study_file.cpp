@@ -436,7 +436,8 @@ StudyPlan expandStudy(const StudyDesc& study, bool quick, const std::vector<std:
 
 std::string runCommandLine(const std::string& godfinger, const std::string& out_dir, const StudyRun& run) {
   const std::string dir = (fs::absolute(out_dir) / "runs" / run.id).lexically_normal().string();
-  std::string line = "mkdir -p " + shellQuote(dir) + " && " + shellQuote(godfinger) + " run " +
+  // exec: the job runner (or the study) waits on godfinger itself, and a Ctrl-C reaches it.
+  std::string line = "mkdir -p " + shellQuote(dir) + " && exec " + shellQuote(godfinger) + " run " +
                      shellQuote(fs::absolute(run.scene).string()) + " --out " + shellQuote(dir);
   for (const StudyOverride& o : run.overrides) line += " --set " + shellQuote(o.text);
   return line + " > " + shellQuote(dir + "/run.log") + " 2>&1";

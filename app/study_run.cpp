@@ -341,6 +341,16 @@ int collectStudy(const StudyPlan& plan, const std::string& runs_dir, const std::
       rows[i].step_median = summary.at("step_time_us").at("median").get<double>();
       rows[i].step_p99 = summary.at("step_time_us").at("p99").get<double>();
       rows[i].patch_mean = summary.at("patch_time_us").at("mean").get<double>();
+      // A run stopped early (Ctrl-C) wrote valid files for the time it reached: not measured.
+      const sim::SceneDesc& scene = session.scene;
+      const long expected = std::lround(scene.duration * scene.world.haptic_rate_hz);
+      if (summary.at("counters").at("steps").get<long>() < expected) {
+        std::fprintf(stderr, "godfinger study: %s: stopped after %ld of %ld steps\n", dir.c_str(),
+                     summary.at("counters").at("steps").get<long>(), expected);
+        rows[i].status = "incomplete";
+        outputs[i].reset();
+        ++missing;
+      }
     } catch (const std::exception& e) {
       std::fprintf(stderr, "godfinger study: %s\n", e.what());
       rows[i].status = "missing";

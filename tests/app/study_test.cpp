@@ -108,6 +108,7 @@ INSTANTIATE_TEST_SUITE_P(Study, BundledStudy,
 // A hand-made run folder: a pressed puck (the pressed-puck scene) spinning up at a known angular
 // acceleration while the finger presses with a known force.
 struct HandMadeRun {
+  long steps = 1000;        // the scene's 1 s at 1 kHz: a complete run
   double inertia = 8e-4;    // kg m^2 about y
   double alpha = 25.0;      // rad/s^2 from the load's start (0.6 s)
   double press = 4.0;       // N
@@ -117,7 +118,8 @@ struct HandMadeRun {
 
 void writeRun(const fs::path& dir, const HandMadeRun& h) {
   fs::create_directories(dir);
-  std::ofstream(dir / "summary.json") << R"({"step_time_us": {"median": 10.0, "p99": 20.0}, )"
+  std::ofstream(dir / "summary.json") << R"({"step_time_us": {"median": 10.0, "p99": 20.0}, "counters": {"steps": )"
+                                      << h.steps << "}, "
                                       << R"("patch_time_us": {"mean": 1.0, "calls": 1}, )"
                                       << R"("bodies": [{"name": "puck", "mass_kg": 1.0, "inertia_kg_m2": [0.0005, )"
                                       << h.inertia << ", 0.0005]}]}\n";
@@ -213,6 +215,34 @@ axes = [{ field = "fingers.index.n_sgo", values = [4, 8] }]
   }
   EXPECT_EQ(csv.rows[1][static_cast<std::size_t>(csv.column("fingers.index.n_sgo"))], "4");
   EXPECT_EQ(csv.rows[2][static_cast<std::size_t>(csv.column("n_sgo"))], "8");
+}
+
+// A run that stopped early (its summary counts fewer steps than the scene's duration asks) is
+// marked incomplete and not measured, and the collection says the study is not whole.
+TEST(StudyMeasure, RunStoppedEarlyIsIncompleteNotMeasured) {
+  const fs::path dir = freshDir("gf_study_incomplete");
+  const fs::path study = writeStudy(dir, R"(
+[[measures]]
+kind = "friction_torque"
+body = "puck"
+window = [0.7, 1.0]
+reference = "two_thirds_mu_f_r"
+[[series]]
+name = "only"
+axes = [{ field = "fingers.index.n_sgo", values = [4, 8] }]
+)");
+  const StudyPlan plan = expandStudy(loadStudyFile(study.string()), false, {});
+  ASSERT_EQ(plan.runs.size(), 2u);
+  HandMadeRun h;
+  writeRun(dir / "runs" / plan.runs[0].id, h);
+  h.steps = 800;  // stopped at 0.8 s
+  writeRun(dir / "runs" / plan.runs[1].id, h);
+  EXPECT_NE(collectStudy(plan, dir.string(), dir.string(), false), 0);
+  const Csv csv = readCsv(dir / "results.csv");
+  ASSERT_EQ(csv.rows.size(), 2u);
+  EXPECT_EQ(csv.rows[0][static_cast<std::size_t>(csv.column("status"))], "ok");
+  EXPECT_EQ(csv.rows[1][static_cast<std::size_t>(csv.column("status"))], "incomplete");
+  EXPECT_EQ(csv.rows[1][static_cast<std::size_t>(csv.column("error"))], "nan");
 }
 
 // Emitting the command lines, running them with GNU parallel from another folder and collecting
