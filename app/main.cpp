@@ -223,7 +223,26 @@ void addStudy(CLI::App& app, StudyArgs& a) {
 
 int studyCommand(const StudyArgs& a) {
   const gf::app::StudyDesc study = gf::app::loadStudyFile(a.study);
-  const gf::app::StudyPlan plan = gf::app::expandStudy(study, a.quick, a.overrides);
+  bool quick = a.quick;
+  std::vector<std::string> overrides = a.overrides;
+  if (!a.collect.empty()) {
+    if (!std::filesystem::is_directory(a.collect)) {
+      throw InputError("command line", 0, 0, "--collect", a.collect + ": no such folder");
+    }
+    // The runs' folder names come from the grid: collect the grid they were made with.
+    if (const std::optional<gf::app::StudyGrid> grid = gf::app::readStudyGrid(a.collect)) {
+      if ((a.quick && !grid->quick) || (!a.overrides.empty() && a.overrides != grid->extra)) {
+        throw InputError("command line", 0, 0, "--collect",
+                         a.collect + " holds runs made " + (grid->quick ? "with" : "without") + " --quick and " +
+                             std::to_string(grid->extra.size()) + " --set (see its grid.json); give the same or none");
+      }
+      quick = grid->quick;
+      overrides = grid->extra;
+    }
+  }
+  const gf::app::StudyPlan plan = gf::app::expandStudy(study, quick, overrides);
+  // The --quick grid's own overrides are checked too, whichever grid runs.
+  if (!quick) gf::app::expandStudy(study, true, overrides);
   gf::app::StudyOptions options;
   options.out = a.out.empty() ? (a.collect.empty() ? "study-" + study.name : a.collect) : a.out;
   options.jobs = a.jobs;

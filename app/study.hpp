@@ -4,6 +4,7 @@
 // are then collected from the run folders into results.csv, a work-precision chart and a report.
 #pragma once
 
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -113,6 +114,8 @@ struct StudyRun {
 
 struct StudyPlan {
   StudyDesc study;
+  bool quick = false;              ///< the grid: --quick
+  std::vector<std::string> extra;  ///< and the command's --set
   std::vector<StudyRun> runs;  ///< reference runs first
 };
 
@@ -137,6 +140,17 @@ struct StudyOptions {
 /// Runs every configuration (jobs at a time), then collects. Returns the process exit code:
 /// 0 when every run succeeded and was measured.
 int runStudy(const StudyPlan& plan, const StudyOptions& options);
+
+/// How a study's grid was made: recorded as DIR/grid.json by a run or an emit, so that --collect
+/// rebuilds the same runs.
+struct StudyGrid {
+  std::string study;               ///< the study file
+  bool quick = false;
+  std::vector<std::string> extra;  ///< the command's --set
+};
+void writeStudyGrid(const std::string& dir, const StudyGrid& grid);
+/// The grid recorded in `dir`, if any. Throws InputError for a malformed record.
+std::optional<StudyGrid> readStudyGrid(const std::string& dir);
 
 /// Writes one command line per run into `jobs_file`.
 void emitStudyJobs(const StudyPlan& plan, const StudyOptions& options, const std::string& jobs_file);

@@ -195,7 +195,8 @@ bool readReferenceRun(Reader& parent, std::vector<StudyOverride>& set, std::vect
 
 std::string resolveIn(const std::string& base_dir, const std::string& scene) {
   const fs::path p = fs::path(base_dir) / scene;
-  if (scene.find('/') != std::string::npos || fs::is_regular_file(p)) return fs::absolute(p).lexically_normal().string();
+  if (fs::is_regular_file(p)) return fs::absolute(p).lexically_normal().string();
+  if (scene.find('/') != std::string::npos) throw InputError(p.string(), 0, 0, "", "no such scene file");
   return fs::absolute(resolveScenePath(scene)).string();
 }
 
@@ -219,7 +220,8 @@ std::string shellQuote(const std::string& s) {
 // A value as written in results, without the quotes of a TOML string.
 std::string valueText(const std::string& toml_value) {
   std::string v = toml_value;
-  if (v.size() >= 2 && v.front() == '"' && v.back() == '"') v = v.substr(1, v.size() - 2);
+  const bool quoted = v.size() >= 2 && (v.front() == '"' || v.front() == '\'') && v.back() == v.front();
+  if (quoted) v = v.substr(1, v.size() - 2);
   return v;
 }
 
@@ -232,8 +234,11 @@ SessionDesc checkRun(const StudyDesc& study, const StudyRun& run) {
   } catch (const InputError& e) {
     for (auto o = run.overrides.rbegin(); o != run.overrides.rend(); ++o) {
       const std::string key = o->text.substr(0, o->text.find('='));
+      // The override's own field, a field below it, or a sibling in the table it writes into (a
+      // finger named by mistake lacks its device).
+      const std::string parent = key.substr(0, key.rfind('.') + 1);
       const bool same = e.field() == key || e.field().rfind(key + ".", 0) == 0 || key.rfind(e.field() + ".", 0) == 0 ||
-                        e.file().rfind("--set " + o->text, 0) == 0;
+                        (!parent.empty() && e.field().rfind(parent, 0) == 0) || e.file().rfind("--set " + o->text, 0) == 0;
       if (!same) continue;
       if (o->source.line == 0) throw InputError("command line", 0, 0, "--set " + o->text, e.field() + ": " + e.reason());
       // A field the scene does not have is the axis' fault, a bad value the value's.
@@ -369,6 +374,8 @@ StudyDesc loadStudyFile(const std::string& name_or_path) {
 StudyPlan expandStudy(const StudyDesc& study, bool quick, const std::vector<std::string>& extra) {
   StudyPlan plan;
   plan.study = study;
+  plan.quick = quick;
+  plan.extra = extra;
   std::vector<StudyOverride> command;
   for (const std::string& e : extra) command.push_back({e, {}, {}});
   std::vector<StudyRun> references, runs;

@@ -94,6 +94,21 @@ class View {
     }
     return std::abs(sum / static_cast<double>(rows_.size()));
   }
+  // Fails unless the finger pressed along the axis at every row of the window (a friction
+  // limit measured after the body slid out from under the finger means nothing).
+  void checkPressed() const {
+    const std::string f = finger_->name;
+    const double mean_press = normalForce();
+    for (std::size_t r : rows_) {
+      const double press =
+          std::abs(Vec3(run_.column(f + ".fx")[r], run_.column(f + ".fy")[r], run_.column(f + ".fz")[r]).dot(m_.axis));
+      if (!(press > 0.2 * mean_press) || mean_press <= 0.0) {
+        char b[96];
+        std::snprintf(b, sizeof b, "the finger did not press along the axis at t = %.4f s (lost contact?)", t_[r]);
+        fail(b);
+      }
+    }
+  }
   // The finger's mean patch radius over the window rows where it had one (m); 0 when it had
   // none (a god-object or soft finger has no area).
   double patchRadius() const {
@@ -145,6 +160,7 @@ class View {
 // Applied torque about the axis minus I times the fitted angular acceleration: the friction
 // torque while the body spins (N m).
 double frictionTorque(const StudyMeasure& m, const View& v) {
+  v.checkPressed();
   std::vector<double> t = v.times(), w, applied, inertia;
   for (std::size_t r : v.rows()) {
     w.push_back(v.bodyVector(r, ".wx", ".wy", ".wz").dot(m.axis));
@@ -156,6 +172,7 @@ double frictionTorque(const StudyMeasure& m, const View& v) {
 
 // Applied force minus m times the fitted acceleration, across the axis: the friction force (N).
 double frictionForce(const StudyMeasure& m, const View& v) {
+  v.checkPressed();
   const std::vector<double> t = v.times();
   Vec3 applied = Vec3::Zero();
   for (std::size_t r : v.rows()) applied += v.loads(v.t(r)).first / static_cast<double>(v.rows().size());

@@ -11,6 +11,7 @@
 #include <csignal>
 #include <cstdio>
 #include <filesystem>
+#include <fstream>
 #include <map>
 #include <optional>
 #include <set>
@@ -76,8 +77,26 @@ void describe(const StudyPlan& plan, const StudyRun& run, const SessionDesc& s, 
   const sim::SceneDesc& scene = s.scene;
   row.run = &run;
   row.series = run.series < 0 ? "reference" : plan.study.series[static_cast<std::size_t>(run.series)].name;
-  if (run.series < 0 && plan.study.series.size() > 1) {  // whose reference, when series differ
-    row.series.append(" (").append(plan.study.series[static_cast<std::size_t>(run.measured_as)].name).append(")");
+  if (run.series < 0) {  // whose reference: one series', or the n-th of several shared ones
+    int references = 0, index = 0;
+    for (const StudyRun& other : plan.runs) {
+      if (other.series < 0) ++references;
+      if (&other == &run) index = references;
+    }
+    const std::set<int> series_using = [&] {
+      std::set<int> out;
+      for (const StudyRun& other : plan.runs) {
+        if (other.series >= 0 && other.reference >= 0 && plan.runs[static_cast<std::size_t>(other.reference)].id == run.id) {
+          out.insert(other.series);
+        }
+      }
+      return out;
+    }();
+    if (series_using.size() == 1) {
+      row.series.append(" (").append(plan.study.series[static_cast<std::size_t>(*series_using.begin())].name).append(")");
+    } else if (references > 1) {
+      row.series.append(" ").append(std::to_string(index));
+    }
   }
   const sim::FingerDesc* f = nullptr;
   for (const sim::FingerDesc& x : scene.fingers) {
@@ -213,9 +232,10 @@ render::ChartSpec workPrecisionChart(const StudyPlan& plan, const std::vector<Ro
   chart.log_x = chart.log_y = true;
   chart.width = 1280;
   chart.height = 720;
-  static const Eigen::Vector3f kColours[] = {{0.85f, 0.2f, 0.15f}, {0.95f, 0.6f, 0.1f}, {0.15f, 0.45f, 0.85f},
-                                             {0.1f, 0.6f, 0.3f},   {0.55f, 0.3f, 0.75f}, {0.4f, 0.4f, 0.4f},
-                                             {0.0f, 0.7f, 0.75f},  {0.75f, 0.45f, 0.3f}};
+  static const Eigen::Vector3f kColours[] = {
+      {0.85f, 0.2f, 0.15f}, {0.95f, 0.6f, 0.1f}, {0.15f, 0.45f, 0.85f}, {0.1f, 0.6f, 0.3f},
+      {0.55f, 0.3f, 0.75f}, {0.4f, 0.4f, 0.4f},  {0.0f, 0.7f, 0.75f},   {0.75f, 0.45f, 0.3f},
+      {0.9f, 0.4f, 0.7f},   {0.6f, 0.75f, 0.1f}, {0.1f, 0.2f, 0.5f},    {0.5f, 0.1f, 0.1f}};
   std::size_t colour = 0;
   for (const StudySeries& s : plan.study.series) {
     const std::vector<const Row*> points = chartable(rows, s.name, plan.study.cost);
@@ -235,6 +255,10 @@ render::ChartSpec workPrecisionChart(const StudyPlan& plan, const std::vector<Ro
         front.y.push_back(best);
       }
     }
+    // |error| 0 has no place on a log axis: say how many points that leaves out.
+    int zeros = 0;
+    for (const Row* r : points) zeros += r->error() == 0.0;
+    if (zeros > 0) markers.label += " (" + std::to_string(zeros) + " at error 0, not drawn)";
     chart.series.push_back(std::move(front));
     chart.series.push_back(std::move(markers));
   }
@@ -246,7 +270,9 @@ std::string reportMd(const StudyPlan& plan, const std::vector<Row>& rows, bool p
   const std::vector<StudyMeasure>& measures = study.series.front().measures;
   const StudyMeasure& m = measures.front();
   std::string out = "# Study `" + study.name + "`\n\n" + study.summary + "\n\n";
-  out += "Study file: `" + study.source + "`. " + std::to_string(rows.size()) + " runs. ";
+  out += "Study file: `" + study.source + "`. " + std::to_string(rows.size()) + " runs" +
+         (plan.quick ? " (the --quick grid)" : "") + ". ";
+  for (const std::string& e : plan.extra) out += "`--set " + e + "` ";
   out += parallel_times ? "Step times were taken with several runs at once on one machine (or a run does not say "
                           "when and where it ran): they include contention for the cores; use `--jobs 1` for "
                           "published figures.\n\n"
@@ -255,7 +281,9 @@ std::string reportMd(const StudyPlan& plan, const std::vector<Row>& rows, bool p
   out += m.error == ErrorKind::kRelative    ? "measure / reference - 1.\n\n"
          : m.error == ErrorKind::kAbsolute  ? "measure - reference, in the measure's unit.\n\n"
                                             : "RMS deviation from the reference path / its RMS displacement.\n\n";
-  out += "| configuration | " + m.name + " | reference | error |";
+  bool same_measure = true;
+  for (const StudySeries& s : study.series) same_measure = same_measure && s.measures.front().name == m.name;
+  out += "| configuration | " + (same_measure ? m.name : std::string("measure (its series')")) + " | reference | error |";
   for (std::size_t k = 1; k < measures.size(); ++k) out += " " + measures[k].name + " error |";
   out += " step us (median) | step us (p99) | patch us |\n|---|---|---|---|";
   for (std::size_t k = 1; k < measures.size(); ++k) out += "---|";
@@ -276,11 +304,14 @@ std::string reportMd(const StudyPlan& plan, const std::vector<Row>& rows, bool p
     out += b;
   }
   out += "\n## The most accurate configuration per budget\n\n";
-  out += "Budget on the " + costLabel(study.cost) + "; reference runs left out.\n\n| budget (us) | configuration | error | cost (us) |\n|---|---|---|---|\n";
+  out += "Budget on the " + costLabel(study.cost) + "; reference runs left out, and runs measured otherwise than " +
+         "the first series (`" + m.name + "`).\n\n| budget (us) | configuration | error | cost (us) |\n|---|---|---|---|\n";
   for (double budget : {10.0, 20.0, 50.0, 100.0}) {
     const Row* best = nullptr;
     for (const Row& r : rows) {
       if (r.run->series < 0 || r.status != "ok" || !std::isfinite(r.error()) || !(r.cost(study.cost) <= budget)) continue;
+      const StudyMeasure& own = measuresOf(plan, *r.run).front();
+      if (own.kind != m.kind || own.error != m.error || own.reference != m.reference) continue;  // not comparable
       if (!best || std::abs(r.error()) < std::abs(best->error())) best = &r;
     }
     if (best) {
@@ -381,26 +412,55 @@ int collectStudy(const StudyPlan& plan, const std::string& runs_dir, const std::
   writeFileAtomically((fs::path(out) / "results.csv").string(), resultsCsv(plan, rows));
   writeFileAtomically((fs::path(out) / "report.md").string(), reportMd(plan, rows, parallel_times));
   render::writeChartPng(workPrecisionChart(plan, rows), (fs::path(out) / "work-precision.png").string());
-  int unmeasured = 0;
-  for (const Row& r : rows) unmeasured += r.status == "unmeasured";
-  std::printf("%s: %zu runs (%d missing, %d unmeasured); wrote %s/results.csv, report.md, work-precision.png\n",
-              plan.study.name.c_str(), rows.size(), missing, unmeasured, out.c_str());
+  int unmeasured = 0, incomplete = 0, absent = 0;
+  for (const Row& r : rows) {
+    unmeasured += r.status == "unmeasured";
+    incomplete += r.status == "incomplete";
+    absent += r.status == "missing";
+  }
+  std::printf("%s: %zu runs (%d missing, %d incomplete, %d unmeasured); wrote %s/results.csv, report.md, "
+              "work-precision.png\n",
+              plan.study.name.c_str(), rows.size(), absent, incomplete, unmeasured, out.c_str());
   return missing + unmeasured == 0 ? 0 : 1;
+}
+
+void writeStudyGrid(const std::string& dir, const StudyGrid& grid) {
+  std::error_code ec;
+  fs::create_directories(dir, ec);
+  if (ec) throw std::runtime_error(dir + ": cannot create folder: " + ec.message());
+  const nlohmann::json j = {{"study", grid.study}, {"quick", grid.quick}, {"set", grid.extra}};
+  writeFileAtomically((fs::path(dir) / "grid.json").string(), j.dump(1) + "\n");
+}
+
+std::optional<StudyGrid> readStudyGrid(const std::string& dir) {
+  const fs::path path = fs::path(dir) / "grid.json";
+  if (!fs::exists(path)) return std::nullopt;
+  std::ifstream in(path);
+  try {
+    const nlohmann::json j = nlohmann::json::parse(in);
+    return StudyGrid{j.at("study").get<std::string>(), j.at("quick").get<bool>(),
+                     j.at("set").get<std::vector<std::string>>()};
+  } catch (const nlohmann::json::exception& e) {
+    throw InputError(path.string(), 0, 0, "", std::string("not a study grid record: ") + e.what());
+  }
 }
 
 void emitStudyJobs(const StudyPlan& plan, const StudyOptions& options, const std::string& jobs_file) {
   std::string text;
   for (const StudyRun& r : plan.runs) text += runCommandLine(options.godfinger, options.out, r) + "\n";
   writeFileAtomically(jobs_file, text);
-  std::printf("%s: %zu command lines in %s; run them (e.g. parallel < %s), then: godfinger study %s --collect %s\n",
+  writeStudyGrid(options.out, {plan.study.source, plan.quick, plan.extra});
+  std::printf("%s: %zu command lines in %s; run them (e.g. parallel --will-cite < %s), then: godfinger study %s "
+              "--collect %s (the grid is recorded in %s/grid.json)\n",
               plan.study.name.c_str(), plan.runs.size(), jobs_file.c_str(), jobs_file.c_str(), plan.study.source.c_str(),
-              options.out.c_str());
+              options.out.c_str(), options.out.c_str());
 }
 
 int runStudy(const StudyPlan& plan, const StudyOptions& options) {
   std::error_code ec;
   fs::create_directories(fs::path(options.out) / "runs", ec);
   if (ec) throw std::runtime_error(options.out + ": cannot create folder: " + ec.message());
+  writeStudyGrid(options.out, {plan.study.source, plan.quick, plan.extra});
   g_interrupted = false;
   struct sigaction action{}, old_int{}, old_term{};
   action.sa_handler = onStudySignal;
@@ -410,6 +470,7 @@ int runStudy(const StudyPlan& plan, const StudyOptions& options) {
   std::map<pid_t, std::size_t> running;
   std::size_t next = 0, done = 0;
   std::vector<std::string> failed;
+  bool forwarded = false;
   const std::size_t total = plan.runs.size();
   while (done < total) {
     while (!g_interrupted && next < total && running.size() < static_cast<std::size_t>(std::max(1, options.jobs))) {
@@ -423,6 +484,10 @@ int runStudy(const StudyPlan& plan, const StudyOptions& options) {
       ++next;
     }
     if (running.empty()) break;
+    if (g_interrupted && !forwarded) {  // a signal sent to the study alone reaches its runs too
+      for (const auto& [child, index] : running) kill(child, SIGINT);
+      forwarded = true;
+    }
     int status = 0;
     const pid_t pid = waitpid(-1, &status, 0);
     if (pid < 0) {

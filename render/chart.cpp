@@ -105,7 +105,8 @@ Range fitLinearY(std::vector<double> v, const ChartSpec& chart) {
 }
 
 // Log axis: the positive data's full span, snapped outward to decades when it is more than
-// one decade (at least 0.2 decade), then padded by kLogPad of its span in decades.
+// one decade (at least one decade, centred on the data, so a tick is always labelled), then
+// padded by kLogPad of its span in decades.
 Range fitLog(const std::vector<double>& v) {
   if (v.empty()) return {1.0, 10.0};
   const auto [lo, hi] = std::minmax_element(v.begin(), v.end());
@@ -114,10 +115,10 @@ Range fitLog(const std::vector<double>& v) {
     a = std::floor(a + 1e-9);
     b = std::ceil(b - 1e-9);
   }
-  if (b - a < 0.2) {
+  if (b - a < 1.0) {
     const double middle = 0.5 * (a + b);
-    a = middle - 0.1;
-    b = middle + 0.1;
+    a = middle - 0.5;
+    b = middle + 0.5;
   }
   const double pad = kLogPad * (b - a);
   return {std::pow(10.0, a - pad), std::pow(10.0, b + pad)};

@@ -29,8 +29,8 @@ struct ChartSeries {
 
 /// A chart: axes fitted to the data, ticks, labels and a legend in the plot's top-right corner.
 /// A linear x axis spans the data; a linear y axis the 0.2 % to 99.8 % quantiles, padded by 5 %.
-/// A log axis spans the positive data, snapped outward to decades when that is more than one
-/// decade, then padded by 4 % of its span in decades on each side; it has a tick at each decade
+/// A log axis spans the positive data (at least one decade, centred on it), snapped outward to
+/// decades when that is more than one decade, then padded by 4 % of its span in decades on each side; it has a tick at each decade
 /// (labelled 1e-3, 0.01, 1, 100, ...) and faint minor lines at 2..9 times a decade, the 2 and 5
 /// labelled too when the axis spans less than a decade.
 struct ChartSpec {
