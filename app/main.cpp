@@ -32,6 +32,7 @@ struct RunArgs {
   bool realtime = false;
   bool frames = false;
   std::string video, camera;
+  std::string expectations = "check";
 };
 
 const gf::sim::Setting<gf::sim::FingerDesc>& fingerSetting(std::string_view name) {
@@ -73,6 +74,9 @@ void addRun(CLI::App& app, RunArgs& a) {
   run->add_flag("--frames", a.frames, "Write frames/000000.png ... at 60 frames per simulated second");
   run->add_option("--video", a.video, "Write an MP4 of the frames (H.264, via ffmpeg)");
   run->add_option("--camera", a.camera, "Camera of the scene to render (default: its first)");
+  run->add_option("--expectations", a.expectations, "check: exit 3 when an [expect] of the scene fails (default); "
+                                                    "report: only print them and write them into summary.json")
+      ->check(CLI::IsMember({"check", "report"}));
 }
 
 void addPatch(CLI::App& app, PatchArgs& a) {
@@ -122,12 +126,15 @@ int runCommand(const RunArgs& a) {
     throw InputError("command line", 0, 0, "--video", a.video + " is a folder; give a file such as out.mp4");
   }
   gf::app::SessionOptions options{a.out, a.realtime, true, a.frames, a.video, a.camera};
+  std::vector<gf::app::ExpectFailure> failed;
+  options.expect_failures = &failed;
   const gf::sim::LoopStats stats = gf::app::runSession(session, options);
   std::printf("%s: %ld steps, step median %.1f us, p99 %.1f us; wrote %s/\n", session.scene.name.c_str(),
               stats.steps, stats.step_median_us, stats.step_p99_us, a.out.c_str());
   if (a.frames) std::printf("frames: %s/frames/\n", a.out.c_str());
   if (!a.video.empty()) std::printf("video: %s\n", a.video.c_str());
-  return 0;
+  // 3: the run was fine, the scene's expectations were not.
+  return failed.empty() || a.expectations == "report" ? 0 : 3;
 }
 
 // The close-up of a computed patch: the mesh as a static body, the patch as one finger's contact.

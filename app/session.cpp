@@ -259,7 +259,9 @@ sim::LoopStats runSession(const SessionDesc& session, const SessionOptions& opti
                          options.realtime ? sim::ClockMode::kRealtime : sim::ClockMode::kOffline};
   loop.live = &live;
   if (frames) frames->start(world);
+  ExpectChecker expect(session.expect, world);
   const sim::LoopStats stats = sim::runHapticLoop(world, devices, loop, [&](const sim::World& w) {
+    expect.afterStep(w);
     if (session.record.trace) trace.record(w);
     if (!forces.empty()) forces.record(w, dt);
     if (frames) frames->afterStep(world, dt);
@@ -285,6 +287,14 @@ sim::LoopStats runSession(const SessionDesc& session, const SessionOptions& opti
   }
   if (session.record.force_chart) writeForceChart(session, forces, *renderer, dir / "forces.png");
   nlohmann::json summary = summaryJson(session, world, stats, options.realtime);
+  const std::vector<ExpectFailure> failed = expect.finish(world);
+  for (const ExpectFailure& f : failed) std::fprintf(stderr, "%s: %s\n", scene.name.c_str(), f.text().c_str());
+  summary["expectations"] = {{"checks", expect.json()}, {"failed", failed.size()}};
+  if (world.counters().nan_recoveries > 0) {  // loud, whatever the scene expects
+    std::fprintf(stderr, "%s: warning: %ld steps were not finite and were rolled back\n", scene.name.c_str(),
+                 world.counters().nan_recoveries);
+  }
+  if (options.expect_failures) *options.expect_failures = failed;
   if (renderer) {
     summary["render"] = renderJson(renderer->finish(), frames ? frames->frames() : 0);
     if (frames) summary["overlay_changes"] = changesJson(frames->changes(), scene);

@@ -18,6 +18,8 @@ struct SessionOptions {
   std::string video_path;       ///< MP4 of the frames (ffmpeg); empty: none
   std::string camera;           ///< camera of the frame stream; empty: the scene's first
   bool close_ups = true;        ///< close-up PNG beside each contact snapshot
+  /// When set, receives the scene's expectations that failed (also printed and in summary.json)
+  std::vector<ExpectFailure>* expect_failures = nullptr;
 };
 
 /// The camera called `name` in the session (the first when empty; a default view of the scene

@@ -4,6 +4,7 @@
 #include <string>
 #include <vector>
 
+#include "app/expectations.hpp"
 #include "render/view_desc.hpp"
 #include "sim/scene_desc.hpp"
 
@@ -41,6 +42,7 @@ struct SessionDesc {
   std::string source;        ///< the file it came from ("" for scenes made in code)
   std::vector<std::string> overrides;  ///< the --set FIELD=VALUE applied, in order
   RecordSettings record;
+  ExpectDesc expect;  ///< [expect]: what the run must show
   ViewSettings view;
   std::vector<CameraDesc> cameras;
 };

@@ -445,7 +445,8 @@ std::string runCommandLine(const std::string& godfinger, const std::string& out_
   const std::string dir = (fs::absolute(out_dir) / "runs" / run.id).lexically_normal().string();
   // exec: the job runner (or the study) waits on godfinger itself, and a Ctrl-C reaches it.
   std::string line = "mkdir -p " + shellQuote(dir) + " && exec " + shellQuote(godfinger) + " run " +
-                     shellQuote(fs::absolute(run.scene).string()) + " --out " + shellQuote(dir);
+                     shellQuote(fs::absolute(run.scene).string()) + " --out " + shellQuote(dir) +
+                     " --expectations report";  // a study measures; the scene's [expect] is not its business
   for (const StudyOverride& o : run.overrides) line += " --set " + shellQuote(o.text);
   return line + " > " + shellQuote(dir + "/run.log") + " 2>&1";
 }

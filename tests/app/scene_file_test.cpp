@@ -352,5 +352,38 @@ TEST(BundledScenes, EveryOneLoadsAndRuns) {
   }
 }
 
+// [expect] is read with its limits, and a body, finger or value it cannot check is named with
+// file, line and field.
+TEST(SceneFile, ExpectationsAreReadAndBadOnesNamed) {
+  const SessionDesc s = parseSceneText(kMinimal + R"(
+[expect]
+max_speed = 2.0
+energy_growth = 0.01
+[expect.bodies.ball]
+stays_above = 0.01
+max_rotation_deg = 5.0
+after = 0.1
+[expect.fingers.left]
+min_sgo = 3
+window = [0.1, 0.2]
+)", "scene.toml", "");
+  EXPECT_TRUE(s.expect.finite);
+  EXPECT_EQ(*s.expect.max_speed, 2.0);
+  EXPECT_EQ(*s.expect.energy_growth, 0.01);
+  EXPECT_EQ(*s.expect.bodies.at("ball").stays_above, 0.01);
+  EXPECT_EQ(*s.expect.bodies.at("ball").max_rotation_deg, 5.0);
+  EXPECT_EQ(s.expect.bodies.at("ball").after, 0.1);
+  EXPECT_EQ(*s.expect.fingers.at("left").min_sgo, 3);
+  EXPECT_EQ(s.expect.fingers.at("left").from, 0.1);
+  EXPECT_STREQ(errorOf(kMinimal + "[expect.bodies.ground]\nstays_above = 0.0\n").what(),
+               "scene.toml:15:1: expect.bodies.ground: no dynamic body called 'ground'");
+  EXPECT_STREQ(errorOf(kMinimal + "[expect.fingers.thumb]\nmin_sgo = 1\n").what(),
+               "scene.toml:15:1: expect.fingers.thumb: no finger called 'thumb'");
+  EXPECT_STREQ(errorOf(kMinimal + "[expect]\nmax_speed = -1.0\n").what(),
+               "scene.toml:16:13: expect.max_speed: must be in [0, 1e+06], got -1");
+  EXPECT_STREQ(errorOf(kMinimal + "[expect]\nmax_sped = 1.0\n").what(),
+               "scene.toml:16:12: expect.max_sped: unknown field");
+}
+
 }  // namespace
 }  // namespace gf::app

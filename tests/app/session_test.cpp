@@ -8,6 +8,7 @@
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
+#include <map>
 #include <sstream>
 #include <vector>
 
@@ -167,6 +168,31 @@ torque = [0, 2e-3, 0]
       EXPECT_NEAR(std::stod(c[8 + k]), expected[k], 1e-12 * (1 + std::abs(expected[k]))) << line;
   }
   EXPECT_EQ(rows, 500);
+}
+
+// The Fig. 8 hold meets the scene's [expect]; with god-objects the cylinder swings over and the
+// pads lose their SGOs, and each failed expectation comes back with its worst value and time.
+TEST(Session, ExpectationsPassOnTheHoldAndFailWithGodObjects) {
+  SessionDesc s = loadSceneFile(resolveScenePath("fig8-pinch-oscillation"));
+  s.scene.duration = 4.0;
+  std::vector<ExpectFailure> failed{{"placeholder", 0, 0, 0}};
+  SessionOptions options = freshOutput("gf_session_expect");
+  options.expect_failures = &failed;
+  runSession(s, options);
+  EXPECT_TRUE(failed.empty()) << failed.front().text();
+  EXPECT_EQ(readJson(fs::path(options.out_dir) / "summary.json")["expectations"]["failed"], 0);
+
+  for (sim::FingerDesc& f : s.scene.fingers) f.patch.n_sgo = 0;
+  runSession(s, options);
+  std::map<std::string, ExpectFailure> by_name;
+  for (const ExpectFailure& f : failed) by_name[f.name] = f;
+  ASSERT_TRUE(by_name.contains("bodies.cylinder.max_rotation_deg"));
+  EXPECT_GT(by_name["bodies.cylinder.max_rotation_deg"].value, 90.0);
+  EXPECT_GT(by_name["bodies.cylinder.max_rotation_deg"].time, 1.0);
+  ASSERT_TRUE(by_name.contains("fingers.left.min_sgo"));
+  EXPECT_EQ(by_name["fingers.left.min_sgo"].value, 0.0);
+  const nlohmann::json summary = readJson(fs::path(options.out_dir) / "summary.json");
+  EXPECT_EQ(summary["expectations"]["failed"], failed.size());
 }
 
 }  // namespace

@@ -1,0 +1,105 @@
+// Expectations a scene file carries ([expect]): invariants the session checks after every step
+// of a run and at its end, from the World's public state (never inside World::step). A failed
+// expectation is printed, written into summary.json, and makes `godfinger run` exit 3.
+#pragma once
+
+#include <nlohmann/json.hpp>
+
+#include <map>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "sim/mesh.hpp"
+
+namespace gf::sim {
+class World;
+struct SceneDesc;
+}  // namespace gf::sim
+
+namespace gf::app {
+
+/// [expect.bodies.NAME]: limits on one dynamic body.
+struct BodyExpect {
+  std::optional<double> max_speed;          ///< m/s
+  std::optional<double> max_angular_speed;  ///< rad/s
+  std::optional<double> stays_above;        ///< m: the body's centre y never below this
+  std::optional<double> max_rotation_deg;   ///< deg: rotation from its pose at `after`
+  double after = 0.0;                       ///< s: when max_rotation_deg starts counting
+};
+
+/// [expect.fingers.NAME]: limits on one finger.
+struct FingerExpect {
+  std::optional<int> min_sgo;       ///< fewest SGOs (all its contacts) at any step of the window
+  double from = 0.0, to = 1e300;    ///< s: the window of min_sgo
+  std::optional<double> max_force;  ///< N: largest coupling force
+};
+
+/// [expect]: every field optional except `finite` (default true).
+struct ExpectDesc {
+  bool finite = true;                   ///< no NaN or inf in any state, no step rolled back
+  std::optional<double> max_speed;      ///< m/s: any dynamic body
+  std::optional<double> max_angular_speed;  ///< rad/s: any dynamic body
+  /// J: the largest rise of mechanical energy over any 1 s window in which no device moved and
+  /// no load acted
+  std::optional<double> energy_growth;
+  std::map<std::string, BodyExpect> bodies;
+  std::map<std::string, FingerExpect> fingers;
+  bool empty() const;
+};
+
+/// One expectation that did not hold: the worst value, where and when.
+struct ExpectFailure {
+  std::string name;   ///< "bodies.box.max_speed"
+  double value = 0.0, limit = 0.0, time = 0.0;
+  std::string text() const;
+};
+
+/// Follows a run step by step. Allocates only in its constructor and on a failure's first
+/// occurrence.
+class ExpectChecker {
+ public:
+  ExpectChecker(const ExpectDesc& expect, const sim::World& world);
+  /// After every step (haptic thread).
+  void afterStep(const sim::World& world);
+  /// After the last step: the failures, worst value of each.
+  std::vector<ExpectFailure> finish(const sim::World& world);
+  /// The expectations checked and the worst value each reached, for summary.json.
+  nlohmann::json json() const;
+
+ private:
+  struct Check {
+    std::string name;
+    double limit = 0.0;
+    bool at_most = true;  ///< value must stay <= limit (else >= limit)
+    double worst = 0.0;
+    double time = 0.0;
+    bool seen = false;
+  };
+  void observe(Check& c, double value, double t);
+  ExpectDesc expect_;
+  std::vector<Check> checks_;
+  // Per body and finger: indices into checks_ (-1: not checked) and what the checks need.
+  struct BodyState {
+    int body = -1;
+    int speed = -1, angular = -1, above = -1, rotation = -1;
+    double after = 0.0;
+    bool have_start = false;
+    Eigen::Quaterniond start = Eigen::Quaterniond::Identity();
+  };
+  struct FingerState {
+    int finger = -1;
+    int sgo = -1, force = -1;
+    double from = 0.0, to = 0.0;
+  };
+  std::vector<BodyState> bodies_;
+  std::vector<FingerState> fingers_;
+  int finite_ = -1, any_speed_ = -1, any_angular_ = -1, energy_ = -1;
+  // Energy growth: (time, energy) minima of the current quiet stretch's last window, rising from
+  // quiet_head_ (a monotonic queue), so the rise is the energy minus the front.
+  std::vector<std::pair<double, double>> quiet_;
+  std::size_t quiet_head_ = 0;
+  std::vector<sim::Vec3> last_device_;
+};
+
+}  // namespace gf::app
