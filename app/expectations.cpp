@@ -49,6 +49,7 @@ ExpectChecker::ExpectChecker(const ExpectDesc& expect, const sim::World& world) 
     if (e.max_angular_speed) s.angular = add(p + "max_angular_speed", *e.max_angular_speed, true);
     if (e.stays_above) s.above = add(p + "stays_above", *e.stays_above, false);
     if (e.max_rotation_deg) s.rotation = add(p + "max_rotation_deg", *e.max_rotation_deg, true);
+    if (e.ends_above) s.ends = add(p + "ends_above", *e.ends_above, false);
     s.after = e.after;
     bodies_.push_back(s);
   }
@@ -149,7 +150,9 @@ void ExpectChecker::afterStep(const sim::World& world) {
 }
 
 std::vector<ExpectFailure> ExpectChecker::finish(const sim::World& world) {
-  (void)world;
+  for (const BodyState& s : bodies_) {
+    if (s.body >= 0 && s.ends >= 0) observe(checks_[static_cast<std::size_t>(s.ends)], world.bodyPose(s.body).position.y(), world.time());
+  }
   std::vector<ExpectFailure> out;
   for (const Check& c : checks_) {
     if (!c.seen) continue;
@@ -165,6 +168,7 @@ nlohmann::json ExpectChecker::json() const {
     const bool ok = !c.seen || (c.at_most ? c.worst <= c.limit : c.worst >= c.limit);
     out.push_back({{"name", c.name},
                    {"limit", c.limit},
+                   {"kind", c.at_most ? "at_most" : "at_least"},
                    {"worst", c.seen && std::isfinite(c.worst) ? nlohmann::json(c.worst) : nlohmann::json(nullptr)},
                    {"time_s", c.time},
                    {"checked", c.seen},

@@ -24,6 +24,7 @@ struct BodyExpect {
   std::optional<double> max_speed;          ///< m/s
   std::optional<double> max_angular_speed;  ///< rad/s
   std::optional<double> stays_above;        ///< m: the body's centre y never below this
+  std::optional<double> ends_above;         ///< m: the body's centre y at the end at least this
   std::optional<double> max_rotation_deg;   ///< deg: rotation from its pose at `after`
   double after = 0.0;                       ///< s: when max_rotation_deg starts counting
 };
@@ -82,7 +83,7 @@ class ExpectChecker {
   // Per body and finger: indices into checks_ (-1: not checked) and what the checks need.
   struct BodyState {
     int body = -1;
-    int speed = -1, angular = -1, above = -1, rotation = -1;
+    int speed = -1, angular = -1, above = -1, rotation = -1, ends = -1;
     double after = 0.0;
     bool have_start = false;
     Eigen::Quaterniond start = Eigen::Quaterniond::Identity();

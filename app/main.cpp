@@ -8,6 +8,7 @@
 #include <iostream>
 #include <thread>
 
+#include "app/check.hpp"
 #include "app/live.hpp"
 #include "app/patch_json.hpp"
 #include "app/scene_file.hpp"
@@ -286,6 +287,13 @@ int main(int argc, char** argv) {
   addPatch(app, patch_args);
   StudyArgs study_args;
   addStudy(app, study_args);
+  gf::app::CheckOptions check;
+  check.jobs = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+  CLI::App* check_cmd = app.add_subcommand("check", "Run scenes offline and check their [expect] tables; one line "
+                                                    "each, exit 1 if any fails");
+  check_cmd->add_option("paths", check.paths, "Scene files, folders of them, or bundled scene names")->required();
+  check_cmd->add_option("--out", check.out, "Folder for the runs (default: check)");
+  check_cmd->add_option("--jobs", check.jobs, "Scenes at a time (default: the number of cores)")->check(CLI::Range(1, 256));
   app.add_subcommand("list", "List the bundled scenes");
   gf::app::LiveOptions live;
   CLI::App* live_cmd = app.add_subcommand("live", "Interactive session: one command a line on standard input");
@@ -301,6 +309,10 @@ int main(int argc, char** argv) {
     if (app.got_subcommand("screenshots")) return screenshotsCommand(shots_out);
     if (app.got_subcommand("patch")) return patchCommand(patch_args);
     if (app.got_subcommand("study")) return studyCommand(study_args);
+    if (app.got_subcommand("check")) {
+      check.godfinger = std::filesystem::canonical("/proc/self/exe").string();
+      return gf::app::runCheck(check);
+    }
     if (app.got_subcommand("live")) {
       live.scene_path = gf::app::resolveScenePath(live.scene_path);
       return gf::app::runLive(live, std::cin, std::cout);

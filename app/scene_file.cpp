@@ -343,6 +343,7 @@ void readExpect(Reader& parent, SessionDesc& s) {
     b.max_speed = optional(br, "max_speed", 0.0, 1e6);
     b.max_angular_speed = optional(br, "max_angular_speed", 0.0, 1e6);
     b.stays_above = optional(br, "stays_above", -1e6, 1e6);
+    b.ends_above = optional(br, "ends_above", -1e6, 1e6);
     b.max_rotation_deg = optional(br, "max_rotation_deg", 0.0, 180.0);
     b.after = br.number("after", 0.0, 0.0, 1e6);
     br.finish();

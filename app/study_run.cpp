@@ -1,14 +1,8 @@
 // Running a study's configurations as `godfinger run` processes, and collecting their folders
 // into results.csv, work-precision.png and report.md.
-#include <spawn.h>
-#include <sys/wait.h>
-#include <unistd.h>
-
 #include <algorithm>
-#include <atomic>
 #include <chrono>
 #include <cmath>
-#include <csignal>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -16,6 +10,7 @@
 #include <optional>
 #include <set>
 
+#include "app/jobs.hpp"
 #include "app/scene_file.hpp"
 #include "app/study.hpp"
 #include "app/study_measure.hpp"
@@ -23,15 +18,10 @@
 #include "render/render_thread.hpp"
 #include "sim/settings.hpp"
 
-extern char** environ;
-
 namespace gf::app {
 namespace {
 
 namespace fs = std::filesystem;
-
-std::atomic<bool> g_interrupted{false};
-extern "C" void onStudySignal(int) { g_interrupted = true; }
 
 // One row of results.csv.
 struct Row {
@@ -45,13 +35,6 @@ struct Row {
   double cost(CostKind k) const { return k == CostKind::kStep ? step_median : patch_mean; }
   double error() const { return measures.empty() ? NAN : measures.front().error; }
 };
-
-std::string formatDuration(double s) {
-  char b[32];
-  if (s >= 60.0) std::snprintf(b, sizeof b, "%dm%02ds", static_cast<int>(s / 60), static_cast<int>(s) % 60);
-  else std::snprintf(b, sizeof b, "%.0fs", s);
-  return b;
-}
 
 std::string number(double x) {
   if (!std::isfinite(x)) return "nan";
@@ -325,14 +308,6 @@ std::string reportMd(const StudyPlan& plan, const std::vector<Row>& rows, bool p
   return out;
 }
 
-// Spawns `line` under /bin/sh; returns its pid (or -1).
-pid_t spawnShell(const std::string& line) {
-  pid_t pid = -1;
-  const char* argv[] = {"/bin/sh", "-c", line.c_str(), nullptr};
-  if (posix_spawn(&pid, "/bin/sh", nullptr, nullptr, const_cast<char* const*>(argv), environ) != 0) return -1;
-  return pid;
-}
-
 // True when two runs' steps overlapped in time on one host, or when a run does not say when and
 // where it ran (summary.json's finished_unix_s, wall_time_s and host).
 bool ranAtOnce(const std::vector<std::optional<RunOutputs>>& outputs) {
@@ -461,62 +436,29 @@ int runStudy(const StudyPlan& plan, const StudyOptions& options) {
   fs::create_directories(fs::path(options.out) / "runs", ec);
   if (ec) throw std::runtime_error(options.out + ": cannot create folder: " + ec.message());
   writeStudyGrid(options.out, {plan.study.source, plan.quick, plan.extra});
-  g_interrupted = false;
-  struct sigaction action{}, old_int{}, old_term{};
-  action.sa_handler = onStudySignal;
-  sigaction(SIGINT, &action, &old_int);
-  sigaction(SIGTERM, &action, &old_term);
+  std::vector<std::string> lines;
+  for (const StudyRun& r : plan.runs) lines.push_back(runCommandLine(options.godfinger, options.out, r));
   const auto start = std::chrono::steady_clock::now();
-  std::map<pid_t, std::size_t> running;
-  std::size_t next = 0, done = 0;
-  std::vector<std::string> failed;
-  bool forwarded = false;
-  const std::size_t total = plan.runs.size();
-  while (done < total) {
-    while (!g_interrupted && next < total && running.size() < static_cast<std::size_t>(std::max(1, options.jobs))) {
-      const pid_t pid = spawnShell(runCommandLine(options.godfinger, options.out, plan.runs[next]));
-      if (pid < 0) {
-        failed.push_back(plan.runs[next].id + " (could not start /bin/sh)");
-        ++done;
-      } else {
-        running[pid] = next;
-      }
-      ++next;
-    }
-    if (running.empty()) break;
-    if (g_interrupted && !forwarded) {  // a signal sent to the study alone reaches its runs too
-      for (const auto& [child, index] : running) kill(child, SIGINT);
-      forwarded = true;
-    }
-    int status = 0;
-    const pid_t pid = waitpid(-1, &status, 0);
-    if (pid < 0) {
-      if (errno == EINTR) continue;
-      break;
-    }
-    const auto it = running.find(pid);
-    if (it == running.end()) continue;
-    const StudyRun& run = plan.runs[it->second];
-    running.erase(it);
-    ++done;
-    if (!WIFEXITED(status) || WEXITSTATUS(status) != 0) {
-      failed.push_back(run.id);
-      std::fprintf(stderr, "godfinger study: run %s failed; see %s\n", run.id.c_str(),
-                   (fs::path(options.out) / "runs" / run.id / "run.log").c_str());
+  std::size_t finished = 0;
+  int failed = 0;
+  const bool interrupted = runJobs(lines, options.jobs, [&](std::size_t i, int code) {
+    ++finished;
+    if (code != 0) {
+      ++failed;
+      std::fprintf(stderr, "godfinger study: run %s failed (exit %d); see %s\n", plan.runs[i].id.c_str(), code,
+                   (fs::path(options.out) / "runs" / plan.runs[i].id / "run.log").c_str());
     }
     if (options.progress) {
       const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-      const double eta = elapsed / static_cast<double>(done) * static_cast<double>(total - done);
-      std::fprintf(stderr, "[study] %s: %zu / %zu runs, %s elapsed, ETA %s\n", plan.study.name.c_str(), done, total,
-                   formatDuration(elapsed).c_str(), formatDuration(eta).c_str());
+      const double eta = elapsed / static_cast<double>(finished) * static_cast<double>(lines.size() - finished);
+      std::fprintf(stderr, "[study] %s: %zu / %zu runs, %s elapsed, ETA %s\n", plan.study.name.c_str(), finished,
+                   lines.size(), formatDuration(elapsed).c_str(), formatDuration(eta).c_str());
     }
-  }
-  sigaction(SIGINT, &old_int, nullptr);
-  sigaction(SIGTERM, &old_term, nullptr);
-  if (g_interrupted) std::fprintf(stderr, "godfinger study: interrupted; collecting the runs that finished\n");
+  });
+  if (interrupted) std::fprintf(stderr, "godfinger study: interrupted; collecting the runs that finished\n");
   const int collected = collectStudy(plan, options.out, options.out, false);
-  if (g_interrupted) return 130;
-  return failed.empty() && collected == 0 ? 0 : 1;
+  if (interrupted) return 130;
+  return failed == 0 && collected == 0 ? 0 : 1;
 }
 
 }  // namespace gf::app

@@ -4,6 +4,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <sstream>
 
 namespace gf::app {
 namespace {
@@ -26,6 +27,45 @@ TEST(Command, BadInputExitsNonZeroAndKeepsEarlierOutputs) {
   std::getline(in, line);
   EXPECT_EQ(line, "earlier");
   EXPECT_FALSE(fs::exists(out / "summary.json"));
+}
+
+// `godfinger check`: every bundled scene meets its [expect] (the paper scenes expect what their
+// figures show), and a scene that does not (Fig. 6 with a god-object: the tile tips over) is a
+// FAIL line naming the expectation, with exit 1.
+TEST(Command, CheckPassesTheBundledScenesAndFailsAGodObjectLift) {
+  namespace fs = std::filesystem;
+  const fs::path out = fs::temp_directory_path() / "gf_check_out";
+  fs::remove_all(out);
+  const std::string bin = std::string(GF_BINARY_DIR) + "/godfinger";
+  const std::string all = bin + " check " + GF_SOURCE_DIR + "/assets/scenes --jobs 2 --out " + out.string() +
+                          " > " + (out.string() + ".txt");
+  ASSERT_EQ(std::system(all.c_str()), 0);
+  std::ifstream listing(out.string() + ".txt");
+  std::string line;
+  int passed = 0;
+  while (std::getline(listing, line)) passed += line.rfind("PASS ", 0) == 0;
+  EXPECT_EQ(passed, static_cast<int>(std::distance(fs::directory_iterator(std::string(GF_SOURCE_DIR) + "/assets/scenes"),
+                                                   fs::directory_iterator{})) - 1)  // all but README.md
+      << "every bundled scene passes";
+
+  // Fig. 6 with a god-object, as a scene file of its own.
+  const fs::path dir = fs::temp_directory_path() / "gf_check_scenes";
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  std::ifstream in(std::string(GF_SOURCE_DIR) + "/assets/scenes/fig6-lift-one-finger.toml");
+  std::stringstream text;
+  text << in.rdbuf();
+  std::string scene = text.str();
+  const std::size_t at = scene.find("n_sgo = 8");
+  ASSERT_NE(at, std::string::npos);
+  scene.replace(at, 9, "n_sgo = 0");
+  std::ofstream(dir / "fig6-god-object.toml") << scene;
+  const std::string one = bin + " check " + dir.string() + " --out " + out.string() + " > " + (out.string() + ".txt");
+  EXPECT_NE(std::system(one.c_str()), 0);
+  std::ifstream result(out.string() + ".txt");
+  std::getline(result, line);
+  EXPECT_EQ(line.rfind("FAIL  fig6-god-object", 0), 0u) << line;
+  EXPECT_NE(line.find("bodies.tile."), std::string::npos) << line;
 }
 
 }  // namespace

@@ -1,0 +1,148 @@
+#include "app/check.hpp"
+
+#include <nlohmann/json.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include "app/jobs.hpp"
+#include "app/scene_file.hpp"
+
+namespace gf::app {
+namespace {
+
+namespace fs = std::filesystem;
+
+std::string shellQuote(const std::string& s) {
+  std::string out = "'";
+  for (char c : s) out += c == '\'' ? std::string("'\\''") : std::string(1, c);
+  return out + "'";
+}
+
+std::string lastLine(const fs::path& path) {
+  std::ifstream in(path);
+  std::string line, last;
+  while (std::getline(in, line)) {
+    // Progress lines end in carriage returns: keep the text after the last one.
+    const std::size_t cr = line.find_last_of('\r');
+    const std::string text = cr == std::string::npos ? line : line.substr(cr + 1);
+    if (!text.empty()) last = text;
+  }
+  return last;
+}
+
+// How close the run came to each limit: the check nearest to failing, as "name worst (limit)".
+std::string closest(const nlohmann::json& checks) {
+  std::string out;
+  double nearest = -HUGE_VAL;
+  for (const nlohmann::json& c : checks) {
+    if (!c.value("checked", false) || c["worst"].is_null() || c["name"] == "finite") continue;
+    const double worst = c["worst"].get<double>(), limit = c["limit"].get<double>();
+    // How much of the limit is used: worst / limit for "at most" checks, limit / worst for
+    // "at least" ones (1: at the limit).
+    const bool at_least = c.value("kind", "at_most") == "at_least";
+    const double share = at_least ? (worst > 0.0 ? limit / worst : HUGE_VAL) : (limit != 0.0 ? worst / limit : worst);
+    if (share > nearest) {
+      nearest = share;
+      char b[160];
+      std::snprintf(b, sizeof b, "%s %.4g (limit %.4g)", c["name"].get<std::string>().c_str(), worst, limit);
+      out = b;
+    }
+  }
+  return out;
+}
+
+}  // namespace
+
+std::vector<std::string> checkedScenes(const std::vector<std::string>& paths) {
+  std::vector<std::string> out;
+  for (const std::string& p : paths) {
+    if (fs::is_directory(p)) {
+      std::vector<std::string> found;
+      for (const auto& e : fs::recursive_directory_iterator(p)) {
+        if (e.is_regular_file() && e.path().extension() == ".toml") found.push_back(e.path().string());
+      }
+      if (found.empty()) throw InputError(p, 0, 0, "", "no scene file (*.toml) in this folder");
+      std::sort(found.begin(), found.end());
+      out.insert(out.end(), found.begin(), found.end());
+    } else {
+      out.push_back(resolveScenePath(p));
+    }
+  }
+  return out;
+}
+
+int runCheck(const CheckOptions& options) {
+  const std::vector<std::string> scenes = checkedScenes(options.paths);
+  std::vector<std::string> names, lines;
+  for (const std::string& s : scenes) {
+    std::string name = fs::path(s).stem().string();
+    for (const std::string& other : names) {
+      if (other == name) name = fs::path(s).parent_path().filename().string() + "-" + name;
+    }
+    names.push_back(name);
+    const std::string dir = (fs::absolute(options.out) / name).lexically_normal().string();
+    lines.push_back("mkdir -p " + shellQuote(dir) + " && exec " + shellQuote(options.godfinger) + " run " +
+                    shellQuote(fs::absolute(s).string()) + " --out " + shellQuote(dir) + " > " +
+                    shellQuote(dir + "/run.log") + " 2>&1");
+  }
+  std::vector<std::string> report(scenes.size());
+  int failed = 0;
+  const bool interrupted = runJobs(lines, options.jobs, [&](std::size_t i, int code) {
+    const fs::path dir = fs::absolute(options.out) / names[i];
+    nlohmann::json summary;
+    std::ifstream in(dir / "summary.json");
+    bool have = false;
+    if (in) {
+      try {
+        summary = nlohmann::json::parse(in);
+        have = summary.contains("expectations");
+      } catch (const nlohmann::json::exception&) {
+      }
+    }
+    char head[96];
+    std::string detail;
+    if ((code == 0 || code == 3) && have) {
+      const nlohmann::json& checks = summary["expectations"]["checks"];
+      std::vector<std::string> failures;
+      for (const nlohmann::json& c : checks) {
+        if (c.value("passed", true)) continue;
+        char b[200];
+        if (c["worst"].is_null()) std::snprintf(b, sizeof b, "%s not finite", c["name"].get<std::string>().c_str());
+        else std::snprintf(b, sizeof b, "%s %.4g (limit %.4g) at t = %.4f s", c["name"].get<std::string>().c_str(),
+                           c["worst"].get<double>(), c["limit"].get<double>(), c["time_s"].get<double>());
+        failures.push_back(b);
+      }
+      const long recoveries = summary["counters"].value("nan_recoveries", 0L);
+      std::snprintf(head, sizeof head, "%-5s %-40s ", failures.empty() ? "PASS" : "FAIL", names[i].c_str());
+      if (failures.empty()) {
+        detail = std::to_string(checks.size()) + " checks";
+        const std::string c = closest(checks);
+        if (!c.empty()) detail += "; closest: " + c;
+      } else {
+        detail = failures.front();
+        if (failures.size() > 1) detail += " (+" + std::to_string(failures.size() - 1) + " more)";
+        ++failed;
+      }
+      if (recoveries > 0) detail += "; " + std::to_string(recoveries) + " steps rolled back";
+    } else {
+      std::snprintf(head, sizeof head, "%-5s %-40s ", "ERROR", names[i].c_str());
+      detail = "exit " + std::to_string(code) + ": " + lastLine(dir / "run.log");
+      ++failed;
+    }
+    report[i] = head + detail;
+    std::printf("%s\n", report[i].c_str());
+    std::fflush(stdout);
+  });
+  std::printf("%zu scenes: %zu passed, %d failed%s; runs in %s/\n", scenes.size(),
+              scenes.size() - static_cast<std::size_t>(failed) - (interrupted ? 0 : 0), failed,
+              interrupted ? " (interrupted)" : "", options.out.c_str());
+  if (interrupted) return 130;
+  return failed == 0 ? 0 : 1;
+}
+
+}  // namespace gf::app

@@ -1,0 +1,25 @@
+// `godfinger check`: run many scenes offline, each as its own `godfinger run` process, and report
+// whether each met its [expect] table (every scene at least stays finite).
+#pragma once
+
+#include <string>
+#include <vector>
+
+namespace gf::app {
+
+struct CheckOptions {
+  std::vector<std::string> paths;  ///< scene files, folders of them (searched recursively) or bundled names
+  std::string out = "check";       ///< each scene's run folder goes under it
+  int jobs = 1;
+  std::string godfinger;           ///< the executable runs are started with
+};
+
+/// The scene files `paths` name, sorted within each folder. Throws InputError for a path that
+/// is neither a scene file, a folder nor a bundled scene.
+std::vector<std::string> checkedScenes(const std::vector<std::string>& paths);
+
+/// Runs every scene and prints one line each (PASS, FAIL or ERROR, with the worst figure); 0
+/// when all passed, 1 otherwise, 130 when interrupted.
+int runCheck(const CheckOptions& options);
+
+}  // namespace gf::app

@@ -1,0 +1,75 @@
+#include "app/jobs.hpp"
+
+#include <spawn.h>
+#include <sys/wait.h>
+
+#include <atomic>
+#include <cerrno>
+#include <csignal>
+#include <cstdio>
+#include <map>
+
+extern char** environ;
+
+namespace gf::app {
+namespace {
+
+std::atomic<bool> g_interrupted{false};
+extern "C" void onJobsSignal(int) { g_interrupted = true; }
+
+// Spawns `line` under /bin/sh; returns its pid (or -1).
+pid_t spawnShell(const std::string& line) {
+  pid_t pid = -1;
+  const char* argv[] = {"/bin/sh", "-c", line.c_str(), nullptr};
+  if (posix_spawn(&pid, "/bin/sh", nullptr, nullptr, const_cast<char* const*>(argv), environ) != 0) return -1;
+  return pid;
+}
+
+}  // namespace
+
+std::string formatDuration(double s) {
+  char b[32];
+  if (s >= 60.0) std::snprintf(b, sizeof b, "%dm%02ds", static_cast<int>(s / 60), static_cast<int>(s) % 60);
+  else std::snprintf(b, sizeof b, "%.0fs", s);
+  return b;
+}
+
+bool runJobs(const std::vector<std::string>& lines, int jobs, const std::function<void(std::size_t, int)>& done) {
+  g_interrupted = false;
+  struct sigaction action{}, old_int{}, old_term{};
+  action.sa_handler = onJobsSignal;  // no SA_RESTART: waitpid returns on a signal
+  sigaction(SIGINT, &action, &old_int);
+  sigaction(SIGTERM, &action, &old_term);
+  std::map<pid_t, std::size_t> running;
+  std::size_t next = 0;
+  bool forwarded = false;
+  while (true) {
+    while (!g_interrupted && next < lines.size() && running.size() < static_cast<std::size_t>(std::max(1, jobs))) {
+      const pid_t pid = spawnShell(lines[next]);
+      if (pid < 0) done(next, -1);
+      else running[pid] = next;
+      ++next;
+    }
+    if (running.empty()) break;
+    if (g_interrupted && !forwarded) {  // a signal sent to us alone reaches the running lines too
+      for (const auto& [child, index] : running) kill(child, SIGINT);
+      forwarded = true;
+    }
+    int status = 0;
+    const pid_t pid = waitpid(-1, &status, 0);
+    if (pid < 0) {
+      if (errno == EINTR) continue;
+      break;
+    }
+    const auto it = running.find(pid);
+    if (it == running.end()) continue;
+    const std::size_t index = it->second;
+    running.erase(it);
+    done(index, WIFEXITED(status) ? WEXITSTATUS(status) : 128 + (WIFSIGNALED(status) ? WTERMSIG(status) : 0));
+  }
+  sigaction(SIGINT, &old_int, nullptr);
+  sigaction(SIGTERM, &old_term, nullptr);
+  return g_interrupted;
+}
+
+}  // namespace gf::app

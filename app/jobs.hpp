@@ -1,0 +1,20 @@
+// Shell command lines run as child processes, a bounded number at a time: the studies' runs and
+// `godfinger check`'s scenes. SIGINT or SIGTERM stops starting lines and is passed to the
+// running ones.
+#pragma once
+
+#include <functional>
+#include <string>
+#include <vector>
+
+namespace gf::app {
+
+/// Runs `lines` under /bin/sh, `jobs` at a time, in order of start. After each ends, `done(i,
+/// exit_code)` is called (exit_code -1: could not start; 128 + signal: killed by a signal).
+/// Returns true when it was interrupted (the lines not started were skipped).
+bool runJobs(const std::vector<std::string>& lines, int jobs, const std::function<void(std::size_t, int)>& done);
+
+/// "1m05s", "42s".
+std::string formatDuration(double seconds);
+
+}  // namespace gf::app
