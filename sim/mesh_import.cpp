@@ -4,14 +4,139 @@
 #include <assimp/scene.h>
 
 #include <assimp/Importer.hpp>
+#include <cctype>
 #include <cmath>
+#include <cstdint>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
 
 namespace gf::sim {
+namespace {
+
+std::string lower(std::string s) {
+  for (char& c : s) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  return s;
+}
+
+// The next line of `in` that is neither empty nor a comment ('#'), or "" at the end.
+std::string contentLine(std::istream& in, long& number) {
+  std::string line;
+  while (std::getline(in, line)) {
+    ++number;
+    const std::size_t first = line.find_first_not_of(" \t\r");
+    if (first != std::string::npos && line[first] != '#') return line.substr(first);
+  }
+  return "";
+}
+
+// An OFF file's header against what the file holds: the counts it promises must fit in its size
+// (checked before anything is allocated: a lying header cannot make us, or the importer, reserve
+// gigabytes) and its lines must be there (the importer asserts, aborting the process, otherwise).
+void checkOff(const std::string& path, std::uintmax_t size) {
+  std::ifstream in(path);
+  long number = 0;
+  std::string line = contentLine(in, number);
+  if (line.rfind("OFF", 0) != 0) return;  // not plain OFF (e.g. COFF, NOFF): the importer decides
+  std::string counts = line.substr(3);
+  if (counts.find_first_not_of(" \t\r") == std::string::npos) counts = contentLine(in, number);
+  std::istringstream c(counts);
+  double nv = -1, nf = -1;
+  c >> nv >> nf;
+  if (!(nv >= 0) || !(nf >= 0) || nv != std::floor(nv) || nf != std::floor(nf)) {
+    throw MeshLoadError(path + ":" + std::to_string(number) + ": OFF header: expected vertex and face counts");
+  }
+  // A vertex needs at least "0 0 0\n" (6 bytes), a face "3 0 1 2\n" (8).
+  if (nv * 6 + nf * 8 > static_cast<double>(size)) {
+    throw MeshLoadError(path + ":" + std::to_string(number) + ": OFF header promises " +
+                        std::to_string(static_cast<long long>(nv)) + " vertices and " +
+                        std::to_string(static_cast<long long>(nf)) + " faces, more than its " + std::to_string(size) +
+                        " bytes can hold");
+  }
+  long vertices = 0, faces = 0;
+  const long want_v = static_cast<long>(nv), want_f = static_cast<long>(nf);
+  for (std::string l = contentLine(in, number); !l.empty(); l = contentLine(in, number)) {
+    if (vertices < want_v) {
+      ++vertices;
+      continue;
+    }
+    std::istringstream f(l);
+    long n = 0;
+    f >> n;
+    if (!f || n < 1) throw MeshLoadError(path + ":" + std::to_string(number) + ": OFF face " + std::to_string(faces) + ": expected a vertex count");
+    for (long k = 0; k < n; ++k) {
+      long index = -1;
+      f >> index;
+      if (!f) throw MeshLoadError(path + ":" + std::to_string(number) + ": OFF face " + std::to_string(faces) + ": expected " + std::to_string(n) + " vertex indices");
+      if (index < 0 || index >= want_v) {
+        throw MeshLoadError(path + ":" + std::to_string(number) + ": OFF face " + std::to_string(faces) + " names vertex " +
+                            std::to_string(index) + " of " + std::to_string(want_v));
+      }
+    }
+    if (++faces == want_f) break;
+  }
+  if (vertices < want_v || faces < want_f) {
+    throw MeshLoadError(path + ": OFF header promises " + std::to_string(want_v) + " vertices and " + std::to_string(want_f) +
+                        " faces; the file holds " + std::to_string(vertices) + " and " + std::to_string(faces));
+  }
+}
+
+// A binary STL's triangle count against its size (84-byte header, 50 bytes a triangle).
+void checkStl(const std::string& path, std::uintmax_t size) {
+  std::ifstream in(path, std::ios::binary);
+  char head[84] = {};
+  in.read(head, sizeof head);
+  if (in.gcount() < 84 || std::strncmp(head, "solid", 5) == 0) return;  // ASCII STL: the importer reads it
+  std::uint32_t count = 0;
+  std::memcpy(&count, head + 80, 4);
+  if (84 + 50 * static_cast<std::uintmax_t>(count) > size) {
+    throw MeshLoadError(path + ": binary STL header promises " + std::to_string(count) + " triangles, more than its " +
+                        std::to_string(size) + " bytes hold");
+  }
+}
+
+// A PLY header's element counts against the file's size (at least one byte per element).
+void checkPly(const std::string& path, std::uintmax_t size) {
+  std::ifstream in(path, std::ios::binary);
+  std::string line;
+  long number = 0;
+  double elements = 0;
+  while (std::getline(in, line) && ++number < 10000) {
+    if (line.rfind("end_header", 0) == 0) break;
+    std::istringstream l(line);
+    std::string word, name;
+    double count = -1;
+    l >> word;
+    if (word != "element") continue;
+    l >> name >> count;
+    if (!(count >= 0)) throw MeshLoadError(path + ":" + std::to_string(number) + ": PLY element " + name + ": expected a count");
+    elements += count;
+  }
+  if (elements > static_cast<double>(size)) {
+    throw MeshLoadError(path + ": PLY header promises " + std::to_string(static_cast<long long>(elements)) +
+                        " elements, more than its " + std::to_string(size) + " bytes hold");
+  }
+}
+
+// Headers that lie about what the file holds, before the importer sees them.
+void checkHeader(const std::string& path) {
+  std::error_code ec;
+  const std::uintmax_t size = std::filesystem::file_size(path, ec);
+  if (ec) throw MeshLoadError(path + ": cannot read mesh: " + ec.message());
+  const std::string ext = lower(std::filesystem::path(path).extension().string());
+  if (ext == ".off") checkOff(path, size);
+  if (ext == ".stl") checkStl(path, size);
+  if (ext == ".ply") checkPly(path, size);
+}
+
+}  // namespace
 
 RawMesh readMeshFile(const std::string& path, double scale) {
   if (!std::isfinite(scale) || scale <= 0.0) {
     throw MeshLoadError(path + ": scale must be a positive finite number");
   }
+  checkHeader(path);
   Assimp::Importer importer;
   // Only triangles are kept; welding is ours (assimp's ignores tolerance and splits by normals).
   importer.SetPropertyInteger(AI_CONFIG_PP_SBP_REMOVE, aiPrimitiveType_POINT | aiPrimitiveType_LINE);
@@ -37,6 +162,12 @@ RawMesh readMeshFile(const std::string& path, double scale) {
     for (unsigned f = 0; f < mesh->mNumFaces; ++f) {
       const aiFace& face = mesh->mFaces[f];
       if (face.mNumIndices != 3) continue;
+      for (unsigned k = 0; k < 3; ++k) {
+        if (face.mIndices[k] >= mesh->mNumVertices) {
+          throw MeshLoadError(path + ": face " + std::to_string(f) + " of mesh " + std::to_string(mi) + " names vertex " +
+                              std::to_string(face.mIndices[k]) + " of " + std::to_string(mesh->mNumVertices));
+        }
+      }
       raw.triangles.push_back({base + static_cast<std::int32_t>(face.mIndices[0]),
                                base + static_cast<std::int32_t>(face.mIndices[1]),
                                base + static_cast<std::int32_t>(face.mIndices[2])});

@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include <cstdint>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 
@@ -86,6 +88,32 @@ TEST_F(MeshImport, FileWithoutTrianglesIsAnError) {
 
 TEST_F(MeshImport, AllDegenerateTrianglesIsAnError) {
   EXPECT_THROW(loadMesh(write("flat.obj", "v 0 0 0\nv 1 0 0\nv 2 0 0\nf 1 2 3\n")), MeshLoadError);
+}
+
+// Headers that lie about what the file holds are rejected with the file, line and the first bad
+// element before anything is allocated for them (the importer would abort the process on some,
+// and reserve gigabytes for others); a face naming a vertex the file lacks is rejected too.
+TEST_F(MeshImport, LyingHeadersAndBadIndicesAreRejectedNamingTheElement) {
+  const auto message = [&](const std::string& name, const std::string& text) {
+    try {
+      loadMesh(write(name, text));
+    } catch (const MeshLoadError& e) {
+      return std::string(e.what()).substr((dir_ / name).string().size());
+    }
+    return std::string("accepted");
+  };
+  const std::string pad = "# padding so the size check alone does not catch it ............................\n";
+  EXPECT_EQ(message("huge.off", "OFF\n1000000000 1000000000 0\n"),
+            ":2: OFF header promises 1000000000 vertices and 1000000000 faces, more than its 28 bytes can hold");
+  EXPECT_EQ(message("short.off", "OFF\n" + pad + "4 4 0\n0 0 0\n1 0 0\n0 1 0\n0 0 1\n3 0 1 2\n3 0 1 3\n"),
+            ": OFF header promises 4 vertices and 4 faces; the file holds 4 and 2");
+  EXPECT_EQ(message("index.off", "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 7\n"), ":6: OFF face 0 names vertex 7 of 3");
+  std::string stl(84, '\0');
+  const std::uint32_t count = 1000000;
+  std::memcpy(stl.data() + 80, &count, 4);
+  EXPECT_EQ(message("huge.stl", stl), ": binary STL header promises 1000000 triangles, more than its 84 bytes hold");
+  EXPECT_EQ(message("huge.ply", "ply\nformat ascii 1.0\nelement vertex 900000000\nproperty float x\nend_header\n"),
+            ": PLY header promises 900000000 elements, more than its 74 bytes hold");
 }
 
 TEST_F(MeshImport, BadScaleIsAnError) {
