@@ -11,7 +11,13 @@
 namespace gf::sim {
 namespace {
 
-constexpr double kAny = HUGE_VAL;  // a vector component may be any finite number
+// Vector components are bounded to what a haptic scene can hold and the solver stays finite on
+// (a body at 1e155 m or a gravity of 1e6 m/s^2 made every step roll back): positions within a
+// kilometre, gravity within 10 g, loads within 10 kN and 1 kN m.
+constexpr double kMaxCoordinate = 1e3;  // m
+constexpr double kMaxGravity = 100.0;   // m/s^2
+constexpr double kMaxLoadForce = 1e4;   // N
+constexpr double kMaxLoadTorque = 1e3;  // N m
 constexpr double kRadPerDeg = std::numbers::pi / 180.0;
 constexpr double kBig = 1e3;  // m: nothing in a haptic scene is larger
 
@@ -138,7 +144,7 @@ std::span<const Setting<SceneDesc>> sceneSettings() {
   static const Setting<S> kTable[] = {
       row<S, &S::duration>("duration", "s", 1e-3, 1e6),
       row<S, &S::world, &WorldSettings::haptic_rate_hz>("haptic_rate", "Hz", 10.0, 1e5),
-      row<S, &S::world, &WorldSettings::gravity>("world.gravity", "m/s^2", -kAny, kAny),
+      row<S, &S::world, &WorldSettings::gravity>("world.gravity", "m/s^2", -kMaxGravity, kMaxGravity),
       row<S, &S::world, &WorldSettings::solver_iterations>("world.solver_iterations", "", 1, 10000),
       row<S, &S::world, &WorldSettings::linear_damping>("world.linear_damping", "1/s", 0.0, 1e3),
       row<S, &S::world, &WorldSettings::angular_damping>("world.angular_damping", "1/s", 0.0, 1e3),
@@ -157,7 +163,7 @@ std::span<const Setting<BodyDesc>> bodySettings() {
       row<B, &B::mass>("mass", "kg", 1e-6, 1e6),
       row<B, &B::friction>("friction", "", 0.0, 100.0),
       row<B, &B::restitution>("restitution", "", 0.0, 1.0),
-      row<B, &B::position>("position", "m", -kAny, kAny),
+      row<B, &B::position>("position", "m", -kMaxCoordinate, kMaxCoordinate),
       row<B, &B::colour>("colour", "", 0.0, 1.0),
   };
   return kTable;
@@ -166,8 +172,8 @@ std::span<const Setting<BodyDesc>> bodySettings() {
 std::span<const Setting<LoadDesc>> loadSettings() {
   using L = LoadDesc;
   static const Setting<L> kTable[] = {
-      row<L, &L::force>("force", "N", -kAny, kAny),
-      row<L, &L::torque>("torque", "N m", -kAny, kAny),
+      row<L, &L::force>("force", "N", -kMaxLoadForce, kMaxLoadForce),
+      row<L, &L::torque>("torque", "N m", -kMaxLoadTorque, kMaxLoadTorque),
       row<L, &L::start>("start", "s", 0.0, 1e6),
       row<L, &L::ramp>("ramp", "s", 0.0, 1e6),
       row<L, &L::stop>("stop", "s", 0.0, 1e6),
@@ -321,7 +327,9 @@ std::optional<FieldError> validateTrack(const DeviceTrack& track) {
     if (k > 0 && !(f.time > track.keyframes[k - 1].time)) {
       return FieldError{"keyframes.t", "keyframe times must increase strictly", index};
     }
-    if (!f.position.allFinite()) return FieldError{"keyframes.p", "must be finite", index};
+    if (!f.position.allFinite() || f.position.cwiseAbs().maxCoeff() > kMaxCoordinate) {
+      return FieldError{"keyframes.p", "must be finite, each coordinate in [-1000, 1000] m", index};
+    }
   }
   return std::nullopt;
 }

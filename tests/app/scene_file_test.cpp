@@ -385,5 +385,17 @@ window = [0.1, 0.2]
                "scene.toml:16:12: expect.max_sped: unknown field");
 }
 
+// Huge but finite numbers that made every step roll back are rejected with their field: a body
+// a kilometre away or more, gravity past 10 g, a device keyframe past a kilometre.
+TEST(SceneFile, HugeFiniteNumbersAreRejectedWithTheirField) {
+  EXPECT_STREQ(errorOf(replaced("position = [0, 0.03, 0]", "position = [1e155, 0.03, 0]")).what(),
+               "scene.toml:10:12: bodies.ball.position: every component must be in [-1000, 1000], got 1e+155");
+  EXPECT_STREQ(errorOf(kMinimal + "[world]\ngravity = [0, -1e6, 0]\n").what(),
+               "scene.toml:16:11: world.gravity: every component must be in [-100, 100], got -1e+06");
+  const InputError keyframe = errorOf(replaced("p = [0, 0.06, 0]", "p = [0, 1e308, 0]"));
+  EXPECT_NE(std::string(keyframe.what()).find("fingers.left.device.keyframes"), std::string::npos) << keyframe.what();
+  EXPECT_NE(std::string(keyframe.what()).find("[-1000, 1000] m"), std::string::npos) << keyframe.what();
+}
+
 }  // namespace
 }  // namespace gf::app
