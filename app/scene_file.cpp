@@ -3,6 +3,7 @@
 #include <toml++/toml.h>
 
 #include <algorithm>
+#include <cctype>
 #include <charconv>
 #include <cmath>
 #include <cstdlib>
@@ -506,12 +507,26 @@ SessionDesc readSession(toml::table& root, const std::string& source, const std:
   readSceneSettings(r, s.scene);
   readEffects(r, s.scene.effects, s.view);
   sim::MeshCache meshes;  // each mesh file is read once per scene
+  // Names become file names, trace.csv columns and --set paths: keep them to what all three hold.
+  const auto checkName = [&](const std::string& table, const std::string& name, const toml::table* t) {
+    const bool ok = !name.empty() && std::all_of(name.begin(), name.end(), [](char c) {
+      return std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == '-';
+    });
+    if (!ok) r.fail(t, table + "." + name, "a name may hold only letters, digits, '_' and '-' (it names files, trace columns and --set fields)");
+  };
   for (const auto& [name, t] : r.namedTables("bodies")) {
+    checkName("bodies", name, t);
     s.scene.bodies.push_back(readBody(name, *t, r, base_dir, meshes));
   }
   if (s.scene.bodies.empty()) r.fail(nullptr, "bodies", "missing: a scene needs at least one body");
-  for (const auto& [name, t] : r.namedTables("fingers")) s.scene.fingers.push_back(readFinger(name, *t, r, base_dir));
-  for (const auto& [name, t] : r.namedTables("cameras")) s.cameras.push_back(readCamera(name, *t, r));
+  for (const auto& [name, t] : r.namedTables("fingers")) {
+    checkName("fingers", name, t);
+    s.scene.fingers.push_back(readFinger(name, *t, r, base_dir));
+  }
+  for (const auto& [name, t] : r.namedTables("cameras")) {
+    checkName("cameras", name, t);
+    s.cameras.push_back(readCamera(name, *t, r));
+  }
   readLoads(r, s.scene);
   readRecord(r, s);
   readExpect(r, s);

@@ -397,5 +397,14 @@ TEST(SceneFile, HugeFiniteNumbersAreRejectedWithTheirField) {
   EXPECT_NE(std::string(keyframe.what()).find("[-1000, 1000] m"), std::string::npos) << keyframe.what();
 }
 
+// A name that cannot be a file name, a trace.csv column or a --set field is rejected where it is
+// given (a finger "sub/finger" used to fail after the run, writing its close-up).
+TEST(SceneFile, NamesThatCannotNameFilesAndColumnsAreRejected) {
+  for (const std::string bad : {"sub/finger", "a,b", "two words", "dot.ted"}) {
+    const InputError e = errorOf(replaced("[fingers.left]\n", "[fingers.\"" + bad + "\"]\n"));
+    EXPECT_NE(std::string(e.what()).find("a name may hold only letters, digits"), std::string::npos) << e.what();
+  }
+}
+
 }  // namespace
 }  // namespace gf::app
