@@ -2,10 +2,13 @@
 
 #include <nlohmann/json.hpp>
 
+#include <charconv>
+#include <cmath>
 #include <filesystem>
 #include <istream>
 #include <ostream>
 #include <sstream>
+#include <vector>
 
 #include "app/patch_json.hpp"
 #include "app/scene_file.hpp"
@@ -35,43 +38,69 @@ class Live {
     samples_.resize(devices_.size());
   }
 
-  // Executes one line; returns false on quit.
+  // Executes one line; returns false on quit. Every word is read and checked before anything
+  // runs: a bad line changes nothing and gets one error reply.
   bool execute(const std::string& line) {
-    std::istringstream words(line);
-    std::string command;
-    if (!(words >> command) || command[0] == '#') return true;
+    std::istringstream split(line);
+    std::vector<std::string> w;
+    for (std::string word; split >> word;) w.push_back(word);
+    if (w.empty() || w[0][0] == '#') return true;
+    const std::string& command = w[0];
+    const auto arguments = [&](std::size_t lo, std::size_t hi, const char* usage) {
+      if (w.size() - 1 < lo || w.size() - 1 > hi) throw std::invalid_argument(command + ": expected " + usage);
+    };
     if (command == "quit" || command == "exit") {
+      arguments(0, 0, "no argument");
       out_ << "ok bye\n";
       return false;
     }
     if (command == "help") {
+      arguments(0, 0, "no argument");
       out_ << "ok commands: move FINGER X Y Z [SECONDS] | set fingers.NAME.FIELD=VALUE | step [N] | "
               "state | snapshot [NAME] | quit\n";
     } else if (command == "step") {
-      long n = 1;
-      if (!(words >> n)) n = words.eof() ? 1 : -1;
-      if (n < 1 || n > 10000000) throw std::invalid_argument("step: N must be a whole number in 1..10000000");
+      arguments(0, 1, "step [N]");
+      const long n = w.size() > 1 ? wholeNumber(w[1], 1, 10000000, "step: N") : 1;
       for (long i = 0; i < n; ++i) step();
       answerState();
     } else if (command == "state") {
+      arguments(0, 0, "no argument");
       answerState();
     } else if (command == "move") {
-      move(words);
+      arguments(4, 5, "FINGER X Y Z [SECONDS]");
+      move(w);
     } else if (command == "set") {
-      std::string assignment;
-      words >> assignment;
-      set(assignment);
+      arguments(1, 1, "fingers.NAME.FIELD=VALUE");
+      set(w[1]);
     } else if (command == "snapshot") {
-      std::string name;
-      if (!(words >> name)) name = "live_" + std::to_string(world_.counters().steps);
+      arguments(0, 1, "snapshot [NAME]");
+      const std::string name = w.size() > 1 ? w[1] : "live_" + std::to_string(world_.counters().steps);
       if (name.find('/') != std::string::npos) throw std::invalid_argument("snapshot: NAME must not contain '/'");
       snapshot(name);
     } else {
       throw std::invalid_argument("unknown command '" + command + "' (try help)");
     }
-    std::string extra;
-    if (words >> extra) throw std::invalid_argument(command + ": unexpected '" + extra + "'");
     return true;
+  }
+
+  // `text` as a whole number in lo..hi, or throws naming `what`.
+  static long wholeNumber(const std::string& text, long lo, long hi, const std::string& what) {
+    long v = 0;
+    const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), v);
+    if (ec != std::errc() || end != text.data() + text.size() || v < lo || v > hi) {
+      throw std::invalid_argument(what + " must be a whole number in " + std::to_string(lo) + ".." + std::to_string(hi) +
+                                  ", got '" + text + "'");
+    }
+    return v;
+  }
+  // `text` as a finite number, or throws naming `what`.
+  static double finiteNumber(const std::string& text, const std::string& what) {
+    double v = 0.0;
+    const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), v);
+    if (ec != std::errc() || end != text.data() + text.size() || !std::isfinite(v)) {
+      throw std::invalid_argument(what + " must be a finite number, got '" + text + "'");
+    }
+    return v;
   }
 
  private:
@@ -88,14 +117,10 @@ class Live {
     throw std::invalid_argument("no finger called '" + name + "'");
   }
 
-  void move(std::istringstream& words) {
-    std::string finger;
-    double x, y, z, seconds = 0.0;
-    if (!(words >> finger >> x >> y >> z)) throw std::invalid_argument("move: expected FINGER X Y Z [SECONDS]");
-    if (!(words >> seconds)) {
-      if (!words.eof()) throw std::invalid_argument("move: SECONDS must be a number");
-      seconds = 0.0;
-    }
+  void move(const std::vector<std::string>& w) {
+    const std::string& finger = w[1];
+    const double x = finiteNumber(w[2], "move: X"), y = finiteNumber(w[3], "move: Y"), z = finiteNumber(w[4], "move: Z");
+    const double seconds = w.size() > 5 ? finiteNumber(w[5], "move: SECONDS") : 0.0;
     const sim::Vec3 target(x, y, z);
     if (!target.allFinite() || !std::isfinite(seconds) || seconds < 0.0) {
       throw std::invalid_argument("move: position and SECONDS must be finite, SECONDS >= 0");

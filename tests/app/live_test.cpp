@@ -68,5 +68,19 @@ TEST(Live, SetChecksEachLiveSettingWithItsValidator) {
   EXPECT_EQ(lines[6].rfind("ok {", 0), 0u) << lines[6];
 }
 
+// A bad line gets exactly one error reply and changes nothing: an out-of-range or fractional
+// step count, extra words, a non-finite position, arguments to quit.
+TEST(Live, BadLinesGetOneErrorAndChangeNothing) {
+  const Answers a = runFig7SidePick(
+      "step 99999999999999999999999\nstep 1.5\nstep 2 3\nmove left 0 0.03 0 1 extra\n"
+      "move left 0 0.03 0 1e400\nquit now\nstep 2\nquit\n",
+      "gf_live_bad_lines");
+  ASSERT_EQ(a.lines.size(), 9u);  // "ok ready", six errors, the state after two steps, "ok bye"
+  for (std::size_t i = 1; i <= 6; ++i) EXPECT_EQ(a.lines[i].rfind("error: <stdin>:" + std::to_string(i) + ":", 0), 0u) << a.lines[i];
+  EXPECT_NE(a.lines[7].find("\"t\":0.002"), std::string::npos) << "only the good line stepped: " << a.lines[7];
+  EXPECT_EQ(a.lines[8], "ok bye");
+  EXPECT_EQ(a.exit_code, 1);
+}
+
 }  // namespace
 }  // namespace gf::app
