@@ -37,7 +37,7 @@ TraceWriter::TraceWriter(const sim::World& world, long expected_rows) {
     }
   }
   for (const sim::FingerDesc& f : d.fingers) {
-    for (const char* c : {".fx", ".fy", ".fz", ".n_sgo", ".r"}) text_.append(1, ',').append(f.name).append(c);
+    for (const char* c : {".fx", ".fy", ".fz", ".n_sgo", ".r", ".px", ".py", ".pz", ".dx", ".dy", ".dz"}) text_.append(1, ',').append(f.name).append(c);
   }
   for (int b : dynamic_bodies_) {
     for (const char* c : {".vx", ".vy", ".vz", ".wx", ".wy", ".wz"}) {
@@ -45,7 +45,7 @@ TraceWriter::TraceWriter(const sim::World& world, long expected_rows) {
     }
   }
   text_ += '\n';
-  const std::size_t per_row = 24 * (1 + 13 * dynamic_bodies_.size() + 5 * d.fingers.size());
+  const std::size_t per_row = 24 * (1 + 13 * dynamic_bodies_.size() + 11 * d.fingers.size());
   text_.reserve(text_.size() + per_row * static_cast<std::size_t>(std::max(0L, expected_rows)));
 }
 
@@ -60,8 +60,9 @@ void TraceWriter::record(const sim::World& world) {
     }
   }
   for (int f = 0; f < static_cast<int>(world.desc().fingers.size()); ++f) {
-    const sim::Vec3 force = world.couplingForce(f);
-    for (double x : {force.x(), force.y(), force.z(), double(world.sgoCount(f)), world.contactRadius(f)}) {
+    const sim::Vec3 force = world.couplingForce(f), proxy = world.proxyPosition(f), device = world.devicePosition(f);
+    for (double x : {force.x(), force.y(), force.z(), double(world.sgoCount(f)), world.contactRadius(f), proxy.x(),
+                     proxy.y(), proxy.z(), device.x(), device.y(), device.z()}) {
       text_ += ',';
       appendNumber(text_, x);
     }

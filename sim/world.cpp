@@ -558,6 +558,11 @@ Vec3 World::bodyInertia(int body) const {
   return r.getInvMass() > 0.0 ? toEigen(r.getLocalInertia()) : Vec3::Zero();
 }
 
+Vec3 World::devicePosition(int finger) const {
+  GF_ASSERT_OWNER();
+  return impl_->fingers[finger].device.position;
+}
+
 Vec3 World::proxyPosition(int finger) const {
   GF_ASSERT_OWNER();
   return toEigen(impl_->fingers[finger].proxy->getCenterOfMassPosition());

@@ -57,6 +57,8 @@ class World {
   Vec3 bodyInertia(int body) const;
   /// Proxy centre and coupling force (N) of finger i.
   Vec3 proxyPosition(int finger) const;
+  /// The finger's device position of the last step (m).
+  Vec3 devicePosition(int finger) const;
   Vec3 couplingForce(int finger) const;
   /// SGOs finger i fed to the solver in the last step, over all its contacts.
   int sgoCount(int finger) const;

@@ -38,8 +38,8 @@ TEST(Session, SameSceneTwiceGivesByteIdenticalTrace) {
   EXPECT_EQ(ta, readFile(b / "trace.csv"));
   EXPECT_TRUE(fs::exists(a / "summary.json"));
   EXPECT_EQ(ta.substr(0, ta.find('\n')),
-            "t,box.px,box.py,box.pz,box.qx,box.qy,box.qz,box.qw,left.fx,left.fy,left.fz,left.n_sgo,left.r,"
-            "right.fx,right.fy,right.fz,right.n_sgo,right.r,box.vx,box.vy,box.vz,box.wx,box.wy,box.wz");
+            "t,box.px,box.py,box.pz,box.qx,box.qy,box.qz,box.qw,left.fx,left.fy,left.fz,left.n_sgo,left.r,left.px,left.py,left.pz,left.dx,left.dy,left.dz,"
+            "right.fx,right.fy,right.fz,right.n_sgo,right.r,right.px,right.py,right.pz,right.dx,right.dy,right.dz,box.vx,box.vy,box.vz,box.wx,box.wy,box.wz");
 }
 
 // Options writing into a fresh temporary folder `name`, without progress lines.
