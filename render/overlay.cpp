@@ -111,6 +111,9 @@ struct Overlay::Impl {
     ImGui::Begin("godfinger", nullptr, kPanelFlags);
     ImGui::Text("%s", scene.name.c_str());
     ImGui::Text("t = %7.3f s   step %7ld", snap.time, snap.step);
+    if (snap.nan_recoveries > 0) {  // loud: the simulation is not what it shows
+      ImGui::TextColored(ImVec4(1.0f, 0.25f, 0.2f, 1.0f), "%ld steps not finite, rolled back", snap.nan_recoveries);
+    }
     below_scene_panel = ImGui::GetWindowPos().y + ImGui::GetWindowSize().y + 8.0f;
     ImGui::End();
   }

@@ -54,6 +54,7 @@ struct HapticTimings {
 struct Snapshot {
   double time = 0.0;  ///< s
   long step = 0;
+  long nan_recoveries = 0;            ///< steps so far whose result was not finite and was rolled back
   std::vector<Pose> bodies;           ///< each body's description frame
   std::vector<FingerSnapshot> fingers;
   HapticTimings timings;

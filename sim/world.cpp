@@ -626,6 +626,7 @@ void World::snapshot(Snapshot& out) const {
   const Impl& w = *impl_;
   out.time = w.time;
   out.step = w.counters.steps;
+  out.nan_recoveries = w.counters.nan_recoveries;
   out.bodies.resize(w.bodies.size());
   for (std::size_t i = 0; i < w.bodies.size(); ++i) out.bodies[i] = bodyPose(static_cast<int>(i));
   out.fingers.resize(w.fingers.size());
