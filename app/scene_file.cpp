@@ -275,13 +275,14 @@ sim::DeviceTrack readDevice(Reader& parent, const std::string& base_dir) {
 }
 
 sim::FingerDesc readFinger(const std::string& name, const toml::table& t, const Reader& parent,
-                           const std::string& base_dir) {
+                           const std::string& base_dir, double haptic_rate_hz) {
   Reader r(t, parent.field("fingers." + name), parent.file());
   sim::FingerDesc f;
   f.name = name;
   for (const sim::Setting<sim::FingerDesc>& s : sim::fingerSettings()) r.setting(s, f, std::string(s.name));
   f.device = readDevice(r, base_dir);
   r.failOn(sim::validateFinger(f));
+  r.failOn(sim::validateCouplingStability(f, haptic_rate_hz));
   r.finish();
   return f;
 }
@@ -521,7 +522,7 @@ SessionDesc readSession(toml::table& root, const std::string& source, const std:
   if (s.scene.bodies.empty()) r.fail(nullptr, "bodies", "missing: a scene needs at least one body");
   for (const auto& [name, t] : r.namedTables("fingers")) {
     checkName("fingers", name, t);
-    s.scene.fingers.push_back(readFinger(name, *t, r, base_dir));
+    s.scene.fingers.push_back(readFinger(name, *t, r, base_dir, s.scene.world.haptic_rate_hz));
   }
   for (const auto& [name, t] : r.namedTables("cameras")) {
     checkName("cameras", name, t);

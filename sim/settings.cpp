@@ -1,6 +1,7 @@
 #include "sim/settings.hpp"
 
 #include <cmath>
+#include <cstdio>
 #include <numbers>
 #include <sstream>
 #include <type_traits>
@@ -143,7 +144,7 @@ std::span<const Setting<SceneDesc>> sceneSettings() {
   using S = SceneDesc;
   static const Setting<S> kTable[] = {
       row<S, &S::duration>("duration", "s", 1e-3, 1e6),
-      row<S, &S::world, &WorldSettings::haptic_rate_hz>("haptic_rate", "Hz", 10.0, 1e5),
+      row<S, &S::world, &WorldSettings::haptic_rate_hz>("haptic_rate", "Hz", 100.0, 1e5),
       row<S, &S::world, &WorldSettings::gravity>("world.gravity", "m/s^2", -kMaxGravity, kMaxGravity),
       row<S, &S::world, &WorldSettings::solver_iterations>("world.solver_iterations", "", 1, 10000),
       row<S, &S::world, &WorldSettings::linear_damping>("world.linear_damping", "1/s", 0.0, 1e3),
@@ -339,6 +340,26 @@ std::optional<FieldError> validateFinger(const FingerDesc& finger) {
   if (std::optional<FieldError> e = validateTrack(finger.device)) {
     e->field = "device." + e->field;
     return e;
+  }
+  return std::nullopt;
+}
+
+std::optional<FieldError> validateCouplingStability(const FingerDesc& finger, double haptic_rate_hz) {
+  const double m = finger.proxy.mass, rate = haptic_rate_hz;
+  const auto limit = [](double v) {
+    char b[48];
+    std::snprintf(b, sizeof b, "%.4g", v);
+    return std::string(b);
+  };
+  if (finger.coupling.stiffness > m * rate * rate) {
+    return FieldError{"coupling_stiffness", "must be at most proxy_mass x haptic_rate^2 = " + limit(m * rate * rate) +
+                                                " N/m here (the coupling spring is integrated explicitly), got " +
+                                                shown(finger.coupling.stiffness)};
+  }
+  if (finger.coupling.damping > m * rate) {
+    return FieldError{"coupling_damping", "must be at most proxy_mass x haptic_rate = " + limit(m * rate) +
+                                              " N s/m here (the coupling damper is integrated explicitly), got " +
+                                              shown(finger.coupling.damping)};
   }
   return std::nullopt;
 }

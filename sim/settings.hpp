@@ -159,6 +159,11 @@ std::optional<FieldError> validateScene(const SceneDesc& scene);
 std::optional<FieldError> validateBody(const BodyDesc& body);
 /// The first field of `finger` that is not legal: every finger setting, then its device track.
 std::optional<FieldError> validateFinger(const FingerDesc& finger);
+/// The first coupling setting of `finger` that the explicit integration of its spring-damper
+/// cannot hold at `haptic_rate_hz`: stiffness above proxy_mass * rate^2 or damping above
+/// proxy_mass * rate (k dt^2 / m and c dt / m at most 1; hard cases pinch-coupling-stiff and
+/// pinch-coupling-damped hold at those limits, and 4 times the stiffness rings).
+std::optional<FieldError> validateCouplingStability(const FingerDesc& finger, double haptic_rate_hz);
 /// The first god-finger setting (a live one) of `patch` that is not legal.
 std::optional<FieldError> validatePatch(const PatchSettings& patch);
 /// The first keyframe of `track` that is not legal ("keyframes.t" or "keyframes.p", with its
