@@ -406,5 +406,21 @@ TEST(SceneFile, NamesThatCannotNameFilesAndColumnsAreRejected) {
   }
 }
 
+// The coupling must be stable for the finger's proxy at the scene's rate: stiffness up to
+// proxy_mass x rate^2 and damping up to proxy_mass x rate are accepted, more is rejected with the
+// limit (the hard cases pinch-coupling-* hold at the limits).
+TEST(SceneFile, CouplingBeyondItsStabilityLimitIsRejected) {
+  const std::vector<std::string> at_limits = {"fingers.left.coupling_stiffness=100000", "fingers.left.coupling_damping=100"};
+  EXPECT_NO_THROW(parseSceneText(kMinimal, "scene.toml", "", at_limits));
+  const std::string stiff = errorOf(kMinimal, {"fingers.left.coupling_stiffness=100001"}).what();
+  EXPECT_NE(stiff.find("fingers.left.coupling_stiffness: must be at most proxy_mass x haptic_rate^2 = 1e+05 N/m"),
+            std::string::npos) << stiff;
+  const std::string damped = errorOf(kMinimal, {"fingers.left.proxy_mass=0.01", "fingers.left.coupling_damping=11"}).what();
+  EXPECT_NE(damped.find("fingers.left.coupling_damping: must be at most proxy_mass x haptic_rate = 10 N s/m"),
+            std::string::npos) << damped;
+  const std::string rate = errorOf(kMinimal, {"haptic_rate=50"}).what();
+  EXPECT_NE(rate.find("haptic_rate"), std::string::npos) << rate;
+}
+
 }  // namespace
 }  // namespace gf::app
