@@ -17,12 +17,6 @@ namespace {
 
 namespace fs = std::filesystem;
 
-std::string shellQuote(const std::string& s) {
-  std::string out = "'";
-  for (char c : s) out += c == '\'' ? std::string("'\\''") : std::string(1, c);
-  return out + "'";
-}
-
 std::string lastLine(const fs::path& path) {
   std::ifstream in(path);
   std::string line, last;
@@ -85,12 +79,8 @@ int runCheck(const CheckOptions& options) {
       if (other == name) name = fs::path(s).parent_path().filename().string() + "-" + name;
     }
     names.push_back(name);
-    const std::string dir = (fs::absolute(options.out) / name).lexically_normal().string();
-    lines.push_back("mkdir -p " + shellQuote(dir) + " && exec " + shellQuote(options.godfinger) + " run " +
-                    shellQuote(fs::absolute(s).string()) + " --out " + shellQuote(dir) + " > " +
-                    shellQuote(dir + "/run.log") + " 2>&1");
+    lines.push_back(godfingerRunLine(options.godfinger, s, (fs::path(options.out) / name).string(), {}));
   }
-  std::vector<std::string> report(scenes.size());
   int failed = 0;
   const bool interrupted = runJobs(lines, options.jobs, [&](std::size_t i, int code) {
     const fs::path dir = fs::absolute(options.out) / names[i];
@@ -134,13 +124,12 @@ int runCheck(const CheckOptions& options) {
       detail = "exit " + std::to_string(code) + ": " + lastLine(dir / "run.log");
       ++failed;
     }
-    report[i] = head + detail;
-    std::printf("%s\n", report[i].c_str());
+    std::printf("%s%s\n", head, detail.c_str());
     std::fflush(stdout);
   });
   std::printf("%zu scenes: %zu passed, %d failed%s; runs in %s/\n", scenes.size(),
-              scenes.size() - static_cast<std::size_t>(failed) - (interrupted ? 0 : 0), failed,
-              interrupted ? " (interrupted)" : "", options.out.c_str());
+              scenes.size() - static_cast<std::size_t>(failed), failed, interrupted ? " (interrupted)" : "",
+              options.out.c_str());
   if (interrupted) return 130;
   return failed == 0 ? 0 : 1;
 }

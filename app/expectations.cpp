@@ -67,7 +67,7 @@ ExpectChecker::ExpectChecker(const ExpectDesc& expect, const sim::World& world) 
   }
   const std::size_t samples = static_cast<std::size_t>(scene.world.haptic_rate_hz * kEnergyWindow) + 2;
   quiet_.reserve(samples);
-  for (const sim::DeviceTrack& d : sim::deviceTracks(scene)) last_device_.push_back(d.sample(0.0).position);
+  for (int f = 0; f < static_cast<int>(scene.fingers.size()); ++f) last_device_.push_back(world.devicePosition(f));
 }
 
 void ExpectChecker::observe(Check& c, double value, double t) {
@@ -123,8 +123,8 @@ void ExpectChecker::afterStep(const sim::World& world) {
   if (energy_ >= 0) {
     // A quiet stretch: no device moved since the last step and no load acts.
     bool quiet = true;
-    for (std::size_t f = 0; f < scene.fingers.size(); ++f) {
-      const sim::Vec3 d = scene.fingers[f].device.sample(t).position;
+    for (std::size_t f = 0; f < last_device_.size(); ++f) {
+      const sim::Vec3 d = world.devicePosition(static_cast<int>(f));  // the sample this step ran with
       quiet = quiet && (d - last_device_[f]).norm() < 1e-12;
       last_device_[f] = d;
     }

@@ -7,6 +7,7 @@
 #include <cerrno>
 #include <csignal>
 #include <cstdio>
+#include <filesystem>
 #include <map>
 
 extern char** environ;
@@ -25,7 +26,22 @@ pid_t spawnShell(const std::string& line) {
   return pid;
 }
 
+std::string shellQuote(const std::string& s) {
+  std::string out = "'";
+  for (char c : s) out += c == '\'' ? std::string("'\\''") : std::string(1, c);
+  return out + "'";
+}
+
 }  // namespace
+
+std::string godfingerRunLine(const std::string& godfinger, const std::string& scene, const std::string& dir,
+                             const std::vector<std::string>& arguments) {
+  const std::string out = std::filesystem::absolute(dir).lexically_normal().string();
+  std::string line = "mkdir -p " + shellQuote(out) + " && exec " + shellQuote(godfinger) + " run " +
+                     shellQuote(std::filesystem::absolute(scene).string()) + " --out " + shellQuote(out);
+  for (const std::string& a : arguments) line.append(1, ' ').append(shellQuote(a));
+  return line + " > " + shellQuote(out + "/run.log") + " 2>&1";
+}
 
 std::string formatDuration(double s) {
   char b[32];

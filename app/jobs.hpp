@@ -14,6 +14,13 @@ namespace gf::app {
 /// Returns true when it was interrupted (the lines not started were skipped).
 bool runJobs(const std::vector<std::string>& lines, int jobs, const std::function<void(std::size_t, int)>& done);
 
+/// The shell line of one `godfinger run` of `scene` into `dir` (created), with `arguments`
+/// (each a single word, quoted here), its output in dir/run.log. Paths are made absolute, so the
+/// line works from any folder; `exec` makes the runner wait on godfinger itself, so a Ctrl-C
+/// reaches it.
+std::string godfingerRunLine(const std::string& godfinger, const std::string& scene, const std::string& dir,
+                             const std::vector<std::string>& arguments);
+
 /// "1m05s", "42s".
 std::string formatDuration(double seconds);
 

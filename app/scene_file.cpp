@@ -400,18 +400,8 @@ sim::LoadDesc readLoad(Reader& r, const std::vector<sim::BodyDesc>& bodies) {
 
 // `[[loads]]`: known external loads, named `loads.INDEX` in errors and --set.
 void readLoads(Reader& parent, sim::SceneDesc& scene) {
-  const toml::node* n = parent.find("loads");
-  if (!n) return;
-  const toml::array* a = n->as_array();
-  if (!a) {
-    parent.fail(n, "loads",
-                std::string("expected an array of tables ([[loads]]), got ") + typeName(*n));
-  }
-  for (std::size_t i = 0; i < a->size(); ++i) {
-    const std::string key = "loads." + std::to_string(i);
-    const toml::node& e = *a->get(i);
-    if (!e.is_table()) parent.fail(&e, key, std::string("expected a table, got ") + typeName(e));
-    Reader r(*e.as_table(), parent.field(key), parent.file());
+  for (const auto& [key, t] : parent.arrayTables("loads", "")) {
+    Reader r(*t, parent.field(key), parent.file());
     scene.loads.push_back(readLoad(r, scene.bodies));
   }
 }

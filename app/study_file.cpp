@@ -6,6 +6,7 @@
 #include <map>
 #include <sstream>
 
+#include "app/jobs.hpp"
 #include "app/study.hpp"
 #include "app/toml_reader.hpp"
 
@@ -88,15 +89,8 @@ std::vector<StudyOverride> axisValues(Reader& r, const std::string& key) {
 
 std::vector<StudyAxis> readAxes(Reader& parent, const std::string& key) {
   std::vector<StudyAxis> out;
-  const toml::node* n = parent.find(key);
-  if (!n) return out;
-  const toml::array* a = n->as_array();
-  if (!a) parent.fail(n, key, std::string("expected an array of tables ([[axes]]), got ") + typeName(*n));
-  for (std::size_t i = 0; i < a->size(); ++i) {
-    const std::string name = key + "." + std::to_string(i);
-    const toml::node& e = *a->get(i);
-    if (!e.is_table()) parent.fail(&e, name, std::string("expected a table, got ") + typeName(e));
-    Reader r(*e.as_table(), parent.field(name), parent.file());
+  for (const auto& [name, t] : parent.arrayTables(key, "")) {
+    Reader r(*t, parent.field(name), parent.file());
     StudyAxis axis;
     const toml::node* field = r.find("field");
     if (!field) r.fail(nullptr, "field", "missing: the scene field to vary (as for --set), or a list of them");
@@ -167,15 +161,9 @@ StudyMeasure readMeasure(Reader& r) {
 
 std::vector<StudyMeasure> readMeasures(Reader& parent, const std::string& key) {
   std::vector<StudyMeasure> out;
-  const toml::node* n = parent.find(key);
-  if (!n) return out;
-  const toml::array* a = n->as_array();
-  if (!a || a->empty()) parent.fail(n, key, "expected a non-empty array of tables ([[measures]])");
-  for (std::size_t i = 0; i < a->size(); ++i) {
-    const std::string name = key + "." + std::to_string(i);
-    const toml::node& e = *a->get(i);
-    if (!e.is_table()) parent.fail(&e, name, std::string("expected a table, got ") + typeName(e));
-    Reader r(*e.as_table(), parent.field(name), parent.file());
+  if (!parent.has(key)) return out;
+  for (const auto& [name, t] : parent.arrayTables(key, "", true)) {
+    Reader r(*t, parent.field(name), parent.file());
     out.push_back(readMeasure(r));
   }
   return out;
@@ -209,12 +197,6 @@ std::string slug(const std::string& text) {
   }
   while (!out.empty() && out.back() == '-') out.pop_back();
   return out;
-}
-
-std::string shellQuote(const std::string& s) {
-  std::string out = "'";
-  for (char c : s) out += c == '\'' ? std::string("'\\''") : std::string(1, c);
-  return out + "'";
 }
 
 // A value as written in results, without the quotes of a TOML string.
@@ -328,14 +310,8 @@ StudyDesc loadStudyFile(const std::string& name_or_path) {
   std::vector<StudyOverride> reference_set, reference_quick;
   const bool reference = readReferenceRun(r, reference_set, reference_quick);
   study.quick_set = readSet(r, "quick_set");
-  const toml::node* list = r.find("series");
-  const toml::array* a = list ? list->as_array() : nullptr;
-  if (!a || a->empty()) r.fail(list, "series", "expected a non-empty array of tables ([[series]]): the lines of the chart");
-  for (std::size_t i = 0; i < a->size(); ++i) {
-    const std::string key = "series." + std::to_string(i);
-    const toml::node& e = *a->get(i);
-    if (!e.is_table()) r.fail(&e, key, std::string("expected a table, got ") + typeName(e));
-    Reader sr(*e.as_table(), key, path);
+  for (const auto& [key, t] : r.arrayTables("series", ": the lines of the chart", true)) {
+    Reader sr(*t, key, path);
     StudySeries s;
     s.name = sr.string("name", "");
     if (s.name.empty()) sr.fail(nullptr, "name", "missing: the series' name (its line in the chart)");
@@ -442,13 +418,10 @@ StudyPlan expandStudy(const StudyDesc& study, bool quick, const std::vector<std:
 }
 
 std::string runCommandLine(const std::string& godfinger, const std::string& out_dir, const StudyRun& run) {
-  const std::string dir = (fs::absolute(out_dir) / "runs" / run.id).lexically_normal().string();
-  // exec: the job runner (or the study) waits on godfinger itself, and a Ctrl-C reaches it.
-  std::string line = "mkdir -p " + shellQuote(dir) + " && exec " + shellQuote(godfinger) + " run " +
-                     shellQuote(fs::absolute(run.scene).string()) + " --out " + shellQuote(dir) +
-                     " --expectations report";  // a study measures; the scene's [expect] is not its business
-  for (const StudyOverride& o : run.overrides) line += " --set " + shellQuote(o.text);
-  return line + " > " + shellQuote(dir + "/run.log") + " 2>&1";
+  // A study measures: the scene's [expect] is recorded, not a failure.
+  std::vector<std::string> arguments = {"--expectations", "report"};
+  for (const StudyOverride& o : run.overrides) arguments.insert(arguments.end(), {"--set", o.text});
+  return godfingerRunLine(godfinger, run.scene, (fs::path(out_dir) / "runs" / run.id).string(), arguments);
 }
 
 }  // namespace gf::app

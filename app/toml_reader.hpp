@@ -178,6 +178,29 @@ class Reader {
     }
     return out;
   }
+  // The tables of the array of tables `key` ([[key]]), each with its dotted name ("key.0");
+  // fails naming `what` when `key` is not such an array, or (when `non_empty`) is empty.
+  std::vector<std::pair<std::string, const toml::table*>> arrayTables(const std::string& key, const std::string& what,
+                                                                      bool non_empty = false) {
+    std::vector<std::pair<std::string, const toml::table*>> out;
+    const toml::node* n = find(key);
+    if (!n) {
+      if (non_empty) fail(nullptr, key, "missing: expected a non-empty array of tables ([[" + key + "]])" + what);
+      return out;
+    }
+    const toml::array* a = n->as_array();
+    if (!a || (non_empty && a->empty())) {
+      fail(n, key, std::string("expected ") + (non_empty ? "a non-empty" : "an") + " array of tables ([[" + key + "]])" +
+                       what + ", got " + typeName(*n));
+    }
+    for (std::size_t i = 0; i < a->size(); ++i) {
+      const std::string name = key + "." + std::to_string(i);
+      const toml::node& e = *a->get(i);
+      if (!e.is_table()) fail(&e, name, std::string("expected a table, got ") + typeName(e));
+      out.emplace_back(name, e.as_table());
+    }
+    return out;
+  }
   // Sub-tables of `key`, in the order they appear in the file (overrides last).
   std::vector<std::pair<std::string, const toml::table*>> namedTables(const std::string& key) {
     std::vector<std::pair<std::string, const toml::table*>> out;
