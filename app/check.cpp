@@ -81,7 +81,7 @@ int runCheck(const CheckOptions& options) {
     names.push_back(name);
     lines.push_back(godfingerRunLine(options.godfinger, s, (fs::path(options.out) / name).string(), {}));
   }
-  int failed = 0;
+  int failed = 0, passed = 0;
   const bool interrupted = runJobs(lines, options.jobs, [&](std::size_t i, int code) {
     const fs::path dir = fs::absolute(options.out) / names[i];
     nlohmann::json summary;
@@ -118,6 +118,7 @@ int runCheck(const CheckOptions& options) {
         if (failures.size() > 1) detail += " (+" + std::to_string(failures.size() - 1) + " more)";
         ++failed;
       }
+      if (failures.empty()) ++passed;
       if (recoveries > 0) detail += "; " + std::to_string(recoveries) + " steps rolled back";
     } else {
       std::snprintf(head, sizeof head, "%-5s %-40s ", "ERROR", names[i].c_str());
@@ -127,9 +128,9 @@ int runCheck(const CheckOptions& options) {
     std::printf("%s%s\n", head, detail.c_str());
     std::fflush(stdout);
   });
-  std::printf("%zu scenes: %zu passed, %d failed%s; runs in %s/\n", scenes.size(),
-              scenes.size() - static_cast<std::size_t>(failed), failed, interrupted ? " (interrupted)" : "",
-              options.out.c_str());
+  const std::size_t skipped = scenes.size() - static_cast<std::size_t>(passed + failed);
+  std::printf("%zu scenes: %d passed, %d failed, %zu not run%s; runs in %s/\n", scenes.size(), passed, failed, skipped,
+              interrupted ? " (interrupted)" : "", options.out.c_str());
   if (interrupted) return 130;
   return failed == 0 ? 0 : 1;
 }
