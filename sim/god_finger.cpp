@@ -176,6 +176,14 @@ double meanEdge(const Mesh& m, int f) {
           (m.corner(f, 0) - m.corner(f, 2)).norm()) / 3.0;
 }
 
+// The point of segment [a, b] closest to p.
+Vec3 onSegment(const Vec3& p, const Vec3& a, const Vec3& b) {
+  const Vec3 e = b - a;
+  const double len2 = e.squaredNorm();
+  if (!(len2 > 0.0)) return a;
+  return a + std::clamp((p - a).dot(e) / len2, 0.0, 1.0) * e;
+}
+
 // Algorithm 1: walks distance d from the hit along dir, crossing edges while the next face stays
 // within the angular limit. Appends the path; returns the SGO.
 Sgo walk(const WalkContext& ctx, const Start& start, const Vec3& from, double d, Patch& out) {
@@ -211,8 +219,9 @@ Sgo walk(const WalkContext& ctx, const Start& start, const Vec3& from, double d,
       out.path_points.push_back(sgo.position);
       return sgo;
     }
-    // Reached edge e: p_SGO on e, d_i reduced by the distance travelled.
-    sgo.position += t_exit * dir;
+    // Reached edge e: p_SGO on e, d_i reduced by the distance travelled. A direction nearly
+    // along another edge of a sliver can reach e's line past its end: the point is kept on e.
+    sgo.position = onSegment(sgo.position + t_exit * dir, m.corner(sgo.face, k_exit), m.corner(sgo.face, (k_exit + 1) % 3));
     sgo.walked += t_exit;
     remaining -= t_exit;
     out.path_points.push_back(sgo.position);

@@ -170,5 +170,45 @@ TEST(PatchRobustness, OpenMeshStopsAtItsBoundary) {
   }
 }
 
+// Found by the property sweep (seed 3013): a plane of cells, each split around a point a hair
+// off its diagonal plus a zero-area sliver over the diagonal, touched at a boundary vertex with
+// friction 0. A radial vector running back along the sliver met its other long edge at a
+// rounding-sized gap over a near-zero rate and left the mesh by 7e-10 m before crossing.
+TEST(PatchRobustness, WalkAlongASliverStaysOnTheMesh) {
+  const std::vector<Vec3> pos{
+      {0, 0, 0}, {0, 0, 0.03385786059179817}, {0, 0, 0.067715721183596339},
+      {0.03385786059179817, 0, 0}, {0.03385786059179817, 0, 0.03385786059179817},
+      {0.03385786059179817, 0, 0.067715721183596339}, {0.067715721183596339, 0, 0},
+      {0.067715721183596339, 0, 0.03385786059179817}, {0.067715721183596339, 0, 0.067715721183596339},
+      {0.016928930316588882, 0, 0.016928930295899085}, {0.016928930378662253, 0, 0.050786790887697254},
+      {0.050786790946589361, 0, 0.016928930295899085}, {0.050786794389508436, 0, 0.050786790887697254}};
+  const std::vector<std::array<std::int32_t, 3>> tris{
+      {0, 1, 9},   {9, 1, 4},  {0, 9, 3},   {9, 4, 3},  {0, 4, 9},  {1, 2, 10},  {10, 2, 5},
+      {1, 10, 4},  {10, 5, 4}, {1, 5, 10},  {3, 4, 11}, {11, 4, 7}, {3, 11, 6},  {11, 7, 6},
+      {3, 7, 11},  {4, 5, 12}, {12, 5, 8},  {4, 12, 7}, {12, 8, 7}, {4, 8, 12}};
+  const Mesh plane = buildMesh(pos, tris, MeshBuildSettings{0.0, 0.0});
+  ASSERT_EQ(plane.faceCount(), 20);
+  PatchSettings s;
+  s.fill = PatchFill::kFilled;
+  s.rings = 5;
+  s.n_sgo = 32;
+  s.r_max = 3.2756421234694454e-05;
+  s.d0 = 7.5001213239380386e-05;
+  s.alpha = 41.323751552065751;
+  s.stretch_length = 0.039553394473515913;
+  s.max_stretch = 1.8013657405999943;
+  s.tau_a = 0.94945781983847366;
+  s.friction = 0.0;
+  s.tangential_stretch = false;
+  s.max_face_crossings = 47;
+  const PatchContact c{pos[3], Vec3(0, -1, 0), -9.8106130909026118e-05};
+  Patch p;
+  computePatch(plane, c, Vec3(2.9778310360065802e-06, 5.733921307324465e-05, -4.2743673748203963e-05), s, p);
+  expectSane(plane, s, p);
+  ASSERT_FALSE(p.sgos.empty());
+  for (const Sgo& sgo : p.sgos) EXPECT_GE(sgo.position.z(), -1e-15) << "left the mesh";
+  for (const Vec3& q : p.path_points) EXPECT_LT(plane.closestPoint(q, 0.0).query_distance, 1e-15);
+}
+
 }  // namespace
 }  // namespace gf::sim

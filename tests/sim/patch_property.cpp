@@ -1,0 +1,287 @@
+#include "patch_property.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <limits>
+#include <random>
+#include <sstream>
+#include <vector>
+
+#include "sim/god_finger.hpp"
+#include "sim/primitives.hpp"
+
+namespace gf::sim::testing {
+namespace {
+
+using Triangles = std::vector<std::array<std::int32_t, 3>>;
+
+// Builds without welding or dropping anything: the patch must cope with what a raw file holds.
+const MeshBuildSettings kRaw{0.0, 0.0};
+
+struct Generator {
+  std::mt19937_64 rng;
+  double uniform(double lo, double hi) { return std::uniform_real_distribution<double>(lo, hi)(rng); }
+  int integer(int lo, int hi) { return std::uniform_int_distribution<int>(lo, hi)(rng); }
+  bool chance(double p) { return uniform(0.0, 1.0) < p; }
+  // Log-uniform in [lo, hi].
+  double logUniform(double lo, double hi) { return std::exp(uniform(std::log(lo), std::log(hi))); }
+  Vec3 unit() {
+    std::normal_distribution<double> g;
+    const Vec3 v(g(rng), g(rng), g(rng));
+    return v.norm() > 1e-9 ? Vec3(v.normalized()) : Vec3::UnitY();
+  }
+};
+
+// Flips the winding of each triangle with probability p (1: inside-out; 0.5: mixed).
+Triangles flipped(Triangles tris, Generator& g, double p) {
+  for (auto& t : tris) {
+    if (g.chance(p)) std::swap(t[1], t[2]);
+  }
+  return tris;
+}
+
+// One random or adversarial mesh, and a name for failure messages.
+Mesh makeMesh(Generator& g, std::string& kind) {
+  const double scale = g.logUniform(1e-3, 10.0);
+  switch (g.integer(0, 9)) {
+    case 0: {  // triangle soup: slivers, non-manifold edges, inconsistent winding, boundaries
+      kind = "soup";
+      std::vector<Vec3> pos;
+      Triangles tris;
+      const int n = g.integer(4, 60);
+      for (int i = 0; i < n; ++i) pos.emplace_back(scale * g.unit() * g.uniform(0.2, 1.0));
+      for (int i = 0, m = g.integer(1, 3 * n); i < m; ++i) tris.push_back({g.integer(0, n - 1), g.integer(0, n - 1), g.integer(0, n - 1)});
+      return buildMesh(pos, tris, g.chance(0.5) ? kRaw : MeshBuildSettings{});
+    }
+    case 1: {  // sphere with jittered vertices, maybe inside-out or mixed
+      kind = "jittered sphere";
+      const Mesh sphere = tessellateSphere(scale, g.integer(1, 3));
+      std::vector<Vec3> pos = sphere.vertices();
+      const double jitter = g.logUniform(1e-9, 0.1) * scale;
+      for (Vec3& p : pos) p += jitter * g.unit();
+      return buildMesh(pos, flipped(sphere.triangles(), g, g.chance(0.5) ? 1.0 : 0.5), MeshBuildSettings{});
+    }
+    case 2: {  // every vertex duplicated per triangle: no face shares an edge (all boundaries)
+      kind = "unwelded box";
+      const Mesh box = tessellateBox(scale * Vec3(g.uniform(0.1, 1), g.uniform(0.1, 1), g.uniform(0.1, 1)), g.integer(1, 3));
+      std::vector<Vec3> pos;
+      Triangles tris;
+      for (int f = 0; f < box.faceCount(); ++f) {
+        const auto base = static_cast<std::int32_t>(pos.size());
+        for (int k = 0; k < 3; ++k) pos.push_back(box.corner(f, k));
+        tris.push_back({base, base + 1, base + 2});
+      }
+      return buildMesh(pos, tris, kRaw);
+    }
+    case 3: {  // a plane with zero-area and sliver triangles between its cells
+      kind = "slivers";
+      std::vector<Vec3> pos;
+      Triangles tris;
+      const int cells = g.integer(1, 6);
+      const double h = scale / cells;
+      for (int i = 0; i <= cells; ++i) {
+        for (int j = 0; j <= cells; ++j) pos.emplace_back(i * h, 0.0, j * h);
+      }
+      const auto id = [&](int i, int j) { return static_cast<std::int32_t>(i * (cells + 1) + j); };
+      for (int i = 0; i < cells; ++i) {
+        for (int j = 0; j < cells; ++j) {
+          // Split each cell's diagonal with a point a hair off it: a sliver on each side.
+          const auto mid = static_cast<std::int32_t>(pos.size());
+          pos.push_back(0.5 * (pos[id(i, j)] + pos[id(i + 1, j + 1)]) + Vec3(g.logUniform(1e-15, 1e-6) * h, 0, 0));
+          tris.push_back({id(i, j), id(i, j + 1), mid});
+          tris.push_back({mid, id(i, j + 1), id(i + 1, j + 1)});
+          tris.push_back({id(i, j), mid, id(i + 1, j)});
+          tris.push_back({mid, id(i + 1, j + 1), id(i + 1, j)});
+          tris.push_back({id(i, j), id(i + 1, j + 1), mid});  // zero-area (or nearly) over the diagonal
+        }
+      }
+      return buildMesh(pos, flipped(tris, g, g.chance(0.3) ? 0.5 : 0.0), kRaw);
+    }
+    case 4: {  // a non-manifold fan: k triangles sharing one edge
+      kind = "non-manifold fan";
+      std::vector<Vec3> pos{Vec3(0, 0, -scale), Vec3(0, 0, scale)};
+      Triangles tris;
+      for (int i = 0, k = g.integer(3, 8); i < k; ++i) {
+        const double a = g.uniform(0.0, 2.0 * M_PI);
+        pos.emplace_back(scale * std::cos(a), scale * std::sin(a), g.uniform(-0.5, 0.5) * scale);
+        tris.push_back({0, 1, static_cast<std::int32_t>(pos.size() - 1)});
+      }
+      return buildMesh(pos, flipped(tris, g, 0.5), kRaw);
+    }
+    case 5: {  // a height field with valleys and ridges
+      kind = "height field";
+      const int cells = g.integer(2, 12);
+      const double h = scale / cells, bump = g.logUniform(1e-6, 2.0) * h;
+      std::vector<Vec3> pos;
+      Triangles tris;
+      for (int i = 0; i <= cells; ++i) {
+        for (int j = 0; j <= cells; ++j) pos.emplace_back(i * h, bump * g.uniform(-1, 1), j * h);
+      }
+      const auto id = [&](int i, int j) { return static_cast<std::int32_t>(i * (cells + 1) + j); };
+      for (int i = 0; i < cells; ++i) {
+        for (int j = 0; j < cells; ++j) {
+          tris.push_back({id(i, j), id(i, j + 1), id(i + 1, j + 1)});
+          tris.push_back({id(i, j), id(i + 1, j + 1), id(i + 1, j)});
+        }
+      }
+      return buildMesh(pos, tris, MeshBuildSettings{});
+    }
+    case 6: {  // a tetrahedron, the coarsest closed mesh, maybe flattened to a sliver
+      kind = "tetrahedron";
+      const double flat = g.chance(0.3) ? g.logUniform(1e-12, 1e-3) : 1.0;
+      const std::vector<Vec3> pos{scale * Vec3(1, flat, 0), scale * Vec3(-0.5, flat, 0.87), scale * Vec3(-0.5, flat, -0.87),
+                                  scale * Vec3(0, -flat, 0)};
+      const Triangles tris{{0, 1, 2}, {0, 3, 1}, {1, 3, 2}, {2, 3, 0}};
+      return buildMesh(pos, flipped(tris, g, g.chance(0.5) ? 0.5 : 0.0), kRaw);
+    }
+    case 7:
+      kind = "cylinder";
+      return tessellateCylinder(scale * g.uniform(0.05, 1), scale * g.uniform(0.05, 1), g.integer(3, 96));
+    case 8:
+      kind = "open plane";
+      return tessellatePlane(scale, g.integer(1, 8));
+    default:
+      kind = "capsule";
+      return tessellateCapsule(scale * g.uniform(0.05, 1), scale * g.uniform(0.0, 1), g.integer(4, 32));
+  }
+}
+
+// Settings anywhere in the ranges the scene validator accepts (sim/settings.cpp).
+PatchSettings randomSettings(Generator& g) {
+  PatchSettings s;
+  s.fill = g.chance(0.3) ? PatchFill::kFilled : PatchFill::kRing;
+  s.rings = g.integer(1, kMaxRings);
+  s.n_sgo = g.integer(kMinSgo, kMaxSgo);
+  s.r_max = g.chance(0.05) ? 0.0 : g.logUniform(1e-6, 1.0);
+  s.d0 = g.logUniform(1e-6, 1.0);
+  s.alpha = g.chance(0.2) ? 1.0 : g.logUniform(1.0, 100.0);
+  s.stretch_length = g.logUniform(1e-6, 1.0);
+  s.max_stretch = g.uniform(1.0, 2.0);
+  s.tau_a = g.chance(0.1) ? 0.0 : g.chance(0.1) ? M_PI / 2 : g.uniform(0.0, M_PI / 2);
+  s.friction = g.chance(0.1) ? 0.0 : g.logUniform(1e-3, 100.0);
+  s.tangential_stretch = g.chance(0.8);
+  s.angular_threshold = g.chance(0.8);
+  s.friction_cone = g.chance(0.8);
+  s.max_face_crossings = g.integer(0, 128);
+  return s;
+}
+
+// The contact on `mesh`: the closest point of a random query, an exact vertex or an edge's
+// midpoint, with the face's normal, a random normal or one between two faces.
+PatchContact randomContact(const Mesh& mesh, Generator& g) {
+  const int f = g.integer(0, mesh.faceCount() - 1);
+  const int k = g.integer(0, 2);
+  const double d = mesh.diagonal();
+  Vec3 at;
+  switch (g.integer(0, 3)) {
+    case 0: at = mesh.corner(f, k); break;
+    case 1: at = 0.5 * (mesh.corner(f, k) + mesh.corner(f, (k + 1) % 3)); break;
+    default: at = 0.5 * (mesh.boundsMin() + mesh.boundsMax()) + d * g.uniform(0.0, 1.0) * g.unit();
+  }
+  const SurfacePoint hit = mesh.closestPoint(at, 1e-7 * d);
+  Vec3 n = mesh.faceNormal(hit.face);
+  if (g.chance(0.15)) n = g.unit();
+  if (g.chance(0.15)) n = (n + mesh.faceNormal(f)).norm() > 1e-6 ? Vec3((n + mesh.faceNormal(f)).normalized()) : n;
+  if (g.chance(0.2)) n = -n;  // the inside-out reading of the face
+  PatchContact c;
+  c.point_local = hit.point;
+  c.outward_normal_local = n;
+  c.separation = -g.logUniform(1e-9, 1e-2);
+  c.rounding = g.chance(0.3) ? g.logUniform(1e-6, 1e-2) * d : 0.0;
+  if (g.chance(0.3)) c.ring_reference_local = g.unit();
+  return c;
+}
+
+Vec3 randomDisplacement(const PatchContact& c, Generator& g) {
+  const double press = g.chance(0.1) ? -g.logUniform(1e-9, 1.0) : g.logUniform(1e-12, 10.0);
+  return -press * c.outward_normal_local + g.logUniform(1e-12, 10.0) * g.unit();
+}
+
+std::string sci(double x) {
+  std::ostringstream out;
+  out << x;
+  return out.str();
+}
+
+double meanEdgeShortest(const Mesh& mesh) {
+  double shortest = std::numeric_limits<double>::infinity();
+  for (int f = 0; f < mesh.faceCount(); ++f) {
+    double sum = 0.0;
+    for (int k = 0; k < 3; ++k) sum += (mesh.corner(f, (k + 1) % 3) - mesh.corner(f, k)).norm();
+    shortest = std::min(shortest, sum / 3.0);
+  }
+  return shortest;
+}
+
+// What is wrong with `p`, or empty.
+std::string checkPatch(const Mesh& mesh, double shortest_mean_edge, const PatchSettings& s, const Patch& p, long& points) {
+  if (!p.valid) return "rejected legal input";
+  if (!std::isfinite(p.radius) || p.radius < 0.0 || p.radius > s.r_max) return "radius outside [0, r_max]";
+  if (p.sgos.size() > static_cast<std::size_t>(s.n_sgo)) return "more SGOs than n_sgo";
+  const double tolerance = 1e-9 * mesh.diagonal();
+  double off = 0.0;  // the last point's distance from the surface (m)
+  const auto onSurface = [&](const Sgo& sgo) {
+    if (!sgo.position.allFinite()) return false;
+    off = mesh.closestPoint(sgo.position, 0.0).query_distance;
+    return off <= tolerance;
+  };
+  double shares = p.sgos.empty() ? 1.0 : p.centre_share;
+  for (std::size_t k = 0; k < p.sgos.size(); ++k) {
+    const Sgo& sgo = p.sgos[k];
+    if (!onSurface(sgo)) return "SGO " + std::to_string(k) + " not finite or off the surface by " + sci(off) + " m";
+    const double d = p.d_i[sgo.radial];
+    if (!std::isfinite(d) || !(sgo.walked <= d * (1 + 1e-9) + 1e-300)) return "SGO " + std::to_string(k) + " walked beyond d_i";
+    const long budget = s.max_face_crossings + static_cast<long>(std::min(1e6, std::ceil(8.0 * d / shortest_mean_edge))) + 2;
+    if (p.path_offsets[k + 1] - p.path_offsets[k] > budget) return "SGO " + std::to_string(k) + " walk beyond its crossing budget";
+    shares += sgo.load_share;
+  }
+  for (const Sgo& inner : p.inner) {
+    if (!onSurface(inner)) return "filled point not finite or off the surface by " + sci(off) + " m";
+    shares += inner.load_share;
+  }
+  for (const Vec3& q : p.path_points) {
+    if (!q.allFinite()) return "path point not finite";
+  }
+  if (std::abs(shares - 1.0) > 1e-9) return "load shares sum to " + std::to_string(shares);
+  points += static_cast<long>(p.sgos.size() + p.inner.size());
+  return {};
+}
+
+}  // namespace
+
+PropertySweep sweepPatchProperties(std::uint32_t seed, long patches) {
+  PropertySweep sweep;
+  Generator g{std::mt19937_64(seed)};
+  Patch p;
+  while (sweep.patches < patches) {
+    std::string kind;
+    const Mesh mesh = makeMesh(g, kind);
+    ++sweep.meshes;
+    if (mesh.faceCount() == 0) continue;
+    const double shortest = meanEdgeShortest(mesh);
+    const long per_mesh = std::min<long>(patches - sweep.patches, 50);
+    for (long i = 0; i < per_mesh; ++i) {
+      const PatchSettings s = randomSettings(g);
+      const PatchContact c = randomContact(mesh, g);
+      const Vec3 v = randomDisplacement(c, g);
+      computePatch(mesh, c, v, s, p);
+      ++sweep.patches;
+      sweep.valid += p.valid;
+      const std::string broken = checkPatch(mesh, shortest, s, p, sweep.sgos);
+      if (broken.empty()) continue;
+      if (++sweep.failures == 1) {
+        std::ostringstream what;
+        what.precision(17);
+        what << broken << " (patch " << sweep.patches << ", seed " << seed << ", " << kind << " of " << mesh.faceCount()
+             << " faces, diagonal " << mesh.diagonal() << "; contact " << c.point_local.transpose() << " normal "
+             << c.outward_normal_local.transpose() << "; v " << v.transpose() << "; n_sgo " << s.n_sgo << " r_max "
+             << s.r_max << " fill " << static_cast<int>(s.fill) << ")";
+        sweep.first_failure = what.str();
+      }
+    }
+  }
+  return sweep;
+}
+
+}  // namespace gf::sim::testing
