@@ -2,6 +2,7 @@
 
 #include <Eigen/Geometry>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <numbers>
@@ -20,7 +21,8 @@ bool finiteVec(const sim::Vec3& v) { return v.allFinite(); }
 }  // namespace
 
 bool ExpectDesc::empty() const {
-  return !finite && !max_speed && !max_angular_speed && !energy_growth && bodies.empty() && fingers.empty();
+  return !finite && !max_speed && !max_angular_speed && !energy_growth && !max_penetration && !no_tunnelling &&
+         bodies.empty() && fingers.empty();
 }
 
 std::string ExpectFailure::text() const {
@@ -53,17 +55,24 @@ ExpectChecker::ExpectChecker(const ExpectDesc& expect, const sim::World& world) 
     s.after = e.after;
     bodies_.push_back(s);
   }
-  for (const auto& [name, e] : expect.fingers) {
+  // Every finger gets the scene-wide penetration and tunnelling checks; [expect.fingers.NAME]
+  // adds its own.
+  for (std::size_t f = 0; f < scene.fingers.size(); ++f) {
+    const std::string& name = scene.fingers[f].name;
+    const auto own = expect.fingers.find(name);
+    const FingerExpect e = own != expect.fingers.end() ? own->second : FingerExpect{};
     FingerState s;
-    for (std::size_t f = 0; f < scene.fingers.size(); ++f) {
-      if (scene.fingers[f].name == name) s.finger = static_cast<int>(f);
-    }
+    s.finger = static_cast<int>(f);
     const std::string p = "fingers." + name + ".";
     if (e.min_sgo) s.sgo = add(p + "min_sgo", *e.min_sgo, false);
     if (e.max_force) s.force = add(p + "max_force", *e.max_force, true);
+    if (const auto pen = e.max_penetration ? e.max_penetration : expect.max_penetration) {
+      s.penetration = add(p + "max_penetration", *pen, true);
+    }
+    if (expect.no_tunnelling) s.tunnel = add(p + "no_tunnelling", 0.0, true);  // value: m behind the plane
     s.from = e.from;
     s.to = e.to;
-    fingers_.push_back(s);
+    if (s.sgo >= 0 || s.force >= 0 || s.penetration >= 0 || s.tunnel >= 0) fingers_.push_back(s);
   }
   const std::size_t samples = static_cast<std::size_t>(scene.world.haptic_rate_hz * kEnergyWindow) + 2;
   quiet_.reserve(samples);
@@ -119,6 +128,14 @@ void ExpectChecker::afterStep(const sim::World& world) {
       observe(checks_[static_cast<std::size_t>(s.sgo)], world.sgoCount(s.finger), t);
     }
     if (s.force >= 0) observe(checks_[static_cast<std::size_t>(s.force)], world.couplingForce(s.finger).norm(), t);
+    if (s.penetration >= 0) {
+      sim::Touch touch;
+      const double depth = world.deepestTouch(s.finger, touch) ? std::max(0.0, -touch.separation) : 0.0;
+      observe(checks_[static_cast<std::size_t>(s.penetration)], depth, t);
+    }
+  }
+  for (FingerState& s : fingers_) {
+    if (s.tunnel >= 0) checkTunnelling(world, s, t);
   }
   if (energy_ >= 0) {
     // A quiet stretch: no device moved since the last step and no load acts.
@@ -147,6 +164,32 @@ void ExpectChecker::afterStep(const sim::World& world) {
       quiet_.emplace_back(t, e);
     }
   }
+}
+
+// The proxy's centre behind the plane of the contact it pressed (m; negative in front): while
+// it presses, when the contact ends, and when the contact's normal turns over (a proxy through
+// a thin body meets its far face).
+void ExpectChecker::checkTunnelling(const sim::World& world, FingerState& s, double t) {
+  Check& c = checks_[static_cast<std::size_t>(s.tunnel)];
+  const sim::Vec3 proxy = world.proxyPosition(s.finger);
+  const auto behindPressedPlane = [&] {
+    const sim::Pose pose = world.bodyPose(s.pressed_body);
+    return (pose.toWorld(s.plane_point) - proxy).dot(pose.orientation * s.plane_normal);
+  };
+  sim::Touch touch;
+  const bool pressing = world.deepestTouch(s.finger, touch) && touch.separation <= 0.0;
+  if (s.pressed_body >= 0 && (!pressing || touch.body != s.pressed_body)) {
+    observe(c, behindPressedPlane(), t);  // the contact ended: which side did the proxy leave by?
+    s.pressed_body = -1;
+  }
+  if (!pressing) return;
+  const sim::Pose pose = world.bodyPose(touch.body);
+  const sim::Vec3 normal = pose.orientation.inverse() * touch.normal;
+  if (s.pressed_body == touch.body && normal.dot(s.plane_normal) < 0.0) observe(c, behindPressedPlane(), t);
+  s.pressed_body = touch.body;
+  s.plane_point = pose.orientation.inverse() * (touch.point - pose.position);
+  s.plane_normal = normal;
+  observe(c, (touch.point - proxy).dot(touch.normal), t);
 }
 
 std::vector<ExpectFailure> ExpectChecker::finish(const sim::World& world) {

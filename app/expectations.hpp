@@ -34,6 +34,7 @@ struct FingerExpect {
   std::optional<int> min_sgo;       ///< fewest SGOs (all its contacts) at any step of the window
   double from = 0.0, to = 1e300;    ///< s: the window of min_sgo
   std::optional<double> max_force;  ///< N: largest coupling force
+  std::optional<double> max_penetration;  ///< m: deepest the proxy goes into a body (else [expect]'s)
 };
 
 /// [expect]: every field optional except `finite` (default true).
@@ -44,6 +45,11 @@ struct ExpectDesc {
   /// J: the largest rise of mechanical energy over any 1 s window in which no device moved and
   /// no load acted
   std::optional<double> energy_growth;
+  /// m: deepest any proxy goes into a body (the contact's separation)
+  std::optional<double> max_penetration;
+  /// No proxy ends on the far side of a body it was pressing: its centre never behind the plane
+  /// of its last contact (when the contact ends, when its normal turns over, while it presses)
+  bool no_tunnelling = false;
   std::map<std::string, BodyExpect> bodies;
   std::map<std::string, FingerExpect> fingers;
   bool empty() const;
@@ -90,9 +96,13 @@ class ExpectChecker {
   };
   struct FingerState {
     int finger = -1;
-    int sgo = -1, force = -1;
+    int sgo = -1, force = -1, penetration = -1, tunnel = -1;
     double from = 0.0, to = 0.0;
+    // The plane of the contact it last pressed, in that body's frame (no_tunnelling).
+    int pressed_body = -1;
+    sim::Vec3 plane_point = sim::Vec3::Zero(), plane_normal = sim::Vec3::UnitY();
   };
+  void checkTunnelling(const sim::World& world, FingerState& s, double t);
   std::vector<BodyState> bodies_;
   std::vector<FingerState> fingers_;
   int finite_ = -1, any_speed_ = -1, any_angular_ = -1, energy_ = -1;

@@ -334,6 +334,8 @@ void readExpect(Reader& parent, SessionDesc& s) {
   e.max_speed = optional(r, "max_speed", 0.0, 1e6);
   e.max_angular_speed = optional(r, "max_angular_speed", 0.0, 1e6);
   e.energy_growth = optional(r, "energy_growth", 0.0, 1e9);
+  e.max_penetration = optional(r, "max_penetration", 0.0, 1e6);
+  e.no_tunnelling = r.boolean("no_tunnelling", false);
   for (const auto& [name, t] : r.namedTables("bodies")) {
     const auto body = std::find_if(s.scene.bodies.begin(), s.scene.bodies.end(),
                                    [&](const sim::BodyDesc& b) { return b.name == name; });
@@ -364,6 +366,7 @@ void readExpect(Reader& parent, SessionDesc& s) {
       f.to = v[1];
     }
     f.max_force = optional(fr, "max_force", 0.0, 1e9);
+    f.max_penetration = optional(fr, "max_penetration", 0.0, 1e6);
     fr.finish();
   }
   r.finish();
@@ -487,6 +490,29 @@ void readSceneSettings(Reader& r, sim::SceneDesc& scene) {
   r.failOn(sim::validateScene(scene));
 }
 
+// The solver holds a pinched body down to 1/100 of a proxy's mass (hard case pinch-mass-1g, with
+// the 100 iterations it needs to lift it; fewer leave it calm on the ground); at 1/1000 the body
+// tumbles over whatever the iterations, so lighter bodies are rejected.
+void checkMassRatios(Reader& r, const sim::SceneDesc& scene) {
+  const sim::FingerDesc* heaviest = nullptr;
+  for (const sim::FingerDesc& f : scene.fingers) {
+    if (!heaviest || f.proxy.mass > heaviest->proxy.mass) heaviest = &f;
+  }
+  if (!heaviest) return;
+  const double lightest = heaviest->proxy.mass * sim::kMinBodyToProxyMass;
+  for (const auto& [name, t] : r.namedTables("bodies")) {
+    const auto body = std::find_if(scene.bodies.begin(), scene.bodies.end(), [&](const sim::BodyDesc& b) { return b.name == name; });
+    if (body == scene.bodies.end() || body->mass <= 0.0 || body->mass >= lightest * (1 - 1e-9)) continue;
+    Reader br(*t, r.field("bodies." + name), r.file());
+    char why[240];
+    std::snprintf(why, sizeof why,
+                  "must be at least 1/100 of the heaviest proxy, %g kg here (fingers.%s.proxy_mass %g kg): the solver "
+                  "cannot hold a lighter body in a pinch, got %g",
+                  lightest, heaviest->name.c_str(), heaviest->proxy.mass, body->mass);
+    br.fail(br.find("mass"), "mass", why);
+  }
+}
+
 SessionDesc readSession(toml::table& root, const std::string& source, const std::string& base_dir,
                         std::span<const std::string> overrides) {
   for (const std::string& o : overrides) applyOverride(root, o);
@@ -514,6 +540,7 @@ SessionDesc readSession(toml::table& root, const std::string& source, const std:
     checkName("fingers", name, t);
     s.scene.fingers.push_back(readFinger(name, *t, r, base_dir, s.scene.world.haptic_rate_hz));
   }
+  checkMassRatios(r, s.scene);
   for (const auto& [name, t] : r.namedTables("cameras")) {
     checkName("cameras", name, t);
     s.cameras.push_back(readCamera(name, *t, r));

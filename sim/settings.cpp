@@ -161,7 +161,9 @@ std::span<const Setting<BodyDesc>> bodySettings() {
       row<B, &B::half_extents>("half_extents", "m", 1e-4, kBig),
       row<B, &B::mesh_scale>("scale", "", 1e-9, 1e9),
       row<B, &B::walk_resolution>("walk_resolution", "", 0, 4096),
-      row<B, &B::mass>("mass", "kg", 1e-6, 1e6),
+      // Lighter bodies tumble in a pinch whatever the solver iterations (1e-5 kg did with a 0.1 g
+      // proxy; 0.1 g holds: hard case pinch-mass-0.1g); see also kMinBodyToProxyMass.
+      row<B, &B::mass>("mass", "kg", 1e-4, 1e6),
       row<B, &B::friction>("friction", "", 0.0, 100.0),
       row<B, &B::restitution>("restitution", "", 0.0, 1.0),
       row<B, &B::position>("position", "m", -kMaxCoordinate, kMaxCoordinate),
@@ -337,6 +339,17 @@ std::optional<FieldError> validateTrack(const DeviceTrack& track) {
 
 std::optional<FieldError> validateFinger(const FingerDesc& finger) {
   if (std::optional<FieldError> e = firstBadSetting(fingerSettings(), finger, kNone)) return e;
+  // The contact is a spring too: at the coupling's clamp it lets the proxy in by max_force /
+  // contact_stiffness. Past its radius the proxy's centre is inside the body, whose nearest face
+  // may then be the far one: a 1 mm proxy at 40 N went 2 mm into a 1 mm wall.
+  if (const double depth = finger.coupling.max_force / finger.proxy.contact_stiffness; !(depth < finger.proxy.radius)) {
+    char b[200];
+    std::snprintf(b, sizeof b,
+                  "must exceed max_force / contact_stiffness = %.4g m, how deep the contact lets the proxy in at "
+                  "the coupling's clamp (lower max_force or raise contact_stiffness), got %s",
+                  depth, shown(finger.proxy.radius).c_str());
+    return FieldError{"proxy_radius", b};
+  }
   if (std::optional<FieldError> e = validateTrack(finger.device)) {
     e->field = "device." + e->field;
     return e;

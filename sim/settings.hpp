@@ -15,6 +15,10 @@
 
 namespace gf::sim {
 
+/// A dynamic body must weigh at least this fraction of every proxy: the solver holds a pinched
+/// body down to 1/100 of the proxy's mass and lets a 1/1000 one tumble.
+inline constexpr double kMinBodyToProxyMass = 0.01;
+
 /// A field of a description that is not legal: its name as scene files write it, and why.
 struct FieldError {
   std::string field;   ///< "n_sgo", "device.keyframes.t", "world.solver_iterations", ...
@@ -157,7 +161,8 @@ std::optional<FieldError> validateScene(const SceneDesc& scene);
 /// The first field of `body` that is not legal: every body setting, then the rules between
 /// fields (a static body has mass 0, a plane is static, a shape's walk resolution range).
 std::optional<FieldError> validateBody(const BodyDesc& body);
-/// The first field of `finger` that is not legal: every finger setting, then its device track.
+/// The first field of `finger` that is not legal: every finger setting, then the proxy's
+/// radius against its deepest press (max_force / contact_stiffness), then its device track.
 std::optional<FieldError> validateFinger(const FingerDesc& finger);
 /// The first coupling setting of `finger` that the explicit integration of its spring-damper
 /// cannot hold at `haptic_rate_hz`: stiffness above proxy_mass * rate^2 or damping above

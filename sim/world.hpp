@@ -12,6 +12,14 @@
 
 namespace gf::sim {
 
+/// One contact of a finger, in the world frame.
+struct Touch {
+  int body = -1;
+  Vec3 point = Vec3::Zero();   ///< on the body's surface (m)
+  Vec3 normal = Vec3::UnitY(); ///< unit, from the body towards the proxy
+  double separation = 0.0;     ///< signed, negative when penetrating (m)
+};
+
 /// Counters of numerical trouble and work done.
 struct WorldCounters {
   long steps = 0;
@@ -19,6 +27,7 @@ struct WorldCounters {
   long invalid_patches = 0;  ///< contacts whose patch input was rejected (no SGO that step)
   long sgos_injected = 0;    ///< sum over steps of SGOs fed to the solver
   long crossing_limit_stops = 0;  ///< SGOs whose walk used up its edge-crossing budget (stopped short)
+  long tunnelling_stops = 0;      ///< proxies stopped where their step's path entered a body
   long patch_calls = 0;           ///< patches computed (one per god-finger contact per step)
   double patch_seconds = 0.0;     ///< wall time spent computing them (steady clock)
 };
@@ -66,6 +75,10 @@ class World {
   double contactRadius(int finger) const;
   /// Kinetic plus gravitational potential energy of the dynamic bodies and proxies (J).
   double mechanicalEnergy() const;
+  /// Finger i's deepest contact of the last step, at its body's pose now (world frame): false
+  /// when the proxy touched no body. `out.point` is on the body's surface, `out.normal` points
+  /// from the body to the proxy, `out.separation` is negative while the proxy penetrates (m).
+  bool deepestTouch(int finger, Touch& out) const;
 
   /// Applies an angular impulse (N m s, world frame) to body i now.
   void applyTorqueImpulse(int body, const Vec3& impulse);

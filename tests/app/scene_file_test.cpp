@@ -422,5 +422,47 @@ TEST(SceneFile, CouplingBeyondItsStabilityLimitIsRejected) {
   EXPECT_NE(rate.find("haptic_rate"), std::string::npos) << rate;
 }
 
+// The contact is a spring too: at the coupling's clamp it lets the proxy in by max_force /
+// contact_stiffness, and a proxy radius not above that depth is rejected (a 1 mm proxy at the
+// default 40 N and 20000 N/m went 2 mm into a 1 mm wall); the hard case
+// press-thin-wall-1mm-proxy holds with 10 N.
+TEST(SceneFile, ProxyRadiusMustExceedTheDeepestPress) {
+  const std::vector<std::string> held = {"fingers.left.proxy_radius=0.001", "fingers.left.max_force=10"};
+  EXPECT_NO_THROW(parseSceneText(kMinimal, "scene.toml", "", held));
+  const std::string small = errorOf(kMinimal, {"fingers.left.proxy_radius=0.001"}).what();
+  EXPECT_NE(small.find("fingers.left.proxy_radius: must exceed max_force / contact_stiffness = 0.002 m"), std::string::npos)
+      << small;
+  const std::string soft = errorOf(kMinimal, {"fingers.left.contact_stiffness=4000"}).what();
+  EXPECT_NE(soft.find("= 0.01 m"), std::string::npos) << soft;
+}
+
+// [expect] reads the penetration and tunnelling checks scene-wide and per finger.
+TEST(SceneFile, ExpectReadsPenetrationAndTunnelling) {
+  const SessionDesc s = parseSceneText(kMinimal + "[expect]\nno_tunnelling = true\nmax_penetration = 0.001\n"
+                                                  "[expect.fingers.left]\nmax_penetration = 0.002\n",
+                                       "scene.toml", "");
+  EXPECT_TRUE(s.expect.no_tunnelling);
+  EXPECT_EQ(s.expect.max_penetration, 0.001);
+  EXPECT_EQ(s.expect.fingers.at("left").max_penetration, 0.002);
+  const InputError e = errorOf(kMinimal + "[expect]\nmax_penetration = -1\n");
+  EXPECT_EQ(e.field(), "expect.max_penetration");
+}
+
+// A dynamic body lighter than 1/100 of the heaviest proxy is rejected at its mass, naming the
+// proxy (a 1/1000 one tumbled over in a pinch at any solver iterations); so is one below 0.1 g.
+TEST(SceneFile, BodiesLighterThanTheSolverHoldsAreRejected) {
+  EXPECT_NO_THROW(parseSceneText(kMinimal, "scene.toml", "", std::vector<std::string>{"bodies.ball.mass=0.001"}));
+  const InputError ratio = errorOf(kMinimal, {"bodies.ball.mass=0.0009"});
+  EXPECT_EQ(ratio.field(), "bodies.ball.mass");
+  EXPECT_NE(std::string(ratio.what()).find("at least 1/100 of the heaviest proxy, 0.001 kg here (fingers.left.proxy_mass 0.1 kg)"),
+            std::string::npos) << ratio.what();
+  const std::vector<std::string> light_proxy = {"fingers.left.proxy_mass=0.0001", "fingers.left.coupling_stiffness=100",
+                                                "fingers.left.coupling_damping=0.1", "bodies.ball.mass=0.0001"};
+  EXPECT_NO_THROW(parseSceneText(kMinimal, "scene.toml", "", light_proxy));
+  EXPECT_EQ(errorOf(kMinimal, {"fingers.left.proxy_mass=0.0001", "fingers.left.coupling_stiffness=100",
+                               "fingers.left.coupling_damping=0.1", "bodies.ball.mass=0.00001"}).field(),
+            "bodies.ball.mass");
+}
+
 }  // namespace
 }  // namespace gf::app

@@ -157,6 +157,24 @@ TEST(WorldDeterminism, PinchStateAfter2000StepsHasTheCommittedHash) {
   EXPECT_EQ(hash, 0xf0526b7eef19af87ull) << std::hex << "state hash 0x" << hash;
 }
 
+// A 1 mm proxy flung at a 1 mm wall at 100 m/s covers 10 cm per step, so no collision check sees
+// it touch (hard case press-thin-wall-fly-through). The swept test of its step stops it on the
+// wall once, touching it; it then rests on the wall at the press F / k (1e4 N / 2e7 N/m).
+TEST(WorldTunnelling, AProxyFlungThroughAThinWallStopsOnIt) {
+  TestContext ctx(std::string(GF_SOURCE_DIR) + "/assets/hard-cases/press-thin-wall-fly-through.toml");
+  const double top = 0.1005, radius = 0.001;
+  double lowest = 1.0;
+  ctx.simulate(0.4, [&](const World& w) { lowest = std::min(lowest, w.proxyPosition(0).y()); });
+  EXPECT_EQ(ctx.world().counters().tunnelling_stops, 1);
+  EXPECT_EQ(ctx.world().counters().nan_recoveries, 0);
+  EXPECT_GT(lowest, top) << "the proxy's centre never crosses the wall's top face";
+  EXPECT_NEAR(ctx.world().proxyPosition(0).y(), top + radius - 1e4 / 2e7, 1e-5) << "resting on the wall at F / k";
+  Touch touch;
+  ASSERT_TRUE(ctx.world().deepestTouch(0, touch));
+  EXPECT_NEAR(touch.normal.y(), 1.0, 1e-9);
+  EXPECT_NEAR(touch.separation, -1e4 / 2e7, 1e-5);
+}
+
 TEST(WorldErrors, BadDescriptionsNameTheBodyOrFingerAndField) {
   SceneDesc scene = TestContext::load("fig8-pinch-oscillation", 8, {});
   scene.bodies[1].mass = -1.0;
