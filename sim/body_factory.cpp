@@ -4,6 +4,8 @@
 #include <HACD/hacdHACD.h>
 
 #include <Eigen/Eigenvalues>
+#include <chrono>
+#include <cstdio>
 #include <span>
 #include <stdexcept>
 
@@ -91,6 +93,31 @@ std::unique_ptr<btConvexHullShape> hullOf(std::span<const Vec3> points) {
   return hull;
 }
 
+// A decomposition taking longer than a second reports its progress on stderr about once a
+// second (a 350k-face mesh takes tens of seconds). HACD's callback is a plain function: the
+// decomposition running on this thread is found through a thread_local.
+struct DecompositionProgress {
+  std::string mesh;
+  std::size_t triangles = 0;
+  std::chrono::steady_clock::time_point start, last;
+  bool reported = false;
+};
+thread_local DecompositionProgress* t_progress = nullptr;
+
+double secondsSince(std::chrono::steady_clock::time_point t) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
+}
+
+bool reportDecomposition(const char*, double percent, double, std::size_t) {
+  DecompositionProgress* p = t_progress;
+  if (!p || secondsSince(p->last) < 1.0) return true;
+  p->last = std::chrono::steady_clock::now();
+  p->reported = true;
+  std::fprintf(stderr, "godfinger: convex decomposition of %s (%zu triangles): %.0f %%, %.0f s\n", p->mesh.c_str(),
+               p->triangles, percent, secondsSince(p->start));
+  return true;
+}
+
 // Approximate convex decomposition (HACD) into a compound of hulls, in the body frame.
 std::unique_ptr<btCollisionShape> decompose(const BodyDesc& d, const Mesh& m, BodyShapes& out) {
   std::vector<HACD::Vec3<HACD::Real>> points;
@@ -109,7 +136,17 @@ std::unique_ptr<btCollisionShape> decompose(const BodyDesc& d, const Mesh& m, Bo
   hacd.SetAddExtraDistPoints(false);
   hacd.SetAddNeighboursDistPoints(false);
   hacd.SetAddFacesPoints(false);
-  if (!hacd.Compute() || hacd.GetNClusters() == 0) fail(d, "mesh", "convex decomposition of '" + d.mesh_path + "' failed");
+  DecompositionProgress progress{d.mesh_path, triangles.size(), std::chrono::steady_clock::now(), {}, false};
+  progress.last = progress.start;
+  t_progress = &progress;
+  hacd.SetCallBack(&reportDecomposition);
+  const bool computed = hacd.Compute();
+  t_progress = nullptr;
+  if (!computed || hacd.GetNClusters() == 0) fail(d, "mesh", "convex decomposition of '" + d.mesh_path + "' failed");
+  if (progress.reported) {
+    std::fprintf(stderr, "godfinger: convex decomposition of %s: %zu parts in %.1f s\n", d.mesh_path.c_str(),
+                 hacd.GetNClusters(), secondsSince(progress.start));
+  }
   auto compound = std::make_unique<btCompoundShape>();
   for (std::size_t c = 0; c < hacd.GetNClusters(); ++c) {
     std::vector<HACD::Vec3<HACD::Real>> part(hacd.GetNPointsCH(c));
