@@ -31,11 +31,13 @@ gf_install_packages() {
 }
 
 # Configures (first run only) and builds one CMake preset: release, debug, asan-ubsan or tsan.
+# GF_BUILD_TARGETS (space-separated) builds only those targets, e.g. the threaded tests for tsan.
 gf_build() {
   local preset="$1"
   cd "$GF_ROOT"
   if [ ! -f "build/$preset/build.ninja" ]; then
     cmake --preset "$preset"
   fi
-  cmake --build --preset "$preset"
+  # shellcheck disable=SC2086 # the targets are words
+  cmake --build --preset "$preset" ${GF_BUILD_TARGETS:+--target $GF_BUILD_TARGETS}
 }
