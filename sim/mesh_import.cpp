@@ -130,6 +130,26 @@ void checkHeader(const std::string& path) {
   if (ext == ".ply") checkPly(path, size);
 }
 
+// The importer's faces before its post-processing sees them: its steps assert (aborting the
+// process) on a face without vertices, which a malformed file gives (a binary PLY whose face list
+// the parser misreads), and read past the vertices for an index beyond them.
+void checkFaces(const std::string& path, const aiScene& scene) {
+  for (unsigned mi = 0; mi < scene.mNumMeshes; ++mi) {
+    const aiMesh& mesh = *scene.mMeshes[mi];
+    for (unsigned f = 0; f < mesh.mNumFaces; ++f) {
+      const aiFace& face = mesh.mFaces[f];
+      const std::string where = path + ": face " + std::to_string(f) + " of mesh " + std::to_string(mi);
+      if (face.mNumIndices == 0 || face.mIndices == nullptr) throw MeshLoadError(where + " has no vertex");
+      for (unsigned k = 0; k < face.mNumIndices; ++k) {
+        if (face.mIndices[k] >= mesh.mNumVertices) {
+          throw MeshLoadError(where + " names vertex " + std::to_string(face.mIndices[k]) + " of " +
+                              std::to_string(mesh.mNumVertices));
+        }
+      }
+    }
+  }
+}
+
 }  // namespace
 
 RawMesh readMeshFile(const std::string& path, double scale) {
@@ -140,8 +160,13 @@ RawMesh readMeshFile(const std::string& path, double scale) {
   Assimp::Importer importer;
   // Only triangles are kept; welding is ours (assimp's ignores tolerance and splits by normals).
   importer.SetPropertyInteger(AI_CONFIG_PP_SBP_REMOVE, aiPrimitiveType_POINT | aiPrimitiveType_LINE);
-  const aiScene* scene = importer.ReadFile(
-      path, aiProcess_Triangulate | aiProcess_PreTransformVertices | aiProcess_SortByPType);
+  // Read, check the faces, then triangulate and flatten the node tree.
+  const aiScene* scene = importer.ReadFile(path, 0);
+  if (scene != nullptr) {
+    checkFaces(path, *scene);
+    scene = importer.ApplyPostProcessing(aiProcess_Triangulate | aiProcess_PreTransformVertices |
+                                         aiProcess_SortByPType);
+  }
   if (scene == nullptr) {
     throw MeshLoadError(path + ": cannot read mesh: " + importer.GetErrorString());
   }
