@@ -57,5 +57,50 @@ TEST(FuzzRegression, CoordinatesBeyond1e150AreRefused) {
   }
 }
 
+// fuzz_patch: the closest point on a sliver came from barycentric coordinates whose
+// cancellation grows with the square of the aspect ratio: on a tilted 10 cm x 1 um triangle the
+// closest point to a point of it lay 2.3e-8 m away (an SGO checked against the surface seemed
+// to have left it). The face point is now the projection on the face's plane.
+TEST(FuzzRegression, ClosestPointOnASliverIsThePointItself) {
+  const Eigen::Matrix3d turn = Eigen::AngleAxisd(0.7, Vec3(1, 2, 3).normalized()).toRotationMatrix();
+  const Mesh m = buildMesh({turn * Vec3(0, 0, 0), turn * Vec3(0.1, 0, 0), turn * Vec3(0.07, 1e-6, 0)}, {{0, 1, 2}});
+  ASSERT_EQ(m.faceCount(), 1);
+  std::mt19937 rng(14);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  double worst = 0.0;
+  for (int i = 0; i < 1000; ++i) {
+    double a = u(rng), b = u(rng);
+    if (a + b > 1.0) a = 1.0 - a, b = 1.0 - b;
+    const Vec3 p = m.corner(0, 0) + a * (m.corner(0, 1) - m.corner(0, 0)) + b * (m.corner(0, 2) - m.corner(0, 0));
+    worst = std::max(worst, m.closestPoint(p, 0.0).query_distance);
+  }
+  EXPECT_LT(worst, 1e-12) << "rounding of the point itself is about 1e-17 m";
+}
+
+// The fuzz_patch input that found it: a 1.9e41 m sliver, pressed; every SGO lies on the surface
+// within 1e-9 of the mesh's scale.
+TEST(FuzzRegression, PatchOnAHugeSliverStaysOnTheSurface) {
+  const Mesh m = buildMesh({{484241657823232, 0.039812088012695312, -1.8544598878572408e-34},
+                            {-8.3476574658685477e+35, -2.4708001272466709e+36, 1.320746876354231e-19},
+                            {1.8846565061092344e+41, 1.3746478262245645e-18, -1802616296177664}},
+                           {{2, 1, 0}});
+  ASSERT_EQ(m.faceCount(), 1);
+  PatchContact c;
+  c.point_local = Vec3(1.6498496734660572e+41, -4.8257820746493402e+33, 1.4098609602285082e+38);
+  c.outward_normal_local = Vec3(-9.5646940985498847e-27, 3.2314548319677619e-27, -1);
+  c.separation = -1.16821e-08;
+  PatchSettings s;
+  s.n_sgo = 61;
+  s.r_max = 0.0400391;
+  s.d0 = 1e-6;
+  Patch p;
+  computePatch(m, c, Vec3(0, 0, 1.1099888093108006e-12), s, p);
+  ASSERT_TRUE(p.valid);
+  ASSERT_EQ(p.sgos.size(), 61u);
+  for (const Sgo& sgo : p.sgos) {
+    EXPECT_LE(m.closestPoint(sgo.position, 0.0).query_distance, 1e-9 * m.diagonal());
+  }
+}
+
 }  // namespace
 }  // namespace gf::sim
