@@ -96,22 +96,30 @@ void checkStl(const std::string& path, std::uintmax_t size) {
   }
 }
 
-// A PLY header's element counts against the file's size (at least one byte per element).
+// A PLY header's element counts against the file's size (at least one byte per element), and
+// its end: the importer reads a header without an end_header line forever.
 void checkPly(const std::string& path, std::uintmax_t size) {
+  constexpr long kMaxHeaderLines = 10000;
   std::ifstream in(path, std::ios::binary);
   std::string line;
   long number = 0;
   double elements = 0;
-  while (std::getline(in, line) && ++number < 10000) {
-    if (line.rfind("end_header", 0) == 0) break;
+  bool ended = false;
+  while (!ended && number < kMaxHeaderLines && std::getline(in, line)) {
+    ++number;
     std::istringstream l(line);
     std::string word, name;
     double count = -1;
     l >> word;
+    ended = word == "end_header";
     if (word != "element") continue;
     l >> name >> count;
     if (!(count >= 0)) throw MeshLoadError(path + ":" + std::to_string(number) + ": PLY element " + name + ": expected a count");
     elements += count;
+  }
+  if (!ended) {
+    throw MeshLoadError(path + ": PLY header has no end_header line" +
+                        (number < kMaxHeaderLines ? std::string() : " in its first 10000 lines"));
   }
   if (elements > static_cast<double>(size)) {
     throw MeshLoadError(path + ": PLY header promises " + std::to_string(static_cast<long long>(elements)) +

@@ -19,6 +19,20 @@ namespace {
 
 std::string regression(const std::string& name) { return std::string(GF_SOURCE_DIR) + "/tests/fuzz/regressions/" + name; }
 
+// What loading `text` as a mesh file called `name` throws (without the path), or "accepted".
+std::string loadError(const std::string& name, const std::string& text) {
+  const std::filesystem::path dir = std::filesystem::temp_directory_path() / "gf_fuzz_regressions";
+  std::filesystem::create_directories(dir);
+  const std::string path = (dir / name).string();
+  std::ofstream(path, std::ios::binary) << text;
+  try {
+    loadMesh(path);
+  } catch (const MeshLoadError& e) {
+    return std::string(e.what()).substr(path.size());
+  }
+  return "accepted";
+}
+
 // fuzz_mesh: a binary PLY whose first vertex byte is '\n' (the float -0.02), which assimp's
 // header reader swallows; it then reads faces without vertices, and its triangulation asserted,
 // aborting the process. The same tetrahedron with another first vertex loads.
@@ -32,6 +46,20 @@ TEST(FuzzRegression, BinaryPlyFacesWithoutVerticesAreAnErrorNotAnAbort) {
   const Mesh tetrahedron = loadMesh(regression("mesh-binary-ply-tetrahedron.ply"));
   EXPECT_EQ(tetrahedron.faceCount(), 4);
   EXPECT_EQ(tetrahedron.vertexCount(), 4);
+}
+
+// fuzz_mesh: assimp's PLY reader looped forever (seeking) on a header without an end_header
+// line; "end_headerX" is not one either.
+TEST(FuzzRegression, PlyHeaderWithoutItsEndIsAnErrorNotAHang) {
+  const std::string header = "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
+                             "property float z\n";
+  EXPECT_EQ(loadError("open.ply", header + "end_he 1\n0 0 0\n1 0 0\n0 1 0\n"), ": PLY header has no end_header line");
+  EXPECT_EQ(loadError("suffix.ply", header + "end_headerX\n0 0 0\n1 0 0\n0 1 0\n"),
+            ": PLY header has no end_header line");
+  EXPECT_EQ(loadError("triangle.ply", header + "element face 1\nproperty list uchar int vertex_indices\n  end_header\r\n"
+                                                "0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n"),
+            "accepted")
+      << "an end_header line may start with spaces and end with a carriage return";
 }
 
 // fuzz_patch: welding put a micrometre mesh 100 km from the origin in grid cells counted from
