@@ -10,6 +10,7 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <iomanip>
 #include <sstream>
 
 namespace gf::sim {
@@ -18,6 +19,14 @@ namespace {
 std::string lower(std::string s) {
   for (char& c : s) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
   return s;
+}
+
+// A count read from a header as text: exact up to 1e15, any size (1e+38) beyond (a cast to an
+// integer type is undefined past its range).
+std::string countText(double count) {
+  std::ostringstream s;
+  s << std::setprecision(15) << count;
+  return s.str();
 }
 
 // The next line of `in` that is neither empty nor a comment ('#'), or "" at the end.
@@ -50,8 +59,8 @@ void checkOff(const std::string& path, std::uintmax_t size) {
   // A vertex needs at least "0 0 0\n" (6 bytes), a face "3 0 1 2\n" (8).
   if (nv * 6 + nf * 8 > static_cast<double>(size)) {
     throw MeshLoadError(path + ":" + std::to_string(number) + ": OFF header promises " +
-                        std::to_string(static_cast<long long>(nv)) + " vertices and " +
-                        std::to_string(static_cast<long long>(nf)) + " faces, more than its " + std::to_string(size) +
+                        countText(nv) + " vertices and " +
+                        countText(nf) + " faces, more than its " + std::to_string(size) +
                         " bytes can hold");
   }
   long vertices = 0, faces = 0;
@@ -122,7 +131,7 @@ void checkPly(const std::string& path, std::uintmax_t size) {
                         (number < kMaxHeaderLines ? std::string() : " in its first 10000 lines"));
   }
   if (elements > static_cast<double>(size)) {
-    throw MeshLoadError(path + ": PLY header promises " + std::to_string(static_cast<long long>(elements)) +
+    throw MeshLoadError(path + ": PLY header promises " + countText(elements) +
                         " elements, more than its " + std::to_string(size) + " bytes hold");
   }
 }

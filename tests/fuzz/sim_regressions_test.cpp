@@ -62,6 +62,15 @@ TEST(FuzzRegression, PlyHeaderWithoutItsEndIsAnErrorNotAHang) {
       << "an end_header line may start with spaces and end with a carriage return";
 }
 
+// fuzz_mesh: an OFF vertex count of 1e38 was cast to long long for the error message
+// (undefined behaviour); counts beyond 1e15 are now written as numbers.
+TEST(FuzzRegression, HugeHeaderCountsAreNamedNotCast) {
+  EXPECT_EQ(loadError("huge.off", "OFF\n1e38 1 0\n0 0 0\n"),
+            ":2: OFF header promises 1e+38 vertices and 1 faces, more than its 19 bytes can hold");
+  EXPECT_EQ(loadError("huge.ply", "ply\nformat ascii 1.0\nelement vertex 1e38\nend_header\n"),
+            ": PLY header promises 1e+38 elements, more than its 52 bytes hold");
+}
+
 // fuzz_patch: welding put a micrometre mesh 100 km from the origin in grid cells counted from
 // the origin, p / 1.4e-12 m past the range of int64 (undefined behaviour, reported by UBSan in
 // the fuzz and asan-ubsan builds). Cells now count from the mesh's lower bounds.
