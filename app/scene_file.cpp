@@ -59,9 +59,9 @@ void readEffects(Reader& r, sim::EffectSet& e, ViewSettings& view) {
   for (const ViewEffect& s : kViewEffects) view.*s.on = false;
   for (const auto& [name, node] : r.strings("effects")) {
     const auto sim_effect = std::find_if(sim::effectSwitches().begin(), sim::effectSwitches().end(),
-                                         [&](const sim::EffectSwitch& s) { return s.name == name; });
+                                         [&wanted = name](const sim::EffectSwitch& s) { return s.name == wanted; });
     const auto view_effect = std::find_if(std::begin(kViewEffects), std::end(kViewEffects),
-                                          [&](const ViewEffect& s) { return s.name == name; });
+                                          [&wanted = name](const ViewEffect& s) { return s.name == wanted; });
     if (sim_effect != sim::effectSwitches().end()) {
       e.*sim_effect->on = true;
     } else if (view_effect != std::end(kViewEffects)) {
@@ -308,7 +308,7 @@ void readRecord(Reader& parent, SessionDesc& s) {
   s.record.contact_times = r.numbers("contacts");
   for (const auto& [body, node] : r.strings("forces")) {
     const bool known = std::any_of(s.scene.bodies.begin(), s.scene.bodies.end(),
-                                   [&](const sim::BodyDesc& b) { return b.name == body && b.mass > 0.0; });
+                                   [&wanted = body](const sim::BodyDesc& b) { return b.name == wanted && b.mass > 0.0; });
     if (!known) r.fail(node, "forces", "no dynamic body called '" + body + "'");
     s.record.force_bodies.push_back(body);
   }
@@ -338,7 +338,7 @@ void readExpect(Reader& parent, SessionDesc& s) {
   e.no_tunnelling = r.boolean("no_tunnelling", false);
   for (const auto& [name, t] : r.namedTables("bodies")) {
     const auto body = std::find_if(s.scene.bodies.begin(), s.scene.bodies.end(),
-                                   [&](const sim::BodyDesc& b) { return b.name == name; });
+                                   [&wanted = name](const sim::BodyDesc& b) { return b.name == wanted; });
     if (body == s.scene.bodies.end() || body->mass <= 0.0) {
       r.fail(t, "bodies." + name, "no dynamic body called '" + name + "'");
     }
@@ -354,7 +354,7 @@ void readExpect(Reader& parent, SessionDesc& s) {
   }
   for (const auto& [name, t] : r.namedTables("fingers")) {
     const bool known = std::any_of(s.scene.fingers.begin(), s.scene.fingers.end(),
-                                   [&](const sim::FingerDesc& f) { return f.name == name; });
+                                   [&wanted = name](const sim::FingerDesc& f) { return f.name == wanted; });
     if (!known) r.fail(t, "fingers." + name, "no finger called '" + name + "'");
     Reader fr(*t, "expect.fingers." + name, parent.file());
     FingerExpect& f = e.fingers[name];

@@ -97,6 +97,10 @@ struct StudyDesc {
 /// scene fields it names are checked by expandStudy. Throws InputError.
 StudyDesc loadStudyFile(const std::string& name_or_path);
 
+/// Same as loadStudyFile, from text: `source_name` names it in errors (and gives the study's
+/// default name), `base_dir` resolves relative scene paths. Throws InputError.
+StudyDesc parseStudyText(const std::string& text, const std::string& source_name, const std::string& base_dir);
+
 /// The folder of bundled studies: $GODFINGER_STUDIES if set, else the source tree's
 /// assets/studies.
 std::string bundledStudyDir();

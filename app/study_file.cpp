@@ -280,18 +280,21 @@ StudyDesc loadStudyFile(const std::string& name_or_path) {
   if (!in) throw InputError(path, 0, 0, "", "cannot open the study file");
   std::stringstream text;
   text << in.rdbuf();
+  return parseStudyText(text.str(), path, fs::path(path).parent_path().string());
+}
+
+StudyDesc parseStudyText(const std::string& text, const std::string& source_name, const std::string& base_dir) {
   toml::table root;
   try {
-    root = toml::parse(text.str(), path);
+    root = toml::parse(text, source_name);
   } catch (const toml::parse_error& e) {
-    throw InputError(path, static_cast<int>(e.source().begin.line), static_cast<int>(e.source().begin.column), "",
+    throw InputError(source_name, static_cast<int>(e.source().begin.line), static_cast<int>(e.source().begin.column), "",
                      std::string(e.description()));
   }
-  const std::string base_dir = fs::path(path).parent_path().string();
-  Reader r(root, "", path);
+  Reader r(root, "", source_name);
   StudyDesc study;
-  study.source = path;
-  study.name = r.string("name", fs::path(path).stem().string());
+  study.source = source_name;
+  study.name = r.string("name", fs::path(source_name).stem().string());
   study.summary = r.string("summary", "");
   study.cost = static_cast<CostKind>(r.choice("cost", kCostKinds, 0));
   const auto sceneOf = [&](Reader& at, const std::string& fallback) {
@@ -311,7 +314,7 @@ StudyDesc loadStudyFile(const std::string& name_or_path) {
   const bool reference = readReferenceRun(r, reference_set, reference_quick);
   study.quick_set = readSet(r, "quick_set");
   for (const auto& [key, t] : r.arrayTables("series", ": the lines of the chart", true)) {
-    Reader sr(*t, key, path);
+    Reader sr(*t, key, source_name);
     StudySeries s;
     s.name = sr.string("name", "");
     if (s.name.empty()) sr.fail(nullptr, "name", "missing: the series' name (its line in the chart)");

@@ -11,6 +11,12 @@ namespace {
 
 // Smallest weld tolerance (metres), so a mesh whose points all coincide still welds.
 constexpr double kMinWeldTolerance = 1e-12;
+// Largest coordinate magnitude (metres): squared distances and cross products of the mesh's
+// points stay finite in double.
+constexpr double kMaxCoordinate = 1e150;
+// Largest weld grid cell index along an axis: exact in double and in int64. Points further out
+// share cells (welding still compares their distances).
+constexpr double kMaxCell = 0x1p52;
 
 struct CellKey {
   std::int64_t x, y, z;
@@ -32,6 +38,9 @@ void checkInput(const std::vector<Vec3>& positions,
     if (!positions[i].allFinite()) {
       throw std::invalid_argument("mesh vertex " + std::to_string(i) + " is not finite");
     }
+    if (positions[i].cwiseAbs().maxCoeff() > kMaxCoordinate) {
+      throw std::invalid_argument("mesh vertex " + std::to_string(i) + " lies beyond 1e150 m of the origin");
+    }
   }
   const auto n = static_cast<std::int64_t>(positions.size());
   for (std::size_t t = 0; t < triangles.size(); ++t) {
@@ -46,15 +55,19 @@ void checkInput(const std::vector<Vec3>& positions,
 }
 
 // Welds positions closer than `tol` (first occurrence wins). Returns old-to-new index map.
-std::vector<std::int32_t> weld(const std::vector<Vec3>& positions, double tol,
+// Grid cells of size `tol` are counted from `lo`, the positions' lower bounds, so their indices
+// stay small wherever the mesh lies (from the origin, a micrometre mesh 10 km away needs cell
+// indices past the range of int64).
+std::vector<std::int32_t> weld(const std::vector<Vec3>& positions, const Vec3& lo, double tol,
                                std::vector<Vec3>& welded) {
   std::unordered_map<CellKey, std::vector<std::int32_t>, CellHash> grid;
   std::vector<std::int32_t> remap(positions.size());
   const double tol2 = tol * tol;
-  auto cellOf = [tol](const Vec3& p) {
-    return CellKey{static_cast<std::int64_t>(std::floor(p.x() / tol)),
-                   static_cast<std::int64_t>(std::floor(p.y() / tol)),
-                   static_cast<std::int64_t>(std::floor(p.z() / tol))};
+  auto cellOf = [tol, &lo](const Vec3& p) {
+    const auto index = [&](int k) {
+      return static_cast<std::int64_t>(std::min(std::floor((p[k] - lo[k]) / tol), kMaxCell));
+    };
+    return CellKey{index(0), index(1), index(2)};
   };
   for (std::size_t i = 0; i < positions.size(); ++i) {
     const Vec3& p = positions[i];
@@ -131,7 +144,7 @@ Mesh buildMesh(const std::vector<Vec3>& positions,
   }
   const double diag = (hi - lo).norm();
   const double tol = std::max(settings.weld_tolerance_rel * diag, kMinWeldTolerance);
-  const std::vector<std::int32_t> remap = weld(positions, tol, m.vertices_);
+  const std::vector<std::int32_t> remap = weld(positions, lo, tol, m.vertices_);
   rep.welded_vertices = rep.input_vertices - static_cast<int>(m.vertices_.size());
 
   // Step 2: drop degenerate and duplicate triangles.

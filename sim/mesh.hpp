@@ -133,7 +133,8 @@ class Mesh {
 
 /// Builds a mesh: welds vertices by position, drops degenerate and duplicate triangles, links
 /// neighbours through every edge and marks boundary and non-manifold edges. Deterministic.
-/// Throws std::invalid_argument for non-finite positions or out-of-range indices. Allocates.
+/// Throws std::invalid_argument for non-finite positions, positions beyond 1e150 m of the origin
+/// or out-of-range indices. Allocates.
 Mesh buildMesh(const std::vector<Vec3>& positions,
                const std::vector<std::array<std::int32_t, 3>>& triangles,
                const MeshBuildSettings& settings = {});

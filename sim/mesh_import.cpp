@@ -10,6 +10,7 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <iomanip>
 #include <sstream>
 
 namespace gf::sim {
@@ -18,6 +19,14 @@ namespace {
 std::string lower(std::string s) {
   for (char& c : s) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
   return s;
+}
+
+// A count read from a header as text: exact up to 1e15, any size (1e+38) beyond (a cast to an
+// integer type is undefined past its range).
+std::string countText(double count) {
+  std::ostringstream s;
+  s << std::setprecision(15) << count;
+  return s.str();
 }
 
 // The next line of `in` that is neither empty nor a comment ('#'), or "" at the end.
@@ -50,8 +59,8 @@ void checkOff(const std::string& path, std::uintmax_t size) {
   // A vertex needs at least "0 0 0\n" (6 bytes), a face "3 0 1 2\n" (8).
   if (nv * 6 + nf * 8 > static_cast<double>(size)) {
     throw MeshLoadError(path + ":" + std::to_string(number) + ": OFF header promises " +
-                        std::to_string(static_cast<long long>(nv)) + " vertices and " +
-                        std::to_string(static_cast<long long>(nf)) + " faces, more than its " + std::to_string(size) +
+                        countText(nv) + " vertices and " +
+                        countText(nf) + " faces, more than its " + std::to_string(size) +
                         " bytes can hold");
   }
   long vertices = 0, faces = 0;
@@ -96,25 +105,33 @@ void checkStl(const std::string& path, std::uintmax_t size) {
   }
 }
 
-// A PLY header's element counts against the file's size (at least one byte per element).
+// A PLY header's element counts against the file's size (at least one byte per element), and
+// its end: the importer reads a header without an end_header line forever.
 void checkPly(const std::string& path, std::uintmax_t size) {
+  constexpr long kMaxHeaderLines = 10000;
   std::ifstream in(path, std::ios::binary);
   std::string line;
   long number = 0;
   double elements = 0;
-  while (std::getline(in, line) && ++number < 10000) {
-    if (line.rfind("end_header", 0) == 0) break;
+  bool ended = false;
+  while (!ended && number < kMaxHeaderLines && std::getline(in, line)) {
+    ++number;
     std::istringstream l(line);
     std::string word, name;
     double count = -1;
     l >> word;
+    ended = word == "end_header";
     if (word != "element") continue;
     l >> name >> count;
     if (!(count >= 0)) throw MeshLoadError(path + ":" + std::to_string(number) + ": PLY element " + name + ": expected a count");
     elements += count;
   }
+  if (!ended) {
+    throw MeshLoadError(path + ": PLY header has no end_header line" +
+                        (number < kMaxHeaderLines ? std::string() : " in its first 10000 lines"));
+  }
   if (elements > static_cast<double>(size)) {
-    throw MeshLoadError(path + ": PLY header promises " + std::to_string(static_cast<long long>(elements)) +
+    throw MeshLoadError(path + ": PLY header promises " + countText(elements) +
                         " elements, more than its " + std::to_string(size) + " bytes hold");
   }
 }
@@ -130,6 +147,26 @@ void checkHeader(const std::string& path) {
   if (ext == ".ply") checkPly(path, size);
 }
 
+// The importer's faces before its post-processing sees them: its steps assert (aborting the
+// process) on a face without vertices, which a malformed file gives (a binary PLY whose face list
+// the parser misreads), and read past the vertices for an index beyond them.
+void checkFaces(const std::string& path, const aiScene& scene) {
+  for (unsigned mi = 0; mi < scene.mNumMeshes; ++mi) {
+    const aiMesh& mesh = *scene.mMeshes[mi];
+    for (unsigned f = 0; f < mesh.mNumFaces; ++f) {
+      const aiFace& face = mesh.mFaces[f];
+      const std::string where = path + ": face " + std::to_string(f) + " of mesh " + std::to_string(mi);
+      if (face.mNumIndices == 0 || face.mIndices == nullptr) throw MeshLoadError(where + " has no vertex");
+      for (unsigned k = 0; k < face.mNumIndices; ++k) {
+        if (face.mIndices[k] >= mesh.mNumVertices) {
+          throw MeshLoadError(where + " names vertex " + std::to_string(face.mIndices[k]) + " of " +
+                              std::to_string(mesh.mNumVertices));
+        }
+      }
+    }
+  }
+}
+
 }  // namespace
 
 RawMesh readMeshFile(const std::string& path, double scale) {
@@ -140,8 +177,13 @@ RawMesh readMeshFile(const std::string& path, double scale) {
   Assimp::Importer importer;
   // Only triangles are kept; welding is ours (assimp's ignores tolerance and splits by normals).
   importer.SetPropertyInteger(AI_CONFIG_PP_SBP_REMOVE, aiPrimitiveType_POINT | aiPrimitiveType_LINE);
-  const aiScene* scene = importer.ReadFile(
-      path, aiProcess_Triangulate | aiProcess_PreTransformVertices | aiProcess_SortByPType);
+  // Read, check the faces, then triangulate and flatten the node tree.
+  const aiScene* scene = importer.ReadFile(path, 0);
+  if (scene != nullptr) {
+    checkFaces(path, *scene);
+    scene = importer.ApplyPostProcessing(aiProcess_Triangulate | aiProcess_PreTransformVertices |
+                                         aiProcess_SortByPType);
+  }
   if (scene == nullptr) {
     throw MeshLoadError(path + ": cannot read mesh: " + importer.GetErrorString());
   }

@@ -12,9 +12,13 @@ namespace {
 constexpr int kLeafSize = 4;
 constexpr int kMaxStack = 64;
 
-// Closest point on triangle abc to p (regions after Ericson, Real-Time Collision Detection 5.1.5).
-// Returns the point; `feature`/`index` name the region: a corner k, an edge k (k to k+1), or face.
-Vec3 closestOnTriangle(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c,
+// Closest point on triangle abc (unit normal n) to p. The regions are Ericson's (Real-Time
+// Collision Detection 5.1.5); the points are not his barycentric combinations, whose
+// cancellation grows with the square of the triangle's aspect ratio (on a 10 cm x 1 um sliver,
+// the closest point to a point of the triangle came out 24 nm away), but the projection of p on
+// the face's plane and on the edge's line, exact to rounding. Returns the point; `feature` and
+// `index` name the region: a corner k, an edge k (k to k+1), or the face.
+Vec3 closestOnTriangle(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& n,
                        Feature& feature, int& index) {
   const Vec3 ab = b - a, ac = c - a, ap = p - a;
   const double d1 = ab.dot(ap), d2 = ac.dot(ap);
@@ -25,7 +29,7 @@ Vec3 closestOnTriangle(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& 
   const double vc = d1 * d4 - d3 * d2;
   if (vc <= 0 && d1 >= 0 && d3 <= 0) {
     feature = Feature::kEdge, index = 0;
-    return a + (d1 / (d1 - d3)) * ab;
+    return a + std::clamp(d1 / ab.squaredNorm(), 0.0, 1.0) * ab;
   }
   const Vec3 cp = p - c;
   const double d5 = ab.dot(cp), d6 = ac.dot(cp);
@@ -33,16 +37,16 @@ Vec3 closestOnTriangle(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& 
   const double vb = d5 * d2 - d1 * d6;
   if (vb <= 0 && d2 >= 0 && d6 <= 0) {
     feature = Feature::kEdge, index = 2;
-    return a + (d2 / (d2 - d6)) * ac;
+    return a + std::clamp(d2 / ac.squaredNorm(), 0.0, 1.0) * ac;
   }
   const double va = d3 * d6 - d5 * d4;
   if (va <= 0 && (d4 - d3) >= 0 && (d5 - d6) >= 0) {
     feature = Feature::kEdge, index = 1;
-    return b + ((d4 - d3) / ((d4 - d3) + (d5 - d6))) * (c - b);
+    const Vec3 bc = c - b;
+    return b + std::clamp(bc.dot(bp) / bc.squaredNorm(), 0.0, 1.0) * bc;
   }
-  const double denom = 1.0 / (va + vb + vc);
   feature = Feature::kFace, index = -1;
-  return a + ab * (vb * denom) + ac * (vc * denom);
+  return p - ap.dot(n) * n;
 }
 
 double boxDistance2(const Vec3& p, const Vec3& lo, const Vec3& hi) {
@@ -135,7 +139,7 @@ SurfacePoint Mesh::closestPoint(const Vec3& p, double feature_tol) const {
         const int f = bvh_faces_[i];
         Feature feat;
         int idx;
-        const Vec3 q = closestOnTriangle(p, corner(f, 0), corner(f, 1), corner(f, 2), feat, idx);
+        const Vec3 q = closestOnTriangle(p, corner(f, 0), corner(f, 1), corner(f, 2), normals_[f], feat, idx);
         const double d2 = (q - p).squaredNorm();
         if (d2 < best_d2 || (d2 == best_d2 && f < best.face)) {
           best_d2 = d2;

@@ -30,6 +30,15 @@ gf_install_packages() {
   DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -q --no-install-recommends "${missing[@]}"
 }
 
+# What scripts/fuzz needs besides GF_PACKAGES: clang 14 and its libFuzzer.
+GF_FUZZ_PACKAGES=(clang-14 libclang-rt-14-dev libfuzzer-14-dev)
+
+# Installs GF_PACKAGES and GF_FUZZ_PACKAGES that dpkg does not report as installed.
+gf_install_fuzz_packages() {
+  GF_PACKAGES+=("${GF_FUZZ_PACKAGES[@]}")
+  gf_install_packages
+}
+
 # Configures (first run only) and builds one CMake preset: release, debug, asan-ubsan or tsan.
 # GF_BUILD_TARGETS (space-separated) builds only those targets, e.g. the threaded tests for tsan.
 gf_build() {

@@ -1,0 +1,143 @@
+// Inputs the fuzz targets (tests/fuzz) crashed on, in the simulation library: each now gives a
+// clean result or a named error. Run by gf_sim_tests (GCC); the inputs are inline or in
+// tests/fuzz/regressions/.
+#include <gtest/gtest.h>
+
+#include <Eigen/Geometry>
+#include <filesystem>
+#include <fstream>
+#include <random>
+#include <stdexcept>
+#include <string>
+
+#include "sim/god_finger.hpp"
+#include "sim/mesh.hpp"
+#include "sim/mesh_import.hpp"
+
+namespace gf::sim {
+namespace {
+
+std::string regression(const std::string& name) { return std::string(GF_SOURCE_DIR) + "/tests/fuzz/regressions/" + name; }
+
+// What loading `text` as a mesh file called `name` throws (without the path), or "accepted".
+std::string loadError(const std::string& name, const std::string& text) {
+  const std::filesystem::path dir = std::filesystem::temp_directory_path() / "gf_fuzz_regressions";
+  std::filesystem::create_directories(dir);
+  const std::string path = (dir / name).string();
+  std::ofstream(path, std::ios::binary) << text;
+  try {
+    loadMesh(path);
+  } catch (const MeshLoadError& e) {
+    return std::string(e.what()).substr(path.size());
+  }
+  return "accepted";
+}
+
+// fuzz_mesh: a binary PLY whose first vertex byte is '\n' (the float -0.02), which assimp's
+// header reader swallows; it then reads faces without vertices, and its triangulation asserted,
+// aborting the process. The same tetrahedron with another first vertex loads.
+TEST(FuzzRegression, BinaryPlyFacesWithoutVerticesAreAnErrorNotAnAbort) {
+  try {
+    loadMesh(regression("mesh-binary-ply-misread-faces.ply"));
+    FAIL() << "expected MeshLoadError";
+  } catch (const MeshLoadError& e) {
+    EXPECT_NE(std::string(e.what()).find("face 0 of mesh 0 has no vertex"), std::string::npos) << e.what();
+  }
+  const Mesh tetrahedron = loadMesh(regression("mesh-binary-ply-tetrahedron.ply"));
+  EXPECT_EQ(tetrahedron.faceCount(), 4);
+  EXPECT_EQ(tetrahedron.vertexCount(), 4);
+}
+
+// fuzz_mesh: assimp's PLY reader looped forever (seeking) on a header without an end_header
+// line; "end_headerX" is not one either.
+TEST(FuzzRegression, PlyHeaderWithoutItsEndIsAnErrorNotAHang) {
+  const std::string header = "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
+                             "property float z\n";
+  EXPECT_EQ(loadError("open.ply", header + "end_he 1\n0 0 0\n1 0 0\n0 1 0\n"), ": PLY header has no end_header line");
+  EXPECT_EQ(loadError("suffix.ply", header + "end_headerX\n0 0 0\n1 0 0\n0 1 0\n"),
+            ": PLY header has no end_header line");
+  EXPECT_EQ(loadError("triangle.ply", header + "element face 1\nproperty list uchar int vertex_indices\n  end_header\r\n"
+                                                "0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n"),
+            "accepted")
+      << "an end_header line may start with spaces and end with a carriage return";
+}
+
+// fuzz_mesh: an OFF vertex count of 1e38 was cast to long long for the error message
+// (undefined behaviour); counts beyond 1e15 are now written as numbers.
+TEST(FuzzRegression, HugeHeaderCountsAreNamedNotCast) {
+  EXPECT_EQ(loadError("huge.off", "OFF\n1e38 1 0\n0 0 0\n"),
+            ":2: OFF header promises 1e+38 vertices and 1 faces, more than its 19 bytes can hold");
+  EXPECT_EQ(loadError("huge.ply", "ply\nformat ascii 1.0\nelement vertex 1e38\nend_header\n"),
+            ": PLY header promises 1e+38 elements, more than its 52 bytes hold");
+}
+
+// fuzz_patch: welding put a micrometre mesh 100 km from the origin in grid cells counted from
+// the origin, p / 1.4e-12 m past the range of int64 (undefined behaviour, reported by UBSan in
+// the fuzz and asan-ubsan builds). Cells now count from the mesh's lower bounds.
+TEST(FuzzRegression, MicrometreMeshFarFromTheOriginWelds) {
+  const Vec3 far(1e8, -1e8, 1e8);
+  const Mesh m = buildMesh({far, far + Vec3(1e-6, 0, 0), far + Vec3(0, 1e-6, 0), far + Vec3(1e-6, 1e-6, 0),
+                            far + Vec3(1e-6, 0, 0)},
+                           {{0, 1, 2}, {4, 3, 2}});
+  EXPECT_EQ(m.vertexCount(), 4) << "vertex 4 repeats vertex 1";
+  EXPECT_EQ(m.report().welded_vertices, 1);
+  EXPECT_EQ(m.faceCount(), 2);
+}
+
+// Coordinates whose squares overflow are refused, naming the vertex.
+TEST(FuzzRegression, CoordinatesBeyond1e150AreRefused) {
+  try {
+    buildMesh({Vec3::Zero(), Vec3(1, 0, 0), Vec3(0, 1e200, 0)}, {{0, 1, 2}});
+    FAIL() << "expected std::invalid_argument";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_STREQ(e.what(), "mesh vertex 2 lies beyond 1e150 m of the origin");
+  }
+}
+
+// fuzz_patch: the closest point on a sliver came from barycentric coordinates whose
+// cancellation grows with the square of the aspect ratio: on a tilted 10 cm x 1 um triangle the
+// closest point to a point of it lay 2.3e-8 m away (an SGO checked against the surface seemed
+// to have left it). The face point is now the projection on the face's plane.
+TEST(FuzzRegression, ClosestPointOnASliverIsThePointItself) {
+  const Eigen::Matrix3d turn = Eigen::AngleAxisd(0.7, Vec3(1, 2, 3).normalized()).toRotationMatrix();
+  const Mesh m = buildMesh({turn * Vec3(0, 0, 0), turn * Vec3(0.1, 0, 0), turn * Vec3(0.07, 1e-6, 0)}, {{0, 1, 2}});
+  ASSERT_EQ(m.faceCount(), 1);
+  std::mt19937 rng(14);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  double worst = 0.0;
+  for (int i = 0; i < 1000; ++i) {
+    double a = u(rng), b = u(rng);
+    if (a + b > 1.0) a = 1.0 - a, b = 1.0 - b;
+    const Vec3 p = m.corner(0, 0) + a * (m.corner(0, 1) - m.corner(0, 0)) + b * (m.corner(0, 2) - m.corner(0, 0));
+    worst = std::max(worst, m.closestPoint(p, 0.0).query_distance);
+  }
+  EXPECT_LT(worst, 1e-12) << "rounding of the point itself is about 1e-17 m";
+}
+
+// The fuzz_patch input that found it: a 1.9e41 m sliver, pressed; every SGO lies on the surface
+// within 1e-9 of the mesh's scale.
+TEST(FuzzRegression, PatchOnAHugeSliverStaysOnTheSurface) {
+  const Mesh m = buildMesh({{484241657823232, 0.039812088012695312, -1.8544598878572408e-34},
+                            {-8.3476574658685477e+35, -2.4708001272466709e+36, 1.320746876354231e-19},
+                            {1.8846565061092344e+41, 1.3746478262245645e-18, -1802616296177664}},
+                           {{2, 1, 0}});
+  ASSERT_EQ(m.faceCount(), 1);
+  PatchContact c;
+  c.point_local = Vec3(1.6498496734660572e+41, -4.8257820746493402e+33, 1.4098609602285082e+38);
+  c.outward_normal_local = Vec3(-9.5646940985498847e-27, 3.2314548319677619e-27, -1);
+  c.separation = -1.16821e-08;
+  PatchSettings s;
+  s.n_sgo = 61;
+  s.r_max = 0.0400391;
+  s.d0 = 1e-6;
+  Patch p;
+  computePatch(m, c, Vec3(0, 0, 1.1099888093108006e-12), s, p);
+  ASSERT_TRUE(p.valid);
+  ASSERT_EQ(p.sgos.size(), 61u);
+  for (const Sgo& sgo : p.sgos) {
+    EXPECT_LE(m.closestPoint(sgo.position, 0.0).query_distance, 1e-9 * m.diagonal());
+  }
+}
+
+}  // namespace
+}  // namespace gf::sim
