@@ -127,7 +127,7 @@ struct StudyPlan {
 /// per distinct reference configuration. `extra` (the command's --set) applies to every run
 /// before its axis values. Loads each configuration's scene with its overrides, so an unknown
 /// field or a bad value is reported against the study file line that gave it, before anything
-/// runs. Throws InputError.
+/// runs. A grid of more than 1000 runs is refused before it is listed. Throws InputError.
 StudyPlan expandStudy(const StudyDesc& study, bool quick, const std::vector<std::string>& extra);
 
 /// The shell command line of one run, writing into `out_dir`/runs/<id>/ (absolute paths, so it

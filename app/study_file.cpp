@@ -3,6 +3,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <iomanip>
 #include <map>
 #include <sstream>
 
@@ -260,6 +261,29 @@ void checkMeasures(const StudyDesc& study, const StudySeries& series, const Sess
   }
 }
 
+// Most runs a study's grid may expand into: each is a process of seconds to minutes, and each is
+// loaded and checked before anything runs (the bundled studies have at most 56).
+constexpr double kMaxStudyRuns = 1000;
+
+// The grid's size before it is built: per series the product of its axes' lengths, plus its
+// reference run. A few axes of many values would otherwise exhaust the memory while the runs
+// are listed.
+void checkGridSize(const StudyDesc& study, bool quick) {
+  double total = 0.0;
+  for (const StudySeries& series : study.series) {
+    if (quick && !series.quick) continue;
+    double runs = 1.0;
+    for (const StudyAxis& a : series.axes) runs *= static_cast<double>((quick ? a.quick : a.values).size());
+    total += runs + (series.has_reference_run ? 1.0 : 0.0);
+    if (total <= kMaxStudyRuns) continue;
+    const StudySource at = series.axes.empty() ? StudySource{} : series.axes.back().values.front().field_source;
+    std::ostringstream why;
+    why << std::setprecision(15) << "the " << (quick ? "--quick " : "") << "grid has " << total << " runs with series '"
+        << series.name << "', more than " << kMaxStudyRuns << " (use fewer values or split the study)";
+    throw InputError(study.source, at.line, at.column, at.field, why.str());
+  }
+}
+
 }  // namespace
 
 std::string bundledStudyDir() {
@@ -351,6 +375,7 @@ StudyDesc parseStudyText(const std::string& text, const std::string& source_name
 }
 
 StudyPlan expandStudy(const StudyDesc& study, bool quick, const std::vector<std::string>& extra) {
+  checkGridSize(study, quick);
   StudyPlan plan;
   plan.study = study;
   plan.quick = quick;
