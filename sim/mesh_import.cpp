@@ -12,6 +12,7 @@
 #include <fstream>
 #include <iomanip>
 #include <sstream>
+#include <string_view>
 
 namespace gf::sim {
 namespace {
@@ -40,21 +41,55 @@ std::string contentLine(std::istream& in, long& number) {
   return "";
 }
 
+// The next line of `in` that is not empty, or "" at the end.
+std::string nonEmptyLine(std::istream& in, long& number) {
+  std::string line;
+  while (std::getline(in, line)) {
+    ++number;
+    const std::size_t first = line.find_first_not_of(" \t\r");
+    if (first != std::string::npos) return line.substr(first);
+  }
+  return "";
+}
+
+// Whether `prefix` (before "OFF") makes an OFF keyword whose counts follow it: [ST][C][N][4] for
+// texture coordinates, colours, normals and homogeneous coordinates.
+bool offPrefix(std::string_view prefix) {
+  for (const std::string_view part : {"ST", "C", "N", "4"}) {
+    if (prefix.starts_with(part)) prefix.remove_prefix(part.size());
+  }
+  return prefix.empty();
+}
+
+// Most vertices of an OFF face the importer reads (it skips a longer face).
+constexpr long kMaxOffFaceVertices = 9;
+
 // An OFF file's header against what the file holds: the counts it promises must fit in its size
 // (checked before anything is allocated: a lying header cannot make us, or the importer, reserve
 // gigabytes) and its lines must be there (the importer asserts, aborting the process, otherwise).
+// Its lines must also read as the importer reads them, line by line: it takes the edge count
+// from the next line when the counts line lacks it, and counts a face it skips (a comment line
+// among the faces, a face of 0 or more than 9 vertices) out of the face count without moving
+// on, so two of them wrap the count around and it reads far past its faces (a crash).
 void checkOff(const std::string& path, std::uintmax_t size) {
   std::ifstream in(path);
   long number = 0;
   std::string line = contentLine(in, number);
-  if (line.rfind("OFF", 0) != 0) return;  // not plain OFF (e.g. COFF, NOFF): the importer decides
-  std::string counts = line.substr(3);
-  if (counts.find_first_not_of(" \t\r") == std::string::npos) counts = contentLine(in, number);
+  const std::size_t keyword = line.find("OFF");
+  std::string counts;
+  if (keyword != std::string::npos && offPrefix(std::string_view(line).substr(0, keyword))) {
+    counts = line.substr(keyword + 3);
+    if (counts.find_first_not_of(" \t\r") == std::string::npos) counts = contentLine(in, number);
+  } else if (std::isdigit(static_cast<unsigned char>(line[0]))) {
+    counts = line;  // no keyword, which the format allows: the counts come first
+  } else {
+    return;  // nOFF (a dimension before the counts), or not OFF: the importer decides
+  }
   std::istringstream c(counts);
-  double nv = -1, nf = -1;
-  c >> nv >> nf;
-  if (!(nv >= 0) || !(nf >= 0) || nv != std::floor(nv) || nf != std::floor(nf)) {
-    throw MeshLoadError(path + ":" + std::to_string(number) + ": OFF header: expected vertex and face counts");
+  double nv = -1, nf = -1, ne = -1;
+  c >> nv >> nf >> ne;
+  if (!(nv >= 0) || !(nf >= 0) || !(ne >= 0) || nv != std::floor(nv) || nf != std::floor(nf)) {
+    throw MeshLoadError(path + ":" + std::to_string(number) + ": OFF header: expected vertex, face and edge counts");
   }
   // A vertex needs at least "0 0 0\n" (6 bytes), a face "3 0 1 2\n" (8).
   if (nv * 6 + nf * 8 > static_cast<double>(size)) {
@@ -65,7 +100,11 @@ void checkOff(const std::string& path, std::uintmax_t size) {
   }
   long vertices = 0, faces = 0;
   const long want_v = static_cast<long>(nv), want_f = static_cast<long>(nf);
-  for (std::string l = contentLine(in, number); !l.empty(); l = contentLine(in, number)) {
+  for (std::string l = nonEmptyLine(in, number); !l.empty(); l = nonEmptyLine(in, number)) {
+    if (l[0] == '#') {
+      throw MeshLoadError(path + ":" + std::to_string(number) + ": OFF: a comment among the " +
+                          (vertices < want_v ? "vertices" : "faces") + " (the importer reads it as one)");
+    }
     if (vertices < want_v) {
       ++vertices;
       continue;
@@ -74,6 +113,10 @@ void checkOff(const std::string& path, std::uintmax_t size) {
     long n = 0;
     f >> n;
     if (!f || n < 1) throw MeshLoadError(path + ":" + std::to_string(number) + ": OFF face " + std::to_string(faces) + ": expected a vertex count");
+    if (n > kMaxOffFaceVertices) {
+      throw MeshLoadError(path + ":" + std::to_string(number) + ": OFF face " + std::to_string(faces) + " has " +
+                          std::to_string(n) + " vertices; the importer reads at most 9");
+    }
     for (long k = 0; k < n; ++k) {
       long index = -1;
       f >> index;
