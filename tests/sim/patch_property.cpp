@@ -1,8 +1,11 @@
 #include "patch_property.hpp"
 
+#include <gtest/gtest.h>
+
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdio>
 #include <limits>
 #include <random>
 #include <sstream>
@@ -282,6 +285,16 @@ PropertySweep sweepPatchProperties(std::uint32_t seed, long patches) {
     }
   }
   return sweep;
+}
+
+void expectSweepHolds(std::uint32_t seed, long patches) {
+  const PropertySweep sweep = sweepPatchProperties(seed, patches);
+  EXPECT_EQ(sweep.patches, patches);
+  EXPECT_EQ(sweep.failures, 0) << sweep.first_failure;
+  // The sweep must exercise the walk, not only reject or skip: most patches carry points.
+  EXPECT_GT(sweep.sgos, 10 * sweep.patches);
+  std::printf("%ld patches on %ld meshes, %ld points checked, %ld failures\n", sweep.patches, sweep.meshes, sweep.sgos,
+              sweep.failures);
 }
 
 }  // namespace gf::sim::testing

@@ -26,4 +26,8 @@ struct PropertySweep {
 /// within its crossing budget, and load shares summing to 1.
 PropertySweep sweepPatchProperties(std::uint32_t seed, long patches);
 
+/// Runs the sweep as a gtest check: all `patches` computed, none broken, and most of them carrying
+/// points (at least 10 per patch on average); prints what it checked.
+void expectSweepHolds(std::uint32_t seed, long patches);
+
 }  // namespace gf::sim::testing
