@@ -501,7 +501,7 @@ void checkMassRatios(Reader& r, const sim::SceneDesc& scene) {
   if (!heaviest) return;
   const double lightest = heaviest->proxy.mass * sim::kMinBodyToProxyMass;
   for (const auto& [name, t] : r.namedTables("bodies")) {
-    const auto body = std::find_if(scene.bodies.begin(), scene.bodies.end(), [&](const sim::BodyDesc& b) { return b.name == name; });
+    const auto body = std::find_if(scene.bodies.begin(), scene.bodies.end(), [&name = name](const sim::BodyDesc& b) { return b.name == name; });
     if (body == scene.bodies.end() || body->mass <= 0.0 || body->mass >= lightest * (1 - 1e-9)) continue;
     Reader br(*t, r.field("bodies." + name), r.file());
     char why[240];
