@@ -6,6 +6,8 @@
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
+#include <memory>
+#include <optional>
 
 #include <unistd.h>
 
@@ -77,50 +79,65 @@ nlohmann::json summaryJson(const SessionDesc& session, const sim::World& world,
 }
 
 // forces.csv: the force on each listed body other than gravity (N), from its change of velocity
-// over the step: m (dv/dt - g). This is the paper's Fig. 8 curve for the pinched cylinder.
+// over the step: m (dv/dt - g). This is the paper's Fig. 8 curve for the pinched cylinder. The
+// file is streamed while the run goes when `path` is given; the first body's y force is kept
+// for the chart.
 class ForceWriter {
  public:
-  ForceWriter(const sim::World& world, const std::vector<std::string>& names, long rows) {
+  ForceWriter(const sim::World& world, const std::vector<std::string>& names, long rows, const std::string& path) {
     const sim::SceneDesc& d = world.desc();
-    text_.push_back('t');
     for (const std::string& n : names) {
       for (std::size_t b = 0; b < d.bodies.size(); ++b) {
         if (d.bodies[b].name != n) continue;
         bodies_.push_back(static_cast<int>(b));
         previous_.push_back(world.bodyLinearVelocity(static_cast<int>(b)));
-        for (const char* c : {".fx", ".fy", ".fz"}) text_.append(1, ',').append(n).append(c);
       }
     }
-    text_ += '\n';
+    if (!path.empty() && !bodies_.empty()) {
+      file_ = std::make_unique<StreamedFile>(path);
+      std::string& text = file_->block();
+      text.push_back('t');
+      for (int b : bodies_) {
+        for (const char* c : {".fx", ".fy", ".fz"}) text.append(1, ',').append(d.bodies[static_cast<std::size_t>(b)].name).append(c);
+      }
+      text += '\n';
+      file_->rowDone();
+    }
     gravity_ = d.effects.gravity ? d.world.gravity : sim::Vec3::Zero();
     times_.reserve(static_cast<std::size_t>(std::max(0L, rows)));
     fy_.reserve(static_cast<std::size_t>(std::max(0L, rows)));
-    text_.reserve(text_.size() + static_cast<std::size_t>(std::max(0L, rows)) * 24 * (1 + 3 * bodies_.size()));
   }
   bool empty() const { return bodies_.empty(); }
   void record(const sim::World& world, double dt) {
-    appendNumber(text_, world.time());
     times_.push_back(world.time());
+    std::string* text = file_ ? &file_->block() : nullptr;
+    if (text) appendNumber(*text, world.time());
     for (std::size_t i = 0; i < bodies_.size(); ++i) {
       const sim::Vec3 v = world.bodyLinearVelocity(bodies_[i]);
       const sim::Vec3 f = world.desc().bodies[bodies_[i]].mass * ((v - previous_[i]) / dt - gravity_);
       previous_[i] = v;
       if (i == 0) fy_.push_back(f.y());
+      if (!text) continue;
       for (double x : {f.x(), f.y(), f.z()}) {
-        text_ += ',';
-        appendNumber(text_, x);
+        *text += ',';
+        appendNumber(*text, x);
       }
     }
-    text_ += '\n';
+    if (!text) return;
+    *text += '\n';
+    file_->rowDone();
   }
-  const std::string& text() const { return text_; }
+  /// Writes the last rows and puts forces.csv in place.
+  void close() {
+    if (file_) file_->close();
+  }
   /// The y force on the first body against time, as a chart curve.
   render::ChartSeries series(const std::string& label, const Eigen::Vector3f& colour) const {
     return {label, colour, times_, fy_};
   }
 
  private:
-  std::string text_;
+  std::unique_ptr<StreamedFile> file_;
   std::vector<int> bodies_;
   std::vector<sim::Vec3> previous_;
   std::vector<double> times_, fy_;
@@ -178,7 +195,7 @@ render::ChartSeries godObjectForces(const SessionDesc& session) {
   sim::World world(scene);
   const std::vector<sim::DeviceTrack> devices = sim::deviceTracks(scene);
   const double dt = 1.0 / scene.world.haptic_rate_hz;
-  ForceWriter forces(world, {session.record.force_bodies.front()}, 0);
+  ForceWriter forces(world, {session.record.force_bodies.front()}, 0, "");
   sim::runHapticLoop(world, devices, {scene.world.haptic_rate_hz, scene.duration},
                      [&](const sim::World& w) { forces.record(w, dt); });
   return forces.series("god-object (n_SGO = 0)", {0.85f, 0.2f, 0.15f});
@@ -236,8 +253,9 @@ sim::LoopStats runSession(const SessionDesc& session, const SessionOptions& opti
   const std::vector<sim::DeviceTrack> devices = sim::deviceTracks(scene);
   const double rate = scene.world.haptic_rate_hz, dt = 1.0 / rate;
   const long steps = sim::stepCount(scene.duration, rate);
-  TraceWriter trace(world, session.record.trace ? steps : 0);
-  ForceWriter forces(world, session.record.force_bodies, steps);
+  std::optional<TraceWriter> trace;
+  if (session.record.trace) trace.emplace(world, (dir / "trace.csv").string());
+  ForceWriter forces(world, session.record.force_bodies, steps, (dir / "forces.csv").string());
   std::vector<double> pending = session.record.contact_times;
   std::sort(pending.begin(), pending.end(), std::greater<>());  // next time at the back
   std::vector<std::pair<double, sim::Snapshot>> contact_snaps;  // serialised after the run
@@ -263,7 +281,7 @@ sim::LoopStats runSession(const SessionDesc& session, const SessionOptions& opti
   ExpectChecker expect(session.expect, world);
   const sim::LoopStats stats = sim::runHapticLoop(world, devices, loop, [&](const sim::World& w) {
     expect.afterStep(w);
-    if (session.record.trace) trace.record(w);
+    if (trace) trace->record(w);
     if (!forces.empty()) forces.record(w, dt);
     if (frames) frames->afterStep(world, dt);
     while (!pending.empty() && pending.back() <= w.time() + 0.5 * dt) {
@@ -280,8 +298,8 @@ sim::LoopStats runSession(const SessionDesc& session, const SessionOptions& opti
     }
   });
   if (options.progress) std::fprintf(stderr, "\n");
-  if (session.record.trace) trace.save((dir / "trace.csv").string());
-  if (!forces.empty()) writeFileAtomically((dir / "forces.csv").string(), forces.text());
+  if (trace) trace->close();
+  forces.close();
   for (const auto& [t, snap] : contact_snaps) {
     writeFileAtomically((dir / "contacts" / (contactFileName(t) + ".json")).string(),
                         contactsJson(snap, scene).dump(1) + "\n");

@@ -1,10 +1,15 @@
 #include "app/trace_writer.hpp"
 
 #include <charconv>
+#include <condition_variable>
 #include <cstdio>
+#include <deque>
 #include <filesystem>
 #include <fstream>
+#include <mutex>
 #include <stdexcept>
+#include <thread>
+#include <vector>
 
 namespace gf::app {
 
@@ -26,57 +31,160 @@ void writeFileAtomically(const std::string& path, const std::string& text) {
   if (ec) throw std::runtime_error(path + ": cannot replace: " + ec.message());
 }
 
-TraceWriter::TraceWriter(const sim::World& world, long expected_rows) {
+namespace {
+// Room past a full block for the row that fills it, so rows of up to this length never reallocate.
+constexpr std::size_t kRowMargin = 64 * 1024;
+}  // namespace
+
+struct StreamedFile::Writer {
+  std::string path, tmp;
+  std::ofstream out;
+  std::mutex mutex;
+  std::condition_variable changed;
+  std::deque<std::unique_ptr<std::string>> full;   // owner -> writer
+  std::vector<std::unique_ptr<std::string>> free;  // writer -> owner, emptied, capacity kept
+  bool closing = false;
+  bool failed = false;
+  bool closed = false;
+  std::thread thread;
+
+  void run() {
+    for (;;) {
+      std::unique_ptr<std::string> next;
+      {
+        std::unique_lock lock(mutex);
+        changed.wait(lock, [&] { return !full.empty() || closing; });
+        if (full.empty()) return;
+        next = std::move(full.front());
+        full.pop_front();
+      }
+      if (!failed) {
+        out.write(next->data(), static_cast<std::streamsize>(next->size()));
+        if (!out) failed = true;  // read by the owner only after join()
+      }
+      next->clear();
+      std::lock_guard lock(mutex);
+      free.push_back(std::move(next));
+    }
+  }
+};
+
+StreamedFile::StreamedFile(std::string path) : writer_(std::make_unique<Writer>()) {
+  Writer& w = *writer_;
+  w.path = std::move(path);
+  w.tmp = w.path + ".tmp";
+  w.out.open(w.tmp, std::ios::binary | std::ios::trunc);
+  if (!w.out) throw std::runtime_error(w.tmp + ": cannot create");
+  for (int i = 0; i < 3; ++i) {
+    auto spare = std::make_unique<std::string>();
+    spare->reserve(kBlockBytes + kRowMargin);
+    w.free.push_back(std::move(spare));
+  }
+  block_ = std::move(w.free.back());
+  w.free.pop_back();
+  w.thread = std::thread([&w] { w.run(); });
+}
+
+StreamedFile::~StreamedFile() {
+  try {
+    close();
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "[godfinger] %s\n", e.what());
+  }
+}
+
+void StreamedFile::handOver() {
+  Writer& w = *writer_;
+  std::unique_ptr<std::string> next;
+  {
+    std::lock_guard lock(w.mutex);
+    w.full.push_back(std::move(block_));
+    if (!w.free.empty()) {
+      next = std::move(w.free.back());
+      w.free.pop_back();
+    }
+  }
+  w.changed.notify_one();
+  if (!next) {  // the writer is behind (a slow disk): one more block rather than a wait
+    next = std::make_unique<std::string>();
+    next->reserve(kBlockBytes + kRowMargin);
+  }
+  block_ = std::move(next);
+}
+
+void StreamedFile::close() {
+  Writer& w = *writer_;
+  if (w.closed) return;
+  w.closed = true;
+  if (!block_->empty()) handOver();
+  {
+    std::lock_guard lock(w.mutex);
+    w.closing = true;
+  }
+  w.changed.notify_one();
+  w.thread.join();
+  w.out.close();
+  if (w.failed || !w.out) {
+    std::error_code ignored;
+    std::filesystem::remove(w.tmp, ignored);
+    throw std::runtime_error(w.tmp + ": cannot write (disk full?); " + w.path + " left as it was");
+  }
+  std::error_code ec;
+  std::filesystem::rename(w.tmp, w.path, ec);
+  if (ec) throw std::runtime_error(w.path + ": cannot replace: " + ec.message());
+}
+
+TraceWriter::TraceWriter(const sim::World& world, const std::string& path) : file_(path) {
   const sim::SceneDesc& d = world.desc();
-  text_.push_back('t');  // (assigning a literal trips GCC 12 -Wrestrict, PR 105329)
+  std::string& text = file_.block();
+  text.push_back('t');  // (assigning a literal trips GCC 12 -Wrestrict, PR 105329)
   for (std::size_t b = 0; b < d.bodies.size(); ++b) {
     if (d.bodies[b].mass <= 0.0) continue;
     dynamic_bodies_.push_back(static_cast<int>(b));
     for (const char* c : {".px", ".py", ".pz", ".qx", ".qy", ".qz", ".qw"}) {
-      text_.append(1, ',').append(d.bodies[b].name).append(c);
+      text.append(1, ',').append(d.bodies[b].name).append(c);
     }
   }
   for (const sim::FingerDesc& f : d.fingers) {
-    for (const char* c : {".fx", ".fy", ".fz", ".n_sgo", ".r", ".px", ".py", ".pz", ".dx", ".dy", ".dz"}) text_.append(1, ',').append(f.name).append(c);
+    for (const char* c : {".fx", ".fy", ".fz", ".n_sgo", ".r", ".px", ".py", ".pz", ".dx", ".dy", ".dz"}) text.append(1, ',').append(f.name).append(c);
   }
   for (int b : dynamic_bodies_) {
     for (const char* c : {".vx", ".vy", ".vz", ".wx", ".wy", ".wz"}) {
-      text_.append(1, ',').append(d.bodies[static_cast<std::size_t>(b)].name).append(c);
+      text.append(1, ',').append(d.bodies[static_cast<std::size_t>(b)].name).append(c);
     }
   }
-  text_ += '\n';
-  const std::size_t per_row = 24 * (1 + 13 * dynamic_bodies_.size() + 11 * d.fingers.size());
-  text_.reserve(text_.size() + per_row * static_cast<std::size_t>(std::max(0L, expected_rows)));
+  text += '\n';
+  file_.rowDone();
 }
 
 void TraceWriter::record(const sim::World& world) {
-  appendNumber(text_, world.time());
+  std::string& text = file_.block();
+  appendNumber(text, world.time());
   for (int b : dynamic_bodies_) {
     const sim::Pose p = world.bodyPose(b);
     for (double x : {p.position.x(), p.position.y(), p.position.z(), p.orientation.x(),
                      p.orientation.y(), p.orientation.z(), p.orientation.w()}) {
-      text_ += ',';
-      appendNumber(text_, x);
+      text += ',';
+      appendNumber(text, x);
     }
   }
   for (int f = 0; f < static_cast<int>(world.desc().fingers.size()); ++f) {
     const sim::Vec3 force = world.couplingForce(f), proxy = world.proxyPosition(f), device = world.devicePosition(f);
     for (double x : {force.x(), force.y(), force.z(), double(world.sgoCount(f)), world.contactRadius(f), proxy.x(),
                      proxy.y(), proxy.z(), device.x(), device.y(), device.z()}) {
-      text_ += ',';
-      appendNumber(text_, x);
+      text += ',';
+      appendNumber(text, x);
     }
   }
   for (int b : dynamic_bodies_) {
     const sim::Vec3 v = world.bodyLinearVelocity(b), w = world.bodyAngularVelocity(b);
     for (double x : {v.x(), v.y(), v.z(), w.x(), w.y(), w.z()}) {
-      text_ += ',';
-      appendNumber(text_, x);
+      text += ',';
+      appendNumber(text, x);
     }
   }
-  text_ += '\n';
+  text += '\n';
+  file_.rowDone();
 }
-
-void TraceWriter::save(const std::string& path) const { writeFileAtomically(path, text_); }
 
 }  // namespace gf::app

@@ -1,30 +1,63 @@
 // trace.csv: one row per haptic step, written deterministically (shortest round-trip numbers).
 #pragma once
 
+#include <memory>
 #include <string>
 
 #include "sim/world.hpp"
 
 namespace gf::app {
 
-/// Accumulates trace rows in memory; `save` writes them. Haptic thread only.
-class TraceWriter {
+/// A text file written while a run goes, so a long run's rows never pile up in memory: the
+/// owner appends to `block()` and calls `rowDone()` after each row; every full block (1 MiB) goes
+/// to a writer thread that appends it to `path.tmp`, and the owner carries on in a recycled block
+/// (no allocation once the writer keeps up). `close()` writes the rest and renames the file into
+/// place, so an earlier file is only replaced by a complete one; an owner destroyed without
+/// `close()` (a run that threw) closes it too, with the rows it reached. One owner thread.
+class StreamedFile {
  public:
-  /// Prepares the header for the world's dynamic bodies and fingers; reserves `expected_rows`.
-  /// Columns: t; per dynamic body its pose (.px .py .pz .qx .qy .qz .qw); per finger its
-  /// coupling force and SGO count (.fx .fy .fz .n_sgo); per dynamic body its linear (.vx .vy
-  /// .vz, m/s) and angular (.wx .wy .wz, rad/s, world frame) velocity.
-  TraceWriter(const sim::World& world, long expected_rows);
+  /// Opens `path.tmp`. Throws std::runtime_error naming it when it cannot be created.
+  explicit StreamedFile(std::string path);
+  ~StreamedFile();
+  StreamedFile(const StreamedFile&) = delete;
+  StreamedFile& operator=(const StreamedFile&) = delete;
 
-  /// Appends the row of the world's current state; does not allocate within `expected_rows`.
-  void record(const sim::World& world);
+  std::string& block() { return *block_; }
+  /// Hands the block to the writer when it is full.
+  void rowDone() {
+    if (block_->size() >= kBlockBytes) handOver();
+  }
+  /// Writes everything and renames `path.tmp` to `path`. Throws std::runtime_error on I/O failure
+  /// (a full disk), naming the file; the earlier `path`, if any, is then left as it was.
+  void close();
 
-  /// Writes header and rows to `path` through a temporary file renamed into place, so an
-  /// earlier file is only replaced by a complete one. Throws std::runtime_error on I/O failure.
-  void save(const std::string& path) const;
+  static constexpr std::size_t kBlockBytes = std::size_t{1} << 20;
 
  private:
-  std::string text_;
+  struct Writer;
+  void handOver();
+  std::unique_ptr<Writer> writer_;
+  std::unique_ptr<std::string> block_;
+};
+
+/// trace.csv, streamed to its file while the run goes (haptic thread only).
+class TraceWriter {
+ public:
+  /// Writes the header for the world's dynamic bodies and fingers.
+  /// Columns: t; per dynamic body its pose (.px .py .pz .qx .qy .qz .qw); per finger its
+  /// coupling force (.fx .fy .fz), SGO count (.n_sgo), contact radius (.r), proxy and device
+  /// positions (.px .py .pz, .dx .dy .dz); per dynamic body its linear (.vx .vy .vz, m/s) and
+  /// angular (.wx .wy .wz, rad/s, world frame) velocity.
+  TraceWriter(const sim::World& world, const std::string& path);
+
+  /// Appends the row of the world's current state.
+  void record(const sim::World& world);
+
+  /// Writes the last rows and puts the file in place (see StreamedFile::close).
+  void close() { file_.close(); }
+
+ private:
+  StreamedFile file_;
   std::vector<int> dynamic_bodies_;
 };
 

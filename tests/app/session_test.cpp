@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "app/scene_file.hpp"
+#include "app/trace_writer.hpp"
 #include "render/image.hpp"
 
 namespace gf::app {
@@ -25,6 +26,54 @@ std::string readFile(const fs::path& p) {
   std::stringstream s;
   s << in.rdbuf();
   return s.str();
+}
+
+// A long run's rows go to disk while it runs: several blocks' worth arrive whole and in order,
+// and the file appears (replacing the earlier one) only when it is closed.
+TEST(StreamedFile, RowsOfManyBlocksArriveInOrderAndReplaceTheFileOnlyAtClose) {
+  const fs::path path = fs::temp_directory_path() / "gf_streamed.csv";
+  {
+    std::ofstream earlier(path);
+    earlier << "earlier run\n";
+  }
+  std::string expected;
+  {
+    StreamedFile file(path.string());
+    for (int row = 0; row < 400000; ++row) {  // about 4.5 MiB: four full blocks and a partial one
+      const std::string line = std::to_string(row) + ",0.125\n";
+      file.block() += line;
+      expected += line;
+      file.rowDone();
+    }
+    EXPECT_EQ(readFile(path), "earlier run\n");
+    file.close();
+  }
+  EXPECT_GT(expected.size(), 4 * StreamedFile::kBlockBytes);
+  EXPECT_EQ(readFile(path), expected);
+  EXPECT_FALSE(fs::exists(path.string() + ".tmp"));
+}
+
+// A run that throws part-way still leaves a valid file of the rows it reached.
+TEST(StreamedFile, AnOwnerThatThrowsLeavesTheRowsItReached) {
+  const fs::path path = fs::temp_directory_path() / "gf_streamed_thrown.csv";
+  try {
+    StreamedFile file(path.string());
+    file.block() += "t\n0\n";
+    file.rowDone();
+    throw std::runtime_error("the run failed");
+  } catch (const std::runtime_error&) {
+  }
+  EXPECT_EQ(readFile(path), "t\n0\n");
+}
+
+TEST(StreamedFile, AFileThatCannotBeCreatedIsNamed) {
+  const std::string path = (fs::temp_directory_path() / "gf_no_such_folder" / "trace.csv").string();
+  try {
+    StreamedFile file(path);
+    FAIL() << "opened " << path;
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find(path + ".tmp: cannot create"), std::string::npos) << e.what();
+  }
 }
 
 TEST(Session, SameSceneTwiceGivesByteIdenticalTrace) {
