@@ -372,23 +372,28 @@ void readExpect(Reader& parent, SessionDesc& s) {
   r.finish();
 }
 
+// The index of the element of `items` (bodies or fingers) whose name field `key` gives, or fails
+// naming the field: missing, not a string, or no such name (with the names there are).
+template <class Desc>
+int namedIndex(Reader& r, const std::string& key, const std::string& what, const std::vector<Desc>& items) {
+  const toml::node* n = r.find(key);
+  if (!n) r.fail(nullptr, key, "missing (the name of " + what + ")");
+  if (!n->is_string()) r.fail(n, key, "expected the name of " + what + " (a string), got " + typeName(*n));
+  const std::string name = n->as_string()->get();
+  const auto named = std::find_if(items.begin(), items.end(), [&](const Desc& d) { return d.name == name; });
+  if (named == items.end()) {
+    std::vector<std::string> names;
+    for (const Desc& d : items) names.push_back(d.name);
+    r.fail(n, key, "no " + key + " called '" + name + "' (one of " + join(names) + ")");
+  }
+  return static_cast<int>(named - items.begin());
+}
+
 // One `[[loads]]` entry: the body it acts on (by name), then force, torque, start, ramp and stop.
 sim::LoadDesc readLoad(Reader& r, const std::vector<sim::BodyDesc>& bodies) {
   sim::LoadDesc load;
-  const toml::node* b = r.find("body");
-  if (!b) r.fail(nullptr, "body", "missing (the name of a dynamic body)");
-  if (!b->is_string()) {
-    r.fail(b, "body", std::string("expected a body name (a string), got ") + typeName(*b));
-  }
-  load.body_name = b->as_string()->get();
-  const auto named = std::find_if(bodies.begin(), bodies.end(),
-                                  [&](const sim::BodyDesc& d) { return d.name == load.body_name; });
-  if (named == bodies.end()) {
-    std::vector<std::string> names;
-    for (const sim::BodyDesc& d : bodies) names.push_back(d.name);
-    r.fail(b, "body", "no body called '" + load.body_name + "' (one of " + join(names) + ")");
-  }
-  load.body = static_cast<int>(named - bodies.begin());
+  load.body = namedIndex(r, "body", "a dynamic body", bodies);
+  load.body_name = bodies[static_cast<std::size_t>(load.body)].name;
   if (!r.has("force") && !r.has("torque")) {
     r.fail(nullptr, "force",
            "missing: give force = [x, y, z] (N), torque = [x, y, z] (N m) or both");
@@ -406,6 +411,40 @@ void readLoads(Reader& parent, sim::SceneDesc& scene) {
   for (const auto& [key, t] : parent.arrayTables("loads", "")) {
     Reader r(*t, parent.field(key), parent.file());
     scene.loads.push_back(readLoad(r, scene.bodies));
+  }
+}
+
+// `[[changes]]`: scripted changes of a finger's live god-finger settings at a time, in time
+// order, named `changes.INDEX` in errors and --set. Each entry holds the finger's whole settings
+// from then on: the fields it names over the finger's settings before it.
+void readChanges(Reader& parent, sim::SceneDesc& scene) {
+  std::vector<sim::PatchSettings> current;
+  for (const sim::FingerDesc& f : scene.fingers) current.push_back(f.patch);
+  double previous_time = 0.0;
+  for (const auto& [key, t] : parent.arrayTables("changes", "")) {
+    Reader r(*t, parent.field(key), parent.file());
+    sim::PatchChange change;
+    change.finger = namedIndex(r, "finger", "a finger", scene.fingers);
+    change.time = r.requiredNumber("t", 0.0, 1e6);
+    sim::FingerDesc next = scene.fingers[static_cast<std::size_t>(change.finger)];
+    next.patch = current[static_cast<std::size_t>(change.finger)];
+    bool any = false;
+    std::string live;
+    for (const sim::Setting<sim::FingerDesc>& s : sim::fingerSettings()) {
+      if (s.live) live.append(live.empty() ? "" : ", ").append(s.name);
+    }
+    for (const sim::Setting<sim::FingerDesc>& s : sim::fingerSettings()) {
+      const std::string field(s.name);
+      if (!s.live && r.has(field)) r.fail(r.find(field), field, "cannot change during a run; a change may give " + live);
+      if (s.live) any = r.setting(s, next, field) || any;
+    }
+    if (!any) r.fail(r.find("finger"), "finger", "the change names no setting: give one or more of " + live);
+    change.patch = next.patch;
+    r.failOn(sim::validateChange(change, scene.fingers, previous_time));
+    r.finish();
+    current[static_cast<std::size_t>(change.finger)] = change.patch;
+    previous_time = change.time;
+    scene.changes.push_back(change);
   }
 }
 
@@ -546,6 +585,7 @@ SessionDesc readSession(toml::table& root, const std::string& source, const std:
     s.cameras.push_back(readCamera(name, *t, r));
   }
   readLoads(r, s.scene);
+  readChanges(r, s.scene);
   readRecord(r, s);
   readExpect(r, s);
   readView(r, s);
@@ -598,6 +638,11 @@ SessionDesc loadSceneFile(const std::string& path, std::span<const std::string> 
 }
 
 sim::DeviceTrack readDeviceCsv(const std::string& path) {
+  // A device, a pipe or /dev/zero would be read without end.
+  std::error_code ec;
+  if (fs::exists(path, ec) && !fs::is_regular_file(path, ec)) {
+    throw InputError(path, 0, 0, "", "the device CSV is not a regular file");
+  }
   std::ifstream in(path);
   if (!in) throw InputError(path, 0, 0, "", "cannot open the device CSV");
   sim::DeviceTrack d;

@@ -87,6 +87,14 @@ struct LoadDesc {
 /// ramp, 1 after it, 0 at and after stop. Pure; any thread; does not allocate.
 double loadFactor(const LoadDesc& load, double t);
 
+/// A scripted change of one finger's god-finger settings (the scene file's `[[changes]]`): the
+/// World applies it at the first step that starts at or after `time` (to within half a step).
+struct PatchChange {
+  double time = 0.0;    ///< s, in [0, 1e6]; changes are in time order
+  int finger = -1;      ///< index into SceneDesc::fingers
+  PatchSettings patch;  ///< the finger's whole god-finger settings from then on (n_sgo 0: god-object)
+};
+
 /// World-wide physics settings.
 struct WorldSettings {
   Vec3 gravity = Vec3(0, -9.81, 0);  ///< m/s^2, y up
@@ -104,6 +112,7 @@ struct SceneDesc {
   std::vector<BodyDesc> bodies;
   std::vector<FingerDesc> fingers;
   std::vector<LoadDesc> loads;  ///< known external loads, applied at every step
+  std::vector<PatchChange> changes;  ///< scripted setting changes, in time order
   double duration = 5.0;  ///< simulated seconds
 };
 

@@ -404,6 +404,22 @@ std::optional<FieldError> validateLoad(const LoadDesc& load, std::span<const Bod
   return std::nullopt;
 }
 
+std::optional<FieldError> validateChange(const PatchChange& change, std::span<const FingerDesc> fingers,
+                                         double previous_time) {
+  if (change.finger < 0 || change.finger >= static_cast<int>(fingers.size())) {
+    return FieldError{"finger", "no finger of index " + std::to_string(change.finger) + " (the scene has " +
+                                    std::to_string(fingers.size()) + ")"};
+  }
+  if (!(change.time >= 0.0 && change.time <= 1e6)) {
+    return FieldError{"t", "must be in [0, 1e6] s, got " + shown(change.time)};
+  }
+  if (change.time < previous_time) {
+    return FieldError{"t", "changes must be in time order: " + shown(change.time) + " s comes after " +
+                               shown(previous_time) + " s"};
+  }
+  return validatePatch(change.patch);
+}
+
 void requireValid(const SceneDesc& scene) {
   if (std::optional<FieldError> e = validateScene(scene)) throw DescriptionError("scene", *e);
   for (const BodyDesc& b : scene.bodies) {
@@ -416,6 +432,13 @@ void requireValid(const SceneDesc& scene) {
     if (std::optional<FieldError> e = validateLoad(scene.loads[i], scene.bodies)) {
       throw DescriptionError("load " + std::to_string(i), *e);
     }
+  }
+  double previous_time = 0.0;
+  for (std::size_t i = 0; i < scene.changes.size(); ++i) {
+    if (std::optional<FieldError> e = validateChange(scene.changes[i], scene.fingers, previous_time)) {
+      throw DescriptionError("change " + std::to_string(i), *e);
+    }
+    previous_time = scene.changes[i].time;
   }
 }
 

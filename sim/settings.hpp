@@ -178,8 +178,12 @@ std::optional<FieldError> validateTrack(const DeviceTrack& track);
 /// setting (finite; start, ramp and stop in [0, 1e6] s, stop +inf when there is none), then
 /// stop after start.
 std::optional<FieldError> validateLoad(const LoadDesc& load, std::span<const BodyDesc> bodies);
-/// Throws DescriptionError naming the scene, body, finger or load of the first field of `scene`
-/// that is not legal.
+/// The first field of `change` that is not legal: its finger (an index into `fingers`), its time
+/// (finite, in [0, 1e6] s, not before `previous_time`), then its god-finger settings.
+std::optional<FieldError> validateChange(const PatchChange& change, std::span<const FingerDesc> fingers,
+                                         double previous_time);
+/// Throws DescriptionError naming the scene, body, finger, load or change of the first field of
+/// `scene` that is not legal.
 void requireValid(const SceneDesc& scene);
 
 /// A change of one finger's god-finger settings, made away from the haptic thread (the

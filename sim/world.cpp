@@ -146,6 +146,7 @@ struct World::Impl final : SolveHooks {
   // exactly k / 1000 s instead of a running sum's rounding.
   double time_base = 0.0, steps_dt = 0.0;
   long steps_since_base = 0;
+  std::size_t next_change = 0;  // desc.changes[next_change] is the first not yet applied
   WorldCounters counters;
 };
 
@@ -525,6 +526,12 @@ World::~World() {
 void World::step(double dt, std::span<const DeviceSample> devices) {
   GF_ASSERT_OWNER();
   Impl& w = *impl_;
+  // Scripted changes due by this step's start (half a step early, so that t = k dt lands on step
+  // k whatever the rounding of the accumulated time); checked by requireValid.
+  while (w.next_change < w.desc.changes.size() && w.desc.changes[w.next_change].time <= w.time + 0.5 * dt) {
+    const PatchChange& c = w.desc.changes[w.next_change++];
+    w.fingers[static_cast<std::size_t>(c.finger)].patch = c.patch;
+  }
   for (std::size_t i = 0; i < w.fingers.size(); ++i) {
     Finger& f = w.fingers[i];
     if (i < devices.size() && devices[i].position.allFinite() && devices[i].velocity.allFinite()) {

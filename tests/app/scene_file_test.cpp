@@ -7,6 +7,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <numbers>
 #include <sstream>
 
 #include "render/geometry.hpp"
@@ -162,6 +163,14 @@ TEST(SceneFile, DeviceCsvErrorsNameTheLine) {
     EXPECT_EQ(e.line(), 3);
     EXPECT_EQ(e.field(), "y");
   }
+  // /dev/zero never ends and holds no line break: refused before it is read.
+  try {
+    readDeviceCsv("/dev/zero");
+    ADD_FAILURE() << "/dev/zero accepted";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.file(), "/dev/zero");
+    EXPECT_NE(std::string(e.what()).find("not a regular file"), std::string::npos) << e.what();
+  }
 }
 
 // Two bodies on one mesh file share one loaded mesh; the World and the renderer use it without
@@ -204,19 +213,25 @@ std::string withLoad(const std::string& entry) {
   return kMinimal + "[[loads]]\n" + entry;
 }
 
-// The error names "scene.toml:LINE:COLUMN: loads.0.FIELD: " and then `reason`; `entry_line` counts
-// from the [[loads]] header (0).
-void expectLoadError(const std::string& entry, int entry_line, int column, const std::string& field,
-                     const std::string& reason) {
-  const InputError e = errorOf(withLoad(entry));
+// The error of kMinimal with `entry` as the first element of array of tables `array` names
+// "scene.toml:LINE:COLUMN: ARRAY.0.FIELD: " and then `reason`; `entry_line` counts from the
+// [[ARRAY]] header (0).
+void expectEntryError(const std::string& array, const std::string& entry, int entry_line, int column,
+                      const std::string& field, const std::string& reason) {
+  const InputError e = errorOf(kMinimal + "[[" + array + "]]\n" + entry);
   const int line =
       static_cast<int>(std::count(kMinimal.begin(), kMinimal.end(), '\n')) + 1 + entry_line;
   const std::string where = "scene.toml:" + std::to_string(line) + ":" + std::to_string(column) +
-                            ": loads.0." + field + ": ";
+                            ": " + array + ".0." + field + ": ";
   EXPECT_EQ(std::string(e.what()).rfind(where, 0), 0u)
       << e.what() << "\nexpected it to start with " << where;
-  EXPECT_EQ(e.field(), "loads.0." + field);
+  EXPECT_EQ(e.field(), array + ".0." + field);
   EXPECT_NE(std::string(e.what()).find(reason), std::string::npos) << e.what();
+}
+
+void expectLoadError(const std::string& entry, int entry_line, int column, const std::string& field,
+                     const std::string& reason) {
+  expectEntryError("loads", entry, entry_line, column, field, reason);
 }
 
 const std::string kBallForce = "body = \"ball\"\nforce = [1, 0, 0]\n";  // entry lines 1 and 2
@@ -288,9 +303,51 @@ TEST(SceneFileLoads, WrongTypesAreNamed) {
   expectLoadError("body = \"ball\"\ntorque = [0, \"a\", 0]\n", 2, 14, "torque",
                   "expected a number, got a string");
   expectLoadError("body = 1\nforce = [1, 0, 0]\n", 1, 8, "body",
-                  "expected a body name (a string), got an integer");
+                  "expected the name of a dynamic body (a string), got an integer");
   expectLoadError(kBallForce + "start = \"now\"\n", 3, 9, "start",
                   "expected a number, got a string");
+}
+
+// [[changes]]: each entry is the finger's whole settings from its time on, over the ones before.
+TEST(SceneFileChanges, EachChangeHoldsTheFingersSettingsFromItsTimeOn) {
+  const SessionDesc s = parseSceneText(
+      kMinimal + "[[changes]]\nt = 0.1\nfinger = \"left\"\nn_sgo = 0\n"
+                 "[[changes]]\nt = 0.15\nfinger = \"left\"\nr_max = 0.005\ntau_a = 45\n",
+      "scene.toml", "", std::vector<std::string>{"changes.1.t=0.12"});
+  ASSERT_EQ(s.scene.changes.size(), 2u);
+  const sim::PatchSettings& before = s.scene.fingers[0].patch;
+  const sim::PatchChange& a = s.scene.changes[0];
+  EXPECT_EQ(a.time, 0.1);
+  EXPECT_EQ(a.finger, 0);
+  EXPECT_EQ(a.patch.n_sgo, 0);
+  EXPECT_EQ(a.patch.r_max, before.r_max) << "what the change does not name stays";
+  const sim::PatchChange& b = s.scene.changes[1];
+  EXPECT_EQ(b.time, 0.12) << "--set reaches a change by its index";
+  EXPECT_EQ(b.patch.n_sgo, 0) << "carried over from the change before";
+  EXPECT_EQ(b.patch.r_max, 0.005);
+  EXPECT_NEAR(b.patch.tau_a, 45.0 * std::numbers::pi / 180.0, 1e-15);
+  EXPECT_EQ(s.scene.fingers[0].patch.n_sgo, 8) << "the finger starts with its own settings";
+  sim::World world(s.scene);  // the World accepts what the reader accepted
+}
+
+TEST(SceneFileChanges, BadEntriesAreNamed) {
+  expectEntryError("changes", "t = 0.1\nfinger = \"thumb\"\nn_sgo = 0\n", 2, 10, "finger",
+                   "no finger called 'thumb' (one of left)");
+  expectEntryError("changes", "t = 0.1\nn_sgo = 0\n", 0, 1, "finger", "missing (the name of a finger)");
+  expectEntryError("changes", "finger = \"left\"\nn_sgo = 0\n", 0, 1, "t", "missing");
+  expectEntryError("changes", "t = -1\nfinger = \"left\"\nn_sgo = 0\n", 1, 5, "t", "-1");
+  expectEntryError("changes", "t = 0.1\nfinger = \"left\"\n", 2, 10, "finger",
+                   "the change names no setting: give one or more of n_sgo, r_max");
+  expectEntryError("changes", "t = 0.1\nfinger = \"left\"\nn_sgo = 2\n", 3, 9, "n_sgo",
+                   "must be 0 (god-object) or 3..64");
+  expectEntryError("changes", "t = 0.1\nfinger = \"left\"\nproxy_mass = 1\n", 3, 14, "proxy_mass",
+                   "cannot change during a run; a change may give n_sgo, r_max");
+  expectEntryError("changes", "t = 0.1\nfinger = \"left\"\nn_sgo = 0\nspeed = 1\n", 4, 9, "speed", "unknown field");
+  const InputError e = errorOf(kMinimal + "[[changes]]\nt = 0.1\nfinger = \"left\"\nn_sgo = 0\n"
+                                          "[[changes]]\nt = 0.05\nfinger = \"left\"\nn_sgo = 8\n");
+  EXPECT_EQ(e.field(), "changes.1.t");
+  EXPECT_NE(std::string(e.what()).find("changes must be in time order: 0.05 s comes after 0.1 s"),
+            std::string::npos) << e.what();
 }
 
 TEST(SceneFileLoads, ForceOrTorqueIsRequired) {

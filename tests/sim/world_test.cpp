@@ -208,6 +208,38 @@ TEST(WorldErrors, LiveSettingsAreCheckedByTheSameValidator) {
   EXPECT_EQ(ctx.world().sgoCount(1), 8);
 }
 
+// A scene's scripted changes act from the step that starts at their time: the left finger is a
+// god-object from 0.8 s to 1.2 s of the pinch, then a god-finger again.
+TEST(WorldChanges, AScriptedChangeActsFromTheStepStartingAtItsTime) {
+  TestContext ctx("fig8-pinch-oscillation", test_support::kSceneSgo,
+                  {"changes=[{ t = 0.8, finger = \"left\", n_sgo = 0 }, { t = 1.2, finger = \"left\", n_sgo = 8 }]"});
+  long with_sgo_inside = 0, without_sgo_outside = 0, steps_inside = 0;
+  ctx.simulate(1.5, [&](const World& w) {
+    const double started = w.time() - 1e-3;  // the step's start time
+    if (started < 0.7) return;               // before both fingers press
+    const bool inside = started > 0.8 - 1e-9 && started < 1.2 - 1e-9;
+    steps_inside += inside;
+    if (inside && w.sgoCount(0) != 0) ++with_sgo_inside;
+    if (!inside && w.sgoCount(0) != 8) ++without_sgo_outside;
+  });
+  EXPECT_EQ(steps_inside, 400);
+  EXPECT_EQ(with_sgo_inside, 0);
+  EXPECT_EQ(without_sgo_outside, 0);
+  EXPECT_EQ(ctx.world().counters().nan_recoveries, 0);
+}
+
+TEST(WorldChanges, AChangeOfAFingerThatIsNotThereIsNamed) {
+  SceneDesc scene = TestContext::load("fig8-pinch-oscillation", test_support::kSceneSgo, {});
+  scene.changes.push_back({0.5, 2, scene.fingers[0].patch});
+  try {
+    World w(scene);
+    FAIL();
+  } catch (const DescriptionError& e) {
+    EXPECT_NE(std::string(e.what()).find("change 0"), std::string::npos) << e.what();
+    EXPECT_EQ(e.error().field, "finger");
+  }
+}
+
 // The contact records of a snapshot: press depth and separation reach it, and every SGO sits
 // on the end of its walked path (one pose for the whole record).
 TEST(WorldSnapshot, ContactsCarryPressDepthAndSgosOnTheirPaths) {
