@@ -172,9 +172,15 @@ void PatchFrictionSolver::apply(Bound& b, const double delta[3]) {
   }
 }
 
-// One projected block step: the impulses that stop the centre's sliding and the turning about
-// the normal together, scaled back onto the limit ellipsoid (|f_t| / (mu N))^2 + (tau /
-// tau_max)^2 <= 1 when they exceed it.
+// One projected block step: the impulses that would stop the centre's sliding and the turning
+// about the normal together (y), kept when they lie inside the limit ellipsoid
+// (|f_t| / (mu N))^2 + (tau / tau_max)^2 <= 1. Outside it, the contact slides and the impulse is
+// the point x of the ellipsoid where the relative motion left after it opposes the ellipsoid's
+// normal (maximum dissipation): A (x - y) = -nu D x with D = diag(1 / limit^2), nu > 0, that is
+// (I + nu E D) x = y with E = A^-1 (the rows' effective mass). Scaling y onto the ellipsoid
+// instead is wrong whenever one row's demand dwarfs the others': a pad on a disc spinning under
+// it (sliding 0.9 m/s, turning 30 rad/s about its normal, torsion limit about mu N 1 mm) spent its
+// whole friction on the torsion row and slid with no friction force at all.
 double PatchFrictionSolver::solveBlock(Bound& b) {
   const FrictionBlock& fb = blocks_[static_cast<std::size_t>(b.block)];
   double normal = 0.0, levered = 0.0;
@@ -187,35 +193,61 @@ double PatchFrictionSolver::solveBlock(Bound& b) {
   }
   const double slide_limit = fb.friction * normal;
   const double twist_limit = fb.torsion < 0.0 ? fb.friction * levered : fb.torsion * normal;
+  const double limit[kRows] = {slide_limit, slide_limit, twist_limit};
   double u[kRows];
   for (int row = 0; row < kRows; ++row) u[row] = b.k_inv[row][row] != 0.0 ? relativeVelocity(b, row) : 0.0;
-  double next[kRows];
+  Eigen::Vector3d y, d = Eigen::Vector3d::Zero();
+  Eigen::Matrix3d e;
   for (int row = 0; row < kRows; ++row) {
-    next[row] = b.lambda[row] - (b.k_inv[row][0] * u[0] + b.k_inv[row][1] * u[1] + b.k_inv[row][2] * u[2]);
+    y(row) = b.lambda[row] - (b.k_inv[row][0] * u[0] + b.k_inv[row][1] * u[1] + b.k_inv[row][2] * u[2]);
+    for (int col = 0; col < kRows; ++col) e(row, col) = b.k_inv[row][col];
   }
-  const double tangential2 = next[0] * next[0] + next[1] * next[1];
-  double q = 0.0;
-  if (slide_limit > 0.0) {
-    q += tangential2 / (slide_limit * slide_limit);
-  } else {
-    next[0] = next[1] = 0.0;
+  for (int row = 0; row < kRows; ++row) {
+    if (limit[row] > 0.0) {
+      d(row) = 1.0 / (limit[row] * limit[row]);
+    } else {  // no friction on this row: it carries nothing, the others are projected alone
+      y(row) = 0.0;
+      e.row(row).setZero();
+      e.col(row).setZero();
+    }
   }
-  if (twist_limit > 0.0) {
-    q += next[2] * next[2] / (twist_limit * twist_limit);
-  } else {
-    next[2] = 0.0;
-  }
-  if (q > 1.0) {
-    const double scale = 1.0 / std::sqrt(q);
-    for (double& x : next) x *= scale;
-  }
+  const double outside = y.dot(d.asDiagonal() * y);
+  if (outside > 1.0) y = projectOntoLimit(e, d, y, outside);
   double delta[kRows], residual = 0.0;
   for (int row = 0; row < kRows; ++row) {
-    delta[row] = next[row] - b.lambda[row];
+    delta[row] = y(row) - b.lambda[row];
     residual = std::max(residual, delta[row] * delta[row]);
   }
   apply(b, delta);
   return residual;
+}
+
+// The x with (I + nu E D) x = y and x^T D x = 1, nu > 0, for a y with y^T D y = `outside` > 1:
+// Newton's method on 1 / sqrt(x^T D x) - 1, nearly linear in nu (as for a Euclidean projection
+// onto an ellipsoid), from nu = 0; a few iterations. The result is scaled onto the ellipsoid
+// exactly. Does not allocate.
+Eigen::Vector3d PatchFrictionSolver::projectOntoLimit(const Eigen::Matrix3d& e, const Eigen::Vector3d& d,
+                                                      const Eigen::Vector3d& y, double outside) {
+  constexpr int kIterations = 30;
+  const Eigen::Matrix3d ed = e * d.asDiagonal();
+  double nu = 0.0;
+  Eigen::Vector3d x = y;
+  double phi = outside;
+  for (int k = 0; k < kIterations && std::abs(phi - 1.0) > 1e-12; ++k) {
+    const Eigen::Matrix3d m = Eigen::Matrix3d::Identity() + nu * ed;
+    const Eigen::PartialPivLU<Eigen::Matrix3d> lu(m);
+    const Eigen::Vector3d dx = -lu.solve(ed * x);        // dx / dnu
+    const double dphi = 2.0 * x.dot(d.asDiagonal() * dx);  // dphi / dnu
+    const double h = 1.0 / std::sqrt(phi) - 1.0;          // < 0 while outside
+    const double dh = -0.5 * dphi / (phi * std::sqrt(phi));
+    double next = dh > 0.0 ? nu - h / dh : 2.0 * nu + 1.0;
+    if (!(next > nu * 0.5)) next = nu * 0.5;               // stay positive, never jump back far
+    nu = next;
+    x = Eigen::PartialPivLU<Eigen::Matrix3d>(Eigen::Matrix3d::Identity() + nu * ed).solve(y);
+    phi = x.dot(d.asDiagonal() * x);
+    if (!std::isfinite(phi) || phi <= 0.0) return y / std::sqrt(outside);  // degenerate: scale
+  }
+  return x / std::sqrt(phi);
 }
 
 btScalar PatchFrictionSolver::solveSingleIteration(int iteration, btCollisionObject** bodies, int numBodies,

@@ -9,6 +9,8 @@
 
 #include <btBulletDynamicsCommon.h>
 
+#include <Eigen/Core>
+
 #include <vector>
 
 namespace gf::sim {
@@ -81,6 +83,8 @@ class PatchFrictionSolver final : public btSequentialImpulseConstraintSolver {
   void apply(Bound& b, const double delta[3]);
   void bind(const btContactSolverInfo& info);
   double solveBlock(Bound& b);
+  static Eigen::Vector3d projectOntoLimit(const Eigen::Matrix3d& e, const Eigen::Vector3d& d, const Eigen::Vector3d& y,
+                                          double outside);
 
   std::vector<FrictionBlock> blocks_;
   std::vector<FrictionPoint> points_;
