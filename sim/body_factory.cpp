@@ -10,6 +10,7 @@
 #include <stdexcept>
 
 #include "sim/assert.hpp"
+#include "sim/decomposition_cache.hpp"
 #include "sim/mesh_import.hpp"
 #include "sim/primitives.hpp"
 #include "sim/settings.hpp"
@@ -118,8 +119,8 @@ bool reportDecomposition(const char*, double percent, double, std::size_t) {
   return true;
 }
 
-// Approximate convex decomposition (HACD) into a compound of hulls, in the body frame.
-std::unique_ptr<btCollisionShape> decompose(const BodyDesc& d, const Mesh& m, BodyShapes& out) {
+// HACD's parts of `m`: each part's hull points, in the body frame.
+HullParts runHacd(const BodyDesc& d, const Mesh& m) {
   std::vector<HACD::Vec3<HACD::Real>> points;
   std::vector<HACD::Vec3<long>> triangles;
   for (const Vec3& p : m.vertices()) points.emplace_back(p.x(), p.y(), p.z());
@@ -147,14 +148,33 @@ std::unique_ptr<btCollisionShape> decompose(const BodyDesc& d, const Mesh& m, Bo
     std::fprintf(stderr, "godfinger: convex decomposition of %s: %zu parts in %.1f s\n", d.mesh_path.c_str(),
                  hacd.GetNClusters(), secondsSince(progress.start));
   }
-  auto compound = std::make_unique<btCompoundShape>();
-  for (std::size_t c = 0; c < hacd.GetNClusters(); ++c) {
+  HullParts parts(hacd.GetNClusters());
+  for (std::size_t c = 0; c < parts.size(); ++c) {
     std::vector<HACD::Vec3<HACD::Real>> part(hacd.GetNPointsCH(c));
     std::vector<HACD::Vec3<long>> part_triangles(hacd.GetNTrianglesCH(c));
     hacd.GetCH(c, part.data(), part_triangles.data());
-    std::vector<Vec3> pts;
-    for (const auto& p : part) pts.emplace_back(p.X(), p.Y(), p.Z());
-    out.parts.push_back(hullOf(pts));
+    for (const auto& p : part) parts[c].emplace_back(p.X(), p.Y(), p.Z());
+  }
+  return parts;
+}
+
+// Approximate convex decomposition (HACD) into a compound of hulls, in the body frame. The
+// parts come from the on-disk cache (decomposition_cache.hpp) when this mesh was decomposed
+// with these settings before; otherwise HACD computes them and they are stored.
+std::unique_ptr<btCollisionShape> decompose(const BodyDesc& d, const Mesh& m, BodyShapes& out) {
+  const std::string dir = decompositionCacheDir();
+  char settings[96];
+  std::snprintf(settings, sizeof settings, "HACD scale %.17g concavity %.17g vertices %d", kHacdScale, kHacdConcavity,
+                kHacdVerticesPerPart);
+  const std::uint64_t key = decompositionKey(m, settings);
+  std::optional<HullParts> parts = loadDecomposition(dir, key);
+  if (!parts) {
+    parts = runHacd(d, m);
+    storeDecomposition(dir, key, *parts);
+  }
+  auto compound = std::make_unique<btCompoundShape>();
+  for (const std::vector<Vec3>& part : *parts) {
+    out.parts.push_back(hullOf(part));
     compound->addChildShape(btTransform::getIdentity(), out.parts.back().get());
   }
   return compound;
