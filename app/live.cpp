@@ -21,15 +21,6 @@ namespace {
 
 namespace fs = std::filesystem;
 
-// The finger settings `set` may change: the live ones of sim/settings.hpp.
-std::string liveFieldNames() {
-  std::string names;
-  for (const sim::Setting<sim::FingerDesc>& s : sim::fingerSettings()) {
-    if (s.live) names.append(names.empty() ? "" : ", ").append(s.name);
-  }
-  return names;
-}
-
 class Live {
  public:
   Live(const LiveOptions& o, std::ostream& out)
@@ -149,7 +140,7 @@ class Live {
     const sim::Setting<sim::FingerDesc>* s =
         finger_field ? sim::findSetting(sim::fingerSettings(), std::string_view(key).substr(dot + 1)) : nullptr;
     if (eq == std::string::npos || !s || !s->live) {
-      throw std::invalid_argument("set: expected fingers.NAME.FIELD=VALUE with FIELD one of " + liveFieldNames());
+      throw std::invalid_argument("set: expected fingers.NAME.FIELD=VALUE with FIELD one of " + sim::liveFingerSettingNames());
     }
     const int f = fingerIndex(key.substr(8, dot - 8));
     const std::string text = assignment.substr(eq + 1);

@@ -429,10 +429,7 @@ void readChanges(Reader& parent, sim::SceneDesc& scene) {
     sim::FingerDesc next = scene.fingers[static_cast<std::size_t>(change.finger)];
     next.patch = current[static_cast<std::size_t>(change.finger)];
     bool any = false;
-    std::string live;
-    for (const sim::Setting<sim::FingerDesc>& s : sim::fingerSettings()) {
-      if (s.live) live.append(live.empty() ? "" : ", ").append(s.name);
-    }
+    const std::string live = sim::liveFingerSettingNames();
     for (const sim::Setting<sim::FingerDesc>& s : sim::fingerSettings()) {
       const std::string field(s.name);
       if (!s.live && r.has(field)) r.fail(r.find(field), field, "cannot change during a run; a change may give " + live);

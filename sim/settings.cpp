@@ -377,6 +377,14 @@ std::optional<FieldError> validateCouplingStability(const FingerDesc& finger, do
   return std::nullopt;
 }
 
+std::string liveFingerSettingNames() {
+  std::string names;
+  for (const Setting<FingerDesc>& s : fingerSettings()) {
+    if (s.live) names.append(names.empty() ? "" : ", ").append(s.name);
+  }
+  return names;
+}
+
 std::optional<FieldError> validatePatch(const PatchSettings& patch) {
   FingerDesc finger;
   finger.patch = patch;

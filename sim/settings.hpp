@@ -169,6 +169,9 @@ std::optional<FieldError> validateFinger(const FingerDesc& finger);
 /// proxy_mass * rate (k dt^2 / m and c dt / m at most 1; hard cases pinch-coupling-stiff and
 /// pinch-coupling-damped hold at those limits, and 4 times the stiffness rings).
 std::optional<FieldError> validateCouplingStability(const FingerDesc& finger, double haptic_rate_hz);
+/// The names of the finger settings that may change during a run (`live`'s `set`, a scene's
+/// `[[changes]]`), comma-separated in table order.
+std::string liveFingerSettingNames();
 /// The first god-finger setting (a live one) of `patch` that is not legal.
 std::optional<FieldError> validatePatch(const PatchSettings& patch);
 /// The first keyframe of `track` that is not legal ("keyframes.t" or "keyframes.p", with its

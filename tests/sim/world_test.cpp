@@ -175,25 +175,24 @@ TEST(WorldTunnelling, AProxyFlungThroughAThinWallStopsOnIt) {
   EXPECT_NEAR(touch.separation, -1e4 / 2e7, 1e-5);
 }
 
+// Building a World from `scene` throws a DescriptionError naming `subject` and `field`.
+void expectDescriptionError(const SceneDesc& scene, const std::string& subject, const std::string& field) {
+  try {
+    World w(scene);
+    ADD_FAILURE() << "no error for " << subject << " " << field;
+  } catch (const DescriptionError& e) {
+    EXPECT_NE(std::string(e.what()).find(subject), std::string::npos) << e.what();
+    EXPECT_EQ(e.error().field, field);
+  }
+}
+
 TEST(WorldErrors, BadDescriptionsNameTheBodyOrFingerAndField) {
   SceneDesc scene = TestContext::load("fig8-pinch-oscillation", 8, {});
   scene.bodies[1].mass = -1.0;
-  try {
-    World w(scene);
-    FAIL();
-  } catch (const DescriptionError& e) {
-    EXPECT_NE(std::string(e.what()).find("body 'cylinder'"), std::string::npos) << e.what();
-    EXPECT_EQ(e.error().field, "mass");
-  }
+  expectDescriptionError(scene, "body 'cylinder'", "mass");
   scene = TestContext::load("fig8-pinch-oscillation", 8, {});
   scene.fingers[1].patch.n_sgo = 200;
-  try {
-    World w(scene);
-    FAIL();
-  } catch (const DescriptionError& e) {
-    EXPECT_NE(std::string(e.what()).find("finger 'right'"), std::string::npos) << e.what();
-    EXPECT_EQ(e.error().field, "n_sgo");
-  }
+  expectDescriptionError(scene, "finger 'right'", "n_sgo");
 }
 
 TEST(WorldErrors, LiveSettingsAreCheckedByTheSameValidator) {
@@ -231,13 +230,7 @@ TEST(WorldChanges, AScriptedChangeActsFromTheStepStartingAtItsTime) {
 TEST(WorldChanges, AChangeOfAFingerThatIsNotThereIsNamed) {
   SceneDesc scene = TestContext::load("fig8-pinch-oscillation", test_support::kSceneSgo, {});
   scene.changes.push_back({0.5, 2, scene.fingers[0].patch});
-  try {
-    World w(scene);
-    FAIL();
-  } catch (const DescriptionError& e) {
-    EXPECT_NE(std::string(e.what()).find("change 0"), std::string::npos) << e.what();
-    EXPECT_EQ(e.error().field, "finger");
-  }
+  expectDescriptionError(scene, "change 0", "finger");
 }
 
 // The contact records of a snapshot: press depth and separation reach it, and every SGO sits
