@@ -129,11 +129,13 @@ int runCommand(const RunArgs& a) {
   gf::app::SessionOptions options{a.out, a.realtime, true, a.frames, a.video, a.camera};
   std::vector<gf::app::ExpectFailure> failed;
   options.expect_failures = &failed;
+  options.stop_on_interrupt = true;
   const gf::sim::LoopStats stats = gf::app::runSession(session, options);
   std::printf("%s: %ld steps, step median %.1f us, p99 %.1f us; wrote %s/\n", session.scene.name.c_str(),
               stats.steps, stats.step_median_us, stats.step_p99_us, a.out.c_str());
   if (a.frames) std::printf("frames: %s/frames/\n", a.out.c_str());
   if (!a.video.empty()) std::printf("video: %s\n", a.video.c_str());
+  if (stats.stopped) return 130;  // Ctrl-C: the outputs hold the time reached
   // 3: the run was fine, the scene's expectations were not.
   return failed.empty() || a.expectations == "report" ? 0 : 3;
 }

@@ -3,7 +3,9 @@
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
+#include <atomic>
 #include <chrono>
+#include <csignal>
 #include <cstdio>
 #include <filesystem>
 #include <memory>
@@ -63,6 +65,7 @@ nlohmann::json summaryJson(const SessionDesc& session, const sim::World& world,
           {"bodies", bodies},
           {"step_time_us", {{"median", stats.step_median_us}, {"p99", stats.step_p99_us},
                             {"max", stats.step_max_us}}},
+          {"interrupted", stats.stopped},
           {"counters", {{"steps", stats.steps}, {"deadline_misses", stats.late_steps},
                         {"max_lateness_us", stats.max_lateness_us},
                         {"fifo_priority", stats.fifo_priority},
@@ -243,6 +246,35 @@ nlohmann::json changesJson(const std::vector<AppliedChange>& changes, const sim:
 
 }  // namespace
 
+// Ctrl-C (SIGINT) or SIGTERM during a run: the haptic loop stops before its next step and the
+// run writes its outputs for the time it reached, marked interrupted. The handler is installed
+// for the loop only and resets itself, so a second Ctrl-C ends the process at once.
+std::atomic<bool> g_interrupt{false};
+
+extern "C" void onInterrupt(int) { g_interrupt.store(true, std::memory_order_relaxed); }
+
+class InterruptScope {
+ public:
+  InterruptScope() {
+    g_interrupt.store(false);
+    struct sigaction a {};
+    a.sa_handler = onInterrupt;
+    a.sa_flags = SA_RESETHAND;
+    sigemptyset(&a.sa_mask);
+    sigaction(SIGINT, &a, &old_int_);
+    sigaction(SIGTERM, &a, &old_term_);
+  }
+  ~InterruptScope() {
+    sigaction(SIGINT, &old_int_, nullptr);
+    sigaction(SIGTERM, &old_term_, nullptr);
+  }
+  InterruptScope(const InterruptScope&) = delete;
+  InterruptScope& operator=(const InterruptScope&) = delete;
+
+ private:
+  struct sigaction old_int_ {}, old_term_ {};
+};
+
 sim::LoopStats runSession(const SessionDesc& session, const SessionOptions& options) {
   const sim::SceneDesc& scene = session.scene;
   const fs::path dir(options.out_dir);
@@ -279,6 +311,11 @@ sim::LoopStats runSession(const SessionDesc& session, const SessionOptions& opti
   loop.live = &live;
   if (frames) frames->start(world);
   ExpectChecker expect(session.expect, world);
+  std::optional<InterruptScope> interrupt;
+  if (options.stop_on_interrupt) {
+    interrupt.emplace();
+    loop.stop = &g_interrupt;
+  }
   const sim::LoopStats stats = sim::runHapticLoop(world, devices, loop, [&](const sim::World& w) {
     expect.afterStep(w);
     if (trace) trace->record(w);
@@ -297,14 +334,20 @@ sim::LoopStats runSession(const SessionDesc& session, const SessionOptions& opti
                    wall / done * (steps - done));
     }
   });
+  interrupt.reset();
   if (options.progress) std::fprintf(stderr, "\n");
+  if (stats.stopped) {
+    std::fprintf(stderr, "%s: interrupted at t = %.3f s; writing the outputs of the time reached\n",
+                 scene.name.c_str(), world.time());
+  }
   if (trace) trace->close();
   forces.close();
   for (const auto& [t, snap] : contact_snaps) {
     writeFileAtomically((dir / "contacts" / (contactFileName(t) + ".json")).string(),
                         contactsJson(snap, scene).dump(1) + "\n");
   }
-  if (session.record.force_chart) writeForceChart(session, forces, *renderer, dir / "forces.png");
+  // The chart reruns the whole session with god-objects: not after a Ctrl-C.
+  if (session.record.force_chart && !stats.stopped) writeForceChart(session, forces, *renderer, dir / "forces.png");
   nlohmann::json summary = summaryJson(session, world, stats, options.realtime);
   const std::vector<ExpectFailure> failed = expect.finish(world);
   for (const ExpectFailure& f : failed) std::fprintf(stderr, "%s: %s\n", scene.name.c_str(), f.text().c_str());

@@ -20,6 +20,9 @@ struct SessionOptions {
   bool close_ups = true;        ///< close-up PNG beside each contact snapshot
   /// When set, receives the scene's expectations that failed (also printed and in summary.json)
   std::vector<ExpectFailure>* expect_failures = nullptr;
+  /// Ctrl-C or SIGTERM stop the run and it writes what it reached (the command line; off in
+  /// tests and embedding, which keep their own signal handling).
+  bool stop_on_interrupt = false;
 };
 
 /// The camera called `name` in the session (the first when empty; a default view of the scene

@@ -74,7 +74,9 @@ LoopStats runHapticLoop(World& world, const std::vector<DeviceTrack>& devices,
   if (settings.clock == ClockMode::kRealtime) stats.fifo_priority = priority.emplace().active();
   const auto start = Clock::now();
   const auto period = std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(dt));
-  for (long k = 0; k < steps; ++k) {
+  long k = 0;
+  for (; k < steps; ++k) {
+    if (settings.stop && settings.stop->load(std::memory_order_relaxed)) break;
     if (settings.clock == ClockMode::kRealtime) {
       // Absolute deadline: drift-free, a late step does not shift the following ones.
       const auto deadline = start + k * period;
@@ -94,7 +96,9 @@ LoopStats runHapticLoop(World& world, const std::vector<DeviceTrack>& devices,
     if (observer) observer(world);
   }
   stats.wall_seconds = std::chrono::duration<double>(Clock::now() - start).count();
-  stats.steps = steps;
+  stats.steps = k;
+  stats.stopped = k < steps;
+  step_us.resize(static_cast<std::size_t>(k));
   stats.step_max_us = step_us.empty() ? 0.0 : *std::max_element(step_us.begin(), step_us.end());
   stats.step_p99_us = percentile(step_us, 0.99);
   stats.step_median_us = percentile(step_us, 0.5);

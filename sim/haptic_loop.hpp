@@ -2,6 +2,7 @@
 // World from the thread that calls run().
 #pragma once
 
+#include <atomic>
 #include <functional>
 #include <vector>
 
@@ -32,6 +33,9 @@ struct LoopSettings {
   ClockMode clock = ClockMode::kOffline;
   double late_threshold = 0.0005;   ///< s: a realtime step starting later than this is late
   LiveTimings* live = nullptr;      ///< updated after every step when set
+  /// When set, the loop ends before the next step once it reads true (a Ctrl-C); any thread
+  /// may set it.
+  const std::atomic<bool>* stop = nullptr;
 };
 
 /// Timing statistics of a run (wall-clock, so not deterministic).
@@ -46,6 +50,7 @@ struct LoopStats {
   /// realtime: the loop ran under SCHED_FIFO (needs root or CAP_SYS_NICE); otherwise it
   /// shared the cores with the renderer and encoders at normal priority.
   bool fifo_priority = false;
+  bool stopped = false;          ///< LoopSettings::stop ended the run before its duration
 };
 
 /// Called after every step with the world (haptic thread). Keep it cheap.

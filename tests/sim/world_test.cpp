@@ -4,6 +4,7 @@
 
 #include <gtest/gtest.h>
 
+#include <atomic>
 #include <cmath>
 #include <cstring>
 #include <numbers>
@@ -205,6 +206,24 @@ TEST(WorldErrors, LiveSettingsAreCheckedByTheSameValidator) {
   ctx.simulate(0.8);
   EXPECT_EQ(ctx.world().sgoCount(0), 0);
   EXPECT_EQ(ctx.world().sgoCount(1), 8);
+}
+
+// A stop flag (Ctrl-C on the command line) ends the loop before its next step: the steps done
+// are counted and timed, the run is marked stopped.
+TEST(HapticLoop, AStopFlagEndsTheRunBeforeTheNextStep) {
+  TestContext ctx("fig8-pinch-oscillation");
+  std::atomic<bool> stop{false};
+  sim::LoopSettings loop{1000.0, 1.0};
+  loop.stop = &stop;
+  long seen = 0;
+  const LoopStats stats = runHapticLoop(ctx.world(), deviceTracks(ctx.scene()), loop, [&](const World&) {
+    if (++seen == 250) stop = true;
+  });
+  EXPECT_TRUE(stats.stopped);
+  EXPECT_EQ(stats.steps, 250);
+  EXPECT_EQ(ctx.world().counters().steps, 250);
+  stop = false;
+  EXPECT_FALSE(runHapticLoop(ctx.world(), deviceTracks(ctx.scene()), loop, {}).stopped) << "a whole run";
 }
 
 // A scene's scripted changes act from the step that starts at their time: the left finger is a
