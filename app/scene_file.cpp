@@ -435,10 +435,10 @@ void readChanges(Reader& parent, sim::SceneDesc& scene) {
       if (!s.live && r.has(field)) r.fail(r.find(field), field, "cannot change during a run; a change may give " + live);
       if (s.live) any = r.setting(s, next, field) || any;
     }
+    r.finish();  // a misspelt setting is named as unknown, not as a change without settings
     if (!any) r.fail(r.find("finger"), "finger", "the change names no setting: give one or more of " + live);
     change.patch = next.patch;
     r.failOn(sim::validateChange(change, scene.fingers, previous_time));
-    r.finish();
     current[static_cast<std::size_t>(change.finger)] = change.patch;
     previous_time = change.time;
     scene.changes.push_back(change);

@@ -343,6 +343,7 @@ TEST(SceneFileChanges, BadEntriesAreNamed) {
   expectEntryError("changes", "t = 0.1\nfinger = \"left\"\nproxy_mass = 1\n", 3, 14, "proxy_mass",
                    "cannot change during a run; a change may give n_sgo, r_max");
   expectEntryError("changes", "t = 0.1\nfinger = \"left\"\nn_sgo = 0\nspeed = 1\n", 4, 9, "speed", "unknown field");
+  expectEntryError("changes", "t = 0.1\nfinger = \"left\"\nn_sgoo = 0\n", 3, 10, "n_sgoo", "unknown field");
   const InputError e = errorOf(kMinimal + "[[changes]]\nt = 0.1\nfinger = \"left\"\nn_sgo = 0\n"
                                           "[[changes]]\nt = 0.05\nfinger = \"left\"\nn_sgo = 8\n");
   EXPECT_EQ(e.field(), "changes.1.t");
