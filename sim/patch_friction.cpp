@@ -3,11 +3,16 @@
 #include <Eigen/Dense>
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace gf::sim {
 namespace {
 
-constexpr int kRows = 3;  // tangential t1, tangential t2, torsional about n
+constexpr int kFrictionRows = 3;  // tangential t1, tangential t2, torsional about n
+constexpr int kNormalRow = 3;     // aggregate: the normal row, then the two tilt rows
+// A tilt axis whose second moment is below this fraction of the patch's (its trace) has no
+// row: the points lie on a line across it and cannot hold a moment about it.
+constexpr double kFlatMoment = 1e-9;
 // A row whose effective inverse mass is below this fraction of the largest one moves nothing
 // (a static body and a proxy that cannot turn have no torsion row).
 constexpr double kInactiveRow = 1e-12;
@@ -21,7 +26,85 @@ btVector3 spinOf(const btSolverBody& b) {
                           : btVector3(0, 0, 0);
 }
 
+// cos and sin of the tilt limit's directions, 2 pi j / kTiltDirections.
+struct Directions {
+  std::array<double, kTiltDirections> c{}, s{};
+  Directions() {
+    for (int j = 0; j < kTiltDirections; ++j) {
+      const double a = 2.0 * 3.14159265358979323846 * j / kTiltDirections;
+      c[static_cast<std::size_t>(j)] = std::cos(a);
+      s[static_cast<std::size_t>(j)] = std::sin(a);
+    }
+  }
+};
+const Directions kDirections;
+
+// The largest ratio (x, y) . d_j / (normal h_j) over the tilt limit's directions: the tilt
+// impulse (x, y) (tilt-axis coordinates) is within the hull of the points while it is <= 1.
+// Infinite when (x, y) leans towards a direction the hull has no extent in.
+double tiltGauge(const PressRows& p, double x, double y, double normal) {
+  double gauge = 0.0;
+  for (std::size_t j = 0; j < kDirections.c.size(); ++j) {
+    const double along = x * kDirections.c[j] + y * kDirections.s[j];
+    if (!(along > 0.0)) continue;
+    const double room = normal * p.support[j];
+    gauge = room > 0.0 ? std::max(gauge, along / room) : std::numeric_limits<double>::infinity();
+  }
+  return gauge;
+}
+
 }  // namespace
+
+void aggregatePatch(const btVector3* points, const double* shares, const double* separations, int count,
+                    const btVector3& n, const btVector3& on_plane, double stiffness, double damping,
+                    btVector3& centre, PressRows& out) {
+  btVector3 c(0, 0, 0);
+  double depth = 0.0;
+  for (int i = 0; i < count; ++i) {
+    c += shares[i] * points[i];
+    depth += shares[i] * separations[i];
+  }
+  const btVector3 off = c - on_plane;
+  centre = on_plane + off - off.dot(n) * n;
+  out.stiffness = stiffness;
+  out.damping = damping;
+  out.separation = depth;
+  // The second moment of u_i = rho_i x n in a basis of the tangent plane, then its axes.
+  btVector3 t1, t2;
+  btPlaneSpace1(n, t1, t2);
+  double sxx = 0.0, sxy = 0.0, syy = 0.0, lever = 0.0;
+  for (int i = 0; i < count; ++i) {
+    btVector3 rho = points[i] - centre;
+    rho -= rho.dot(n) * n;
+    const btVector3 u = rho.cross(n);
+    const double x = u.dot(t1), y = u.dot(t2), w = shares[i];
+    sxx += w * x * x, sxy += w * x * y, syy += w * y * y;
+    lever += w * rho.length();
+  }
+  const double phi = 0.5 * std::atan2(2.0 * sxy, sxx - syy);
+  const double cp = std::cos(phi), sp = std::sin(phi);
+  out.tilt_axis = {cp * t1 + sp * t2, -sp * t1 + cp * t2};
+  const double m0 = sxx * cp * cp + 2.0 * sxy * cp * sp + syy * sp * sp;
+  const double m1 = sxx * sp * sp - 2.0 * sxy * cp * sp + syy * cp * cp;
+  const double flat = kFlatMoment * (sxx + syy);
+  out.tilt_moment = {m0 > flat ? m0 : 0.0, m1 > flat ? m1 : 0.0};
+  out.mean_lever = lever;
+  double g0 = 0.0, g1 = 0.0;
+  out.support.fill(0.0);
+  for (int i = 0; i < count; ++i) {
+    btVector3 rho = points[i] - centre;
+    rho -= rho.dot(n) * n;
+    const btVector3 u = rho.cross(n);
+    const double x = u.dot(out.tilt_axis[0]), y = u.dot(out.tilt_axis[1]);
+    g0 += shares[i] * x * separations[i];
+    g1 += shares[i] * y * separations[i];
+    for (std::size_t j = 0; j < out.support.size(); ++j) {
+      out.support[j] = std::max(out.support[j], x * kDirections.c[j] + y * kDirections.s[j]);
+    }
+  }
+  out.tilt_error = {out.tilt_moment[0] > 0.0 ? g0 / out.tilt_moment[0] : 0.0,
+                    out.tilt_moment[1] > 0.0 ? g1 / out.tilt_moment[1] : 0.0};
+}
 
 PatchFrictionSolver::PatchFrictionSolver() {
   constexpr std::size_t kBlocks = 64, kPoints = 4096;
@@ -63,8 +146,8 @@ btScalar PatchFrictionSolver::solveGroupCacheFriendlySetup(btCollisionObject** b
   return r;
 }
 
-// Finds each block's points among this solve's contact rows, sets up its rows and applies its
-// warm start.
+// Finds each block's solver bodies (a points block: from its points among this solve's contact
+// rows; an aggregate block: from its bodies), sets up its rows and applies its warm start.
 void PatchFrictionSolver::bind(const btContactSolverInfo& info) {
   bound_.clear();
   if (blocks_.empty()) return;
@@ -72,7 +155,6 @@ void PatchFrictionSolver::bind(const btContactSolverInfo& info) {
   by_address_.clear();
   for (std::size_t i = 0; i < points_.size(); ++i) by_address_.emplace_back(points_[i].point, static_cast<int>(i));
   std::sort(by_address_.begin(), by_address_.end());
-  // Solver bodies of each block, from its first point found in the pool.
   std::vector<int>& proxy_of = proxy_body_of_;
   std::vector<int>& object_of = object_body_of_;
   proxy_of.assign(blocks_.size(), -1);
@@ -93,83 +175,233 @@ void PatchFrictionSolver::bind(const btContactSolverInfo& info) {
     object_of[k] = fp.proxy_is_a ? c.m_solverBodyIdB : c.m_solverBodyIdA;
   }
   for (std::size_t k = 0; k < blocks_.size(); ++k) {
-    if (proxy_of[k] < 0) continue;
     const FrictionBlock& fb = blocks_[k];
+    if (fb.aggregate && !findBodies(fb, info, proxy_of[k], object_of[k])) continue;
+    if (proxy_of[k] < 0) continue;
     Bound b;
     b.block = static_cast<int>(k);
     b.proxy_body = proxy_of[k];
     b.object_body = object_of[k];
-    const btSolverBody& sp = m_tmpSolverBodyPool[b.proxy_body];
-    const btSolverBody& so = m_tmpSolverBodyPool[b.object_body];
+    b.rows = fb.aggregate ? kRows : kFrictionRows;
     b.n = fb.normal;
     btPlaneSpace1(b.n, b.t1, b.t2);
-    b.r_proxy = fb.centre - sp.m_worldTransform.getOrigin();
-    b.r_object = fb.centre - so.m_worldTransform.getOrigin();
-    const btVector3 zero(0, 0, 0);
-    const btVector3 dirs[kRows] = {b.t1, b.t2, zero};
-    Eigen::Matrix3d K = Eigen::Matrix3d::Zero();
-    for (int row = 0; row < kRows; ++row) {
-      const btVector3 ang_p = row < 2 ? b.r_proxy.cross(dirs[row]) : b.n;
-      const btVector3 ang_o = row < 2 ? b.r_object.cross(dirs[row]) : b.n;
-      b.lin_p[row] = sp.m_originalBody ? dirs[row] * sp.m_invMass : zero;
-      b.ang_p[row] = sp.m_originalBody ? sp.m_originalBody->getInvInertiaTensorWorld() * ang_p * sp.m_angularFactor : zero;
-      b.lin_o[row] = so.m_originalBody ? -dirs[row] * so.m_invMass : zero;
-      b.ang_o[row] = so.m_originalBody ? so.m_originalBody->getInvInertiaTensorWorld() * -ang_o * so.m_angularFactor : zero;
-    }
-    for (int row = 0; row < kRows; ++row) {
-      const btVector3 jp_ang = row < 2 ? b.r_proxy.cross(dirs[row]) : b.n;
-      const btVector3 jo_ang = row < 2 ? -b.r_object.cross(dirs[row]) : -b.n;
-      for (int col = 0; col < kRows; ++col) {
-        K(row, col) = dirs[row].dot(b.lin_p[col]) + jp_ang.dot(b.ang_p[col]) - dirs[row].dot(b.lin_o[col]) +
-                      jo_ang.dot(b.ang_o[col]);
+    setRows(b);
+    // The friction rows' effective mass; rows that cannot act (no friction, no torsion limit or
+    // nothing to turn) are left out.
+    Eigen::Matrix3d K;
+    for (int row = 0; row < kFrictionRows; ++row) {
+      for (int col = 0; col < kFrictionRows; ++col) {
+        K(row, col) = b.lin[row].dot(b.lin_p[col]) + b.jac_p[row].dot(b.ang_p[col]) - b.lin[row].dot(b.lin_o[col]) +
+                      b.jac_o[row].dot(b.ang_o[col]);
       }
     }
-    // Rows that cannot act: no friction (tangential), no torsion limit or nothing to turn.
     const double largest = std::max({K(0, 0), K(1, 1), K(2, 2), 0.0});
-    bool active[kRows] = {fb.friction > 0.0, fb.friction > 0.0, fb.torsion != 0.0};
-    for (int row = 0; row < kRows; ++row) active[row] = active[row] && K(row, row) > kInactiveRow * largest;
-    for (int row = 0; row < kRows; ++row) {
+    bool active[kFrictionRows] = {fb.friction > 0.0, fb.friction > 0.0, fb.torsion != 0.0};
+    for (int row = 0; row < kFrictionRows; ++row) active[row] = active[row] && K(row, row) > kInactiveRow * largest;
+    for (int row = 0; row < kFrictionRows; ++row) {
       if (active[row]) continue;
       K.row(row).setZero();
       K.col(row).setZero();
       K(row, row) = 1.0;
     }
     const Eigen::Matrix3d inv = K.inverse();
-    for (int row = 0; row < kRows; ++row) {
-      for (int col = 0; col < kRows; ++col) b.k_inv[row][col] = active[row] && active[col] ? inv(row, col) : 0.0;
+    for (int row = 0; row < kFrictionRows; ++row) {
+      for (int col = 0; col < kFrictionRows; ++col) b.k_inv[row][col] = active[row] && active[col] ? inv(row, col) : 0.0;
     }
+    for (double& l : b.lambda) l = 0.0;
+    if (fb.aggregate) bindPress(b, fb, info);
     // Warm start: last step's impulses on this step's rows, within this step's limits.
-    b.lambda[0] = b.lambda[1] = b.lambda[2] = 0.0;
-    const double warm[kRows] = {active[0] ? fb.warm_force.dot(b.t1) : 0.0, active[1] ? fb.warm_force.dot(b.t2) : 0.0,
-                                active[2] ? fb.warm_torque * fb.normal.dot(b.n) : 0.0};
     if (info.m_solverMode & SOLVER_USE_WARMSTARTING) {
-      double delta[kRows];
-      for (int row = 0; row < kRows; ++row) delta[row] = warm[row] * info.m_warmstartingFactor;
-      apply(b, delta);
+      double delta[kRows] = {active[0] ? fb.warm_force.dot(b.t1) : 0.0, active[1] ? fb.warm_force.dot(b.t2) : 0.0,
+                             active[2] ? fb.warm_torque * fb.normal.dot(b.n) : 0.0, 0.0, 0.0, 0.0};
+      if (fb.aggregate) {
+        delta[kNormalRow] = std::max(0.0, fb.press.warm_normal);
+        for (int k2 = 0; k2 < 2; ++k2) {
+          delta[kNormalRow + 1 + k2] = b.press_inv[1 + k2][1 + k2] != 0.0 ? fb.press.warm_tilt.dot(fb.press.tilt_axis[k2]) : 0.0;
+        }
+        if (tiltGauge(fb.press, delta[4], delta[5], delta[3]) > 1.0) delta[4] = delta[5] = 0.0;
+      }
+      for (double& d : delta) d *= info.m_warmstartingFactor;
+      apply(b, delta, 0, b.rows);
     }
     bound_.push_back(b);
   }
 }
 
-double PatchFrictionSolver::relativeVelocity(const Bound& b, int row) const {
-  const btSolverBody& sp = m_tmpSolverBodyPool[b.proxy_body];
-  const btSolverBody& so = m_tmpSolverBodyPool[b.object_body];
-  if (row == 2) return b.n.dot(spinOf(sp) - spinOf(so));
-  const btVector3& t = row == 0 ? b.t1 : b.t2;
-  const btVector3 vp = velocityOf(sp) + spinOf(sp).cross(b.r_proxy);
-  const btVector3 vo = velocityOf(so) + spinOf(so).cross(b.r_object);
-  return t.dot(vp - vo);
+// An aggregate block's solver bodies: the proxy's (false when it is not in this solve: another
+// batch of islands) and the object's, the fixed body for a static one.
+bool PatchFrictionSolver::findBodies(const FrictionBlock& fb, const btContactSolverInfo& info, int& proxy, int& object) {
+  proxy = fb.proxy->getCompanionId();
+  if (proxy < 0) return false;
+  const btRigidBody* rb = btRigidBody::upcast(fb.object);
+  if (rb && !rb->isStaticOrKinematicObject()) {
+    object = fb.object->getCompanionId();
+    return object >= 0;
+  }
+  object = getOrInitSolverBody(*const_cast<btCollisionObject*>(fb.object), info.m_timeStep);
+  return true;
 }
 
-void PatchFrictionSolver::apply(Bound& b, const double delta[3]) {
+// Every row's Jacobian and each body's velocity change per unit impulse along it: tangential
+// rows at the centre, torsion about n; aggregate: the normal at the centre, tilt about its axes.
+void PatchFrictionSolver::setRows(Bound& b) const {
+  const FrictionBlock& fb = blocks_[static_cast<std::size_t>(b.block)];
+  const btSolverBody& sp = m_tmpSolverBodyPool[b.proxy_body];
+  const btSolverBody& so = m_tmpSolverBodyPool[b.object_body];
+  b.r_proxy = fb.centre - sp.m_worldTransform.getOrigin();
+  b.r_object = fb.centre - so.m_worldTransform.getOrigin();
+  const btVector3 zero(0, 0, 0);
+  const auto linear = [&](int row, const btVector3& d) {
+    b.angular[row] = false;
+    b.lin[row] = d;
+    b.jac_p[row] = b.r_proxy.cross(d);
+    b.jac_o[row] = -b.r_object.cross(d);
+  };
+  const auto angular = [&](int row, const btVector3& axis) {
+    b.angular[row] = true;
+    b.lin[row] = zero;
+    b.jac_p[row] = axis;
+    b.jac_o[row] = -axis;
+  };
+  linear(0, b.t1);
+  linear(1, b.t2);
+  angular(2, b.n);
+  if (b.rows == kRows) {
+    linear(kNormalRow, b.n);
+    angular(kNormalRow + 1, fb.press.tilt_axis[0]);
+    angular(kNormalRow + 2, fb.press.tilt_axis[1]);
+  }
+  for (int row = 0; row < b.rows; ++row) {
+    b.lin_p[row] = sp.m_originalBody ? b.lin[row] * sp.m_invMass : zero;
+    b.ang_p[row] = sp.m_originalBody ? sp.m_originalBody->getInvInertiaTensorWorld() * b.jac_p[row] * sp.m_angularFactor : zero;
+    b.lin_o[row] = so.m_originalBody ? -b.lin[row] * so.m_invMass : zero;
+    b.ang_o[row] = so.m_originalBody ? so.m_originalBody->getInvInertiaTensorWorld() * b.jac_o[row] * so.m_angularFactor : zero;
+  }
+}
+
+// The pressing rows of an aggregate block as compliant rows, as Bullet makes a contact point
+// with stiffness k and damping d: erp = h k / (h k + d), cfm = 1 / (h (h k + d)); the target
+// relative velocity is -erp s / h while the centre penetrates (s <= 0) and -s / h (speculative)
+// before; a tilt row's stiffness is k times its second moment.
+void PatchFrictionSolver::bindPress(Bound& b, const FrictionBlock& fb, const btContactSolverInfo& info) const {
+  const PressRows& p = fb.press;
+  const double h = info.m_timeStep;
+  const double denom = std::max(h * p.stiffness + p.damping, static_cast<double>(SIMD_EPSILON));
+  const double erp = h * p.stiffness / denom, cfm = 1.0 / (denom * h);
+  b.bias[0] = p.separation <= 0.0 ? erp * p.separation / h : p.separation / h;
+  b.cfm[0] = cfm;
+  Eigen::Matrix3d K;
+  for (int row = 0; row < 3; ++row) {
+    for (int col = 0; col < 3; ++col) {
+      const int r = kNormalRow + row, c = kNormalRow + col;
+      K(row, col) = b.lin[r].dot(b.lin_p[c]) + b.jac_p[r].dot(b.ang_p[c]) - b.lin[r].dot(b.lin_o[c]) +
+                    b.jac_o[r].dot(b.ang_o[c]);
+    }
+  }
+  const double largest = std::max({K(0, 0), K(1, 1), K(2, 2), 0.0});
+  bool active[3] = {true, true, true};
+  for (int k = 0; k < 2; ++k) {
+    active[1 + k] = p.tilt_moment[k] > 0.0 && K(1 + k, 1 + k) > kInactiveRow * largest;
+    b.bias[1 + k] = erp * p.tilt_error[k] / h;
+    b.cfm[1 + k] = active[1 + k] ? cfm / p.tilt_moment[k] : 0.0;
+  }
+  for (int row = 0; row < 3; ++row) {
+    K(row, row) += b.cfm[row];
+    if (active[row]) continue;
+    K.row(row).setZero();
+    K.col(row).setZero();
+    K(row, row) = 1.0;
+  }
+  const Eigen::Matrix3d inv = K.inverse();
+  for (int row = 0; row < 3; ++row) {
+    for (int col = 0; col < 3; ++col) {
+      b.press_k[row][col] = active[row] && active[col] ? K(row, col) : 0.0;
+      b.press_inv[row][col] = active[row] && active[col] ? inv(row, col) : 0.0;
+    }
+  }
+}
+
+PatchFrictionSolver::Motion PatchFrictionSolver::motion(const Bound& b) const {
+  const btSolverBody& sp = m_tmpSolverBodyPool[b.proxy_body];
+  const btSolverBody& so = m_tmpSolverBodyPool[b.object_body];
+  const btVector3 vp = velocityOf(sp) + spinOf(sp).cross(b.r_proxy);
+  const btVector3 vo = velocityOf(so) + spinOf(so).cross(b.r_object);
+  return {vp - vo, spinOf(sp) - spinOf(so)};
+}
+
+// A row along `lin` reads the centre's relative velocity; an angular row (lin zero), the
+// relative spin about its axis.
+double PatchFrictionSolver::relativeVelocity(const Bound& b, const Motion& m, int row) {
+  return b.angular[row] ? b.jac_p[row].dot(m.spin) : b.lin[row].dot(m.centre);
+}
+
+void PatchFrictionSolver::apply(Bound& b, const double* delta, int first, int count) {
   btSolverBody& sp = m_tmpSolverBodyPool[b.proxy_body];
   btSolverBody& so = m_tmpSolverBodyPool[b.object_body];
-  for (int row = 0; row < kRows; ++row) {
-    if (delta[row] == 0.0) continue;
-    sp.internalApplyImpulse(b.lin_p[row], b.ang_p[row], delta[row]);
-    so.internalApplyImpulse(b.lin_o[row], b.ang_o[row], delta[row]);
-    b.lambda[row] += delta[row];
+  for (int row = first; row < first + count; ++row) {
+    const double d = delta[row - first];
+    if (d == 0.0) continue;
+    sp.internalApplyImpulse(b.lin_p[row], b.ang_p[row], d);
+    so.internalApplyImpulse(b.lin_o[row], b.ang_o[row], d);
+    b.lambda[row] += d;
   }
+}
+
+// One step of an aggregate block's pressing rows: the impulses that meet their targets
+// together, then their limits: no pull (a normal impulse <= 0 releases the tilt too), and a tilt
+// impulse within the points' hull times the normal impulse (scaled back towards zero when
+// outside, and the normal row solved again with that tilt).
+double PatchFrictionSolver::solvePress(Bound& b) {
+  const PressRows& p = blocks_[static_cast<std::size_t>(b.block)].press;
+  double rho[3], y[3];
+  const Motion m = motion(b);
+  for (int row = 0; row < 3; ++row) {
+    const int r = kNormalRow + row;
+    rho[row] = b.press_inv[row][row] != 0.0 ? relativeVelocity(b, m, r) + b.bias[row] + b.cfm[row] * b.lambda[r] : 0.0;
+  }
+  for (int row = 0; row < 3; ++row) {
+    y[row] = b.lambda[kNormalRow + row] -
+             (b.press_inv[row][0] * rho[0] + b.press_inv[row][1] * rho[1] + b.press_inv[row][2] * rho[2]);
+  }
+  if (y[0] > 0.0) {
+    double gauge = tiltGauge(p, y[1], y[2], y[0]);
+    if (gauge > 1.0) {
+      const double scale = std::isfinite(gauge) ? 1.0 / gauge : 0.0;
+      y[1] *= scale, y[2] *= scale;
+      // The normal row again, the tilt held where the limit put it.
+      const double moved = b.press_k[0][1] * (y[1] - b.lambda[kNormalRow + 1]) + b.press_k[0][2] * (y[2] - b.lambda[kNormalRow + 2]);
+      y[0] = b.lambda[kNormalRow] - (rho[0] + moved) / b.press_k[0][0];
+      gauge = y[0] > 0.0 ? tiltGauge(p, y[1], y[2], y[0]) : 0.0;
+      if (gauge > 1.0) {
+        const double again = std::isfinite(gauge) ? 1.0 / gauge : 0.0;
+        y[1] *= again, y[2] *= again;
+      }
+    }
+  }
+  if (!(y[0] > 0.0)) y[0] = y[1] = y[2] = 0.0;
+  double delta[3], residual = 0.0;
+  for (int row = 0; row < 3; ++row) {
+    delta[row] = y[row] - b.lambda[kNormalRow + row];
+    residual = std::max(residual, delta[row] * delta[row]);
+  }
+  apply(b, delta, kNormalRow, 3);
+  return residual;
+}
+
+// The normal impulse a block's friction is limited by, and its sum of impulse times lever.
+double PatchFrictionSolver::blockNormal(const Bound& b, double& levered) const {
+  const FrictionBlock& fb = blocks_[static_cast<std::size_t>(b.block)];
+  levered = 0.0;
+  if (fb.aggregate) return b.lambda[kNormalRow];
+  double normal = 0.0;
+  for (int i = fb.first_point; i < fb.first_point + fb.point_count; ++i) {
+    const int j = pool_index_[static_cast<std::size_t>(i)];
+    if (j < 0) continue;
+    const double lambda_n = std::max(0.0, static_cast<double>(m_tmpSolverContactConstraintPool[j].m_appliedImpulse));
+    normal += lambda_n;
+    levered += lambda_n * points_[static_cast<std::size_t>(i)].lever;
+  }
+  return normal;
 }
 
 // One projected block step: the impulses that would stop the centre's sliding and the turning
@@ -183,26 +415,21 @@ void PatchFrictionSolver::apply(Bound& b, const double delta[3]) {
 // whole friction on the torsion row and slid with no friction force at all.
 double PatchFrictionSolver::solveBlock(Bound& b) {
   const FrictionBlock& fb = blocks_[static_cast<std::size_t>(b.block)];
-  double normal = 0.0, levered = 0.0;
-  for (int i = fb.first_point; i < fb.first_point + fb.point_count; ++i) {
-    const int j = pool_index_[static_cast<std::size_t>(i)];
-    if (j < 0) continue;
-    const double lambda_n = std::max(0.0, static_cast<double>(m_tmpSolverContactConstraintPool[j].m_appliedImpulse));
-    normal += lambda_n;
-    levered += lambda_n * points_[static_cast<std::size_t>(i)].lever;
-  }
+  double levered = 0.0;
+  const double normal = blockNormal(b, levered);
   const double slide_limit = fb.friction * normal;
   const double twist_limit = fb.torsion < 0.0 ? fb.friction * levered : fb.torsion * normal;
-  const double limit[kRows] = {slide_limit, slide_limit, twist_limit};
-  double u[kRows];
-  for (int row = 0; row < kRows; ++row) u[row] = b.k_inv[row][row] != 0.0 ? relativeVelocity(b, row) : 0.0;
+  const double limit[kFrictionRows] = {slide_limit, slide_limit, twist_limit};
+  double u[kFrictionRows];
+  const Motion m = motion(b);
+  for (int row = 0; row < kFrictionRows; ++row) u[row] = b.k_inv[row][row] != 0.0 ? relativeVelocity(b, m, row) : 0.0;
   Eigen::Vector3d y, d = Eigen::Vector3d::Zero();
   Eigen::Matrix3d e;
-  for (int row = 0; row < kRows; ++row) {
+  for (int row = 0; row < kFrictionRows; ++row) {
     y(row) = b.lambda[row] - (b.k_inv[row][0] * u[0] + b.k_inv[row][1] * u[1] + b.k_inv[row][2] * u[2]);
-    for (int col = 0; col < kRows; ++col) e(row, col) = b.k_inv[row][col];
+    for (int col = 0; col < kFrictionRows; ++col) e(row, col) = b.k_inv[row][col];
   }
-  for (int row = 0; row < kRows; ++row) {
+  for (int row = 0; row < kFrictionRows; ++row) {
     if (limit[row] > 0.0) {
       d(row) = 1.0 / (limit[row] * limit[row]);
     } else {  // no friction on this row: it carries nothing, the others are projected alone
@@ -213,12 +440,12 @@ double PatchFrictionSolver::solveBlock(Bound& b) {
   }
   const double outside = y.dot(d.asDiagonal() * y);
   if (outside > 1.0) y = projectOntoLimit(e, d, y, outside);
-  double delta[kRows], residual = 0.0;
-  for (int row = 0; row < kRows; ++row) {
+  double delta[kFrictionRows], residual = 0.0;
+  for (int row = 0; row < kFrictionRows; ++row) {
     delta[row] = y(row) - b.lambda[row];
     residual = std::max(residual, delta[row] * delta[row]);
   }
-  apply(b, delta);
+  apply(b, delta, 0, kFrictionRows);
   return residual;
 }
 
@@ -256,7 +483,10 @@ btScalar PatchFrictionSolver::solveSingleIteration(int iteration, btCollisionObj
                                                    const btContactSolverInfo& info, btIDebugDraw* debug) {
   double residual = btSequentialImpulseConstraintSolver::solveSingleIteration(
       iteration, bodies, numBodies, manifolds, numManifolds, constraints, numConstraints, info, debug);
-  for (Bound& b : bound_) residual = std::max(residual, solveBlock(b));
+  for (Bound& b : bound_) {
+    if (b.rows == kRows) residual = std::max(residual, solvePress(b));
+    residual = std::max(residual, solveBlock(b));
+  }
   return static_cast<btScalar>(residual);
 }
 
@@ -266,12 +496,9 @@ btScalar PatchFrictionSolver::solveGroupCacheFriendlyFinish(btCollisionObject** 
     FrictionBlock& fb = blocks_[static_cast<std::size_t>(b.block)];
     fb.force = b.lambda[0] * b.t1 + b.lambda[1] * b.t2;
     fb.torque = b.lambda[2];
-    double normal = 0.0;
-    for (int i = fb.first_point; i < fb.first_point + fb.point_count; ++i) {
-      const int j = pool_index_[static_cast<std::size_t>(i)];
-      if (j >= 0) normal += std::max(0.0, static_cast<double>(m_tmpSolverContactConstraintPool[j].m_appliedImpulse));
-    }
-    fb.normal_impulse = normal;
+    double levered = 0.0;
+    fb.normal_impulse = blockNormal(b, levered);
+    if (fb.aggregate) fb.press.tilt = b.lambda[kNormalRow + 1] * fb.press.tilt_axis[0] + b.lambda[kNormalRow + 2] * fb.press.tilt_axis[1];
     fb.solved = true;
   }
   bound_.clear();

@@ -1,26 +1,72 @@
-// Friction of a finger's contact as one block: two tangential rows at the patch's centre and a
-// torsional row about its normal, limited together by the contact's total normal impulse. The
-// contact's points carry only normal rows (their own friction is zero); the block gives the
-// whole contact one isotropic friction disc instead of a pyramid per point, a torsion limit
-// that is the sum of the points' own (mu N_i times their distance from the centre) for a
-// god-finger patch or mu_t N for a soft finger, and it converges in the iterations Bullet
-// already runs. Internal to sim/.
+// A finger's contact with one body as blocks of rows of Bullet's sequential-impulse solve.
+//
+// Friction: two tangential rows at the patch's load centre and a torsional row about its normal,
+// limited together by the contact's total normal impulse. With the "points" solver the patch's
+// points carry only normal rows (their own friction is zero) and the block gives the whole
+// contact one isotropic friction disc instead of a pyramid per point, a torsion limit that is
+// the sum of the points' own (mu N_i times their distance from the centre) for a god-finger
+// patch or mu_t N for a soft finger, and it converges in the iterations Bullet already runs.
+//
+// Aggregate ("aggregate" solver): the patch's points reach the solver as three more rows of the
+// same block instead of one contact row each: the normal at the load centre and two tilt rows
+// about the principal axes of the points' second moment. They are the points' rows summed: the
+// normal row has the contact's whole stiffness and damping and the centre's depth, a tilt row
+// the stiffness of the points' springs about its axis (k times the load-weighted second moment)
+// and the tilt their depths make. Their limits are the points' unilateral loads: the normal
+// impulse pushes, and the tilt moment keeps the centre of pressure within the hull of the
+// points (each point only pushes); the friction rows' limits are mu N and mu N times the
+// points' mean lever. The solve's cost no longer grows with the points. Internal to sim/.
 #pragma once
 
 #include <btBulletDynamicsCommon.h>
 
 #include <Eigen/Core>
 
+#include <array>
 #include <vector>
 
 namespace gf::sim {
+
+/// Directions in which an aggregate block bounds the tilt moment by the points' hull: the hull's
+/// support is sampled every 360 / kTiltDirections degrees (an outer polygon of the hull, within
+/// 1 / cos(pi / 16) - 1 = 2 % of it for a disc).
+inline constexpr int kTiltDirections = 16;
+
+/// The pressing rows of an aggregate block, from the patch's points (aggregatePatch).
+struct PressRows {
+  double stiffness = 0.0;   ///< N/m: the contact's total
+  double damping = 0.0;     ///< N s/m: the contact's total
+  double separation = 0.0;  ///< the load centre's depth: sum_i w_i s_i (m, negative when pressing)
+  /// Unit tilt axes in the tangent plane: principal axes of the points' second moment
+  /// S = sum_i w_i u_i u_i^T, u_i = rho_i x n (rho_i: point i from the centre, across n).
+  std::array<btVector3, 2> tilt_axis{btVector3(1, 0, 0), btVector3(0, 0, 1)};
+  std::array<double, 2> tilt_moment{};  ///< S's eigenvalues (m^2): tilt stiffness per N/m
+  /// The tilt the points' depths make about each axis: sum_i w_i (u_i . a_k) s_i / S_k (rad).
+  std::array<double, 2> tilt_error{};
+  /// Support of the points' hull in the (a_0, a_1) plane of the u_i: h_j = max_i u_i . d_j with
+  /// d_j = cos(2 pi j / K) a_0 + sin(2 pi j / K) a_1 (m). The tilt impulse over the normal
+  /// impulse stays within {x : x . d_j <= h_j}.
+  std::array<double, kTiltDirections> support{};
+  double mean_lever = 0.0;   ///< sum_i w_i |rho_i| (m): torsion limit per unit mu N
+  double warm_normal = 0.0;  ///< last step's normal impulse (N s)
+  btVector3 warm_tilt{0, 0, 0};  ///< last step's tilt impulse on the proxy side (world, N m s)
+  btVector3 tilt{0, 0, 0};       ///< result: the solved tilt impulse (world, N m s)
+};
+
+/// The load centre and pressing rows of a patch: `count` points (world), their load shares
+/// (summing to 1) and separations (m, negative when penetrating), with the contact's outward
+/// normal (unit) and total stiffness and damping. The centre is the share-weighted centroid
+/// moved along `normal` onto the plane through `on_plane`. Does not allocate.
+void aggregatePatch(const btVector3* points, const double* shares, const double* separations, int count,
+                    const btVector3& normal, const btVector3& on_plane, double stiffness, double damping,
+                    btVector3& centre, PressRows& out);
 
 /// One finger's contact with one body, as the solver sees it. Filled before the solve (World's
 /// beforeSolve), read after it.
 struct FrictionBlock {
   const btCollisionObject* proxy = nullptr;
   const btCollisionObject* object = nullptr;
-  btVector3 centre{0, 0, 0};  ///< where the tangential rows act (world, m)
+  btVector3 centre{0, 0, 0};  ///< where the tangential (and aggregate normal) rows act (world, m)
   btVector3 normal{0, 1, 0};  ///< outward contact normal of the object (unit, world)
   double friction = 0.0;      ///< Coulomb coefficient against sliding
   /// Torsion limit per unit normal impulse (m): < 0 for "from the points" (mu times the sum of
@@ -30,12 +76,16 @@ struct FrictionBlock {
   /// about the normal (N m s).
   btVector3 warm_force{0, 0, 0};
   double warm_torque = 0.0;
+  /// Aggregate: the block carries the contact's normal and tilt rows too (`press`) and has no
+  /// points; its bodies are found by their solver bodies.
+  bool aggregate = false;
+  PressRows press;
   int first_point = 0, point_count = 0;  ///< its points in PatchFrictionSolver::points()
   // Results of the solve (the same quantities as the warm start, and the normal impulse).
   btVector3 force{0, 0, 0};
   double torque = 0.0;
   double normal_impulse = 0.0;
-  bool solved = false;  ///< false when none of its points reached the solver this step
+  bool solved = false;  ///< false when none of its points (or bodies) reached the solver this step
 };
 
 /// One contact point of a block: which manifold point it is and its lever about the centre.
@@ -45,8 +95,8 @@ struct FrictionPoint {
   bool proxy_is_a = true;  ///< the proxy is body 0 of the point's manifold
 };
 
-/// Bullet's sequential-impulse solver with friction blocks solved after Bullet's own rows in
-/// every iteration. Deterministic: blocks in the order they were added.
+/// Bullet's sequential-impulse solver with friction and aggregate blocks solved after Bullet's
+/// own rows in every iteration. Deterministic: blocks in the order they were added.
 class PatchFrictionSolver final : public btSequentialImpulseConstraintSolver {
  public:
   PatchFrictionSolver();
@@ -68,21 +118,41 @@ class PatchFrictionSolver final : public btSequentialImpulseConstraintSolver {
                                          const btContactSolverInfo& info) override;
 
  private:
+  static constexpr int kRows = 6;  // tangential t1, t2, torsion; aggregate: normal, tilt a0, a1
   // A block bound to this solve: its solver bodies, rows and accumulated impulses.
   struct Bound {
     int block = -1;
     int proxy_body = -1, object_body = -1;  // indices into m_tmpSolverBodyPool
-    btVector3 t1, t2, n;                    // row directions
+    int rows = 3;                           // 3, or 6 for an aggregate block
+    btVector3 t1, t2, n;                    // friction row directions
     btVector3 r_proxy, r_object;            // centre relative to each body's centre of mass
-    // Per row k: each body's velocity change per unit impulse (linear, angular).
-    btVector3 lin_p[3], ang_p[3], lin_o[3], ang_o[3];
-    double k_inv[3][3];  // inverse of the rows' effective mass matrix (active rows only)
-    double lambda[3];    // accumulated impulses: tangential t1, t2, torsional
+    // Per row: the Jacobian (linear part along `lin` at the centre, proxy +, object -; angular
+    // parts of the proxy and the object) and each body's velocity change per unit impulse.
+    btVector3 lin[kRows], jac_p[kRows], jac_o[kRows];
+    bool angular[kRows];  // an angular row: about jac_p (lin zero)
+    btVector3 lin_p[kRows], ang_p[kRows], lin_o[kRows], ang_o[kRows];
+    double k_inv[3][3];      // inverse of the friction rows' effective mass (active rows only)
+    double press_k[3][3];    // the pressing rows' effective mass matrix plus compliance
+    double press_inv[3][3];  // its inverse (active rows only)
+    double bias[3];          // pressing rows: target relative velocity is -bias - cfm lambda
+    double cfm[3];
+    double lambda[kRows];    // accumulated impulses
   };
-  double relativeVelocity(const Bound& b, int row) const;
-  void apply(Bound& b, const double delta[3]);
+  // The bodies' relative motion a block's rows read (with the impulses applied so far).
+  struct Motion {
+    btVector3 centre;  // velocity of the proxy's point at the centre minus the object's
+    btVector3 spin;    // spin of the proxy minus the object's
+  };
+  Motion motion(const Bound& b) const;
+  static double relativeVelocity(const Bound& b, const Motion& m, int row);
+  void apply(Bound& b, const double* delta, int first, int count);
   void bind(const btContactSolverInfo& info);
+  bool findBodies(const FrictionBlock& fb, const btContactSolverInfo& info, int& proxy, int& object);
+  void setRows(Bound& b) const;
+  void bindPress(Bound& b, const FrictionBlock& fb, const btContactSolverInfo& info) const;
+  double solvePress(Bound& b);
   double solveBlock(Bound& b);
+  double blockNormal(const Bound& b, double& levered) const;
   static Eigen::Vector3d projectOntoLimit(const Eigen::Matrix3d& e, const Eigen::Vector3d& d, const Eigen::Vector3d& y,
                                           double outside);
 

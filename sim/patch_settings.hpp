@@ -19,6 +19,27 @@ enum class PatchFill : std::uint8_t {
   kFilled,  ///< "filled": also `rings` points along each walked path; weights by area
 };
 
+/// How the solver takes a god-finger contact (`world.contact_solver` in scene files).
+enum class ContactSolver : std::uint8_t {
+  kPoints,     ///< "points": every patch point is a contact row of Bullet's solver
+  kAggregate,  ///< "aggregate": one block per contact (normal, 2 tilt, 2 tangential, torsion
+               ///< rows) whose limits come from the patch's points (sim/patch_friction.hpp)
+};
+
+/// A finger's choice of solver (`contact_solver` of a finger): the world's, or one of them.
+enum class SolverChoice : std::uint8_t {
+  kWorld,      ///< "world": `world.contact_solver`
+  kPoints,     ///< "points"
+  kAggregate,  ///< "aggregate"
+};
+
+/// The solver a finger's choice gives under the world's.
+inline ContactSolver resolveSolver(SolverChoice finger, ContactSolver world) {
+  return finger == SolverChoice::kWorld       ? world
+         : finger == SolverChoice::kAggregate ? ContactSolver::kAggregate
+                                              : ContactSolver::kPoints;
+}
+
 /// Most points a filled patch puts along one walked path.
 inline constexpr int kMaxRings = 8;
 
@@ -35,6 +56,7 @@ inline constexpr int kMaxSgo = 64;
 struct PatchSettings {
   ContactModel model = ContactModel::kGodFinger;
   PatchFill fill = PatchFill::kRing;
+  SolverChoice contact_solver = SolverChoice::kWorld;  ///< points or one aggregate block
   int rings = 3;                    ///< filled patch: points per walked path (1..kMaxRings)
   double torsional_friction = 0.005;  ///< soft finger: torsion limit per newton of normal force (m)
   int n_sgo = 8;                    ///< number of radial vectors / SGOs (kMinSgo..kMaxSgo)

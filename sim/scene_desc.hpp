@@ -99,6 +99,8 @@ struct PatchChange {
 struct WorldSettings {
   Vec3 gravity = Vec3(0, -9.81, 0);  ///< m/s^2, y up
   int solver_iterations = 10;        ///< sequential-impulse iterations per step
+  /// How god-finger contacts are solved unless a finger chooses (its `contact_solver`).
+  ContactSolver contact_solver = ContactSolver::kPoints;
   double haptic_rate_hz = 1000.0;    ///< fixed step rate of the haptic loop
   double linear_damping = 0.0;       ///< Bullet body damping (1/s) on dynamic bodies
   double angular_damping = 0.0;

@@ -67,6 +67,8 @@ S named(S s, std::span<const std::string_view> choices) {
 
 constexpr std::string_view kContactModelNames[] = {"god_object", "soft_finger", "god_finger"};
 constexpr std::string_view kPatchFillNames[] = {"ring", "filled"};
+constexpr std::string_view kContactSolverNames[] = {"points", "aggregate"};
+constexpr std::string_view kSolverChoiceNames[] = {"world", "points", "aggregate"};
 
 template <class S>
 S live(S s) {
@@ -147,6 +149,7 @@ std::span<const Setting<SceneDesc>> sceneSettings() {
       row<S, &S::world, &WorldSettings::haptic_rate_hz>("haptic_rate", "Hz", 100.0, 1e5),
       row<S, &S::world, &WorldSettings::gravity>("world.gravity", "m/s^2", -kMaxGravity, kMaxGravity),
       row<S, &S::world, &WorldSettings::solver_iterations>("world.solver_iterations", "", 1, 10000),
+      named(row<S, &S::world, &WorldSettings::contact_solver>("world.contact_solver", "", 0, 0), kContactSolverNames),
       row<S, &S::world, &WorldSettings::linear_damping>("world.linear_damping", "1/s", 0.0, 1e3),
       row<S, &S::world, &WorldSettings::angular_damping>("world.angular_damping", "1/s", 0.0, 1e3),
   };
@@ -190,6 +193,7 @@ std::span<const Setting<FingerDesc>> fingerSettings() {
   static const Setting<F> kTable[] = {
       named(row<F, &F::patch, &P::model>("contact_model", "", 0, 0), kContactModelNames),
       named(row<F, &F::patch, &P::fill>("patch", "", 0, 0), kPatchFillNames),
+      named(row<F, &F::patch, &P::contact_solver>("contact_solver", "", 0, 0), kSolverChoiceNames),
       row<F, &F::patch, &P::rings>("rings", "", 1, kMaxRings),
       row<F, &F::patch, &P::torsional_friction>("torsional_friction", "m", 0.0, 0.1),
       live(withRule(row<F, &F::patch, &P::n_sgo>("n_sgo", "", 0, kMaxSgo), nSgoRule)),

@@ -2,6 +2,7 @@
 
 #include <BulletCollision/Gimpact/btGImpactCollisionAlgorithm.h>
 
+#include <algorithm>
 #include <array>
 #include <chrono>
 #include <stdexcept>
@@ -59,6 +60,7 @@ struct FingerContact {
   int sgo_count = 0;
   int first_injected = 0;  // index of its first manifold in World::Impl::injected
   int block = -1;          // its friction block this step
+  bool aggregate = false;  // solved as one aggregate block (no injected points, no Bullet row)
   Vec3 pad_normal = Vec3::UnitY();  // world
 };
 
@@ -68,6 +70,7 @@ struct ContactMemory {
   int body = -1;
   WarmStart truth;
   int n_sgo = 0;  // radial vectors of the patch the impulses belong to
+  int layer_count = 0;  // layers of `layers` holding them (the rest is stale)
   // By ring (a filled patch's point k of its path in layer k - 1; a ring's SGOs in layer 0)
   // and radial index: radial i at angle 2 pi i / n_sgo.
   std::array<std::array<WarmStart, kMaxSgo>, kMaxRings> layers;
@@ -76,6 +79,8 @@ struct ContactMemory {
   Vec3 pad_normal = Vec3::UnitY();    // the pad plane's normal (world)
   btVector3 friction_force{0, 0, 0};  // the friction block's impulses (warm start)
   double friction_torque = 0.0;
+  double normal_impulse = 0.0;        // the contact's total normal impulse (N s)
+  btVector3 tilt_impulse{0, 0, 0};    // an aggregate block's tilt impulse (N m s)
 };
 
 struct Finger {
@@ -140,6 +145,9 @@ struct World::Impl final : SolveHooks {
   std::vector<Body> bodies;
   std::vector<Finger> fingers;
   std::vector<btPersistentManifold*> injected;
+  // An aggregate contact's points, their shares and depths (the true contact first), reused.
+  std::array<btVector3, kMaxPatchPoints + 1> agg_points;
+  std::array<double, kMaxPatchPoints + 1> agg_shares, agg_separations;
   std::vector<SavedState> saved;
   double time = 0.0;
   // Time is counted in steps of one dt from the last change of dt, so k steps of 1 ms read
@@ -294,13 +302,49 @@ void World::Impl::handleContact(Finger& f, FingerContact& c) {
   const Patch& patch = c.record.patch;
   const double k = fd.proxy.contact_stiffness, d = fd.proxy.contact_damping;
   const double truth_share = c.sgo_count > 0 ? patch.centre_share : 1.0;
+  c.aggregate = c.sgo_count > 0 && resolveSolver(f.patch.contact_solver, desc.world.contact_solver) == ContactSolver::kAggregate;
+  FrictionBlock block;
+  block.proxy = f.proxy.get();
+  block.object = c.truth.object;
+  block.normal = c.truth.outward_normal_world;
+  block.friction = desc.effects.friction ? f.patch.friction : 0.0;
+  if (mem) {
+    block.warm_force = mem->friction_force;
+    block.warm_torque = mem->friction_torque;
+  }
+  if (c.aggregate) {
+    // One block: the true contact and the patch's points become its normal and tilt rows; the
+    // manifold keeps no point for Bullet's own rows.
+    agg_points[0] = c.truth.point_world;
+    agg_shares[0] = truth_share;
+    agg_separations[0] = c.truth.separation;
+    for (int i = 0; i < c.sgo_count; ++i) {
+      agg_points[i + 1] = c.sgo_world[i];
+      agg_shares[i + 1] = injectedPoint(patch, i).load_share;
+      agg_separations[i + 1] = c.sgo_separation[i];
+    }
+    c.manifold->clearManifold();
+    block.aggregate = true;
+    aggregatePatch(agg_points.data(), agg_shares.data(), agg_separations.data(), c.sgo_count + 1, block.normal,
+                   c.truth.point_world, k, d, block.centre, block.press);
+    block.torsion = block.friction * block.press.mean_lever;
+    if (mem) {
+      block.press.warm_normal = mem->normal_impulse;
+      block.press.warm_tilt = mem->tilt_impulse;
+    }
+    counters.sgos_injected += c.sgo_count;
+    c.block = solver.addBlock(block);
+    return;
+  }
   keepOnlyPoint(*c.manifold, c.truth.index, {k * truth_share, d * truth_share, 0.0}, mem ? mem->truth : WarmStart{});
   const int n = f.patch.n_sgo;
   btVector3 centre = truth_share * c.truth.point_world;
   for (int i = 0; i < c.sgo_count; ++i) {
     const Sgo& p = injectedPoint(patch, i);
     c.sgo_material[i] = {k * p.load_share, d * p.load_share, 0.0};
-    c.sgo_warm[i] = mem ? warmStartByAngle(mem->layers[layerOf(p)].data(), mem->n_sgo, p.radial, n) : WarmStart{};
+    c.sgo_warm[i] = mem && layerOf(p) < mem->layer_count
+                        ? warmStartByAngle(mem->layers[layerOf(p)].data(), mem->n_sgo, p.radial, n)
+                        : WarmStart{};
     centre += p.load_share * c.sgo_world[i];
   }
   if (c.sgo_count > 0) {
@@ -312,23 +356,14 @@ void World::Impl::handleContact(Finger& f, FingerContact& c) {
   }
   // The friction block: sliding limit mu N at the load's centre, and the torsion limit of the
   // model: none (god-object), mu_t N (soft finger), or the points' own (god-finger).
-  FrictionBlock block;
-  block.proxy = f.proxy.get();
-  block.object = c.truth.object;
   // The load's centre moved onto the contact's tangent plane: on a curved body the points'
   // centroid lies inside it, and friction acts on the surface.
   const btVector3 off = centre - c.truth.point_world;
   block.centre = c.truth.point_world + off - off.dot(c.truth.outward_normal_world) * c.truth.outward_normal_world;
-  block.normal = c.truth.outward_normal_world;
-  block.friction = desc.effects.friction ? f.patch.friction : 0.0;
   block.torsion = !desc.effects.friction                   ? 0.0
                   : model == ContactModel::kSoftFinger     ? f.patch.torsional_friction
                   : model == ContactModel::kGodFinger      ? -1.0
                                                            : 0.0;
-  if (mem) {
-    block.warm_force = mem->friction_force;
-    block.warm_torque = mem->friction_torque;
-  }
   c.block = solver.addBlock(block);
   const btVector3& nw = block.normal;
   const auto lever = [&](const btVector3& p) {
@@ -351,19 +386,23 @@ void World::Impl::rememberImpulses(Finger& f) {
     ContactMemory& mem = f.memory[k];
     const Patch& patch = c.record.patch;
     mem.body = c.record.body;
-    mem.truth = solvedImpulses(c.manifold->getContactPoint(0));
+    mem.truth = c.aggregate ? WarmStart{} : solvedImpulses(c.manifold->getContactPoint(0));
     mem.had_patch = c.sgo_count > 0;
-    mem.n_sgo = c.sgo_count > 0 ? f.patch.n_sgo : 0;
+    mem.n_sgo = c.sgo_count > 0 && !c.aggregate ? f.patch.n_sgo : 0;
     mem.ring_tangent_local = patch.ring_tangent;
     mem.pad_normal = c.pad_normal;
-    for (auto& layer : mem.layers) layer.fill(WarmStart{});
-    for (int i = 0; i < c.sgo_count; ++i) {
+    // Only the radials of the layers this patch has are read back (warmStartByAngle).
+    mem.layer_count = mem.n_sgo > 0 ? (f.patch.fill == PatchFill::kFilled ? f.patch.rings : 1) : 0;
+    for (int l = 0; l < mem.layer_count; ++l) std::fill_n(mem.layers[l].begin(), mem.n_sgo, WarmStart{});
+    for (int i = 0; i < c.sgo_count && !c.aggregate; ++i) {
       const Sgo& p = injectedPoint(patch, i);
       mem.layers[layerOf(p)][p.radial] = solvedImpulses(injected, c.first_injected, i);
     }
     const FrictionBlock& block = solver.block(c.block);
     mem.friction_force = block.solved ? block.force : btVector3(0, 0, 0);
     mem.friction_torque = block.solved ? block.torque : 0.0;
+    mem.normal_impulse = block.solved ? block.normal_impulse : 0.0;
+    mem.tilt_impulse = block.solved && block.aggregate ? block.press.tilt : btVector3(0, 0, 0);
     c.manifold = nullptr;  // Bullet may free it at the next collision pass
     c.truth.object = nullptr;
   }

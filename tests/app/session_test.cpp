@@ -86,6 +86,13 @@ TEST(Session, SameSceneTwiceGivesByteIdenticalTrace) {
   EXPECT_GT(ta.size(), 1000u);
   EXPECT_EQ(ta, readFile(b / "trace.csv"));
   EXPECT_TRUE(fs::exists(a / "summary.json"));
+  // With the aggregate solver too.
+  s.scene.world.contact_solver = sim::ContactSolver::kAggregate;
+  runSession(s, {a.string(), false, false, false, "", ""});
+  runSession(s, {b.string(), false, false, false, "", ""});
+  const std::string tc = readFile(a / "trace.csv");
+  EXPECT_NE(tc, ta) << "the aggregate run is its own";
+  EXPECT_EQ(tc, readFile(b / "trace.csv"));
   EXPECT_EQ(ta.substr(0, ta.find('\n')),
             "t,box.px,box.py,box.pz,box.qx,box.qy,box.qz,box.qw,left.fx,left.fy,left.fz,left.n_sgo,left.r,left.px,left.py,left.pz,left.dx,left.dy,left.dz,"
             "right.fx,right.fy,right.fz,right.n_sgo,right.r,right.px,right.py,right.pz,right.dx,right.dy,right.dz,box.vx,box.vy,box.vz,box.wx,box.wy,box.wz");

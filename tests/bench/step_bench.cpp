@@ -25,13 +25,15 @@ int timeHeldPinch(benchmark::State& state, int n_sgo, const std::vector<std::str
 }
 
 // One haptic step of the Fig. 8 pinch (the bundled scene) while the lifted cylinder is held
-// (t >= 3.5 s): n_SGO per finger, and the solver iterations (the scene's 20, or 10).
+// (t >= 3.5 s): n_SGO per finger, the solver iterations (the scene's 20, or 10) and the contact
+// solver (0 points, 1 aggregate).
 void BM_PinchStep(benchmark::State& state) {
   const int sgos = timeHeldPinch(state, static_cast<int>(state.range(0)),
-                                  {"world.solver_iterations=" + std::to_string(state.range(1))});
+                                  {"world.solver_iterations=" + std::to_string(state.range(1)),
+                                   std::string("world.contact_solver=") + (state.range(2) == 1 ? "aggregate" : "points")});
   state.counters["sgo_per_step"] = benchmark::Counter(static_cast<double>(sgos));
 }
-BENCHMARK(BM_PinchStep)->ArgsProduct({{0, 8, 16, 64}, {20, 10}})->ArgNames({"n_sgo", "iterations"})
+BENCHMARK(BM_PinchStep)->ArgsProduct({{0, 8, 16, 64}, {20, 10}, {0, 1}})->ArgNames({"n_sgo", "iterations", "aggregate"})
     ->Unit(benchmark::kMicrosecond)->Repetitions(5)->ReportAggregatesOnly(true);
 
 // One step of the same pinch per contact model at the default 10 iterations: 0 god_object,

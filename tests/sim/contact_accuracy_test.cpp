@@ -22,12 +22,15 @@ constexpr double kInertiaY = kMass * (2 * kHalfWidth) * (2 * kHalfWidth) * 2 / 1
 constexpr double kPress = 0.00575;  // m: device below the resting proxy (800 N/m: 4.6 N)
 constexpr double kLoadStart = 0.6;  // s: the press has settled
 constexpr double kDeg = std::numbers::pi / 180;
+constexpr SolverChoice kAggregate = SolverChoice::kAggregate;
 
-PatchSettings model(ContactModel m, PatchFill fill = PatchFill::kRing, int n_sgo = 8) {
+PatchSettings model(ContactModel m, PatchFill fill = PatchFill::kRing, int n_sgo = 8,
+                    SolverChoice solver = SolverChoice::kPoints) {
   PatchSettings p;
   p.model = m;
   p.fill = fill;
   p.n_sgo = n_sgo;
+  p.contact_solver = solver;
   p.friction = 1.0;
   return p;
 }
@@ -180,7 +183,11 @@ INSTANTIATE_TEST_SUITE_P(
                     TorsionCase{"ring8", model(ContactModel::kGodFinger), 0.05},
                     TorsionCase{"ring16", model(ContactModel::kGodFinger, PatchFill::kRing, 16), 0.05},
                     TorsionCase{"filled8", model(ContactModel::kGodFinger, PatchFill::kFilled), 0.10},
-                    TorsionCase{"filled16", model(ContactModel::kGodFinger, PatchFill::kFilled, 16), 0.05}),
+                    TorsionCase{"filled16", model(ContactModel::kGodFinger, PatchFill::kFilled, 16), 0.05},
+                    TorsionCase{"ring8_aggregate", model(ContactModel::kGodFinger, PatchFill::kRing, 8, kAggregate), 0.05},
+                    TorsionCase{"ring16_aggregate", model(ContactModel::kGodFinger, PatchFill::kRing, 16, kAggregate), 0.05},
+                    TorsionCase{"filled8_aggregate", model(ContactModel::kGodFinger, PatchFill::kFilled, 8, kAggregate), 0.10},
+                    TorsionCase{"filled16_aggregate", model(ContactModel::kGodFinger, PatchFill::kFilled, 16, kAggregate), 0.05}),
     [](const testing::TestParamInfo<TorsionCase>& i) { return std::string(i.param.name); });
 
 struct SlidingCase {
@@ -209,7 +216,9 @@ INSTANTIATE_TEST_SUITE_P(Models, Sliding,
                          testing::Values(SlidingCase{"god_object", model(ContactModel::kGodObject)},
                                          SlidingCase{"soft_finger", model(ContactModel::kSoftFinger)},
                                          SlidingCase{"ring8", model(ContactModel::kGodFinger)},
-                                         SlidingCase{"filled8", model(ContactModel::kGodFinger, PatchFill::kFilled)}),
+                                         SlidingCase{"filled8", model(ContactModel::kGodFinger, PatchFill::kFilled)},
+                                         SlidingCase{"ring8_aggregate", model(ContactModel::kGodFinger, PatchFill::kRing, 8, kAggregate)},
+                                         SlidingCase{"filled8_aggregate", model(ContactModel::kGodFinger, PatchFill::kFilled, 8, kAggregate)}),
                          [](const testing::TestParamInfo<SlidingCase>& i) { return std::string(i.param.name); });
 
 // Static friction holds: a constant torque at half the limit turns the pressed box by less
@@ -233,8 +242,10 @@ TEST(Creep, HalfTheTorsionLimitDoesNotTurnThePressedBox) {
 
 // A tile on a point support (a small static sphere under its centre), pressed from above at
 // its centre, under a sustained torque about a horizontal axis: only the pad resists the tilt.
-// It settles at a bounded tilt instead of creeping.
-TEST(Tilt, OffCentreLoadSettlesAtABoundedTilt) {
+// It settles at a bounded tilt instead of creeping, with either contact solver.
+class Tilt : public testing::TestWithParam<SolverChoice> {};
+
+TEST_P(Tilt, OffCentreLoadSettlesAtABoundedTilt) {
   SceneDesc s;
   s.name = "tilted-tile";
   BodyDesc pivot;
@@ -253,7 +264,7 @@ TEST(Tilt, OffCentreLoadSettlesAtABoundedTilt) {
   s.bodies = {pivot, tile};
   FingerDesc f;
   f.name = "index";
-  f.patch = model(ContactModel::kGodFinger);
+  f.patch = model(ContactModel::kGodFinger, PatchFill::kRing, 8, GetParam());
   const double rest = 0.02 + f.proxy.radius;
   f.device.interpolation = Interpolation::kLinear;
   f.device.keyframes = {{0.0, Vec3(0, rest + 0.005, 0)}, {0.3, Vec3(0, rest - kPress, 0)}};
@@ -280,6 +291,11 @@ TEST(Tilt, OffCentreLoadSettlesAtABoundedTilt) {
   EXPECT_LT(largest, 5.0);
   EXPECT_LT(std::abs(at5 - at2), 0.02 * at5 + 0.01) << "settled: no creep between 2 s and 5 s";
 }
+
+INSTANTIATE_TEST_SUITE_P(Solvers, Tilt, testing::Values(SolverChoice::kPoints, kAggregate),
+                         [](const testing::TestParamInfo<SolverChoice>& i) {
+                           return std::string(i.param == kAggregate ? "aggregate" : "points");
+                         });
 
 }  // namespace
 }  // namespace gf::sim

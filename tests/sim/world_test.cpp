@@ -121,20 +121,22 @@ std::vector<double> stateOf(const World& w) {
   return out;
 }
 
-// Two identical offline runs must agree to the bit at every step.
+// Two identical offline runs must agree to the bit at every step, with either contact solver.
 TEST(WorldDeterminism, TwoOfflineRunsAreBitIdentical) {
-  auto trace = [] {
-    TestContext ctx("fig8-pinch-oscillation", 8);
-    std::vector<double> out;
-    ctx.simulate(2.0, [&](const World& w) {
-      const std::vector<double> s = stateOf(w);
-      out.insert(out.end(), s.begin(), s.end());
-    });
-    return out;
-  };
-  const std::vector<double> a = trace(), b = trace();
-  ASSERT_EQ(a.size(), b.size());
-  EXPECT_EQ(0, std::memcmp(a.data(), b.data(), a.size() * sizeof(double)));
+  for (const char* solver : {"points", "aggregate"}) {
+    auto trace = [&] {
+      TestContext ctx("fig8-pinch-oscillation", 8, {std::string("world.contact_solver=") + solver});
+      std::vector<double> out;
+      ctx.simulate(2.0, [&](const World& w) {
+        const std::vector<double> s = stateOf(w);
+        out.insert(out.end(), s.begin(), s.end());
+      });
+      return out;
+    };
+    const std::vector<double> a = trace(), b = trace();
+    ASSERT_EQ(a.size(), b.size()) << solver;
+    EXPECT_EQ(0, std::memcmp(a.data(), b.data(), a.size() * sizeof(double))) << solver;
+  }
 }
 
 // 64-bit FNV-1a of the bytes of `values`.
@@ -156,6 +158,15 @@ TEST(WorldDeterminism, PinchStateAfter2000StepsHasTheCommittedHash) {
   ASSERT_EQ(ctx.world().counters().steps, 2000);
   const std::uint64_t hash = hashOf(stateOf(ctx.world()));
   EXPECT_EQ(hash, 0x868029458292caa5ull) << std::hex << "state hash 0x" << hash;
+}
+
+// The same with the aggregate solver (sim/patch_friction.hpp): its own committed value.
+TEST(WorldDeterminism, AggregatePinchStateAfter2000StepsHasTheCommittedHash) {
+  TestContext ctx("fig8-pinch-oscillation", 8, {"world.contact_solver=aggregate"});
+  ctx.simulate(2.0);
+  ASSERT_EQ(ctx.world().counters().steps, 2000);
+  const std::uint64_t hash = hashOf(stateOf(ctx.world()));
+  EXPECT_EQ(hash, 0x71cce4476d9bf756ull) << std::hex << "state hash 0x" << hash;
 }
 
 // A 1 mm proxy flung at a 1 mm wall at 100 m/s covers 10 cm per step, so no collision check sees
