@@ -26,7 +26,7 @@ namespace fs = std::filesystem;
 // One row of results.csv.
 struct Row {
   const StudyRun* run = nullptr;
-  std::string series, model, patch;
+  std::string series, model, patch, solver = "points";
   int n_sgo = 0, rings = 0, iterations = 0, walk_resolution = 0;
   double rate = 0.0;
   std::vector<MeasureResult> measures;
@@ -91,6 +91,11 @@ void describe(const StudyPlan& plan, const StudyRun& run, const SessionDesc& s, 
     row.patch = row.model == "god_finger" ? std::string(sim::choiceName(fingerSetting("patch"), *f)) : "";
     row.n_sgo = row.model == "god_finger" ? f->patch.n_sgo : 0;
     row.rings = row.patch == "filled" ? f->patch.rings : 0;
+    // A god-object or soft finger is one point whatever the solver setting.
+    if (row.model == "god_finger" &&
+        sim::resolveSolver(f->patch.contact_solver, scene.world.contact_solver) == sim::ContactSolver::kAggregate) {
+      row.solver = "aggregate";
+    }
   }
   row.iterations = scene.world.solver_iterations;
   row.rate = scene.world.haptic_rate_hz;
@@ -124,7 +129,7 @@ const std::vector<StudyMeasure>& measuresOf(const StudyPlan& plan, const StudyRu
 std::string resultsCsv(const StudyPlan& plan, const std::vector<Row>& rows) {
   const std::vector<std::string> axes = axisFields(plan);
   const std::vector<StudyMeasure>& first = plan.study.series.front().measures;
-  std::string out = "study,series,model,patch,n_sgo,rings,solver_iterations,haptic_rate_hz,walk_resolution";
+  std::string out = "study,series,model,patch,n_sgo,rings,contact_solver,solver_iterations,haptic_rate_hz,walk_resolution";
   for (const std::string& a : axes) out += "," + csvCell(a);
   out += ",measure,reference,error";
   for (std::size_t k = 1; k < first.size(); ++k) {
@@ -133,7 +138,7 @@ std::string resultsCsv(const StudyPlan& plan, const std::vector<Row>& rows) {
   out += ",step_us_median,step_us_p99,patch_us_mean,status,run\n";
   for (const Row& r : rows) {
     out += csvCell(plan.study.name) + "," + csvCell(r.series) + "," + r.model + "," + r.patch + "," +
-           std::to_string(r.n_sgo) + "," + std::to_string(r.rings) + "," + std::to_string(r.iterations) + "," +
+           std::to_string(r.n_sgo) + "," + std::to_string(r.rings) + "," + r.solver + "," + std::to_string(r.iterations) + "," +
            number(r.rate) + "," + std::to_string(r.walk_resolution);
     for (const std::string& a : axes) out.append(1, ',').append(csvCell(axisValue(*r.run, a)));
     for (std::size_t k = 0; k < std::max<std::size_t>(first.size(), 1); ++k) {

@@ -87,7 +87,7 @@ TEST_P(BundledStudy, QuickGridRunsWithEveryColumnAndAFiniteError) {
   const StudyPlan plan = expandStudy(loadStudyFile(GetParam()), true, {});
   ASSERT_EQ(runStudy(plan, options(out, 2)), 0);
   const Csv csv = readCsv(out / "results.csv");
-  for (const char* c : {"study", "model", "patch", "n_sgo", "rings", "solver_iterations", "haptic_rate_hz",
+  for (const char* c : {"study", "model", "patch", "n_sgo", "rings", "contact_solver", "solver_iterations", "haptic_rate_hz",
                         "walk_resolution", "measure", "reference", "error", "step_us_median", "step_us_p99"}) {
     EXPECT_GE(csv.column(c), 0) << "no column " << c;
   }
