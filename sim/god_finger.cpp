@@ -170,12 +170,6 @@ Start startFace(const WalkContext& ctx, const SurfacePoint& hit, double side, co
   return best;
 }
 
-// Mean edge length of face f (m).
-double meanEdge(const Mesh& m, int f) {
-  return ((m.corner(f, 1) - m.corner(f, 0)).norm() + (m.corner(f, 2) - m.corner(f, 1)).norm() +
-          (m.corner(f, 0) - m.corner(f, 2)).norm()) / 3.0;
-}
-
 // The point of segment [a, b] closest to p.
 Vec3 onSegment(const Vec3& p, const Vec3& a, const Vec3& b) {
   const Vec3 e = b - a;
@@ -191,7 +185,7 @@ Sgo walk(const WalkContext& ctx, const Start& start, const Vec3& from, double d,
   Sgo sgo{from, start.face, -1, 0.0, WalkStop::kDistance, 0.0};
   Vec3 dir = start.dir;
   double side = start.side, remaining = d;
-  const double extra = std::min(kMaxCrossings, std::ceil(kCrossingsPerEdgeLength * d / meanEdge(m, start.face)));
+  const double extra = std::min(kMaxCrossings, std::ceil(kCrossingsPerEdgeLength * d / m.meanEdge(start.face)));
   const long budget = ctx.s.max_face_crossings + static_cast<long>(extra);
   out.path_points.push_back(from);
   for (long crossings = 0;; ++crossings) {
@@ -233,7 +227,7 @@ Sgo walk(const WalkContext& ctx, const Start& start, const Vec3& from, double d,
     if (!faceAllowed(ctx, next_normal)) return sgo.stop = stopReason(ctx, next_normal), sgo;
     // Carry the direction over the edge: keep its component along the edge, turn the rest into
     // the neighbour (the unfolded straight line; equals the projection to first order).
-    const Vec3 edge = (m.corner(sgo.face, (k_exit + 1) % 3) - m.corner(sgo.face, k_exit)).normalized();
+    const Vec3& edge = m.edgeDirection(sgo.face, k_exit);
     const double across = -dir.dot(m.edgeInwardNormal(sgo.face, k_exit));
     dir = dir.dot(edge) * edge + across * m.edgeInwardNormal(link.face, link.edge);
     sgo.face = link.face;
@@ -338,6 +332,24 @@ bool computable(const PatchSettings& s) {
          finite(s.feature_tolerance) && s.feature_tolerance >= 0 && s.rings >= 1 && s.rings <= kMaxRings;
 }
 
+// Eq. 2's logarithms, computed once per patch.
+struct StretchLogs {
+  bool on;
+  double log_alpha, bound;
+  explicit StretchLogs(const PatchSettings& s)
+      : on(s.tangential_stretch && s.alpha != 1.0),
+        log_alpha(on ? std::log(s.alpha) : 0.0),
+        bound(on ? std::log(s.max_stretch) : 0.0) {}
+};
+
+// log(d_i / r) = -(v_t . r_i) / stretch_length * log(alpha), kept within +-log(max_stretch).
+double stretched(double radius, const Vec3& v_tangential, const Vec3& radial_unit, const PatchSettings& s,
+                 const StretchLogs& logs) {
+  if (!logs.on) return radius;
+  const double x = -v_tangential.dot(radial_unit) / s.stretch_length * logs.log_alpha;
+  return radius * std::exp(std::clamp(x, -logs.bound, logs.bound));
+}
+
 }  // namespace
 
 void clearPatch(Patch& patch) { resetPatch(0, patch); }
@@ -352,11 +364,7 @@ double contactRadius(double press_depth, double r_max, double d0) {
 
 double stretchedDistance(double radius, const Vec3& v_tangential, const Vec3& radial_unit,
                          const PatchSettings& s) {
-  if (!s.tangential_stretch || s.alpha == 1.0) return radius;
-  // log(d_i / r) = -(v_t . r_i) / stretch_length * log(alpha), kept within +-log(max_stretch).
-  const double bound = std::log(s.max_stretch);
-  const double x = -v_tangential.dot(radial_unit) / s.stretch_length * std::log(s.alpha);
-  return radius * std::exp(std::clamp(x, -bound, bound));
+  return stretched(radius, v_tangential, radial_unit, s, StretchLogs(s));
 }
 
 SurfacePoint contactFeature(const Mesh& m, const PatchContact& c, double tol) {
@@ -451,6 +459,7 @@ void computePatch(const Mesh& mesh, const PatchContact& contact, const Vec3& v,
   // Eq. 2 reads the tangential part of v: pressing alone stretches nothing.
   const Vec3 v_t = v - v.dot(n) * n;
   const bool filled = s.fill == PatchFill::kFilled;
+  const StretchLogs logs(s);
   // Step 4: per radial vector, its start face (Fig. 3), Eq. 2 distance and the walk (Alg. 1).
   out.path_offsets.push_back(0);
   for (int i = 0; i < s.n_sgo; ++i) {
@@ -459,7 +468,7 @@ void computePatch(const Mesh& mesh, const PatchContact& contact, const Vec3& v,
     const Start start = startFace(ctx, out.hit, side, r);
     const bool usable = start.usable && start.dir.norm() > kDegenerateLength;
     out.radial.push_back(usable ? start.dir : r);
-    out.d_i.push_back(usable ? stretchedDistance(out.radius, v_t, r, s) : 0.0);
+    out.d_i.push_back(usable ? stretched(out.radius, v_t, r, s, logs) : 0.0);
     if (!usable) {
       out.radial_stop.push_back(WalkStop::kDropped);
       continue;

@@ -171,11 +171,16 @@ Mesh buildMesh(const std::vector<Vec3>& positions,
   // Step 3: per-face inward edge normals (in the face plane, pointing into the face).
   const int nf = m.faceCount();
   m.inward_.resize(nf);
+  m.edge_dir_.resize(nf);
+  m.mean_edge_.resize(nf);
   for (int f = 0; f < nf; ++f) {
     for (int k = 0; k < 3; ++k) {
       const Vec3 e = m.corner(f, (k + 1) % 3) - m.corner(f, k);
       m.inward_[f][k] = m.normals_[f].cross(e).normalized();
+      m.edge_dir_[f][k] = e.normalized();
     }
+    m.mean_edge_[f] = ((m.corner(f, 1) - m.corner(f, 0)).norm() + (m.corner(f, 2) - m.corner(f, 1)).norm() +
+                       (m.corner(f, 0) - m.corner(f, 2)).norm()) / 3.0;
   }
 
   // Step 4: edge adjacency.

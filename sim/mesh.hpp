@@ -82,6 +82,10 @@ class Mesh {
   const Vec3& faceNormal(int f) const { return normals_[f]; }
   /// Unit vector in the plane of f, perpendicular to edge k, pointing into f.
   const Vec3& edgeInwardNormal(int f, int k) const { return inward_[f][k]; }
+  /// Unit direction of edge k of f, from vertex k to vertex (k+1)%3.
+  const Vec3& edgeDirection(int f, int k) const { return edge_dir_[f][k]; }
+  /// Mean length of f's three edges (m).
+  double meanEdge(int f) const { return mean_edge_[f]; }
   /// The triangle across edge k of f.
   const FaceLink& link(int f, int k) const { return links_[f][k]; }
 
@@ -115,6 +119,8 @@ class Mesh {
   std::vector<std::array<std::int32_t, 3>> triangles_;
   std::vector<Vec3> normals_;
   std::vector<std::array<Vec3, 3>> inward_;
+  std::vector<std::array<Vec3, 3>> edge_dir_;
+  std::vector<double> mean_edge_;
   std::vector<std::array<FaceLink, 3>> links_;
   std::vector<std::int32_t> vf_offsets_;
   std::vector<std::int32_t> vf_faces_;
