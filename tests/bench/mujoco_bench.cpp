@@ -131,14 +131,17 @@ double swingAboutX(const sim::World& w, int body) {
   return std::abs(aa.angle() * aa.axis().x()) * kRadToDeg;
 }
 
-// Args: MuJoCo condim (3, 4) and our n_SGO per finger (0 god-object, 8). Both run the scene's
+// Args: MuJoCo condim (3, 4), our n_SGO per finger (0 god-object, 8) and our contact solver
+// (0 points, 1 aggregate). Both run the scene's
 // 6 s (grasp, lift 5 cm, hold) untimed, recording the largest swing after 1 s; then blocks of
 // 100 held steps are timed alternately, ours first. Counters: medians of the per-step block
 // times (us), ratio ours / MuJoCo, the swings (deg) and the lift (m).
 void BM_PeerPinch(benchmark::State& state) {
   const int condim = static_cast<int>(state.range(0));
   const int n_sgo = static_cast<int>(state.range(1));
-  test_support::TestContext ours("fig8-pinch-oscillation", n_sgo, {"world.solver_iterations=10"});
+  const std::string solver = state.range(2) == 1 ? "aggregate" : "points";
+  test_support::TestContext ours("fig8-pinch-oscillation", n_sgo,
+                                 {"world.solver_iterations=10", "world.contact_solver=" + solver});
   MujocoPinch peer(condim, ours.scene());
   const int cylinder = ours.body("cylinder");
   double our_swing = 0.0, peer_swing = 0.0;
@@ -178,7 +181,10 @@ void BM_PeerPinch(benchmark::State& state) {
   state.counters["mujoco_lift_m"] = peer.height() - 0.05;
   state.counters["mujoco_contacts"] = peer.contacts();
 }
-BENCHMARK(BM_PeerPinch)->ArgsProduct({{3, 4}, {0, 8}})->ArgNames({"condim", "n_sgo"})->Unit(benchmark::kMillisecond)
+BENCHMARK(BM_PeerPinch)
+    ->ArgsProduct({{3, 4}, {0, 8}, {0, 1}})
+    ->ArgNames({"condim", "n_sgo", "aggregate"})
+    ->Unit(benchmark::kMillisecond)
     ->Iterations(200);
 
 }  // namespace
