@@ -34,6 +34,8 @@ struct RunArgs {
   bool frames = false;
   std::string video, camera;
   std::string expectations = "check";
+  bool no_fifo = false, no_yield = false;
+  double spin_us = 0.0;
 };
 
 const gf::sim::Setting<gf::sim::FingerDesc>& fingerSetting(std::string_view name) {
@@ -72,6 +74,13 @@ void addRun(CLI::App& app, RunArgs& a) {
   run->add_option("--duration", a.duration, "Simulated seconds (default: the scene's)")
       ->check(settingCheck(gf::sim::sceneSettings(), "duration"));
   run->add_flag("--realtime", a.realtime, "Pace steps on the wall clock (absolute deadlines)");
+  run->add_flag("--no-fifo", a.no_fifo, "Realtime: do not ask for SCHED_FIFO for the haptic loop (run as a user "
+                                        "without root or CAP_SYS_NICE does)");
+  run->add_flag("--no-yield", a.no_yield, "Realtime: keep the render thread and encoders at normal priority "
+                                          "instead of SCHED_IDLE");
+  run->add_option("--spin-us", a.spin_us, "Realtime: sleep until this long before each step's deadline, then "
+                                          "spin (us; default 0: sleep)")
+      ->check(CLI::Range(0.0, 1000.0));
   run->add_flag("--frames", a.frames, "Write frames/000000.png ... at 60 frames per simulated second");
   run->add_option("--video", a.video, "Write an MP4 of the frames (H.264, via ffmpeg)");
   run->add_option("--camera", a.camera, "Camera of the scene to render (default: its first)");
@@ -130,6 +139,9 @@ int runCommand(const RunArgs& a) {
   std::vector<gf::app::ExpectFailure> failed;
   options.expect_failures = &failed;
   options.stop_on_interrupt = true;
+  options.fifo = !a.no_fifo;
+  options.yield_render = !a.no_yield;
+  options.spin_us = a.spin_us;
   const gf::sim::LoopStats stats = gf::app::runSession(session, options);
   std::printf("%s: %ld steps, step median %.1f us, p99 %.1f us; wrote %s/\n", session.scene.name.c_str(),
               stats.steps, stats.step_median_us, stats.step_p99_us, a.out.c_str());

@@ -186,6 +186,7 @@ render::FrameOutputSettings frameSettings(const SessionDesc& session, const Sess
   f.overlay = v.overlay;
   f.overlay_settings.actions = v.actions;
   f.realtime = options.realtime;
+  f.background_priority = options.realtime && options.yield_render;
   return f;
 }
 
@@ -228,6 +229,7 @@ nlohmann::json renderJson(render::RenderStats r, long published) {
           {"render_ms", {{"median", sim::percentile(r.frame_ms, 0.5)}, {"p99", sim::percentile(r.frame_ms, 0.99)}}},
           {"png", {{"frames", r.png.frames}, {"encode_fps", fps(r.png)}}},
           {"video", {{"frames", r.video.frames}, {"bytes", r.video.bytes}}},
+          {"priority", r.background_priority ? "SCHED_IDLE" : "normal"},
           {"gl", r.gl}};
 }
 
@@ -309,6 +311,8 @@ sim::LoopStats runSession(const SessionDesc& session, const SessionOptions& opti
   sim::LoopSettings loop{rate, scene.duration,
                          options.realtime ? sim::ClockMode::kRealtime : sim::ClockMode::kOffline};
   loop.live = &live;
+  loop.fifo = options.fifo;
+  loop.spin_us = options.spin_us;
   if (frames) frames->start(world);
   ExpectChecker expect(session.expect, world);
   std::optional<InterruptScope> interrupt;
@@ -357,6 +361,16 @@ sim::LoopStats runSession(const SessionDesc& session, const SessionOptions& opti
                  world.counters().nan_recoveries);
   }
   if (options.expect_failures) *options.expect_failures = failed;
+  if (options.realtime) {
+    // How the deadlines were kept: the haptic thread's policy, the wake-up, the share late.
+    summary["realtime"] = {{"haptic_priority", stats.fifo_priority ? "SCHED_FIFO" : "normal"},
+                           {"fifo_requested", options.fifo},
+                           {"spin_us", options.spin_us},
+                           {"late_steps", stats.late_steps},
+                           {"late_percent", stats.steps > 0 ? 100.0 * stats.late_steps / stats.steps : 0.0},
+                           {"max_lateness_us", stats.max_lateness_us},
+                           {"late_per_second", stats.late_per_second}};
+  }
   if (renderer) {
     summary["render"] = renderJson(renderer->finish(), frames ? frames->frames() : 0);
     if (frames) summary["overlay_changes"] = changesJson(frames->changes(), scene);

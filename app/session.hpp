@@ -23,6 +23,14 @@ struct SessionOptions {
   /// Ctrl-C or SIGTERM stop the run and it writes what it reached (the command line; off in
   /// tests and embedding, which keep their own signal handling).
   bool stop_on_interrupt = false;
+  /// Realtime: ask for SCHED_FIFO for the haptic loop (root or CAP_SYS_NICE); false runs as a
+  /// user without either does (`run --no-fifo`).
+  bool fifo = true;
+  /// Realtime: the haptic loop sleeps until this long before each deadline, then spins (us).
+  double spin_us = 0.0;
+  /// Realtime: the render thread, its encoders and llvmpipe's workers run at SCHED_IDLE so the
+  /// haptic loop preempts them even at normal priority (`run --no-yield` turns it off).
+  bool yield_render = true;
 };
 
 /// The camera called `name` in the session (the first when empty; a default view of the scene

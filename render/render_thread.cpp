@@ -9,6 +9,9 @@
 #include <mutex>
 #include <thread>
 
+#include <pthread.h>
+#include <sched.h>
+
 #include "render/context.hpp"
 #include "render/gl.hpp"
 #include "render/gpu.hpp"
@@ -20,6 +23,16 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 constexpr std::size_t kQueueDepth = 2;
+
+// Lowers the calling thread to SCHED_IDLE, which any user may choose: a thread at normal
+// priority (a realtime haptic loop without root) then preempts it as soon as it wakes, on any
+// core. Threads and processes it starts afterwards inherit it. It cannot be undone without
+// privileges. Returns whether the system accepted it.
+bool lowerToIdle() {
+  sched_param p{};
+  p.sched_priority = 0;
+  return pthread_setschedparam(pthread_self(), SCHED_IDLE, &p) == 0;
+}
 
 // One piece of offline work.
 struct Job {
@@ -151,6 +164,7 @@ struct RenderThread::Impl {
   std::vector<float> frame_ms;
   Clock::time_point start = Clock::now();
   std::string gl_description;
+  bool background_priority = false;  // the render thread runs at SCHED_IDLE
   std::thread thread;
 
   void fail(const std::string& what) {
@@ -223,6 +237,12 @@ struct RenderThread::Impl {
   void run(std::promise<void>& ready) {
     std::unique_ptr<Gpu> gpu;
     try {
+      // Lowered first: the encoders and llvmpipe's workers, started below, inherit it.
+      if (settings.background_priority) background_priority = lowerToIdle();
+      if (!settings.frames_dir.empty()) png = std::make_unique<PngSequenceWriter>(settings.frames_dir);
+      if (!settings.video_path.empty()) {
+        video = std::make_unique<VideoWriter>(settings.video_path, settings.width, settings.height, settings.fps);
+      }
       gpu = std::make_unique<Gpu>(scene, settings);
       gl_description = gpu->context.description();
     } catch (const std::exception& e) {
@@ -249,10 +269,6 @@ RenderThread::RenderThread(const sim::SceneDesc& scene, const FrameOutputSetting
   r.settings = settings;
   if (settings.width < 1 || settings.height < 1 || settings.width > 1920 || settings.height > 1080) {
     throw GlError("frame size must be 1..1920 x 1..1080 pixels");
-  }
-  if (!settings.frames_dir.empty()) r.png = std::make_unique<PngSequenceWriter>(settings.frames_dir);
-  if (!settings.video_path.empty()) {
-    r.video = std::make_unique<VideoWriter>(settings.video_path, settings.width, settings.height, settings.fps);
   }
   std::promise<void> ready;
   std::future<void> started = ready.get_future();
@@ -337,6 +353,7 @@ RenderStats RenderThread::finish() {
   RenderStats stats;
   stats.gl = r.gl_description;
   stats.frame_ms = r.frame_ms;
+  stats.background_priority = r.background_priority;
   try {
     if (r.png) stats.png = r.png->finish();
     if (r.video) stats.video = r.video->finish();

@@ -32,6 +32,10 @@ struct FrameOutputSettings {
   OverlaySettings overlay_settings;
   int close_up_px = 480;          ///< side of contact close-up images (pixels)
   bool realtime = false;          ///< draw the latest snapshot at `fps` of wall-clock time
+  /// Run the render thread, its encoders and llvmpipe's workers (made with the context, after
+  /// the thread lowered itself) at SCHED_IDLE: a realtime haptic loop without root preempts them
+  /// as soon as it wakes.
+  bool background_priority = false;
 };
 
 /// What the render thread did.
@@ -40,6 +44,7 @@ struct RenderStats {
   double wall_seconds = 0.0;      ///< from start to finish()
   SinkStats png, video;
   std::string gl;                 ///< GL version and renderer
+  bool background_priority = false;  ///< it ran at SCHED_IDLE
 };
 
 class RenderThread {

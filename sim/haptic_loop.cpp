@@ -9,6 +9,8 @@
 
 #include <pthread.h>
 #include <sched.h>
+#include <sys/prctl.h>
+#include <sys/resource.h>
 
 namespace gf::sim {
 namespace {
@@ -18,11 +20,19 @@ using Clock = std::chrono::steady_clock;
 // SCHED_FIFO for the calling thread while alive; the previous policy is restored after.
 class FifoPriority {
  public:
+  static constexpr int kPriority = 80;  // real-time priority asked for (1..99)
   FifoPriority() {
     pthread_getschedparam(pthread_self(), &policy_, &saved_);
     sched_param p{};
-    p.sched_priority = std::min(80, sched_get_priority_max(SCHED_FIFO));
+    p.sched_priority = std::min(kPriority, sched_get_priority_max(SCHED_FIFO));
     active_ = pthread_setschedparam(pthread_self(), SCHED_FIFO, &p) == 0;
+    // A user without root may still be allowed a lower real-time priority (RLIMIT_RTPRIO, as
+    // limits.conf gives an "audio" or "realtime" group).
+    rlimit limit{};
+    if (!active_ && getrlimit(RLIMIT_RTPRIO, &limit) == 0 && limit.rlim_cur > 0) {
+      p.sched_priority = static_cast<int>(std::min<rlim_t>(limit.rlim_cur, static_cast<rlim_t>(p.sched_priority)));
+      active_ = pthread_setschedparam(pthread_self(), SCHED_FIFO, &p) == 0;
+    }
   }
   ~FifoPriority() {
     if (active_) pthread_setschedparam(pthread_self(), policy_, &saved_);
@@ -36,6 +46,25 @@ class FifoPriority {
   sched_param saved_{};
   bool active_ = false;
 };
+
+// The calling thread's timer slack (how late the kernel may wake a sleep, to batch wake-ups) set
+// to `ns` while alive; the previous value is restored after.
+class TimerSlack {
+ public:
+  explicit TimerSlack(unsigned long ns) : saved_(prctl(PR_GET_TIMERSLACK, 0, 0, 0, 0)) {
+    prctl(PR_SET_TIMERSLACK, ns, 0, 0, 0);
+  }
+  ~TimerSlack() {
+    if (saved_ > 0) prctl(PR_SET_TIMERSLACK, static_cast<unsigned long>(saved_), 0, 0, 0);
+  }
+  TimerSlack(const TimerSlack&) = delete;
+  TimerSlack& operator=(const TimerSlack&) = delete;
+
+ private:
+  long saved_;
+};
+
+constexpr unsigned long kRealtimeTimerSlackNs = 1000;
 
 }  // namespace
 
@@ -71,7 +100,17 @@ LoopStats runHapticLoop(World& world, const std::vector<DeviceTrack>& devices,
   LoopStats stats;
   const double t0 = world.time();
   std::optional<FifoPriority> priority;
-  if (settings.clock == ClockMode::kRealtime) stats.fifo_priority = priority.emplace().active();
+  std::optional<TimerSlack> slack;
+  const bool realtime = settings.clock == ClockMode::kRealtime;
+  if (realtime && settings.fifo) stats.fifo_priority = priority.emplace().active();
+  if (realtime) {
+    slack.emplace(kRealtimeTimerSlackNs);
+    stats.late_per_second.assign(static_cast<std::size_t>(std::ceil(settings.duration)) + 1, 0);
+  }
+  // A SCHED_FIFO thread needs no spin, and one that never sleeps is throttled by the kernel
+  // (sched_rt_runtime_us: 50 ms of every second by default): spin only at normal priority.
+  const double spin_us = stats.fifo_priority ? 0.0 : std::max(0.0, settings.spin_us);
+  const auto spin = std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double, std::micro>(spin_us));
   const auto start = Clock::now();
   const auto period = std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(dt));
   long k = 0;
@@ -80,10 +119,15 @@ LoopStats runHapticLoop(World& world, const std::vector<DeviceTrack>& devices,
     if (settings.clock == ClockMode::kRealtime) {
       // Absolute deadline: drift-free, a late step does not shift the following ones.
       const auto deadline = start + k * period;
-      std::this_thread::sleep_until(deadline);
+      std::this_thread::sleep_until(deadline - spin);
+      while (Clock::now() < deadline) {
+      }
       const double late = std::chrono::duration<double>(Clock::now() - deadline).count();
       stats.max_lateness_us = std::max(stats.max_lateness_us, late * 1e6);
-      stats.late_steps += late > settings.late_threshold;
+      if (late > settings.late_threshold) {
+        ++stats.late_steps;
+        ++stats.late_per_second[std::min(stats.late_per_second.size() - 1, static_cast<std::size_t>(k * dt))];
+      }
       if (settings.live) settings.live->late_steps = stats.late_steps;
     }
     // Time of step k from its index, so no rounding accumulates over long runs.

@@ -36,6 +36,13 @@ struct LoopSettings {
   /// When set, the loop ends before the next step once it reads true (a Ctrl-C); any thread
   /// may set it.
   const std::atomic<bool>* stop = nullptr;
+  /// Realtime: ask for SCHED_FIFO (granted to root or CAP_SYS_NICE); false runs as a user
+  /// without either does, at normal priority.
+  bool fifo = true;
+  /// Realtime without SCHED_FIFO: sleep until this long before each deadline, then spin to it
+  /// (us; 0: sleep to it; the period or more: never sleep). Ignored under SCHED_FIFO, where a
+  /// thread that never sleeps is throttled by the kernel.
+  double spin_us = 0.0;
 };
 
 /// Timing statistics of a run (wall-clock, so not deterministic).
@@ -46,6 +53,8 @@ struct LoopStats {
   double step_max_us = 0.0;
   long late_steps = 0;          ///< realtime: steps started more than late_threshold late
   double max_lateness_us = 0.0; ///< realtime: worst start lateness
+  /// realtime: late steps in each second of simulated time (when in a run they happen)
+  std::vector<int> late_per_second;
   double wall_seconds = 0.0;
   /// realtime: the loop ran under SCHED_FIFO (needs root or CAP_SYS_NICE); otherwise it
   /// shared the cores with the renderer and encoders at normal priority.
@@ -59,7 +68,8 @@ using StepObserver = std::function<void(const World&)>;
 /// Runs `world` for settings.duration at a constant dt = 1/rate_hz. Devices are sampled at the
 /// start time of each step, in finger order. Allocates only before the first step. A realtime
 /// loop asks for SCHED_FIFO priority for the calling thread while it runs (so rendering and
-/// encoding threads cannot delay a step) and restores the thread's policy afterwards.
+/// encoding threads cannot delay a step; settings.fifo) and a 1 us timer slack (the default 50 us
+/// delays every wake-up), and restores both afterwards.
 LoopStats runHapticLoop(World& world, const std::vector<DeviceTrack>& devices,
                         const LoopSettings& settings, const StepObserver& observer);
 

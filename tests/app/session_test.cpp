@@ -181,6 +181,31 @@ TEST(Session, WritesEveryFrameAndAppliesScriptedInput) {
   EXPECT_NEAR(summary["overlay_changes"][0]["t"].get<double>(), 20.0 / 60.0, 1e-3);
 }
 
+// A realtime run records how its deadlines were kept: the haptic thread's policy (normal when
+// SCHED_FIFO is not asked for, as for a user without privileges), the spin, the late steps per
+// second of the run, and the renderer lowered to SCHED_IDLE (any user may choose it). Wall-clock
+// figures are only checked for being there, not for their values.
+TEST(Session, RealtimeRunRecordsItsPrioritiesAndLateSteps) {
+  SessionOptions options = freshOutput("gf_realtime_session");
+  options.realtime = true;
+  options.frames = true;
+  options.fifo = false;
+  options.spin_us = 100.0;
+  const std::vector<std::string> overrides = {"duration=0.3", "render.width=160", "render.height=90"};
+  runSession(loadSceneFile(resolveScenePath("fig7-side-pick"), overrides), options);
+  const nlohmann::json summary = readJson(fs::path(options.out_dir) / "summary.json");
+  const nlohmann::json& r = summary["realtime"];
+  EXPECT_EQ(r["haptic_priority"], "normal");
+  EXPECT_EQ(r["fifo_requested"], false);
+  EXPECT_EQ(r["spin_us"], 100.0);
+  ASSERT_EQ(r["late_per_second"].size(), 2u);  // seconds 0 and the part-second after
+  EXPECT_EQ(r["late_per_second"][0].get<long>() + r["late_per_second"][1].get<long>(), r["late_steps"].get<long>());
+  EXPECT_GE(r["max_lateness_us"].get<double>(), 0.0);
+  EXPECT_EQ(summary["counters"]["steps"], 300);
+  EXPECT_EQ(summary["render"]["priority"], "SCHED_IDLE");
+  EXPECT_GT(summary["render"]["frames"].get<long>(), 0);
+}
+
 // The cells of one CSV line.
 std::vector<std::string> cellsOf(const std::string& line) {
   std::vector<std::string> cells;
