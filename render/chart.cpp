@@ -257,12 +257,42 @@ void drawGrid(const Canvas& c) {
   }
 }
 
-// Segments between consecutive drawable points.
+// Segments between consecutive drawable points. A run of points within one pixel column is
+// drawn through its first, lowest, highest and last point in their order (what a 1-pixel line
+// shows of it), so a series of 25 000 samples costs a few thousand segments, not 25 000: the
+// renderer's memory and time stay bounded by the chart's width.
 void drawLines(const Canvas& c, const ChartSeries& s) {
   const ImU32 colour = imguiColour(s.colour);
-  for (std::size_t i = 1; i < s.x.size() && i < s.y.size(); ++i) {
-    if (c.drawable(s, i - 1) && c.drawable(s, i))
-      c.d.AddLine(c.at(s, i - 1), c.at(s, i), colour, 1.6f);
+  const std::size_t n = std::min(s.x.size(), s.y.size());
+  bool have = false;  // a drawn point to continue from
+  ImVec2 last;
+  const auto to = [&](ImVec2 p) {
+    if (have) c.d.AddLine(last, p, colour, 1.6f);
+    last = p;
+    have = true;
+  };
+  for (std::size_t i = 0; i < n;) {
+    if (!c.drawable(s, i)) {
+      have = false;  // the line breaks here
+      ++i;
+      continue;
+    }
+    // The run of drawable points in i's pixel column: [i, j).
+    const ImVec2 first = c.at(s, i);
+    const float column = std::floor(first.x);
+    std::size_t j = i + 1, low = i, high = i;
+    for (; j < n && c.drawable(s, j); ++j) {
+      const ImVec2 p = c.at(s, j);
+      if (std::floor(p.x) != column) break;
+      if (p.y < c.at(s, low).y) low = j;
+      if (p.y > c.at(s, high).y) high = j;
+    }
+    to(first);
+    const std::size_t a = std::min(low, high), b = std::max(low, high);
+    if (a != i) to(c.at(s, a));
+    if (b != a && b != i) to(c.at(s, b));
+    if (j - 1 != b && j - 1 != i) to(c.at(s, j - 1));
+    i = j;
   }
 }
 

@@ -39,6 +39,14 @@ void PngSequenceWriter::push(Image&& frame) {
   changed_.notify_all();
 }
 
+Image PngSequenceWriter::spare() {
+  std::lock_guard lock(mutex_);
+  if (spares_.empty()) return {};
+  Image out = std::move(spares_.back());
+  spares_.pop_back();
+  return out;
+}
+
 void PngSequenceWriter::run() {
   for (;;) {
     Image frame;
@@ -64,6 +72,7 @@ void PngSequenceWriter::run() {
     }
     std::lock_guard lock(mutex_);
     stats_.busy_seconds += secondsSince(start);
+    if (spares_.size() <= depth_) spares_.push_back(std::move(frame));
   }
 }
 

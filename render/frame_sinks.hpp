@@ -5,6 +5,7 @@
 #include <condition_variable>
 #include <cstdio>
 #include <deque>
+#include <vector>
 #include <mutex>
 #include <string>
 #include <thread>
@@ -31,6 +32,9 @@ class PngSequenceWriter {
   PngSequenceWriter& operator=(const PngSequenceWriter&) = delete;
   /// Queues the next frame (takes the pixels). Throws the writer's first error, if any.
   void push(Image&& frame);
+  /// An image whose pixel storage a written frame left (empty when none is spare yet): read the
+  /// next frame into it, so frames reuse their megabytes instead of faulting in fresh pages.
+  Image spare();
   /// Writes what is queued, stops the thread, rethrows the first error. Idempotent.
   SinkStats finish();
 
@@ -41,6 +45,7 @@ class PngSequenceWriter {
   std::mutex mutex_;
   std::condition_variable changed_;
   std::deque<Image> queue_;
+  std::vector<Image> spares_;  // written frames' storage, at most depth_ + 1
   bool closing_ = false;
   std::string error_;
   SinkStats stats_;

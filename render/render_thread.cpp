@@ -183,7 +183,7 @@ struct RenderThread::Impl {
     std::vector<sim::SettingsCommand> made;
     const double last_ms = frame_ms.empty() ? 0.0 : frame_ms.back();
     if (gpu.overlay) made = gpu.overlay->draw(snap, {last_ms});
-    Image image;
+    Image image = png ? png->spare() : Image{};
     gpu.frame.read(image);
     frame_ms.push_back(std::chrono::duration<float, std::milli>(Clock::now() - begin).count());
     if (video) video->push(image);
