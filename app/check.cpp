@@ -79,7 +79,9 @@ int runCheck(const CheckOptions& options) {
       if (other == name) name = fs::path(s).parent_path().filename().string() + "-" + name;
     }
     names.push_back(name);
-    lines.push_back(godfingerRunLine(options.godfinger, s, (fs::path(options.out) / name).string(), {}));
+    std::vector<std::string> arguments;
+    for (const std::string& o : options.overrides) arguments.insert(arguments.end(), {"--set", o});
+    lines.push_back(godfingerRunLine(options.godfinger, s, (fs::path(options.out) / name).string(), arguments));
   }
   int failed = 0, passed = 0;
   const bool interrupted = runJobs(lines, options.jobs, [&](std::size_t i, int code) {

@@ -12,6 +12,7 @@ struct CheckOptions {
   std::string out = "check";       ///< each scene's run folder goes under it
   int jobs = 1;
   std::string godfinger;           ///< the executable runs are started with
+  std::vector<std::string> overrides;  ///< `--set` for every run (e.g. world.contact_solver=aggregate)
 };
 
 /// The scene files `paths` name, sorted within each folder. Throws InputError for a path that

@@ -307,6 +307,8 @@ int main(int argc, char** argv) {
                                                     "each, exit 1 if any fails");
   check_cmd->add_option("paths", check.paths, "Scene files, folders of them, or bundled scene names")->required();
   check_cmd->add_option("--out", check.out, "Folder for the runs (default: check)");
+  check_cmd->add_option("--set", check.overrides, "Override a field of every scene, e.g. --set "
+                                                  "world.contact_solver=aggregate");
   check_cmd->add_option("--jobs", check.jobs, "Scenes at a time (default: the number of cores)")->check(CLI::Range(1, 256));
   app.add_subcommand("list", "List the bundled scenes");
   gf::app::LiveOptions live;
