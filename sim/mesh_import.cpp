@@ -6,6 +6,7 @@
 #include <assimp/Importer.hpp>
 #include <cctype>
 #include <cmath>
+#include <cstdlib>
 #include <cstdint>
 #include <cstring>
 #include <filesystem>
@@ -61,6 +62,25 @@ bool offPrefix(std::string_view prefix) {
   return prefix.empty();
 }
 
+// Refuses line `number` of an OFF file of `size` bytes when a run of digits in it reads as a
+// number above `size`: as a count of vertices, faces or coordinates each needs a byte or more.
+void refuseCountsBeyond(const std::string& path, std::uintmax_t size, const std::string& line, long number) {
+  for (std::size_t i = 0; i < line.size();) {
+    if (!std::isdigit(static_cast<unsigned char>(line[i]))) {
+      ++i;
+      continue;
+    }
+    std::size_t j = i;
+    while (j < line.size() && std::isdigit(static_cast<unsigned char>(line[j]))) ++j;
+    const double value = std::strtod(line.substr(i, j - i).c_str(), nullptr);
+    if (value > static_cast<double>(size)) {
+      throw MeshLoadError(path + ":" + std::to_string(number) + ": OFF header: " + line.substr(i, j - i) +
+                          " is more than its " + std::to_string(size) + " bytes can hold as a count");
+    }
+    i = j;
+  }
+}
+
 // Most vertices of an OFF face the importer reads (it skips a longer face).
 constexpr long kMaxOffFaceVertices = 9;
 
@@ -83,7 +103,13 @@ void checkOff(const std::string& path, std::uintmax_t size) {
   } else if (std::isdigit(static_cast<unsigned char>(line[0]))) {
     counts = line;  // no keyword, which the format allows: the counts come first
   } else {
-    return;  // nOFF (a dimension before the counts), or not OFF: the importer decides
+    // nOFF (a dimension before the counts), a prefix the importer takes without the keyword
+    // ("N219647295 327": it reserved 219 million vertices), or not OFF: the importer decides,
+    // but no number it may read as a count or dimension can exceed the file's size.
+    refuseCountsBeyond(path, size, line, number);
+    const std::string next = contentLine(in, number);
+    refuseCountsBeyond(path, size, next, number);
+    return;
   }
   std::istringstream c(counts);
   double nv = -1, nf = -1, ne = -1;

@@ -92,6 +92,17 @@ TEST(FuzzRegression, OffLinesTheImporterMisreadsAreRefusedNotACrash) {
   EXPECT_EQ(loadError("after.off", "OFF\n3 1 0\n" + triangle + "3 0 1 2\n# c\n# d\n"), "accepted");
 }
 
+// fuzz_mesh (an out-of-memory stop in CI): "N219647295 327 s" starts neither with the OFF
+// keyword nor with a digit, so the header went unchecked to the importer, which reads the N
+// (normals) prefix without a keyword and reserved 219 million vertices. No number in such a
+// file's first lines may exceed its size now; a plain nOFF header is still the importer's.
+TEST(FuzzRegression, OffPrefixWithoutTheKeywordCannotReserveGigabytes) {
+  const std::string input("N219647295 327 s\0\x1a" "142949\n", 25);
+  EXPECT_EQ(loadError("prefix.off", input), ":1: OFF header: 219647295 is more than its 25 bytes can hold as a count");
+  EXPECT_EQ(loadError("next.off", "N\n3 1000000 0\n"), ":2: OFF header: 1000000 is more than its 14 bytes can hold as a count");
+  EXPECT_EQ(loadError("noff.off", "nOFF\n3\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n"), "accepted");
+}
+
 // fuzz_patch: welding put a micrometre mesh 100 km from the origin in grid cells counted from
 // the origin, p / 1.4e-12 m past the range of int64 (undefined behaviour, reported by UBSan in
 // the fuzz and asan-ubsan builds). Cells now count from the mesh's lower bounds.
