@@ -365,7 +365,7 @@ sim::LoopStats runSession(const SessionDesc& session, const SessionOptions& opti
     // How the deadlines were kept: the haptic thread's policy, the wake-up, the share late.
     summary["realtime"] = {{"haptic_priority", stats.fifo_priority ? "SCHED_FIFO" : "normal"},
                            {"fifo_requested", options.fifo},
-                           {"spin_us", options.spin_us},
+                           {"spin_us", stats.spin_us},
                            {"late_steps", stats.late_steps},
                            {"late_percent", stats.steps > 0 ? 100.0 * stats.late_steps / stats.steps : 0.0},
                            {"max_lateness_us", stats.max_lateness_us},

@@ -109,7 +109,8 @@ LoopStats runHapticLoop(World& world, const std::vector<DeviceTrack>& devices,
   }
   // A SCHED_FIFO thread needs no spin, and one that never sleeps is throttled by the kernel
   // (sched_rt_runtime_us: 50 ms of every second by default): spin only at normal priority.
-  const double spin_us = stats.fifo_priority ? 0.0 : std::max(0.0, settings.spin_us);
+  const double spin_us = stats.fifo_priority || !realtime ? 0.0 : std::max(0.0, settings.spin_us);
+  stats.spin_us = spin_us;
   const auto spin = std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double, std::micro>(spin_us));
   const auto start = Clock::now();
   const auto period = std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(dt));
@@ -126,7 +127,8 @@ LoopStats runHapticLoop(World& world, const std::vector<DeviceTrack>& devices,
       stats.max_lateness_us = std::max(stats.max_lateness_us, late * 1e6);
       if (late > settings.late_threshold) {
         ++stats.late_steps;
-        ++stats.late_per_second[std::min(stats.late_per_second.size() - 1, static_cast<std::size_t>(k * dt))];
+        const auto second = static_cast<std::size_t>(static_cast<double>(k) / settings.rate_hz);
+        ++stats.late_per_second[std::min(stats.late_per_second.size() - 1, second)];
       }
       if (settings.live) settings.live->late_steps = stats.late_steps;
     }

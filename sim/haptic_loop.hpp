@@ -55,6 +55,7 @@ struct LoopStats {
   double max_lateness_us = 0.0; ///< realtime: worst start lateness
   /// realtime: late steps in each second of simulated time (when in a run they happen)
   std::vector<int> late_per_second;
+  double spin_us = 0.0;          ///< realtime: the spin before each deadline used (0 under SCHED_FIFO)
   double wall_seconds = 0.0;
   /// realtime: the loop ran under SCHED_FIFO (needs root or CAP_SYS_NICE); otherwise it
   /// shared the cores with the renderer and encoders at normal priority.

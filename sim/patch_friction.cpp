@@ -35,6 +35,13 @@ struct Directions {
       c[static_cast<std::size_t>(j)] = std::cos(a);
       s[static_cast<std::size_t>(j)] = std::sin(a);
     }
+    // Quarter turns exact: cos(pi / 2) would be 6e-17, and on a flat patch a ratio of two such
+    // rounding residues could cap a tilt that has no extent there.
+    for (int q = 0; q < 4; ++q) {
+      const auto j = static_cast<std::size_t>(q * kTiltDirections / 4);
+      c[j] = q == 0 ? 1.0 : q == 2 ? -1.0 : 0.0;
+      s[j] = q == 1 ? 1.0 : q == 3 ? -1.0 : 0.0;
+    }
   }
 };
 const Directions kDirections;
@@ -51,6 +58,31 @@ double tiltGauge(const PressRows& p, double x, double y, double normal) {
     gauge = room > 0.0 ? std::max(gauge, along / room) : std::numeric_limits<double>::infinity();
   }
   return gauge;
+}
+
+// Moves the tilt impulse (x, y) into the limit {x . d_j <= normal h_j}: with both tilt rows,
+// onto each violated side in turn (a few sweeps), which keeps the part of the demand the limit
+// allows (a demand far past one side keeps its component along that side, where scaling the
+// whole impulse back would shrink it); then, or with one row (where the limit is an interval),
+// scaled into it so the result lies inside.
+void projectTilt(const PressRows& p, double normal, bool both, double& x, double& y) {
+  constexpr int kSweeps = 8;
+  for (int sweep = 0; both && sweep < kSweeps; ++sweep) {
+    bool moved = false;
+    for (std::size_t j = 0; j < kDirections.c.size(); ++j) {
+      const double excess = x * kDirections.c[j] + y * kDirections.s[j] - normal * std::max(0.0, p.support[j]);
+      if (!(excess > 0.0)) continue;
+      x -= excess * kDirections.c[j];
+      y -= excess * kDirections.s[j];
+      moved = true;
+    }
+    if (!moved) break;
+  }
+  const double gauge = tiltGauge(p, x, y, normal);
+  if (gauge > 1.0) {
+    const double scale = std::isfinite(gauge) ? 1.0 / gauge : 0.0;
+    x *= scale, y *= scale;
+  }
 }
 
 }  // namespace
@@ -95,7 +127,9 @@ void aggregatePatch(const btVector3* points, const double* shares, const double*
     btVector3 rho = points[i] - centre;
     rho -= rho.dot(n) * n;
     const btVector3 u = rho.cross(n);
-    const double x = u.dot(out.tilt_axis[0]), y = u.dot(out.tilt_axis[1]);
+    // An axis without a moment has no row: its coordinate (rounding residue) is left out.
+    const double x = out.tilt_moment[0] > 0.0 ? u.dot(out.tilt_axis[0]) : 0.0;
+    const double y = out.tilt_moment[1] > 0.0 ? u.dot(out.tilt_axis[1]) : 0.0;
     g0 += shares[i] * x * separations[i];
     g1 += shares[i] * y * separations[i];
     for (std::size_t j = 0; j < out.support.size(); ++j) {
@@ -349,8 +383,8 @@ void PatchFrictionSolver::apply(Bound& b, const double* delta, int first, int co
 
 // One step of an aggregate block's pressing rows: the impulses that meet their targets
 // together, then their limits: no pull (a normal impulse <= 0 releases the tilt too), and a tilt
-// impulse within the points' hull times the normal impulse (scaled back towards zero when
-// outside, and the normal row solved again with that tilt).
+// impulse within the points' hull times the normal impulse (moved onto the hull's sides when
+// outside, projectTilt, and the normal row solved again with that tilt).
 double PatchFrictionSolver::solvePress(Bound& b) {
   const PressRows& p = blocks_[static_cast<std::size_t>(b.block)].press;
   double rho[3], y[3];
@@ -364,18 +398,13 @@ double PatchFrictionSolver::solvePress(Bound& b) {
              (b.press_inv[row][0] * rho[0] + b.press_inv[row][1] * rho[1] + b.press_inv[row][2] * rho[2]);
   }
   if (y[0] > 0.0) {
-    double gauge = tiltGauge(p, y[1], y[2], y[0]);
-    if (gauge > 1.0) {
-      const double scale = std::isfinite(gauge) ? 1.0 / gauge : 0.0;
-      y[1] *= scale, y[2] *= scale;
+    if (tiltGauge(p, y[1], y[2], y[0]) > 1.0) {
+      const bool both = b.press_inv[1][1] != 0.0 && b.press_inv[2][2] != 0.0;
+      projectTilt(p, y[0], both, y[1], y[2]);
       // The normal row again, the tilt held where the limit put it.
       const double moved = b.press_k[0][1] * (y[1] - b.lambda[kNormalRow + 1]) + b.press_k[0][2] * (y[2] - b.lambda[kNormalRow + 2]);
       y[0] = b.lambda[kNormalRow] - (rho[0] + moved) / b.press_k[0][0];
-      gauge = y[0] > 0.0 ? tiltGauge(p, y[1], y[2], y[0]) : 0.0;
-      if (gauge > 1.0) {
-        const double again = std::isfinite(gauge) ? 1.0 / gauge : 0.0;
-        y[1] *= again, y[2] *= again;
-      }
+      if (y[0] > 0.0) projectTilt(p, y[0], both, y[1], y[2]);
     }
   }
   if (!(y[0] > 0.0)) y[0] = y[1] = y[2] = 0.0;

@@ -314,19 +314,32 @@ void World::Impl::handleContact(Finger& f, FingerContact& c) {
   }
   if (c.aggregate) {
     // One block: the true contact and the patch's points become its normal and tilt rows; the
-    // manifold keeps no point for Bullet's own rows.
-    agg_points[0] = c.truth.point_world;
-    agg_shares[0] = truth_share;
-    agg_separations[0] = c.truth.separation;
-    for (int i = 0; i < c.sgo_count; ++i) {
-      agg_points[i + 1] = c.sgo_world[i];
-      agg_shares[i + 1] = injectedPoint(patch, i).load_share;
-      agg_separations[i + 1] = c.sgo_separation[i];
+    // manifold keeps no point for Bullet's own rows. As in the points model only the points that
+    // press (depth <= 0) push: they make the block, with their share of the stiffness, damping
+    // and load; while none presses (within the release gap) all of them do, speculatively.
+    int count = 0;
+    double pressing = 0.0;
+    const auto add = [&](const btVector3& point, double share, double separation) {
+      agg_points[static_cast<std::size_t>(count)] = point;
+      agg_shares[static_cast<std::size_t>(count)] = share;
+      agg_separations[static_cast<std::size_t>(count)] = separation;
+      ++count;
+      pressing += share;
+    };
+    for (int pass = 0; pass < 2 && !(pressing > 0.0); ++pass) {
+      const bool all = pass == 1;
+      count = 0;
+      pressing = 0.0;
+      if (all || c.truth.separation <= 0.0) add(c.truth.point_world, truth_share, c.truth.separation);
+      for (int i = 0; i < c.sgo_count; ++i) {
+        if (all || c.sgo_separation[i] <= 0.0) add(c.sgo_world[i], injectedPoint(patch, i).load_share, c.sgo_separation[i]);
+      }
     }
+    for (int i = 0; i < count; ++i) agg_shares[static_cast<std::size_t>(i)] /= pressing;
     c.manifold->clearManifold();
     block.aggregate = true;
-    aggregatePatch(agg_points.data(), agg_shares.data(), agg_separations.data(), c.sgo_count + 1, block.normal,
-                   c.truth.point_world, k, d, block.centre, block.press);
+    aggregatePatch(agg_points.data(), agg_shares.data(), agg_separations.data(), count, block.normal,
+                   c.truth.point_world, k * pressing, d * pressing, block.centre, block.press);
     block.torsion = block.friction * block.press.mean_lever;
     if (mem) {
       block.press.warm_normal = mem->normal_impulse;
