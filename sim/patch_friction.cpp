@@ -222,26 +222,10 @@ void PatchFrictionSolver::bind(const btContactSolverInfo& info) {
     setRows(b);
     // The friction rows' effective mass; rows that cannot act (no friction, no torsion limit or
     // nothing to turn) are left out.
-    Eigen::Matrix3d K;
-    for (int row = 0; row < kFrictionRows; ++row) {
-      for (int col = 0; col < kFrictionRows; ++col) {
-        K(row, col) = b.lin[row].dot(b.lin_p[col]) + b.jac_p[row].dot(b.ang_p[col]) - b.lin[row].dot(b.lin_o[col]) +
-                      b.jac_o[row].dot(b.ang_o[col]);
-      }
-    }
-    const double largest = std::max({K(0, 0), K(1, 1), K(2, 2), 0.0});
+    const Eigen::Matrix3d K = rowMass(b, 0);
     bool active[kFrictionRows] = {fb.friction > 0.0, fb.friction > 0.0, fb.torsion != 0.0};
-    for (int row = 0; row < kFrictionRows; ++row) active[row] = active[row] && K(row, row) > kInactiveRow * largest;
-    for (int row = 0; row < kFrictionRows; ++row) {
-      if (active[row]) continue;
-      K.row(row).setZero();
-      K.col(row).setZero();
-      K(row, row) = 1.0;
-    }
-    const Eigen::Matrix3d inv = K.inverse();
-    for (int row = 0; row < kFrictionRows; ++row) {
-      for (int col = 0; col < kFrictionRows; ++col) b.k_inv[row][col] = active[row] && active[col] ? inv(row, col) : 0.0;
-    }
+    for (int row = 0; row < kFrictionRows; ++row) active[row] = active[row] && moves(K, row);
+    invertActive(K, active, b.k_inv, nullptr);
     for (double& l : b.lambda) l = 0.0;
     if (fb.aggregate) bindPress(b, fb, info);
     // Warm start: last step's impulses on this step's rows, within this step's limits.
@@ -324,34 +308,54 @@ void PatchFrictionSolver::bindPress(Bound& b, const FrictionBlock& fb, const btC
   const double erp = h * p.stiffness / denom, cfm = 1.0 / (denom * h);
   b.bias[0] = p.separation <= 0.0 ? erp * p.separation / h : p.separation / h;
   b.cfm[0] = cfm;
+  Eigen::Matrix3d K = rowMass(b, kNormalRow);
+  bool active[3] = {true, true, true};
+  for (int k = 0; k < 2; ++k) {
+    active[1 + k] = p.tilt_moment[k] > 0.0 && moves(K, 1 + k);
+    b.bias[1 + k] = erp * p.tilt_error[k] / h;
+    b.cfm[1 + k] = active[1 + k] ? cfm / p.tilt_moment[k] : 0.0;
+  }
+  for (int row = 0; row < 3; ++row) K(row, row) += b.cfm[row];
+  invertActive(K, active, b.press_inv, b.press_k);
+}
+
+// The effective mass of the three rows from `first`: entry (r, c) is row r's relative velocity
+// per unit impulse along row c.
+Eigen::Matrix3d PatchFrictionSolver::rowMass(const Bound& b, int first) {
   Eigen::Matrix3d K;
   for (int row = 0; row < 3; ++row) {
     for (int col = 0; col < 3; ++col) {
-      const int r = kNormalRow + row, c = kNormalRow + col;
+      const int r = first + row, c = first + col;
       K(row, col) = b.lin[r].dot(b.lin_p[c]) + b.jac_p[r].dot(b.ang_p[c]) - b.lin[r].dot(b.lin_o[c]) +
                     b.jac_o[r].dot(b.ang_o[c]);
     }
   }
-  const double largest = std::max({K(0, 0), K(1, 1), K(2, 2), 0.0});
-  bool active[3] = {true, true, true};
-  for (int k = 0; k < 2; ++k) {
-    active[1 + k] = p.tilt_moment[k] > 0.0 && K(1 + k, 1 + k) > kInactiveRow * largest;
-    b.bias[1 + k] = erp * p.tilt_error[k] / h;
-    b.cfm[1 + k] = active[1 + k] ? cfm / p.tilt_moment[k] : 0.0;
+  return K;
+}
+
+// Whether row `row` of effective mass `K` moves anything: its diagonal is not negligible against
+// the largest (a static body and a proxy that cannot turn have no torsion or tilt).
+bool PatchFrictionSolver::moves(const Eigen::Matrix3d& K, int row) {
+  return K(row, row) > kInactiveRow * std::max({K(0, 0), K(1, 1), K(2, 2), 0.0});
+}
+
+// `K` restricted to its active rows and columns, inverted into `inv` (zero elsewhere); `kept`,
+// when given, receives `K` on the same entries.
+void PatchFrictionSolver::invertActive(Eigen::Matrix3d K, const bool active[3], double inv[3][3], double kept[3][3]) {
+  for (int row = 0; row < 3; ++row) {
+    for (int col = 0; col < 3; ++col) {
+      if (kept) kept[row][col] = active[row] && active[col] ? K(row, col) : 0.0;
+    }
   }
   for (int row = 0; row < 3; ++row) {
-    K(row, row) += b.cfm[row];
     if (active[row]) continue;
     K.row(row).setZero();
     K.col(row).setZero();
     K(row, row) = 1.0;
   }
-  const Eigen::Matrix3d inv = K.inverse();
+  const Eigen::Matrix3d inverse = K.inverse();
   for (int row = 0; row < 3; ++row) {
-    for (int col = 0; col < 3; ++col) {
-      b.press_k[row][col] = active[row] && active[col] ? K(row, col) : 0.0;
-      b.press_inv[row][col] = active[row] && active[col] ? inv(row, col) : 0.0;
-    }
+    for (int col = 0; col < 3; ++col) inv[row][col] = active[row] && active[col] ? inverse(row, col) : 0.0;
   }
 }
 

@@ -150,6 +150,9 @@ class PatchFrictionSolver final : public btSequentialImpulseConstraintSolver {
   bool findBodies(const FrictionBlock& fb, const btContactSolverInfo& info, int& proxy, int& object);
   void setRows(Bound& b) const;
   void bindPress(Bound& b, const FrictionBlock& fb, const btContactSolverInfo& info) const;
+  static Eigen::Matrix3d rowMass(const Bound& b, int first);
+  static bool moves(const Eigen::Matrix3d& K, int row);
+  static void invertActive(Eigen::Matrix3d K, const bool active[3], double inv[3][3], double kept[3][3]);
   double solvePress(Bound& b);
   double solveBlock(Bound& b);
   double blockNormal(const Bound& b, double& levered) const;

@@ -11,16 +11,15 @@
 #include "sim/god_finger.hpp"
 #include "sim/snapshot.hpp"
 #include "sim/world.hpp"
+#include "tests/sim/pressed_box.hpp"
 
 namespace gf::sim {
 namespace {
 
-constexpr double kMass = 1.0;                            // kg
-constexpr double kHalfWidth = 0.04, kHalfHeight = 0.02;  // m
+using pressed_box::kHalfHeight, pressed_box::kHalfWidth, pressed_box::kLoadStart, pressed_box::kMass,
+    pressed_box::kPress;
 // Moment of inertia of the box about its vertical axis (kg m^2).
 constexpr double kInertiaY = kMass * (2 * kHalfWidth) * (2 * kHalfWidth) * 2 / 12;
-constexpr double kPress = 0.00575;  // m: device below the resting proxy (800 N/m: 4.6 N)
-constexpr double kLoadStart = 0.6;  // s: the press has settled
 constexpr double kDeg = std::numbers::pi / 180;
 constexpr SolverChoice kAggregate = SolverChoice::kAggregate;
 
@@ -33,37 +32,6 @@ PatchSettings model(ContactModel m, PatchFill fill = PatchFill::kRing, int n_sgo
   p.contact_solver = solver;
   p.friction = 1.0;
   return p;
-}
-
-// The pressed box, turned by `yaw` about the vertical, with `load` from kLoadStart on.
-SceneDesc pressedBox(const PatchSettings& patch, double yaw, const LoadDesc& load) {
-  SceneDesc s;
-  s.name = "pressed-box";
-  BodyDesc ground;
-  ground.name = "table";
-  ground.shape = ShapeKind::kPlane;
-  ground.mass = 0.0;
-  ground.friction = 0.0;
-  BodyDesc box;
-  box.name = "box";
-  box.half_extents = Vec3(kHalfWidth, kHalfHeight, kHalfWidth);
-  box.mass = kMass;
-  box.friction = 0.0;
-  box.position = Vec3(0, kHalfHeight, 0);
-  box.orientation = Eigen::Quaterniond(Eigen::AngleAxisd(yaw, Vec3::UnitY()));
-  s.bodies = {ground, box};
-  FingerDesc f;
-  f.name = "index";
-  f.patch = patch;
-  const double rest = 2 * kHalfHeight + f.proxy.radius;
-  f.device.interpolation = Interpolation::kLinear;
-  f.device.keyframes = {{0.0, Vec3(0, rest + 0.01, 0)}, {0.3, Vec3(0, rest - kPress, 0)}};
-  s.fingers = {f};
-  s.loads = {load};
-  s.loads[0].body = 1;
-  s.loads[0].body_name = "box";
-  s.loads[0].start = kLoadStart;
-  return s;
 }
 
 // Steps `w` from its time to `until` at step `dt` with the finger's device; observe after each.
@@ -109,7 +77,7 @@ struct Slip {
 Slip torsionSlip(const PatchSettings& patch, double yaw, double applied) {
   LoadDesc load;
   load.torque = Vec3(0, applied, 0);
-  World w(pressedBox(patch, yaw, load));
+  World w(pressed_box::scene(patch, yaw, load));
   Snapshot snap;
   Slip s;
   std::vector<double> t, omega;
@@ -127,7 +95,7 @@ Slip torsionSlip(const PatchSettings& patch, double yaw, double applied) {
 Slip slidingSlip(const PatchSettings& patch, double angle, double applied) {
   LoadDesc load;
   load.force = applied * Vec3(std::cos(angle), 0, std::sin(angle));
-  World w(pressedBox(patch, 0.0, load));
+  World w(pressed_box::scene(patch, 0.0, load));
   Snapshot snap;
   Slip s;
   std::vector<double> t, vx, vz;
@@ -229,7 +197,7 @@ TEST(Creep, HalfTheTorsionLimitDoesNotTurnThePressedBox) {
   for (const double dt : {0.25e-3, 1e-3, 4e-3}) {
     LoadDesc load;
     load.torque = Vec3(0, 0.5 * limit, 0);
-    World w(pressedBox(ring, 0.0, load));
+    World w(pressed_box::scene(ring, 0.0, load));
     run(w, dt, kLoadStart + 1.0, [] {});
     const Eigen::Quaterniond q0 = w.bodyPose(1).orientation;
     run(w, dt, kLoadStart + 5.0, [] {});

@@ -12,6 +12,7 @@
 #include "sim/god_finger.hpp"
 #include "sim/primitives.hpp"
 #include "sim/world.hpp"
+#include "tests/sim/pressed_box.hpp"
 
 namespace {
 std::atomic<long> g_allocations{0};
@@ -64,32 +65,12 @@ TEST(PatchAllocation, NoHeapAllocationInSteadyState) {
 // A box on a table pressed by one finger and turned by a torque beyond its torsion limit (the
 // patch, its friction block and, per solver, its points or aggregate block every step).
 long allocationsOfPressedBoxSteps(ContactSolver solver) {
-  SceneDesc s;
-  s.world.contact_solver = solver;
-  BodyDesc table;
-  table.name = "table";
-  table.shape = ShapeKind::kPlane;
-  table.mass = 0.0;
-  BodyDesc box;
-  box.name = "box";
-  box.half_extents = Vec3(0.04, 0.02, 0.04);
-  box.mass = 1.0;
-  box.friction = 0.0;
-  box.position = Vec3(0, 0.02, 0);
-  s.bodies = {table, box};
-  FingerDesc f;
-  f.name = "index";
-  f.patch.n_sgo = 16;
-  const double rest = 0.04 + f.proxy.radius;
-  f.device.interpolation = Interpolation::kLinear;
-  f.device.keyframes = {{0.0, Vec3(0, rest + 0.01, 0)}, {0.3, Vec3(0, rest - 0.006, 0)}};
-  s.fingers = {f};
+  PatchSettings patch;
+  patch.n_sgo = 16;
   LoadDesc load;
-  load.body = 1;
-  load.body_name = "box";
   load.torque = Vec3(0, 0.1, 0);
-  load.start = 0.4;
-  s.loads = {load};
+  SceneDesc s = pressed_box::scene(patch, 0.0, load);
+  s.world.contact_solver = solver;
   btAlignedAllocSetCustom(countedAlloc, std::free);
   const long before_world = g_allocations.load();
   World w(s);
@@ -98,7 +79,7 @@ long allocationsOfPressedBoxSteps(ContactSolver solver) {
     const DeviceSample d = s.fingers[0].device.sample(w.time());
     w.step(1e-3, std::span(&d, 1));
   };
-  for (int i = 0; i < 500; ++i) step();  // pressed, turning: storage at its working size
+  for (int i = 0; i < 700; ++i) step();  // pressed, turning: storage at its working size
   const long before = g_allocations.load();
   for (int i = 0; i < 500; ++i) step();
   EXPECT_EQ(w.sgoCount(0), 16);
