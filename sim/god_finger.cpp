@@ -2,6 +2,7 @@
 
 #include <Eigen/Geometry>
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 #include <numbers>
@@ -16,6 +17,8 @@ constexpr double kScoreTolerance = 1e-9;
 // A walk direction this close to parallel to an edge (dot product with the edge's inward
 // normal) runs along it rather than out through it.
 constexpr double kParallelRate = 1e-9;
+// A walk direction whose squared length is this far from 1 is projected and normalized again.
+constexpr double kUnitDrift = 1e-12;
 // A walk may cross this many edges per mean edge length of its start face in d_i, on top of
 // PatchSettings::max_face_crossings: a straight line crosses at most about 4 edges per edge
 // length of a regular triangulation, so a fine mesh keeps the full radius.
@@ -178,6 +181,15 @@ Vec3 onSegment(const Vec3& p, const Vec3& a, const Vec3& b) {
   return a + std::clamp((p - a).dot(e) / len2, 0.0, 1.0) * e;
 }
 
+// Projects dir onto the plane of unit normal nf and normalizes it; false if nothing is left.
+bool inPlane(const Vec3& nf, Vec3& dir) {
+  dir -= dir.dot(nf) * nf;
+  const double len = dir.norm();
+  if (!(len > kDegenerateLength)) return false;
+  dir /= len;
+  return true;
+}
+
 // Algorithm 1: walks distance d from the hit along dir, crossing edges while the next face stays
 // within the angular limit. Appends the path; returns the SGO.
 Sgo walk(const WalkContext& ctx, const Start& start, const Vec3& from, double d, Patch& out) {
@@ -188,25 +200,25 @@ Sgo walk(const WalkContext& ctx, const Start& start, const Vec3& from, double d,
   const double extra = std::min(kMaxCrossings, std::ceil(kCrossingsPerEdgeLength * d / m.meanEdge(start.face)));
   const long budget = ctx.s.max_face_crossings + static_cast<long>(extra);
   out.path_points.push_back(from);
+  // r_i <- projection of r_i on f (Alg. 1, line 3), kept unit length. Carried over an edge
+  // below, a unit direction in f's plane stays unit and in the neighbour's plane (its parts
+  // along the edge and across it, on orthonormal in-plane axes), so only the start projects.
+  if (!inPlane(m.faceNormal(sgo.face), dir)) return sgo.stop = WalkStop::kDegenerate, sgo;
+  if (remaining <= 0.0) return sgo;
   for (long crossings = 0;; ++crossings) {
-    // r_i <- projection of r_i on f (Alg. 1, line 3), kept unit length.
-    const Vec3& nf = m.faceNormal(sgo.face);
-    dir -= dir.dot(nf) * nf;
-    const double len = dir.norm();
-    if (!(len > kDegenerateLength)) return sgo.stop = WalkStop::kDegenerate, sgo;
-    dir /= len;
-    if (remaining <= 0.0) return sgo;
-    // Does d_i * r_i cross an edge of f? First edge the ray leaves through.
-    double t_exit = std::numeric_limits<double>::infinity();
+    // Does d_i * r_i cross an edge of f? First edge the ray leaves through: the smallest
+    // gap / speed, compared as products (speeds are positive) with one division at the end.
+    double gap_exit = 1.0, speed_exit = 0.0;
     int k_exit = -1;
     for (int k = 0; k < 3; ++k) {
       const Vec3& in = m.edgeInwardNormal(sgo.face, k);
-      const double rate = dir.dot(in);
-      if (rate >= -kParallelRate) continue;
+      const double speed = -dir.dot(in);
+      if (speed <= kParallelRate) continue;
       const double gap = std::max(0.0, (sgo.position - m.corner(sgo.face, k)).dot(in));
-      if (const double t = gap / -rate; t < t_exit) t_exit = t, k_exit = k;
+      if (k_exit < 0 || gap * speed_exit < gap_exit * speed) gap_exit = gap, speed_exit = speed, k_exit = k;
     }
     if (k_exit < 0) return sgo.stop = WalkStop::kDegenerate, sgo;
+    const double t_exit = gap_exit / speed_exit;
     if (t_exit >= remaining) {  // ends inside f: p_SGO += d_i r_i
       sgo.position += remaining * dir;
       sgo.walked += remaining;
@@ -228,10 +240,13 @@ Sgo walk(const WalkContext& ctx, const Start& start, const Vec3& from, double d,
     // Carry the direction over the edge: keep its component along the edge, turn the rest into
     // the neighbour (the unfolded straight line; equals the projection to first order).
     const Vec3& edge = m.edgeDirection(sgo.face, k_exit);
-    const double across = -dir.dot(m.edgeInwardNormal(sgo.face, k_exit));
-    dir = dir.dot(edge) * edge + across * m.edgeInwardNormal(link.face, link.edge);
+    dir = dir.dot(edge) * edge + speed_exit * m.edgeInwardNormal(link.face, link.edge);
     sgo.face = link.face;
     side = next_side;
+    // A sliver's or degenerate face's axes are not orthonormal to rounding: project again.
+    if (std::abs(dir.squaredNorm() - 1.0) > kUnitDrift && !inPlane(m.faceNormal(sgo.face), dir)) {
+      return sgo.stop = WalkStop::kDegenerate, sgo;
+    }
   }
 }
 
@@ -350,6 +365,25 @@ double stretched(double radius, const Vec3& v_tangential, const Vec3& radial_uni
   return radius * std::exp(std::clamp(x, -logs.bound, logs.bound));
 }
 
+// cos and sin of the ring's angles 2 pi i / n, kept per thread for the last n asked for.
+struct RingAngles {
+  int n = 0;
+  std::array<double, kMaxSgo> c{}, s{};
+};
+
+const RingAngles& ringAngles(int n) {
+  thread_local RingAngles ring;
+  if (ring.n != n) {
+    for (int i = 0; i < n; ++i) {
+      const double angle = 2.0 * std::numbers::pi * i / n;
+      ring.c[static_cast<std::size_t>(i)] = std::cos(angle);
+      ring.s[static_cast<std::size_t>(i)] = std::sin(angle);
+    }
+    ring.n = n;
+  }
+  return ring;
+}
+
 }  // namespace
 
 void clearPatch(Patch& patch) { resetPatch(0, patch); }
@@ -377,7 +411,10 @@ SurfacePoint contactFeature(const Mesh& m, const PatchContact& c, double tol) {
   // The feature lies within the rounding of p: an edge or corner of a face around the hit
   // face's corners (the hit face itself need not touch it).
   SurfacePoint edge_hit;
-  double edge_distance = std::numeric_limits<double>::infinity();
+  double edge_distance2 = std::numeric_limits<double>::infinity();
+  // Distances compared squared: most candidates are far and cost no square root.
+  const double corner_reach = std::numbers::sqrt2 * c.rounding + tol, edge_reach = c.rounding + tol;
+  const double corner_reach2 = corner_reach * corner_reach, edge_reach2 = edge_reach * edge_reach;
   for (int hk = 0; hk < 3; ++hk) {
     const std::int32_t hv = m.triangles()[hit.face][hk];
     for (const std::int32_t* g = m.vertexFacesBegin(hv); g != m.vertexFacesEnd(hv); ++g) {
@@ -385,7 +422,7 @@ SurfacePoint contactFeature(const Mesh& m, const PatchContact& c, double tol) {
         // A rounded corner: n in the interior of the vertex's normal cone, where every edge
         // leaving the vertex points away from n.
         const Vec3& v = m.corner(*g, k);
-        if ((p - v).norm() <= std::numbers::sqrt2 * c.rounding + tol) {
+        if ((p - v).squaredNorm() <= corner_reach2) {
           const std::int32_t vi = m.triangles()[*g][k];
           bool inside = true;
           for (const std::int32_t* h = m.vertexFacesBegin(vi); h != m.vertexFacesEnd(vi) && inside; ++h) {
@@ -402,11 +439,11 @@ SurfacePoint contactFeature(const Mesh& m, const PatchContact& c, double tol) {
         if (link.face < 0) continue;
         const Vec3 e = m.corner(*g, (k + 1) % 3) - v;
         const Vec3 on_edge = v + std::clamp((p - v).dot(e) / e.squaredNorm(), 0.0, 1.0) * e;
-        const double distance = (p - on_edge).norm();
-        if (distance > c.rounding + tol || distance >= edge_distance) continue;
+        const double distance2 = (p - on_edge).squaredNorm();
+        if (distance2 > edge_reach2 || distance2 >= edge_distance2) continue;
         if (n.dot(m.edgeInwardNormal(*g, k)) < turned && n.dot(m.edgeInwardNormal(link.face, link.edge)) < turned) {
-          edge_hit = {*g, Feature::kEdge, k, on_edge, distance};
-          edge_distance = distance;
+          edge_hit = {*g, Feature::kEdge, k, on_edge, std::sqrt(distance2)};
+          edge_distance2 = distance2;
         }
       }
     }
@@ -462,9 +499,9 @@ void computePatch(const Mesh& mesh, const PatchContact& contact, const Vec3& v,
   const StretchLogs logs(s);
   // Step 4: per radial vector, its start face (Fig. 3), Eq. 2 distance and the walk (Alg. 1).
   out.path_offsets.push_back(0);
+  const RingAngles& ring = ringAngles(s.n_sgo);
   for (int i = 0; i < s.n_sgo; ++i) {
-    const double angle = 2.0 * std::numbers::pi * i / s.n_sgo;
-    const Vec3 r = std::cos(angle) * t1 + std::sin(angle) * t2;
+    const Vec3 r = ring.c[static_cast<std::size_t>(i)] * t1 + ring.s[static_cast<std::size_t>(i)] * t2;
     const Start start = startFace(ctx, out.hit, side, r);
     const bool usable = start.usable && start.dir.norm() > kDegenerateLength;
     out.radial.push_back(usable ? start.dir : r);
