@@ -3,6 +3,8 @@
 #include <nlohmann/json.hpp>
 
 #include <charconv>
+#include <csignal>
+#include <optional>
 #include <cmath>
 #include <filesystem>
 #include <istream>
@@ -10,6 +12,7 @@
 #include <sstream>
 #include <vector>
 
+#include "app/interrupt.hpp"
 #include "app/patch_json.hpp"
 #include "app/scene_file.hpp"
 #include "app/trace_writer.hpp"
@@ -52,7 +55,7 @@ class Live {
     } else if (command == "step") {
       arguments(0, 1, "step [N]");
       const long n = w.size() > 1 ? wholeNumber(w[1], 1, 10000000, "step: N") : 1;
-      for (long i = 0; i < n; ++i) step();
+      for (long i = 0; i < n && !(options_.stop_on_interrupt && interruptSignal() != 0); ++i) step();
       answerState();
     } else if (command == "state") {
       arguments(0, 0, "no argument");
@@ -73,6 +76,8 @@ class Live {
     }
     return true;
   }
+
+  double time() const { return world_.time(); }
 
   // `text` as a whole number in lo..hi, or throws naming `what`.
   static long wholeNumber(const std::string& text, long lo, long hi, const std::string& what) {
@@ -192,10 +197,13 @@ class Live {
 
 int runLive(const LiveOptions& options, std::istream& in, std::ostream& out) {
   Live live(options, out);
+  std::optional<InterruptScope> interrupt;
+  if (options.stop_on_interrupt) interrupt.emplace();
   out << "ok ready (help lists the commands)" << std::endl;
   int failures = 0, number = 0;
   std::string line;
-  while (std::getline(in, line)) {
+  const auto interrupted = [&] { return interrupt && interruptSignal() != 0; };
+  while (!interrupted() && std::getline(in, line)) {
     ++number;
     bool go_on = true;
     try {
@@ -206,6 +214,11 @@ int runLive(const LiveOptions& options, std::istream& in, std::ostream& out) {
     }
     out.flush();
     if (!go_on) break;
+  }
+  if (interrupted()) {
+    out << "error: interrupted by " << (interruptSignal() == SIGTERM ? "SIGTERM" : "SIGINT") << " at t = "
+        << live.time() << " s; the session ends" << std::endl;
+    return interruptedStatus();
   }
   return failures == 0 ? 0 : 1;
 }

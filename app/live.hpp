@@ -15,6 +15,10 @@ struct LiveOptions {
   std::vector<std::string> overrides;  ///< --set given on the command line
   std::string out_dir = "out";         ///< snapshots go to out_dir/contacts/
   std::string input_name = "<stdin>";  ///< names the input in error messages
+  /// Ctrl-C or SIGTERM end the session: a running `step N` stops at the next step boundary and
+  /// answers, then the session ends with status 130 (143 for SIGTERM). The command line sets
+  /// it; tests and embedding keep their own signal handling.
+  bool stop_on_interrupt = false;
 };
 
 /// Runs commands from `in` until `quit` or end of input, answering each on `out`:
@@ -27,7 +31,7 @@ struct LiveOptions {
 ///   snapshot [NAME]               contacts JSON to out_dir/contacts/NAME.json
 ///   help, quit
 /// Answers start with "ok" or "error: INPUT:LINE: ...". Returns 0 when every command
-/// succeeded, 1 otherwise. Throws InputError when the scene itself cannot be loaded.
+/// succeeded, 1 otherwise, 130 / 143 when interrupted (see stop_on_interrupt). Throws InputError when the scene itself cannot be loaded.
 int runLive(const LiveOptions& options, std::istream& in, std::ostream& out);
 
 }  // namespace gf::app

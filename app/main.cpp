@@ -2,6 +2,7 @@
 // scenes, or drive a live session from standard input.
 #include <CLI/CLI.hpp>
 
+#include <csignal>
 #include <cstdio>
 #include <exception>
 #include <filesystem>
@@ -9,6 +10,7 @@
 #include <thread>
 
 #include "app/check.hpp"
+#include "app/interrupt.hpp"
 #include "app/live.hpp"
 #include "app/patch_json.hpp"
 #include "app/scene_file.hpp"
@@ -36,6 +38,8 @@ struct RunArgs {
   std::string expectations = "check";
   bool no_fifo = false, no_yield = false;
   double spin_us = 0.0;
+  bool quiet = false;
+  std::vector<std::string> command_line;
 };
 
 const gf::sim::Setting<gf::sim::FingerDesc>& fingerSetting(std::string_view name) {
@@ -81,6 +85,7 @@ void addRun(CLI::App& app, RunArgs& a) {
   run->add_option("--spin-us", a.spin_us, "Realtime: sleep until this long before each step's deadline, then "
                                           "spin (us; default 0: sleep)")
       ->check(CLI::Range(0.0, 1000.0));
+  run->add_flag("--quiet", a.quiet, "No progress lines on stderr");
   run->add_flag("--frames", a.frames, "Write frames/000000.png ... at 60 frames per simulated second");
   run->add_option("--video", a.video, "Write an MP4 of the frames (H.264, via ffmpeg)");
   run->add_option("--camera", a.camera, "Camera of the scene to render (default: its first)");
@@ -135,19 +140,21 @@ int runCommand(const RunArgs& a) {
   if (!a.video.empty() && std::filesystem::is_directory(a.video)) {
     throw InputError("command line", 0, 0, "--video", a.video + " is a folder; give a file such as out.mp4");
   }
-  gf::app::SessionOptions options{a.out, a.realtime, true, a.frames, a.video, a.camera};
+  gf::app::SessionOptions options{a.out, a.realtime, !a.quiet, a.frames, a.video, a.camera};
   std::vector<gf::app::ExpectFailure> failed;
   options.expect_failures = &failed;
   options.stop_on_interrupt = true;
   options.fifo = !a.no_fifo;
   options.yield_render = !a.no_yield;
   options.spin_us = a.spin_us;
+  options.command_line = a.command_line;
   const gf::sim::LoopStats stats = gf::app::runSession(session, options);
   std::printf("%s: %ld steps, step median %.1f us, p99 %.1f us; wrote %s/\n", session.scene.name.c_str(),
               stats.steps, stats.step_median_us, stats.step_p99_us, a.out.c_str());
   if (a.frames) std::printf("frames: %s/frames/\n", a.out.c_str());
   if (!a.video.empty()) std::printf("video: %s\n", a.video.c_str());
-  if (stats.stopped) return 130;  // Ctrl-C: the outputs hold the time reached
+  // Ctrl-C or SIGTERM: the outputs hold the time reached; the shell's status for the signal.
+  if (stats.stopped) return gf::app::interruptedStatus();
   // 3: the run was fine, the scene's expectations were not.
   return failed.empty() || a.expectations == "report" ? 0 : 3;
 }
@@ -293,7 +300,7 @@ int listCommand() {
 }  // namespace
 
 int main(int argc, char** argv) {
-  CLI::App app{"godfinger: god-finger contact areas for haptic interaction on Bullet"};
+  CLI::App app{"godfinger: god-finger contact areas for haptic interaction on Bullet", "godfinger"};
   app.require_subcommand(1);
   RunArgs run_args;
   addRun(app, run_args);
@@ -319,6 +326,14 @@ int main(int argc, char** argv) {
   std::string shots_out = "screenshots";
   app.add_subcommand("screenshots", "Render the reference pictures (visual-regression goldens) into --out")
       ->add_option("--out", shots_out, "Folder (default: screenshots, the goldens when run from the repository)");
+  if (argc == 1) {  // bare `godfinger`: the usage and the command list
+    std::fputs(app.help().c_str(), stdout);
+    return 1;
+  }
+  // A reader that went away (ffmpeg, a closed pipe) is a write error we report, not a signal
+  // that kills the run before it writes what it reached.
+  std::signal(SIGPIPE, SIG_IGN);
+  run_args.command_line.assign(argv, argv + argc);
   CLI11_PARSE(app, argc, argv);
   try {
     if (app.got_subcommand("list")) return listCommand();
@@ -331,6 +346,7 @@ int main(int argc, char** argv) {
     }
     if (app.got_subcommand("live")) {
       live.scene_path = gf::app::resolveScenePath(live.scene_path);
+      live.stop_on_interrupt = true;
       return gf::app::runLive(live, std::cin, std::cout);
     }
     return runCommand(run_args);

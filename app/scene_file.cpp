@@ -463,6 +463,27 @@ std::size_t arrayIndex(const toml::array& a, const std::string& part, const std:
 
 // "--set a.b.c=VALUE": VALUE is read as TOML, or as a string when it is not valid TOML. A part
 // of the path may be an element index of an array (`loads.0.torque`).
+// `--set fingers.NAME.FIELD=...` or `bodies.NAME.FIELD=...` for a NAME the scene lacks is a typo
+// unless it starts a new finger with its device or a new body with its shape: then it says so,
+// naming the fingers or bodies there are.
+void requireKnownOrNew(const toml::table& group, const std::vector<std::string>& parts, const std::string& where) {
+  struct Kind {
+    const char* group;
+    const char* what;
+    const char* defining;
+  };
+  static constexpr Kind kKinds[] = {{"fingers", "finger", "device"}, {"bodies", "body", "shape"}};
+  for (const Kind& k : kKinds) {
+    if (parts[0] != k.group || (parts.size() > 2 && parts[2] == k.defining)) continue;
+    std::string names;
+    for (const auto& [name, node] : group) names.append(names.empty() ? "" : ", ").append(name.str());
+    throw InputError(where, 0, 0, parts[0] + "." + parts[1],
+                     std::string("no such ") + k.what + " (the scene has: " + (names.empty() ? "none" : names) +
+                         "); a new " + k.what + " starts with its " + k.defining + ", e.g. --set " + parts[0] + "." +
+                         parts[1] + "." + k.defining + (parts[0] == "fingers" ? ".csv=FILE" : "=\"box\""));
+  }
+}
+
 void applyOverride(toml::table& root, const std::string& text) {
   const std::string where = "--set " + text;
   const std::size_t eq = text.find('=');
@@ -484,6 +505,7 @@ void applyOverride(toml::table& root, const std::string& text) {
       n = a->get(arrayIndex(*a, parts[i], where, walked));
     } else {
       n = at->as_table()->get(parts[i]);
+      if (!n && i == 1) requireKnownOrNew(*at->as_table(), parts, where);
       if (!n) n = at->as_table()->insert(parts[i], toml::table{}).first->second.as_table();
     }
     if (!n->is_table() && !n->is_array()) throw InputError(where, 0, 0, walked, "is not a table");

@@ -6,7 +6,11 @@
 #include <atomic>
 #include <chrono>
 #include <csignal>
+#include <cerrno>
+#include <cmath>
 #include <cstdio>
+#include <cstdint>
+#include <cstring>
 #include <filesystem>
 #include <memory>
 #include <optional>
@@ -14,6 +18,8 @@
 #include <unistd.h>
 
 #include "app/frame_driver.hpp"
+#include "app/interrupt.hpp"
+#include "godfinger_commit.hpp"
 #include "app/patch_json.hpp"
 #include "app/scene_file.hpp"
 #include "app/trace_writer.hpp"
@@ -35,6 +41,21 @@ nlohmann::json effectsJson(const sim::EffectSet& e) {
   nlohmann::json out = nlohmann::json::object();
   for (const sim::EffectSwitch& s : sim::effectSwitches()) out[std::string(s.name)] = e.*s.on;
   return out;
+}
+
+// 64-bit FNV-1a of a file's bytes as 16 hex digits; empty when it cannot be read.
+std::string fileHash(const std::string& path) {
+  std::FILE* f = std::fopen(path.c_str(), "rb");
+  if (!f) return {};
+  std::uint64_t h = 0xcbf29ce484222325ull;
+  unsigned char buffer[65536];
+  for (std::size_t n; (n = std::fread(buffer, 1, sizeof buffer, f)) > 0;) {
+    for (std::size_t i = 0; i < n; ++i) h = (h ^ buffer[i]) * 0x100000001b3ull;
+  }
+  std::fclose(f);
+  char text[17];
+  std::snprintf(text, sizeof text, "%016llx", static_cast<unsigned long long>(h));
+  return text;
 }
 
 std::string hostName() {
@@ -155,6 +176,9 @@ std::string contactFileName(double t) {
 
 }  // namespace
 
+std::string versionString() { return GF_VERSION; }
+std::string commitString() { return GF_GIT_COMMIT; }
+
 render::Camera sessionCamera(const SessionDesc& session, const std::string& name) {
   if (name.empty() && !session.cameras.empty()) return session.cameras.front();
   for (const CameraDesc& c : session.cameras) {
@@ -248,41 +272,131 @@ nlohmann::json changesJson(const std::vector<AppliedChange>& changes, const sim:
 
 }  // namespace
 
-// Ctrl-C (SIGINT) or SIGTERM during a run: the haptic loop stops before its next step and the
-// run writes its outputs for the time it reached, marked interrupted. The handler is installed
-// for the loop only and resets itself, so a second Ctrl-C ends the process at once.
-std::atomic<bool> g_interrupt{false};
 
-extern "C" void onInterrupt(int) { g_interrupt.store(true, std::memory_order_relaxed); }
 
-class InterruptScope {
+namespace {
+
+// Creates `folder` (and its parents) and checks that a file can be written in it, before any
+// step runs. Throws std::runtime_error naming the folder and `what` it is for.
+void requireWritableFolder(const fs::path& folder, const std::string& what) {
+  std::error_code ec;
+  fs::create_directories(folder, ec);
+  if (ec || !fs::is_directory(folder)) {
+    throw std::runtime_error(folder.string() + ": cannot create the folder for " + what +
+                             (ec ? ": " + ec.message() : ": a file is in the way"));
+  }
+  const fs::path probe = folder / (".godfinger-probe-" + std::to_string(getpid()));
+  std::FILE* f = std::fopen(probe.c_str(), "wb");
+  if (!f) throw std::runtime_error(folder.string() + ": cannot write " + what + " there: " + std::strerror(errno));
+  std::fclose(f);
+  fs::remove(probe, ec);
+}
+
+// True for the names of what a run writes into a folder of its own output kinds: the frame
+// sequence (000000.png ...), contact snapshots and close-ups (t0.500.json, t0.500-left.png),
+// and the temporary names they are written under.
+bool isFrameName(const std::string& name) {
+  std::string stem = name;
+  for (const char* suffix : {".part", ".tmp"}) {
+    if (stem.ends_with(suffix)) stem.resize(stem.size() - std::strlen(suffix));
+  }
+  return stem.size() == 10 && stem.ends_with(".png") &&
+         std::all_of(stem.begin(), stem.begin() + 6, [](char c) { return c >= '0' && c <= '9'; });
+}
+
+bool isContactName(const std::string& name) {
+  std::string stem = name;
+  for (const char* suffix : {".part", ".tmp"}) {
+    if (stem.ends_with(suffix)) stem.resize(stem.size() - std::strlen(suffix));
+  }
+  return stem.size() > 2 && stem[0] == 't' && stem[1] >= '0' && stem[1] <= '9' &&
+         (stem.ends_with(".json") || stem.ends_with(".png"));
+}
+
+// A run owns its output folder: what an earlier run left of this run's kinds of output goes
+// before anything is written, so the folder shows one run. Nothing else is touched.
+void clearEarlierOutputs(const fs::path& dir) {
+  std::error_code ec;
+  for (const char* name : {"trace.csv", "forces.csv", "forces.png", "summary.json"}) {
+    for (const char* suffix : {"", ".tmp", ".part"}) fs::remove(dir / (std::string(name) + suffix), ec);
+  }
+  const auto sweep = [&](const fs::path& folder, bool (*ours)(const std::string&)) {
+    if (!fs::is_directory(folder, ec)) return;
+    std::vector<fs::path> doomed;
+    for (const fs::directory_entry& e : fs::directory_iterator(folder, ec)) {
+      if (e.is_regular_file(ec) && ours(e.path().filename().string())) doomed.push_back(e.path());
+    }
+    for (const fs::path& p : doomed) {
+      if (!fs::remove(p, ec) && ec) throw std::runtime_error(p.string() + ": cannot remove an earlier run's file: " + ec.message());
+    }
+  };
+  sweep(dir / "frames", isFrameName);
+  sweep(dir / "contacts", isContactName);
+}
+
+// Progress on stderr: on a terminal one line rewritten in place once per simulated second;
+// otherwise (a log file, a pipe) a plain line at every tenth of the run, so logs stay readable.
+class Progress {
  public:
-  InterruptScope() {
-    g_interrupt.store(false);
-    struct sigaction a {};
-    a.sa_handler = onInterrupt;
-    a.sa_flags = SA_RESETHAND;
-    sigemptyset(&a.sa_mask);
-    sigaction(SIGINT, &a, &old_int_);
-    sigaction(SIGTERM, &a, &old_term_);
+  Progress(std::string name, double duration, long steps, bool on)
+      : name_(std::move(name)), duration_(duration), steps_(std::max(1L, steps)), on_(on),
+        terminal_(isatty(STDERR_FILENO) == 1), start_(std::chrono::steady_clock::now()) {}
+  void step(double t, long done) {
+    if (!on_) return;
+    const long every = terminal_ ? std::max(1L, steps_ / std::max(1L, std::lround(duration_))) : std::max(1L, steps_ / 10);
+    if (done % every != 0) return;
+    const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
+    std::fprintf(stderr, "%s[godfinger] %s: t = %.1f / %.1f s, %ld / %ld steps, ETA %.1f s%s", terminal_ ? "\r" : "",
+                 name_.c_str(), t, duration_, done, steps_, wall / static_cast<double>(done) * static_cast<double>(steps_ - done),
+                 terminal_ ? " " : "\n");
+    printed_ = true;
   }
-  ~InterruptScope() {
-    sigaction(SIGINT, &old_int_, nullptr);
-    sigaction(SIGTERM, &old_term_, nullptr);
+  void finish() {
+    if (on_ && terminal_ && printed_) std::fprintf(stderr, "\n");
   }
-  InterruptScope(const InterruptScope&) = delete;
-  InterruptScope& operator=(const InterruptScope&) = delete;
 
  private:
-  struct sigaction old_int_ {}, old_term_ {};
+  std::string name_;
+  double duration_;
+  long steps_;
+  bool on_, terminal_, printed_ = false;
+  std::chrono::steady_clock::time_point start_;
 };
+
+}  // namespace
+
+void prepareOutputs(const SessionOptions& options) {
+  const fs::path dir(options.out_dir);
+  if (!options.video_path.empty()) {
+    const fs::path video(options.video_path);
+    if (fs::is_directory(video)) throw std::runtime_error(options.video_path + " is a folder; give a file such as out.mp4");
+    requireWritableFolder(video.parent_path().empty() ? fs::path(".") : video.parent_path(), "the video");
+  }
+  requireWritableFolder(dir, "the run's outputs");
+  requireWritableFolder(dir / "contacts", "contact snapshots");
+  if (options.frames) requireWritableFolder(dir / "frames", "frames");
+  clearEarlierOutputs(dir);  // only once every path is known to work
+}
 
 sim::LoopStats runSession(const SessionDesc& session, const SessionOptions& options) {
   const sim::SceneDesc& scene = session.scene;
   const fs::path dir(options.out_dir);
-  std::error_code ec;
-  fs::create_directories(dir / "contacts", ec);
-  if (ec) throw std::runtime_error(options.out_dir + ": cannot create folder: " + ec.message());
+  prepareOutputs(options);
+  // Requests this run cannot carry out but that do not make it useless: said on stderr now and
+  // listed in summary.json.
+  std::vector<std::string> warnings;
+  for (double t : session.record.contact_times) {
+    if (t > scene.duration + 0.5 / scene.world.haptic_rate_hz) {
+      char text[160];
+      std::snprintf(text, sizeof text, "record.contacts: %g s is past the run's duration (%g s): no snapshot then", t,
+                    scene.duration);
+      warnings.emplace_back(text);
+    }
+  }
+  if (!options.camera.empty() && !options.frames && options.video_path.empty()) {
+    warnings.push_back("--camera " + options.camera + ": no --frames or --video, so nothing is drawn with it");
+  }
+  for (const std::string& w : warnings) std::fprintf(stderr, "%s: warning: %s\n", scene.name.c_str(), w.c_str());
   sim::World world(scene);
   const std::vector<sim::DeviceTrack> devices = sim::deviceTracks(scene);
   const double rate = scene.world.haptic_rate_hz, dt = 1.0 / rate;
@@ -305,8 +419,6 @@ sim::LoopStats runSession(const SessionDesc& session, const SessionOptions& opti
   sim::LiveTimings live;
   std::unique_ptr<FrameDriver> frames;
   if (stream) frames = std::make_unique<FrameDriver>(*renderer, 60.0, options.realtime, session.view.actions, &live);
-  const long report_every = std::max(1L, static_cast<long>(rate));  // once per simulated second
-  const auto start = std::chrono::steady_clock::now();
   long done = 0;
   sim::LoopSettings loop{rate, scene.duration,
                          options.realtime ? sim::ClockMode::kRealtime : sim::ClockMode::kOffline};
@@ -316,46 +428,85 @@ sim::LoopStats runSession(const SessionDesc& session, const SessionOptions& opti
   if (frames) frames->start(world);
   ExpectChecker expect(session.expect, world);
   std::optional<InterruptScope> interrupt;
-  if (options.stop_on_interrupt) {
-    interrupt.emplace();
-    loop.stop = &g_interrupt;
-  }
+  if (options.stop_on_interrupt) interrupt.emplace();
+  // The loop stops before its next step on a signal or when an output fails (a full disk, a
+  // dead ffmpeg): the run then writes what it reached and reports the failure.
+  std::atomic<bool> halt{false};
+  loop.stop = &halt;
+  std::string failure;
+  const auto failed_output = [&](const std::exception& e) {
+    if (failure.empty()) failure = e.what();
+    halt.store(true, std::memory_order_relaxed);
+  };
+  Progress progress(scene.name, scene.duration, steps, options.progress);
   const sim::LoopStats stats = sim::runHapticLoop(world, devices, loop, [&](const sim::World& w) {
+    if (interrupt && interruptSignal() != 0) halt.store(true, std::memory_order_relaxed);
     expect.afterStep(w);
-    if (trace) trace->record(w);
-    if (!forces.empty()) forces.record(w, dt);
-    if (frames) frames->afterStep(world, dt);
-    while (!pending.empty() && pending.back() <= w.time() + 0.5 * dt) {
-      w.snapshot(contact_snaps.emplace_back(pending.back(), sim::Snapshot{}).second);
-      if (closeups) renderer->submitCloseUps(contact_snaps.back().second,
-                                             (dir / "contacts" / contactFileName(pending.back())).string());
-      pending.pop_back();
+    try {
+      if (trace) trace->record(w);
+      if (!forces.empty()) forces.record(w, dt);
+      if (frames) frames->afterStep(world, dt);
+      while (!pending.empty() && pending.back() <= w.time() + 0.5 * dt) {
+        w.snapshot(contact_snaps.emplace_back(pending.back(), sim::Snapshot{}).second);
+        if (closeups) renderer->submitCloseUps(contact_snaps.back().second,
+                                               (dir / "contacts" / contactFileName(pending.back())).string());
+        pending.pop_back();
+      }
+    } catch (const std::exception& e) {
+      failed_output(e);
     }
-    if (options.progress && ++done % report_every == 0) {
-      const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-      std::fprintf(stderr, "\r[godfinger] %s: t = %.1f / %.1f s, %ld / %ld steps, ETA %.1f s ",
-                   scene.name.c_str(), w.time(), scene.duration, done, steps,
-                   wall / done * (steps - done));
-    }
+    progress.step(w.time(), ++done);
   });
   interrupt.reset();
-  if (options.progress) std::fprintf(stderr, "\n");
-  if (stats.stopped) {
+  progress.finish();
+  const bool interrupted = stats.stopped && failure.empty();
+  if (interrupted) {
     std::fprintf(stderr, "%s: interrupted at t = %.3f s; writing the outputs of the time reached\n",
                  scene.name.c_str(), world.time());
+  } else if (!failure.empty()) {
+    std::fprintf(stderr, "%s: stopped at t = %.3f s: %s; writing the outputs of the time reached\n",
+                 scene.name.c_str(), world.time(), failure.c_str());
   }
-  if (trace) trace->close();
-  forces.close();
+  // Each output is finished on its own: one that fails does not cost the others.
+  const auto finish = [&](auto&& write) {
+    try {
+      write();
+    } catch (const std::exception& e) {
+      if (failure == e.what()) return;  // the failure that stopped the run, reported above
+      if (failure.empty()) failure = e.what();
+      std::fprintf(stderr, "%s: %s\n", scene.name.c_str(), e.what());
+    }
+  };
+  if (trace) finish([&] { trace->close(); });
+  finish([&] { forces.close(); });
   for (const auto& [t, snap] : contact_snaps) {
-    writeFileAtomically((dir / "contacts" / (contactFileName(t) + ".json")).string(),
-                        contactsJson(snap, scene).dump(1) + "\n");
+    finish([&] {
+      writeFileAtomically((dir / "contacts" / (contactFileName(t) + ".json")).string(),
+                          contactsJson(snap, scene).dump(1) + "\n");
+    });
   }
-  // The chart reruns the whole session with god-objects: not after a Ctrl-C.
-  if (session.record.force_chart && !stats.stopped) writeForceChart(session, forces, *renderer, dir / "forces.png");
+  // The chart reruns the whole session with god-objects: not after a Ctrl-C or a failure.
+  if (session.record.force_chart && !stats.stopped) {
+    finish([&] { writeForceChart(session, forces, *renderer, dir / "forces.png"); });
+  }
   nlohmann::json summary = summaryJson(session, world, stats, options.realtime);
+  summary["interrupted"] = interrupted;
+  summary["time_reached_s"] = world.time();
+  if (interrupted) summary["signal"] = interruptSignal() == SIGTERM ? "SIGTERM" : "SIGINT";
   const std::vector<ExpectFailure> failed = expect.finish(world);
   for (const ExpectFailure& f : failed) std::fprintf(stderr, "%s: %s\n", scene.name.c_str(), f.text().c_str());
-  summary["expectations"] = {{"checks", expect.json()}, {"failed", failed.size()}};
+  const nlohmann::json checks = expect.json();
+  summary["expectations"] = {{"checks", checks}, {"failed", failed.size()}};
+  // What made this result: the build, the command, the scene file's bytes, and the scene's
+  // headline measures (its checks' measured values) at the top for a quick look.
+  summary["godfinger"] = {{"version", versionString()}, {"commit", commitString()}};
+  summary["command_line"] = options.command_line;
+  summary["scene_file_fnv1a64"] = fileHash(session.source);
+  nlohmann::json measures = nlohmann::json::object();
+  for (const nlohmann::json& c : checks) {
+    if (c["checked"].get<bool>()) measures[c["name"].get<std::string>()] = c["worst"];
+  }
+  summary["measures"] = measures;
   if (world.counters().nan_recoveries > 0) {  // loud, whatever the scene expects
     std::fprintf(stderr, "%s: warning: %ld steps were not finite and were rolled back\n", scene.name.c_str(),
                  world.counters().nan_recoveries);
@@ -372,10 +523,22 @@ sim::LoopStats runSession(const SessionDesc& session, const SessionOptions& opti
                            {"late_per_second", stats.late_per_second}};
   }
   if (renderer) {
-    summary["render"] = renderJson(renderer->finish(), frames ? frames->frames() : 0);
+    finish([&] {
+      render::RenderStats r;
+      try {
+        r = renderer->finish();
+      } catch (...) {
+        summary["render"] = {{"frames_published", frames ? frames->frames() : 0}};
+        throw;
+      }
+      summary["render"] = renderJson(std::move(r), frames ? frames->frames() : 0);
+    });
     if (frames) summary["overlay_changes"] = changesJson(frames->changes(), scene);
   }
+  if (!failure.empty()) summary["error"] = failure;
+  summary["warnings"] = warnings;
   writeFileAtomically((dir / "summary.json").string(), summary.dump(2) + "\n");
+  if (!failure.empty()) throw std::runtime_error(failure + " (the outputs hold t = " + std::to_string(world.time()) + " s)");
   return stats;
 }
 

@@ -2,6 +2,7 @@
 #pragma once
 
 #include <string>
+#include <vector>
 
 #include "app/session_desc.hpp"
 #include "render/render_thread.hpp"
@@ -31,7 +32,19 @@ struct SessionOptions {
   /// Realtime: the render thread, its encoders and llvmpipe's workers run at SCHED_IDLE so the
   /// haptic loop preempts them even at normal priority (`run --no-yield` turns it off).
   bool yield_render = true;
+  /// The command line that started the run, recorded in summary.json (empty: not recorded).
+  std::vector<std::string> command_line{};
 };
+
+/// The version and commit of this build ("0.1.0", "1a2b3c4d5e6f" or "...+dirty" or "unknown").
+std::string versionString();
+std::string commitString();
+
+/// Checks the run's output paths before any step (folders created, files writable there) and
+/// removes what an earlier run left in out_dir of the kinds of output a run writes (frames,
+/// contact snapshots and close-ups, trace.csv, forces.csv, forces.png, summary.json and their
+/// temporary names), nothing else. Throws std::runtime_error naming the path. runSession calls it.
+void prepareOutputs(const SessionOptions& options);
 
 /// The camera called `name` in the session (the first when empty; a default view of the scene
 /// when it has none). Throws InputError naming the camera when there is no such camera.
@@ -45,7 +58,9 @@ render::FrameOutputSettings frameSettings(const SessionDesc& session, const Sess
 /// Every file is written whole through a rename, so an earlier run's file is replaced only by a
 /// complete one. Returns the loop statistics. Throws std::runtime_error (naming the path) on
 /// I/O failure. Frames (options.frames, options.video_path) are drawn by a render thread, at
-/// every 1/60 s of simulated time; summary.json then holds the render timings.
+/// every 1/60 s of simulated time; summary.json then holds the render timings. When an output
+/// fails during the run (a full disk, a dead ffmpeg) the loop stops, every other output is
+/// written for the time reached, summary.json records the error, and the error is thrown.
 sim::LoopStats runSession(const SessionDesc& session, const SessionOptions& options);
 
 }  // namespace gf::app

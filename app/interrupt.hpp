@@ -1,0 +1,25 @@
+// Ctrl-C (SIGINT) and SIGTERM for the commands that stop at a step boundary and finish their
+// outputs (`run`, `live`).
+#pragma once
+
+namespace gf::app {
+
+/// While alive, SIGINT and SIGTERM record their signal instead of ending the process; each
+/// handler resets itself, so a second Ctrl-C ends the process at once. Blocking reads are not
+/// restarted after the signal (a `live` session waiting on its input stops). One at a time.
+class InterruptScope {
+ public:
+  InterruptScope();
+  ~InterruptScope();
+  InterruptScope(const InterruptScope&) = delete;
+  InterruptScope& operator=(const InterruptScope&) = delete;
+};
+
+/// The signal recorded since the last InterruptScope began (SIGINT or SIGTERM), 0 if none.
+/// Safe to poll from any thread.
+int interruptSignal();
+
+/// The shell's exit status for a run stopped by interruptSignal(): 128 + the signal (130, 143).
+int interruptedStatus();
+
+}  // namespace gf::app

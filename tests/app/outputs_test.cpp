@@ -1,0 +1,308 @@
+// What a run leaves behind when the user makes a mistake or stops it: every output path checked
+// before the first step, one run per output folder, Ctrl-C / SIGTERM / a dead ffmpeg ending with
+// valid files for the time reached, and requests that would do nothing said out loud.
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include <csignal>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include <sys/wait.h>
+
+namespace gf::app {
+namespace {
+
+namespace fs = std::filesystem;
+
+const std::string kBin = std::string(GF_BINARY_DIR) + "/godfinger";
+const std::string kFig8 = std::string(GF_SOURCE_DIR) + "/assets/scenes/fig8-pinch-oscillation.toml";
+
+// A fresh, empty folder under the temporary directory.
+fs::path freshFolder(const std::string& name) {
+  const fs::path dir = fs::temp_directory_path() / name;
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  return dir;
+}
+
+// The exit status of a shell command (the signal's 128 + n when one ended it).
+int exitStatus(const std::string& command) {
+  const int status = std::system(command.c_str());
+  if (status == -1) return -1;
+  if (WIFSIGNALED(status)) return 128 + WTERMSIG(status);
+  return WEXITSTATUS(status);
+}
+
+std::string readFile(const fs::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::stringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
+nlohmann::json summaryOf(const fs::path& dir) { return nlohmann::json::parse(readFile(dir / "summary.json")); }
+
+// The time of trace.csv's last row.
+double lastTraceTime(const fs::path& dir) {
+  std::ifstream in(dir / "trace.csv");
+  std::string line, last;
+  while (std::getline(in, line)) {
+    if (!line.empty()) last = line;
+  }
+  return std::stod(last.substr(0, last.find(',')));
+}
+
+long countFiles(const fs::path& dir) {
+  return fs::is_directory(dir) ? std::distance(fs::directory_iterator(dir), fs::directory_iterator{}) : 0;
+}
+
+// The frames and MP4's duration as ffprobe reads it (negative when it cannot read the file).
+double videoSeconds(const fs::path& video) {
+  const std::string command = "ffprobe -v error -show_entries format=duration -of csv=p=0 '" + video.string() + "'";
+  std::FILE* p = popen(command.c_str(), "r");
+  if (!p) return -1.0;
+  char line[128] = {};
+  const bool read = std::fgets(line, sizeof line, p) != nullptr;
+  const int status = pclose(p);
+  if (!read || status != 0) return -1.0;
+  return std::atof(line);
+}
+
+// Starts `command` (its stderr is what we read; stdout goes to `stdout_file`) and returns its pid
+// and a stream of its stderr lines.
+struct Child {
+  std::FILE* lines = nullptr;
+  pid_t pid = 0;
+};
+
+Child start(const std::string& command, const std::string& stdout_file) {
+  Child c;
+  c.lines = popen(("sh -c 'echo $$; exec " + command + " 2>&1 >" + stdout_file + "'").c_str(), "r");
+  if (!c.lines) return c;
+  char line[64] = {};
+  if (std::fgets(line, sizeof line, c.lines)) c.pid = static_cast<pid_t>(std::atol(line));
+  return c;
+}
+
+// Reads lines until one contains `text`; false at end of output.
+bool waitForLine(std::FILE* lines, const std::string& text) {
+  char line[4096];
+  while (std::fgets(line, sizeof line, lines)) {
+    if (std::string(line).find(text) != std::string::npos) return true;
+  }
+  return false;
+}
+
+// Reads the rest and returns the exit status (128 + signal when one ended it).
+int finish(Child& c) {
+  char line[4096];
+  while (std::fgets(line, sizeof line, c.lines)) {
+  }
+  const int status = pclose(c.lines);
+  if (WIFSIGNALED(status)) return 128 + WTERMSIG(status);
+  return WEXITSTATUS(status);
+}
+
+// `--video missing/x.mp4`: the folder is made before the run, and the run writes everything.
+TEST(Outputs, AVideoInAMissingFolderGetsTheFolder) {
+  const fs::path dir = freshFolder("gf_out_missing_video");
+  const fs::path video = dir / "missing" / "deeper" / "x.mp4";
+  ASSERT_EQ(exitStatus(kBin + " run " + kFig8 + " --quiet --duration 0.2 --out " + (dir / "run").string() +
+                       " --video " + video.string() + " > /dev/null 2>&1"),
+            0);
+  EXPECT_GT(videoSeconds(video), 0.15);
+  EXPECT_TRUE(fs::exists(dir / "run" / "summary.json"));
+  EXPECT_TRUE(fs::exists(dir / "run" / "trace.csv"));
+}
+
+// An output path that cannot be written is an error naming it before any step, and what an
+// earlier run wrote into --out stays.
+TEST(Outputs, AnUnwritablePathFailsBeforeAnyStepAndKeepsEarlierOutputs) {
+  const fs::path dir = freshFolder("gf_out_unwritable");
+  std::ofstream(dir / "trace.csv") << "earlier\n";
+  const fs::path log = dir / "stderr.txt";
+  EXPECT_EQ(exitStatus(kBin + " run " + kFig8 + " --quiet --duration 0.2 --out " + dir.string() +
+                       " --video /proc/godfinger/x.mp4 2> " + log.string() + " > /dev/null"),
+            1);
+  EXPECT_NE(readFile(log).find("/proc/godfinger"), std::string::npos) << readFile(log);
+  EXPECT_EQ(readFile(dir / "trace.csv"), "earlier\n");
+  EXPECT_FALSE(fs::exists(dir / "summary.json"));
+  // --out under a file: the same, naming the folder.
+  std::ofstream(dir / "a-file") << "x";
+  EXPECT_EQ(exitStatus(kBin + " run " + kFig8 + " --quiet --duration 0.2 --out " + (dir / "a-file" / "out").string() +
+                       " 2> " + log.string() + " > /dev/null"),
+            1);
+  EXPECT_NE(readFile(log).find("a-file"), std::string::npos) << readFile(log);
+}
+
+// ffmpeg dying during the run (here an ffmpeg that reads three frames and exits 1) is an error
+// message and exit 1, not a SIGPIPE death; trace.csv, forces.csv and summary.json hold the time
+// reached, and summary.json the error.
+TEST(Outputs, ADeadFfmpegIsAnErrorAndTheOtherOutputsKeepTheTimeReached) {
+  const fs::path dir = freshFolder("gf_out_dead_ffmpeg");
+  fs::create_directories(dir / "bin");
+  {
+    std::ofstream fake(dir / "bin" / "ffmpeg");
+    fake << "#!/bin/sh\nhead -c 8294400 > /dev/null\nexit 1\n";  // three 1280x720 RGB frames
+  }
+  fs::permissions(dir / "bin" / "ffmpeg", fs::perms::owner_all);
+  const fs::path out = dir / "run", log = dir / "stderr.txt";
+  EXPECT_EQ(exitStatus("PATH=" + (dir / "bin").string() + ":$PATH " + kBin + " run " + kFig8 +
+                       " --quiet --duration 2 --out " + out.string() + " --video " + (dir / "x.mp4").string() +
+                       " 2> " + log.string() + " > /dev/null"),
+            1);
+  const std::string said = readFile(log);
+  EXPECT_NE(said.find("ffmpeg stopped reading frames"), std::string::npos) << said;
+  const nlohmann::json summary = summaryOf(out);
+  EXPECT_NE(summary["error"].get<std::string>().find("ffmpeg"), std::string::npos);
+  EXPECT_FALSE(summary["interrupted"].get<bool>());
+  const double reached = summary["time_reached_s"].get<double>();
+  EXPECT_LT(reached, 2.0);
+  EXPECT_DOUBLE_EQ(lastTraceTime(out), reached);
+  EXPECT_TRUE(fs::exists(out / "forces.csv"));
+  EXPECT_FALSE(fs::exists(out / "trace.csv.tmp"));
+}
+
+// A run owns its --out folder: a 0.5 s run after a 1 s run shows 31 frames, not 61, and the
+// first run's contact snapshot (at 0.8 s) is gone; files that are not a run's stay.
+TEST(Outputs, ARunIntoAUsedFolderShowsOnlyThatRun) {
+  const fs::path dir = freshFolder("gf_out_rerun");
+  const std::string run = kBin + " run " + kFig8 + " --quiet --frames --out " + dir.string();
+  ASSERT_EQ(exitStatus(run + " --duration 1 > /dev/null 2>&1"), 0);
+  EXPECT_EQ(countFiles(dir / "frames"), 61);
+  EXPECT_TRUE(fs::exists(dir / "contacts" / "t0.800.json"));
+  std::ofstream(dir / "notes.txt") << "mine\n";
+  std::ofstream(dir / "frames" / "cover.png") << "mine\n";
+  ASSERT_EQ(exitStatus(run + " --duration 0.5 > /dev/null 2>&1"), 0);
+  EXPECT_EQ(countFiles(dir / "frames"), 31 + 1);  // and cover.png
+  EXPECT_FALSE(fs::exists(dir / "frames" / "000031.png"));
+  EXPECT_FALSE(fs::exists(dir / "contacts" / "t0.800.json"));
+  EXPECT_FALSE(fs::exists(dir / "contacts" / "t0.800-left.png"));
+  EXPECT_EQ(readFile(dir / "notes.txt"), "mine\n");
+  EXPECT_EQ(readFile(dir / "frames" / "cover.png"), "mine\n");
+  EXPECT_DOUBLE_EQ(lastTraceTime(dir), 0.5);
+}
+
+// Ctrl-C (and SIGTERM) during a frames + video run: it stops at a step boundary and finishes:
+// trace.csv to the time reached, summary.json marked interrupted, the MP4 closed so it plays,
+// exit 130 (143). The signal is sent once the run has printed its first progress line.
+TEST(Outputs, AnInterruptedRunFinishesItsOutputsForTheTimeReached) {
+  for (const int signal : {SIGINT, SIGTERM}) {
+    const fs::path dir = freshFolder("gf_out_interrupted_" + std::to_string(signal));
+    Child c = start(kBin + " run " + kFig8 + " --duration 4 --frames --out " + (dir / "run").string() + " --video " +
+                        (dir / "x.mp4").string(),
+                    "/dev/null");
+    ASSERT_NE(c.lines, nullptr);
+    ASSERT_GT(c.pid, 0);
+    ASSERT_TRUE(waitForLine(c.lines, "[godfinger]"));  // 10 % of the run done
+    ASSERT_EQ(kill(c.pid, signal), 0);
+    EXPECT_EQ(finish(c), 128 + signal);
+    const nlohmann::json summary = summaryOf(dir / "run");
+    EXPECT_TRUE(summary["interrupted"].get<bool>());
+    EXPECT_EQ(summary["signal"], signal == SIGINT ? "SIGINT" : "SIGTERM");
+    const double reached = summary["time_reached_s"].get<double>();
+    EXPECT_GE(reached, 0.4);
+    EXPECT_LT(reached, 4.0);
+    EXPECT_DOUBLE_EQ(lastTraceTime(dir / "run"), reached);
+    const double seconds = videoSeconds(dir / "x.mp4");
+    EXPECT_GT(seconds, 0.3) << "the MP4 plays";
+    EXPECT_EQ(countFiles(dir / "run" / "frames"), summary["render"]["frames"].get<long>());
+  }
+}
+
+// Snapshot times past the duration are warnings on stderr and in summary.json.
+TEST(Outputs, SnapshotsPastTheEndAreWarnings) {
+  const fs::path dir = freshFolder("gf_out_late_snapshots");
+  const fs::path log = dir / "stderr.txt";
+  ASSERT_EQ(exitStatus(kBin + " run " + kFig8 + " --quiet --duration 0.5 --out " + (dir / "run").string() + " 2> " +
+                       log.string() + " > /dev/null"),
+            0);
+  const std::string said = readFile(log);
+  EXPECT_NE(said.find("warning: record.contacts: 0.8 s is past the run's duration (0.5 s)"), std::string::npos) << said;
+  const nlohmann::json warnings = summaryOf(dir / "run")["warnings"];
+  ASSERT_EQ(warnings.size(), 2u);  // fig8 records at 0.8 s and 4 s
+  EXPECT_NE(warnings[1].get<std::string>().find("4 s"), std::string::npos);
+}
+
+// A mistyped finger or body in --set names the ones the scene has, instead of a complaint about
+// a new finger's device.
+TEST(Outputs, AMistypedFingerOrBodyNamesTheScenesOnes) {
+  const fs::path dir = freshFolder("gf_out_typo");
+  const fs::path log = dir / "stderr.txt";
+  const std::string run = kBin + " run " + kFig8 + " --quiet --duration 0.1 --out " + (dir / "run").string();
+  EXPECT_EQ(exitStatus(run + " --set fingers.finger.n_sgo=8 2> " + log.string()), 1);
+  EXPECT_NE(readFile(log).find("fingers.finger: no such finger (the scene has: left, right)"), std::string::npos)
+      << readFile(log);
+  EXPECT_EQ(exitStatus(run + " --set bodies.cylindr.mass=1 2> " + log.string()), 1);
+  EXPECT_NE(readFile(log).find("bodies.cylindr: no such body (the scene has: cylinder, ground)"), std::string::npos)
+      << readFile(log);
+  EXPECT_FALSE(fs::exists(dir / "run"));
+}
+
+// Progress to a file is a plain line at every tenth of the run (no carriage returns); --quiet
+// prints none; summary.json says what made the result.
+TEST(Outputs, ProgressInALogIsPlainLinesAndTheSummarySaysWhatMadeIt) {
+  const fs::path dir = freshFolder("gf_out_progress");
+  const fs::path log = dir / "stderr.txt";
+  ASSERT_EQ(exitStatus(kBin + " run " + kFig8 + " --out " + (dir / "run").string() + " --duration 1 2> " + log.string() +
+                       " > /dev/null"),
+            0);
+  const std::string said = readFile(log);
+  EXPECT_EQ(said.find('\r'), std::string::npos);
+  int lines = 0;
+  for (std::size_t at = said.find("[godfinger]"); at != std::string::npos; at = said.find("[godfinger]", at + 1)) ++lines;
+  EXPECT_EQ(lines, 10);
+  ASSERT_EQ(exitStatus(kBin + " run " + kFig8 + " --quiet --out " + (dir / "run").string() + " --duration 1 2> " +
+                       log.string() + " > /dev/null"),
+            0);
+  EXPECT_EQ(readFile(log).find("[godfinger]"), std::string::npos);
+  const nlohmann::json s = summaryOf(dir / "run");
+  EXPECT_EQ(s["godfinger"]["version"], "0.1.0");
+  EXPECT_FALSE(s["godfinger"]["commit"].get<std::string>().empty());
+  EXPECT_EQ(s["command_line"][1], "run");
+  EXPECT_EQ(s["command_line"].back(), "1");
+  EXPECT_EQ(s["scene_file_fnv1a64"].get<std::string>().size(), 16u);
+  EXPECT_TRUE(s["measures"].contains("bodies.cylinder.max_rotation_deg"));
+}
+
+// Bare `godfinger` prints the usage with the commands.
+TEST(Outputs, BareGodfingerPrintsTheUsage) {
+  const fs::path dir = freshFolder("gf_out_bare");
+  EXPECT_EQ(exitStatus(kBin + " > " + (dir / "usage.txt").string() + " 2>&1"), 1);
+  const std::string usage = readFile(dir / "usage.txt");
+  for (const char* command : {"Usage: godfinger", "run", "patch", "study", "check", "list", "live"}) {
+    EXPECT_NE(usage.find(command), std::string::npos) << command;
+  }
+}
+
+// `live`: Ctrl-C stops a long `step N` at a step boundary, answers, and ends with 130.
+TEST(Outputs, AnInterruptedLiveSessionEndsWith130) {
+  const fs::path dir = freshFolder("gf_out_live");
+  std::ofstream(dir / "input.txt") << "step 10000000\nstate\n";
+  // live answers on stdout: read that (stderr to a file) to know it started.
+  std::FILE* lines = popen(("sh -c 'echo $$; exec " + kBin + " live " + kFig8 + " --out " + dir.string() + " < " +
+                            (dir / "input.txt").string() + " 2> " + (dir / "stderr.txt").string() + "'")
+                               .c_str(),
+                           "r");
+  ASSERT_NE(lines, nullptr);
+  char line[8192] = {};
+  ASSERT_NE(std::fgets(line, sizeof line, lines), nullptr);
+  const pid_t pid = static_cast<pid_t>(std::atol(line));
+  ASSERT_TRUE(waitForLine(lines, "ok ready"));
+  ASSERT_EQ(kill(pid, SIGINT), 0);
+  std::string rest;
+  while (std::fgets(line, sizeof line, lines)) rest += line;
+  const int status = pclose(lines);
+  ASSERT_TRUE(WIFEXITED(status));
+  EXPECT_EQ(WEXITSTATUS(status), 130);
+  EXPECT_NE(rest.find("error: interrupted by SIGINT"), std::string::npos) << rest;
+}
+
+}  // namespace
+}  // namespace gf::app
