@@ -50,6 +50,7 @@ struct PatchArgs {
   std::string mesh, out, point, normal, push;
   double scale = 1.0;
   double rounding = 0.0;  ///< collision margin rounding the mesh's edges (m)
+  double max_distance = 0.001;  ///< farthest --point may be from the surface (m)
   gf::sim::FingerDesc finger;  ///< its god-finger settings, tau_a aside
   double tau_a_deg = gf::sim::givenValue(fingerSetting("tau_a"), gf::sim::FingerDesc{});
 };
@@ -101,7 +102,11 @@ void addPatch(CLI::App& app, PatchArgs& a) {
   p->add_option("--scale", a.scale, "Factor from mesh units to metres")
       ->check(settingCheck(gf::sim::bodySettings(), "scale"));
   p->add_option("--point", a.point, "Contact point X,Y,Z on the mesh (m)")->required();
-  p->add_option("--normal", a.normal, "Outward surface normal X,Y,Z at the point")->required();
+  p->add_option("--normal", a.normal, "Outward surface normal X,Y,Z at the point (default: the normal of the face "
+                                      "closest to the point; at an edge or vertex, of the face there the push presses "
+                                      "into most)");
+  p->add_option("--max-distance", a.max_distance, "Farthest the point may be from the mesh surface (m; default 0.001)")
+      ->check(CLI::Range(0.0, 1.0));
   p->add_option("--push", a.push, "Coupling vector v = device - god-object X,Y,Z (m)")->required();
   p->add_option("--rounding", a.rounding, "Collision margin rounding the mesh's edges and corners (m): a point "
                                           "this close to an edge, with a normal between its faces', is an edge hit")
@@ -177,15 +182,32 @@ void writePatchCloseUp(const PatchArgs& a, const std::shared_ptr<const gf::sim::
   gf::render::renderCloseUps(scene, snap, prefix, 480);
 }
 
+// The contact normal when none is given: the hit face's, or at an edge or vertex the normal of
+// the face around it that the push presses into most.
+gf::sim::Vec3 pressedNormal(const gf::sim::Mesh& mesh, const gf::sim::SurfacePoint& hit, const gf::sim::Vec3& push) {
+  if (hit.feature == gf::sim::Feature::kFace || !(push.norm() > 0.0)) return mesh.faceNormal(hit.face);
+  const auto& tri = mesh.triangles()[static_cast<std::size_t>(hit.face)];
+  const std::int32_t v = tri[static_cast<std::size_t>(hit.feature_index)];
+  const std::int32_t w = hit.feature == gf::sim::Feature::kEdge ? tri[static_cast<std::size_t>((hit.feature_index + 1) % 3)] : v;
+  gf::sim::Vec3 best = mesh.faceNormal(hit.face);
+  double most = -best.dot(push);
+  for (const std::int32_t* f = mesh.vertexFacesBegin(v); f != mesh.vertexFacesEnd(v); ++f) {
+    const auto& t = mesh.triangles()[static_cast<std::size_t>(*f)];
+    if (t[0] != w && t[1] != w && t[2] != w) continue;
+    if (const double press = -mesh.faceNormal(*f).dot(push); press > most) most = press, best = mesh.faceNormal(*f);
+  }
+  return best;
+}
+
 int patchCommand(PatchArgs& a) {
   gf::sim::ContactRecord record;
   record.body = 0;
-  record.contact = {parseVec3("--point", a.point), parseVec3("--normal", a.normal), 0.0, a.rounding};
+  const gf::sim::Vec3 point = parseVec3("--point", a.point);
+  record.contact = {point, a.normal.empty() ? gf::sim::Vec3::Zero() : parseVec3("--normal", a.normal), 0.0, a.rounding};
   const gf::sim::Vec3 push = parseVec3("--push", a.push);
-  if (record.contact.outward_normal_local.norm() < 1e-9) {
+  if (!a.normal.empty() && record.contact.outward_normal_local.norm() < 1e-9) {
     throw InputError("command line", 0, 0, "--normal", "must not be zero");
   }
-  record.contact.outward_normal_local.normalize();
   if (a.finger.patch.n_sgo < gf::sim::kMinSgo) {
     throw InputError("command line", 0, 0, "--n-sgo", "a patch needs at least " + std::to_string(gf::sim::kMinSgo) + " SGOs");
   }
@@ -197,6 +219,19 @@ int patchCommand(PatchArgs& a) {
   } catch (const gf::sim::MeshLoadError& e) {
     throw InputError("command line", 0, 0, "--mesh", e.what());
   }
+  // The point must lie on the surface (within --max-distance); without --normal, the closest
+  // face's normal is the contact normal.
+  const gf::sim::SurfacePoint closest = mesh->closestPoint(point, settings.feature_tolerance);
+  if (closest.face < 0) throw InputError("command line", 0, 0, "--mesh", a.mesh + ": no faces");
+  if (closest.query_distance > a.max_distance) {
+    char text[256];
+    std::snprintf(text, sizeof text,
+                  "is %.6g m from the mesh surface (closest surface point %.6g,%.6g,%.6g; --max-distance %.6g m)",
+                  closest.query_distance, closest.point.x(), closest.point.y(), closest.point.z(), a.max_distance);
+    throw InputError("command line", 0, 0, "--point", text);
+  }
+  if (a.normal.empty()) record.contact.outward_normal_local = pressedNormal(*mesh, closest, push);
+  record.contact.outward_normal_local.normalize();
   gf::sim::computePatch(*mesh, record.contact, push, settings, record.patch);
   record.press_depth = record.patch.press_depth;
   if (record.patch.valid) record.contact.point_local = record.patch.hit.point;  // c_p on the mesh
@@ -204,6 +239,9 @@ int patchCommand(PatchArgs& a) {
   nlohmann::json j = gf::app::patchJson(patch, settings);
   j["mesh"] = a.mesh;
   j["scale"] = a.scale;
+  j["normal_from"] = a.normal.empty() ? "closest face (at an edge or vertex: the one pressed most)" : "--normal";
+  const std::string why = gf::app::patchExplanation(patch, settings);
+  j["explanation"] = why;
   std::error_code ec;
   std::filesystem::create_directories(a.out, ec);
   if (ec) throw std::runtime_error(a.out + ": cannot create folder: " + ec.message());
@@ -211,8 +249,8 @@ int patchCommand(PatchArgs& a) {
   gf::app::writeFileAtomically(path, j.dump(1) + "\n");
   const std::string picture = (std::filesystem::path(a.out) / "patch").string();
   writePatchCloseUp(a, mesh, record, picture);
-  std::printf("radius %.6g m, %zu SGOs; wrote %s and %s.png\n", patch.radius, patch.sgos.size(), path.c_str(),
-              picture.c_str());
+  std::printf("radius %.6g m, %zu of %d SGOs%s%s; wrote %s and %s.png\n", patch.radius, patch.sgos.size(),
+              settings.n_sgo, why.empty() ? "" : ": ", why.c_str(), path.c_str(), picture.c_str());
   return 0;
 }
 

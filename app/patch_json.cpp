@@ -22,6 +22,17 @@ static_assert(std::size(kStopNames) == static_cast<std::size_t>(sim::WalkStop::k
 const char* featureName(sim::Feature f) { return kFeatureNames[static_cast<std::size_t>(f)]; }
 const char* stopName(sim::WalkStop s) { return kStopNames[static_cast<std::size_t>(s)]; }
 
+// What each walk stop means, for patchExplanation.
+constexpr const char* kStopMeanings[] = {"walked their full d_i",
+                                         "stopped at a sharp edge (the next face beyond tau_a)",
+                                         "stopped where the next face leaves the friction cone",
+                                         "stopped at a boundary edge of the open mesh",
+                                         "ran out of edge crossings",
+                                         "stopped on degenerate geometry",
+                                         "stopped where the next face turns away from the press",
+                                         "were dropped (they point off the hit's edge or vertex, paper Fig. 3b)"};
+static_assert(std::size(kStopMeanings) == std::size(kStopNames), "a meaning for every sim::WalkStop");
+
 nlohmann::json paths(const std::vector<sim::Vec3>& points, const std::vector<std::int32_t>& offsets) {
   nlohmann::json out = nlohmann::json::array();
   for (std::size_t k = 0; k + 1 < offsets.size(); ++k) {
@@ -112,6 +123,24 @@ nlohmann::json contactsJson(const sim::Snapshot& snap, const sim::SceneDesc& sce
                        {"contacts", contacts}});
   }
   return {{"scene", scene.name}, {"frame", "world"}, {"time_s", snap.time}, {"step", snap.step}, {"fingers", fingers}};
+}
+
+std::string patchExplanation(const sim::Patch& patch, const sim::PatchSettings& settings) {
+  if (!patch.valid) return "no patch: the contact or the settings cannot be computed from";
+  if (!(patch.radius > 0.0)) {
+    return "no SGOs: the push does not press into the surface (press depth " + std::to_string(patch.press_depth) +
+           " m <= 0), so Eq. 1 gives radius 0";
+  }
+  std::size_t counts[std::size(kStopNames)] = {};
+  for (sim::WalkStop stop : patch.radial_stop) ++counts[static_cast<std::size_t>(stop)];
+  std::string text;
+  for (std::size_t k = 1; k < std::size(kStopNames); ++k) {
+    if (counts[k] == 0) continue;
+    text.append(text.empty() ? "" : "; ").append(std::to_string(counts[k])).append(" of ");
+    text.append(std::to_string(settings.n_sgo)).append(" radial vectors ").append(kStopMeanings[k]);
+  }
+  if (text.empty()) return text;
+  return std::string("the hit is on a ") + featureName(patch.hit.feature) + ": " + text;
 }
 
 }  // namespace gf::app

@@ -4,6 +4,8 @@
 
 #include <nlohmann/json.hpp>
 
+#include <string>
+
 #include "sim/god_finger.hpp"
 #include "sim/scene_desc.hpp"
 #include "sim/snapshot.hpp"
@@ -22,6 +24,12 @@ nlohmann::json sceneSettingsJson(const sim::SceneDesc& scene);
 /// A patch in the mesh's own frame ("frame": "mesh"): press depth, radius, radial vectors with
 /// their d_i and stops, SGOs with their faces, and the walked paths (one polyline per SGO).
 nlohmann::json patchJson(const sim::Patch& patch, const sim::PatchSettings& settings);
+
+/// Why a patch has the SGOs it has, in a sentence: no press (radius 0), radial vectors dropped at
+/// an edge or vertex hit (paper Fig. 3b), and how many walks stopped early and where (a sharp
+/// edge past tau_a, outside the friction cone, a boundary, ...). Empty when every radial vector
+/// walked its full d_i.
+std::string patchExplanation(const sim::Patch& patch, const sim::PatchSettings& settings);
 
 /// Every finger of a snapshot in the world frame ("frame": "world"): device, proxy, coupling
 /// force and each contact with its separation, press depth, radius, SGOs and walked paths.

@@ -271,6 +271,37 @@ TEST(Outputs, ProgressInALogIsPlainLinesAndTheSummarySaysWhatMadeIt) {
   EXPECT_TRUE(s["measures"].contains("bodies.cylinder.max_rotation_deg"));
 }
 
+// `patch`: a point off the surface is an error giving its distance; without --normal the closest
+// face's normal is used; the output says why a patch has fewer SGOs than asked.
+TEST(Outputs, PatchNamesAFarPointAndExplainsMissingSgos) {
+  const fs::path dir = freshFolder("gf_out_patch");
+  {
+    std::ofstream cube(dir / "cube.obj");  // a 2 cm cube, outward faces
+    cube << "v -1 -1 -1\nv 1 -1 -1\nv 1 1 -1\nv -1 1 -1\nv -1 -1 1\nv 1 -1 1\nv 1 1 1\nv -1 1 1\n"
+            "f 1 3 2\nf 1 4 3\nf 5 6 7\nf 5 7 8\nf 1 2 6\nf 1 6 5\nf 2 3 7\nf 2 7 6\nf 3 4 8\nf 3 8 7\n"
+            "f 4 1 5\nf 4 5 8\n";
+  }
+  const std::string patch = kBin + " patch --mesh " + (dir / "cube.obj").string() + " --scale 0.01 --push 0,-0.002,0";
+  const fs::path said = dir / "said.txt";
+  EXPECT_EQ(exitStatus(patch + " --point 5,5,5 --out " + (dir / "far").string() + " > " + said.string() + " 2>&1"), 1);
+  EXPECT_NE(readFile(said).find("--point: is 8.6"), std::string::npos) << readFile(said);
+  EXPECT_NE(readFile(said).find("from the mesh surface"), std::string::npos) << readFile(said);
+  EXPECT_FALSE(fs::exists(dir / "far" / "patch.json"));
+  // The middle of the top face, no --normal: all 8 SGOs, nothing to explain.
+  ASSERT_EQ(exitStatus(patch + " --point 0.001,0.01,0.002 --out " + (dir / "top").string() + " > " + said.string()), 0);
+  EXPECT_NE(readFile(said).find("8 of 8 SGOs;"), std::string::npos) << readFile(said);
+  const nlohmann::json top = nlohmann::json::parse(readFile(dir / "top" / "patch.json"));
+  EXPECT_EQ(top["normal_from"].get<std::string>().rfind("closest face", 0), 0u);
+  EXPECT_EQ(top["explanation"], "");
+  // A corner: radial vectors pointing off it are dropped, and the output says so.
+  ASSERT_EQ(exitStatus(patch + " --point 0.01,0.01,0.01 --out " + (dir / "corner").string() + " > " + said.string()), 0);
+  const nlohmann::json corner = nlohmann::json::parse(readFile(dir / "corner" / "patch.json"));
+  EXPECT_LT(corner["sgos"].size(), 8u);
+  EXPECT_NE(corner["explanation"].get<std::string>().find("the hit is on a vertex"), std::string::npos);
+  EXPECT_NE(corner["explanation"].get<std::string>().find("were dropped"), std::string::npos);
+  EXPECT_NE(readFile(said).find("were dropped"), std::string::npos) << readFile(said);
+}
+
 // Bare `godfinger` prints the usage with the commands.
 TEST(Outputs, BareGodfingerPrintsTheUsage) {
   const fs::path dir = freshFolder("gf_out_bare");
