@@ -13,6 +13,7 @@
 #include "app/interrupt.hpp"
 #include "app/live.hpp"
 #include "app/patch_json.hpp"
+#include "app/plot.hpp"
 #include "app/scene_file.hpp"
 #include "app/screenshots.hpp"
 #include "app/session.hpp"
@@ -361,6 +362,15 @@ int main(int argc, char** argv) {
   live_cmd->add_option("scene", live.scene_path, "Scene file or bundled scene name")->required();
   live_cmd->add_option("--set", live.overrides, "Override a scene field");
   live_cmd->add_option("--out", live.out_dir, "Folder for snapshots (contacts/)");
+  gf::app::PlotOptions plot;
+  CLI::App* plot_cmd = app.add_subcommand("plot", "Draw columns of a CSV (trace.csv, forces.csv) against time as a PNG");
+  plot_cmd->add_option("csv", plot.csv, "The CSV file (a header row, then numbers)")->required();
+  plot_cmd->add_option("--y", plot.y, "A column to draw (repeat for more curves)")->required();
+  plot_cmd->add_option("--x", plot.x, "The column along the x axis (default: t)");
+  plot_cmd->add_option("--out", plot.out, "PNG file (default: plot.png beside the CSV)");
+  plot_cmd->add_option("--title", plot.title, "Chart title (default: the file and the columns)");
+  plot_cmd->add_option("--width", plot.width, "Pixels (default 1200)")->check(CLI::Range(200, 4000));
+  plot_cmd->add_option("--height", plot.height, "Pixels (default 600)")->check(CLI::Range(150, 4000));
   std::string shots_out = "screenshots";
   app.add_subcommand("screenshots", "Render the reference pictures (visual-regression goldens) into --out")
       ->add_option("--out", shots_out, "Folder (default: screenshots, the goldens when run from the repository)");
@@ -375,6 +385,10 @@ int main(int argc, char** argv) {
   CLI11_PARSE(app, argc, argv);
   try {
     if (app.got_subcommand("list")) return listCommand();
+    if (app.got_subcommand("plot")) {
+      std::printf("wrote %s\n", gf::app::writePlot(plot).c_str());
+      return 0;
+    }
     if (app.got_subcommand("screenshots")) return screenshotsCommand(shots_out);
     if (app.got_subcommand("patch")) return patchCommand(patch_args);
     if (app.got_subcommand("study")) return studyCommand(study_args);

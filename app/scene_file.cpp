@@ -313,6 +313,7 @@ void readRecord(Reader& parent, SessionDesc& s) {
     s.record.force_bodies.push_back(body);
   }
   s.record.force_chart = r.boolean("force_chart", false);
+  s.record.force_chart_title = r.string("force_chart_title", "");
   if (s.record.force_chart && s.record.force_bodies.empty()) {
     r.fail(r.find("force_chart"), "force_chart", "needs a body listed in record.forces");
   }

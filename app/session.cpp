@@ -232,8 +232,9 @@ render::ChartSeries godObjectForces(const SessionDesc& session) {
 void writeForceChart(const SessionDesc& session, const ForceWriter& forces, render::RenderThread& renderer,
                      const fs::path& path) {
   render::ChartSpec chart;
-  chart.title = session.scene.name + ": y force on " + session.record.force_bodies.front() +
-                " (N, gravity removed) - paper Fig. 8";
+  chart.title = !session.record.force_chart_title.empty()
+                    ? session.record.force_chart_title
+                    : session.scene.name + ": y force on " + session.record.force_bodies.front() + " (N, gravity removed)";
   chart.x_label = "time (s)";
   chart.y_label = "F_y (N)";
   chart.series.push_back(godObjectForces(session));

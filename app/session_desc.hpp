@@ -18,6 +18,8 @@ struct RecordSettings {
   /// forces.png: the y force on the first force body against time, this scene with god-fingers
   /// and again with every finger a god-object (the paper's Fig. 8)
   bool force_chart = false;
+  /// The chart's title; empty: "<scene name>: y force on <body> (N, gravity removed)".
+  std::string force_chart_title;
 };
 
 /// How the scene is drawn: the render effects and the [render] table.

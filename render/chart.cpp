@@ -22,8 +22,6 @@ constexpr float kMinorDecadePx = 30.0f;  // minor log grid lines only on decades
 constexpr int kMaxDecadeLabels = 12;
 constexpr ImU32 kInk = IM_COL32(30, 30, 30, 255), kGrid = IM_COL32(220, 220, 220, 255);
 constexpr ImU32 kMinorGrid = IM_COL32(238, 238, 238, 255), kOutline = IM_COL32(40, 40, 40, 255);
-constexpr ImU32 kLegendFill = IM_COL32(255, 255, 255, 220);
-constexpr ImU32 kLegendEdge = IM_COL32(170, 170, 170, 255);
 
 struct Range {
   double lo = 0.0, hi = 1.0;
@@ -89,15 +87,21 @@ Range fitLinearX(const std::vector<double>& v) {
   return *hi > *lo ? Range{*lo, *hi} : Range{0.0, 1.0};
 }
 
-// Linear y: the 0.2 % and 99.8 % quantiles (single-step impacts do not flatten the curves),
-// padded by 5 %; or the chart's fixed range.
+// Linear y: every value, padded by 5 %; or, when that span is more than kClipRatio times the
+// 0.2 % to 99.8 % quantiles' (single-step impacts that would flatten every curve), the
+// quantiles padded by 5 %, and `clipped` set so the values beyond are marked. Or the chart's
+// fixed range (values beyond it marked too).
+constexpr double kClipRatio = 4.0;
+
 Range fitLinearY(std::vector<double> v, const ChartSpec& chart) {
   if (chart.y_max > chart.y_min) return {chart.y_min, chart.y_max};
   Range y{0.0, 0.0};
   if (!v.empty()) {
     std::sort(v.begin(), v.end());
-    y = {v[static_cast<std::size_t>(0.002 * (v.size() - 1))],
-         v[static_cast<std::size_t>(0.998 * (v.size() - 1))]};
+    const Range all{v.front(), v.back()};
+    const Range middle{v[static_cast<std::size_t>(0.002 * (v.size() - 1))],
+                       v[static_cast<std::size_t>(0.998 * (v.size() - 1))]};
+    y = all.hi - all.lo > kClipRatio * (middle.hi - middle.lo) && middle.hi > middle.lo ? middle : all;
   }
   if (!(y.hi > y.lo)) y = {y.lo - 1.0, y.lo + 1.0};
   const double pad = 0.05 * (y.hi - y.lo);
@@ -183,11 +187,22 @@ std::string tickText(double v) {
   return text;
 }
 
+// One legend entry: its series and its width in pixels (swatch, gap, text, gap).
+struct LegendEntry {
+  const ChartSeries* series;
+  float width;
+};
+
 // Where the parts of the chart go, in pixels.
 struct Layout {
   ImVec2 lo, hi;          // the plot's top-left and bottom-right corners
   ImVec2 title, y_label;  // top-left corners of the texts
+  // The legend: rows of entries above the plot, right-aligned, off the data.
+  std::vector<std::vector<LegendEntry>> legend;
+  float legend_top = 0.0f;
 };
+
+float legendRowHeight(float font) { return 1.3f * font; }
 
 Layout layout(const ChartSpec& chart, float font) {
   Layout l;
@@ -197,6 +212,21 @@ Layout layout(const ChartSpec& chart, float font) {
   // A y label that would run into the title gets a line of its own above the plot.
   const float y_label_end = 0.4f * font + ImGui::CalcTextSize(chart.y_label.c_str()).x;
   if (!chart.title.empty() && y_label_end > l.lo.x - 0.5f * font) l.lo.y += 1.4f * font;
+  // Legend rows between the title and the plot, as many as its entries need beside the y label.
+  const float room = l.hi.x - std::max(l.lo.x, y_label_end + font);
+  float used = 0.0f;
+  for (const ChartSeries& s : chart.series) {
+    if (s.label.empty()) continue;
+    const float width = 2.0f * font + 0.5f * font + ImGui::CalcTextSize(s.label.c_str()).x + 1.2f * font;
+    if (l.legend.empty() || (used + width > room && !l.legend.back().empty())) {
+      l.legend.emplace_back();
+      used = 0.0f;
+    }
+    l.legend.back().push_back({&s, width});
+    used += width;
+  }
+  l.legend_top = l.lo.y - 0.2f * font;
+  l.lo.y += static_cast<float>(l.legend.size()) * legendRowHeight(font);
   l.title = ImVec2(l.lo.x, 0.6f * font);
   l.y_label = ImVec2(0.4f * font, l.lo.y - 1.6f * font);
   return l;
@@ -379,33 +409,53 @@ void drawPointLabels(const Canvas& c, const ChartSpec& chart) {
   }
 }
 
-// One row per labelled series (its line, marker or both, then its label) on a white
-// semi-opaque box in the plot's top-right corner.
-void drawLegend(const Canvas& c, const ChartSpec& chart) {
-  float text_width = 0.0f;
-  int rows = 0;
-  for (const ChartSeries& s : chart.series) {
-    if (s.label.empty()) continue;
-    text_width = std::max(text_width, ImGui::CalcTextSize(s.label.c_str()).x);
-    ++rows;
+// The legend's rows above the plot, right-aligned: per labelled series its line, marker or both,
+// then its label. Nothing of it lies on the data.
+void drawLegend(const Canvas& c, const Layout& l) {
+  const float f = c.font, swatch = 2.0f * f;
+  float y = l.legend_top;
+  for (const std::vector<LegendEntry>& row : l.legend) {
+    float width = 0.0f;
+    for (const LegendEntry& e : row) width += e.width;
+    float x = c.hi.x - width + 1.2f * f;
+    for (const LegendEntry& e : row) {
+      const ChartSeries& s = *e.series;
+      const float middle = y + f / 2;
+      if (s.style != SeriesStyle::kMarkers)
+        c.d.AddLine(ImVec2(x, middle), ImVec2(x + swatch, middle), imguiColour(s.colour), 3.0f);
+      if (s.style != SeriesStyle::kLine) drawMarker(c.d, ImVec2(x + swatch / 2, middle), imguiColour(s.colour));
+      c.d.AddText(ImVec2(x + swatch + 0.5f * f, y), kInk, s.label.c_str());
+      x += e.width;
+    }
+    y += legendRowHeight(f);
   }
-  if (rows == 0) return;
-  const float f = c.font, row = 1.3f * f, swatch = 2.0f * f;
-  const ImVec2 hi(c.hi.x - 0.5f * f, c.lo.y + 0.5f * f + 0.3f * f + rows * row);
-  const ImVec2 lo(hi.x - (0.5f * f + swatch + 0.5f * f + text_width + 0.5f * f), c.lo.y + 0.5f * f);
-  c.d.AddRectFilled(lo, hi, kLegendFill, 3.0f);
-  c.d.AddRect(lo, hi, kLegendEdge, 3.0f);
-  float y = lo.y + 0.3f * f;
-  for (const ChartSeries& s : chart.series) {
-    if (s.label.empty()) continue;
-    const float x = lo.x + 0.5f * f, middle = y + f / 2;
-    if (s.style != SeriesStyle::kMarkers)
-      c.d.AddLine(ImVec2(x, middle), ImVec2(x + swatch, middle), imguiColour(s.colour), 3.0f);
-    if (s.style != SeriesStyle::kLine)
-      drawMarker(c.d, ImVec2(x + swatch / 2, middle), imguiColour(s.colour));
-    c.d.AddText(ImVec2(x + swatch + 0.5f * f, y), kInk, s.label.c_str());
-    y += row;
+}
+
+// Where a series leaves the y axis's range (an outlier clipped by the fit, or a fixed range): a
+// small triangle in its colour at the plot's top or bottom edge, one per pixel column and side.
+// Returns whether any was drawn.
+bool markBeyondRange(const Canvas& c, const ChartSeries& s) {
+  if (c.y.log) return false;
+  const ImU32 colour = imguiColour(s.colour);
+  const float size = 0.35f * c.font;
+  float last_above = -1e9f, last_below = -1e9f;
+  bool any = false;
+  for (std::size_t i = 0; i < s.x.size() && i < s.y.size(); ++i) {
+    if (!onAxis(s.x[i], c.x.log) || !std::isfinite(s.y[i])) continue;
+    const bool above = s.y[i] > c.y.range.hi, below = s.y[i] < c.y.range.lo;
+    if (!above && !below) continue;
+    const float x = c.x.pixel(s.x[i]);
+    float& last = above ? last_above : last_below;
+    if (std::floor(x) == std::floor(last)) continue;
+    last = x;
+    any = true;
+    if (above) {
+      c.d.AddTriangleFilled(ImVec2(x, c.lo.y), ImVec2(x - size, c.lo.y + 1.6f * size), ImVec2(x + size, c.lo.y + 1.6f * size), colour);
+    } else {
+      c.d.AddTriangleFilled(ImVec2(x, c.hi.y), ImVec2(x - size, c.hi.y - 1.6f * size), ImVec2(x + size, c.hi.y - 1.6f * size), colour);
+    }
   }
+  return any;
 }
 
 }  // namespace
@@ -431,6 +481,8 @@ void drawChart(ImGuiLayer& layer, const ChartSpec& chart) {
     if (s.style != SeriesStyle::kLine) drawMarkers(c, s);
   }
   drawPointLabels(c, chart);
+  bool beyond = false;
+  for (const ChartSeries& s : chart.series) beyond = markBeyondRange(c, s) || beyond;
   d.PopClipRect();
   // Title, axis labels, legend.
   d.AddText(l.title, kInk, chart.title.c_str());
@@ -438,7 +490,11 @@ void drawChart(ImGuiLayer& layer, const ChartSpec& chart) {
                    static_cast<float>(chart.height) - 1.6f * font),
             kInk, chart.x_label.c_str());
   d.AddText(l.y_label, kInk, chart.y_label.c_str());
-  drawLegend(c, chart);
+  drawLegend(c, l);
+  if (beyond) {  // say what the edge triangles mean, under the plot on the left
+    const char* note = "triangles at the edges: values beyond the y axis";
+    d.AddText(ImVec2(l.hi.x - ImGui::CalcTextSize(note).x, static_cast<float>(chart.height) - 1.6f * font), kInk, note);
+  }
   layer.render();
 }
 

@@ -27,8 +27,12 @@ struct ChartSeries {
   std::vector<std::string> point_labels = {};
 };
 
-/// A chart: axes fitted to the data, ticks, labels and a legend in the plot's top-right corner.
-/// A linear x axis spans the data; a linear y axis the 0.2 % to 99.8 % quantiles, padded by 5 %.
+/// A chart: axes fitted to the data, ticks, labels and a legend above the plot (right-aligned,
+/// in as many rows as it needs, never on the data). A linear x axis spans the data; a linear y
+/// axis every value, padded by 5 %, unless that is more than 4 times the span of the 0.2 % to
+/// 99.8 % quantiles (a few impacts would flatten every curve): then the quantiles, padded by
+/// 5 %, and each value beyond is marked by a triangle in its series' colour at the plot's edge,
+/// with a note under the plot (as are values beyond a fixed range).
 /// A log axis spans the positive data (at least one decade, centred on it), snapped outward to
 /// decades when that is more than one decade, then padded by 4 % of its span in decades on each side; it has a tick at each decade
 /// (labelled 1e-3, 0.01, 1, 100, ...) and faint minor lines at 2..9 times a decade, the 2 and 5

@@ -302,6 +302,22 @@ TEST(Outputs, PatchNamesAFarPointAndExplainsMissingSgos) {
   EXPECT_NE(readFile(said).find("were dropped"), std::string::npos) << readFile(said);
 }
 
+// `godfinger plot`: trace columns against time into a PNG; a missing column or a cell that is
+// not a number names the file, line and column.
+TEST(Outputs, PlotDrawsTraceColumnsAndNamesBadOnes) {
+  const fs::path dir = freshFolder("gf_out_plot");
+  std::ofstream(dir / "trace.csv") << "t,a.x,a.y\n0,1,2\n0.001,1.5,\n0.002,2,2.5\n";
+  const fs::path said = dir / "said.txt";
+  ASSERT_EQ(exitStatus(kBin + " plot " + (dir / "trace.csv").string() + " --y a.x --y a.y > " + said.string()), 0);
+  EXPECT_TRUE(fs::exists(dir / "plot.png"));
+  EXPECT_EQ(exitStatus(kBin + " plot " + (dir / "trace.csv").string() + " --y a.z 2> " + said.string()), 1);
+  EXPECT_NE(readFile(said).find("trace.csv:1: a.z: no such column (the file has: t, a.x, a.y)"), std::string::npos)
+      << readFile(said);
+  std::ofstream(dir / "bad.csv") << "t,a.x\n0,1\n0.001,oops\n";
+  EXPECT_EQ(exitStatus(kBin + " plot " + (dir / "bad.csv").string() + " --y a.x 2> " + said.string()), 1);
+  EXPECT_NE(readFile(said).find("bad.csv:3:2: a.x: expected a number, got 'oops'"), std::string::npos) << readFile(said);
+}
+
 // Bare `godfinger` prints the usage with the commands.
 TEST(Outputs, BareGodfingerPrintsTheUsage) {
   const fs::path dir = freshFolder("gf_out_bare");

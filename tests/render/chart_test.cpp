@@ -9,6 +9,7 @@
 #include <filesystem>
 #include <limits>
 #include <string>
+#include <vector>
 
 #include "render/image.hpp"
 #include "render/render_thread.hpp"
@@ -143,7 +144,7 @@ TEST_F(WorkPrecisionChart, HasTheRequestedSizeAndAPlotFrame) {
   EXPECT_EQ(image_.width, 960);
   EXPECT_EQ(image_.height, 540);
   EXPECT_GT(plot_.width(), 0.8 * 960);
-  EXPECT_GT(plot_.height(), 0.75 * 540);
+  EXPECT_GT(plot_.height(), 0.7 * 540);
 }
 
 // Markers sit where the fitted decades put them (within 3 px): the point at the data's least
@@ -167,13 +168,13 @@ TEST_F(WorkPrecisionChart, ValuesALogAxisCannotShowAreNotDrawn) {
       countColour(image_, kBlue, x0, plot_.top + plot_.height() / 4, plot_.right, plot_.bottom), 0);
 }
 
-// The legend, in the plot's top-right quarter, lists "a" and "b" but not the unlabelled green
-// series (whose point is drawn: see above).
+// The legend, above the plot on the right (off the data), lists "a" and "b" but not the
+// unlabelled green series (whose point is drawn: see above).
 TEST_F(WorkPrecisionChart, LegendListsLabelledSeriesOnly) {
-  const int x0 = plot_.left + 3 * plot_.width() / 4, y1 = plot_.top + plot_.height() / 4;
-  EXPECT_GE(countColour(image_, kRed, x0, plot_.top, plot_.right, y1), 20);
-  EXPECT_GE(countColour(image_, kBlue, x0, plot_.top, plot_.right, y1), 20);
-  EXPECT_EQ(countColour(image_, kGreen, x0, plot_.top, plot_.right, y1), 0);
+  const int x0 = plot_.left + plot_.width() / 2;
+  EXPECT_GE(countColour(image_, kRed, x0, 0, plot_.right, plot_.top), 20);
+  EXPECT_GE(countColour(image_, kBlue, x0, 0, plot_.right, plot_.top), 20);
+  EXPECT_EQ(countColour(image_, kGreen, 0, 0, image_.width, plot_.top), 0);
 }
 
 // Point labels at the plot's corners are moved inside it: outside the frame, only the tick
@@ -249,8 +250,56 @@ TEST(Chart, NothingDrawableStillWritesTheChart) {
   EXPECT_EQ(
       countColour(image, kRed, plot.left, plot.top + plot.height() / 4, plot.right, plot.bottom),
       0);
-  EXPECT_GT(countColour(image, kRed, plot.left, plot.top, plot.right, plot.top + plot.height() / 4),
-            0);
+  EXPECT_GT(countColour(image, kRed, plot.left, 0, plot.right, plot.top), 0);  // the legend
+}
+
+// A line chart fits all its curves: the highest and lowest values of both series are drawn
+// inside the frame, within 2 px of where the 5 % padding puts them, and none on its edge.
+TEST(Chart, LinesFitAllTheirCurves) {
+  ChartSpec chart;
+  chart.width = 800;
+  chart.height = 400;
+  std::vector<double> t, a, b;
+  for (int i = 0; i <= 400; ++i) {
+    t.push_back(i / 400.0);
+    a.push_back(std::sin(20.0 * t.back()));              // -1 .. 1
+    b.push_back(0.5 * std::sin(10.0 * t.back()) - 1.2);  // -1.7 .. -0.7
+  }
+  chart.series = {{"a", kRed, t, a}, {"b", kBlue, t, b}};
+  const Image image = drawChart(chart);
+  const Plot plot = findPlot(image);
+  const double top = 1.0 + 0.05 * 2.7, bottom = -1.7 - 0.05 * 2.7;
+  const auto row = [&](double v) {
+    return static_cast<int>(std::lround(plot.bottom + (v - bottom) / (top - bottom) * (plot.top - plot.bottom)));
+  };
+  EXPECT_GT(row(1.0), plot.top + 5);
+  EXPECT_LT(row(-1.7), plot.bottom - 5);
+  EXPECT_GT(countColour(image, kRed, plot.left, row(1.0) - 2, plot.right, row(1.0) + 3), 0) << "a's maximum";
+  EXPECT_EQ(countColour(image, kRed, plot.left, plot.top, plot.right, row(1.0) - 3), 0) << "nothing above it";
+  EXPECT_GT(countColour(image, kBlue, plot.left, row(-1.7) - 2, plot.right, row(-1.7) + 3), 0) << "b's minimum";
+  EXPECT_EQ(countColour(image, kBlue, plot.left, row(-1.7) + 4, plot.right, plot.bottom), 0) << "nothing below it";
+}
+
+// One impact a hundred times the curve's size would flatten it: the axis keeps to the curve and
+// the impact is marked by a triangle at the top edge where it happens, in its series' colour.
+TEST(Chart, AnOutlierBeyondTheFitIsMarkedAtTheEdge) {
+  ChartSpec chart;
+  chart.width = 800;
+  chart.height = 400;
+  std::vector<double> t, y;
+  for (int i = 0; i <= 1000; ++i) {
+    t.push_back(i / 1000.0);
+    y.push_back(i == 500 ? 100.0 : std::sin(20.0 * t.back()));
+  }
+  chart.series = {{"a", kRed, t, y}};
+  const Image image = drawChart(chart);
+  const Plot plot = findPlot(image);
+  const int middle = (plot.left + plot.right) / 2;
+  // The curve fills the plot's height (its +-1 within the 5 % padding), not a flat line.
+  EXPECT_GT(countColour(image, kRed, plot.left, plot.top + 5, plot.right, plot.top + plot.height() / 8), 0);
+  EXPECT_GT(countColour(image, kRed, plot.left, plot.bottom - plot.height() / 8, plot.right, plot.bottom - 3), 0);
+  // The triangle under the top edge at t = 0.5: a few pixels wide and tall.
+  EXPECT_GE(countColour(image, kRed, middle - 6, plot.top + 1, middle + 7, plot.top + 6), 12);
 }
 
 }  // namespace
