@@ -703,9 +703,24 @@ sim::DeviceTrack readDeviceCsv(const std::string& path) {
   return d;
 }
 
+std::string dataDir() {
+  if (const char* env = std::getenv("GODFINGER_DATA"); env && *env) return env;
+  std::error_code ec;
+  const fs::path exe = fs::canonical("/proc/self/exe", ec);
+  if (!ec) {
+    // Installed (<prefix>/bin and <prefix>/share/godfinger), then a build tree's copy (the
+    // executable in <build>, or a test in a folder of it).
+    for (const fs::path& candidate : {exe.parent_path() / GF_INSTALLED_DATA, exe.parent_path() / "share" / "godfinger",
+                                      exe.parent_path().parent_path() / "share" / "godfinger"}) {
+      if (fs::is_directory(candidate / "scenes", ec)) return candidate.lexically_normal().string();
+    }
+  }
+  return GF_ASSET_DIR;
+}
+
 std::string bundledSceneDir() {
   if (const char* env = std::getenv("GODFINGER_SCENES"); env && *env) return env;
-  return GF_ASSET_DIR "/scenes";
+  return (fs::path(dataDir()) / "scenes").string();
 }
 
 std::string resolveScenePath(const std::string& scene) {

@@ -46,8 +46,12 @@ SessionDesc parseSceneText(const std::string& text, const std::string& source_na
 /// times; played back with linear interpolation. Throws InputError naming file and line.
 sim::DeviceTrack readDeviceCsv(const std::string& path);
 
-/// The folder of bundled scene files: $GODFINGER_SCENES if set, else the source tree's
-/// assets/scenes.
+/// The folder of bundled data (scenes/, studies/, meshes/, hard-cases/): $GODFINGER_DATA if
+/// set; else beside the executable, installed (<prefix>/share/godfinger) or in a build tree
+/// (<build>/share/godfinger, copied there by every build); else the source tree's assets/.
+std::string dataDir();
+
+/// The folder of bundled scene files: $GODFINGER_SCENES if set, else dataDir()/scenes.
 std::string bundledSceneDir();
 
 /// A scene argument as given on the command line: a path to a file, or the name of a bundled

@@ -1,0 +1,45 @@
+# Installed and moved copies of godfinger find their bundled data beside themselves:
+#   cmake -DBINARY_DIR=<build> -DWORK=<scratch folder> -P install_test.cmake
+# 1. `cmake --install` into a temporary prefix; a scene added to the installed data only is
+#    listed, and a bundled scene with a mesh (concave-mesh: the bunny) runs from another folder.
+# 2. The executable and its share/ folder copied elsewhere (a moved build tree): the same.
+# GODFINGER_DATA and GODFINGER_SCENES are cleared, so only the executable's place can tell.
+unset(ENV{GODFINGER_DATA})
+unset(ENV{GODFINGER_SCENES})
+file(REMOVE_RECURSE "${WORK}")
+file(MAKE_DIRECTORY "${WORK}")
+
+function(check_copy label exe data)
+  file(COPY_FILE "${data}/scenes/fig5-push-ball.toml" "${data}/scenes/only-in-${label}.toml")
+  execute_process(COMMAND "${exe}" list WORKING_DIRECTORY "${WORK}" OUTPUT_VARIABLE listed RESULT_VARIABLE failed)
+  if(failed)
+    message(FATAL_ERROR "${label}: godfinger list failed (${failed})")
+  endif()
+  foreach(scene only-in-${label} fig8-pinch-oscillation concave-mesh)
+    string(FIND "${listed}" "${scene} " at)
+    if(at LESS 0)
+      message(FATAL_ERROR "${label}: godfinger list does not show ${scene}:\n${listed}")
+    endif()
+  endforeach()
+  string(FIND "${listed}" "does not load" broken)
+  if(NOT broken LESS 0)
+    message(FATAL_ERROR "${label}: a bundled scene does not load:\n${listed}")
+  endif()
+  execute_process(COMMAND "${exe}" run concave-mesh --quiet --duration 0.02 --out "${WORK}/run-${label}"
+                  WORKING_DIRECTORY "${WORK}" RESULT_VARIABLE failed ERROR_VARIABLE said)
+  if(failed OR NOT EXISTS "${WORK}/run-${label}/summary.json")
+    message(FATAL_ERROR "${label}: concave-mesh did not run (${failed}):\n${said}")
+  endif()
+endfunction()
+
+execute_process(COMMAND "${CMAKE_COMMAND}" --install "${BINARY_DIR}" --prefix "${WORK}/prefix"
+                OUTPUT_QUIET RESULT_VARIABLE failed)
+if(failed)
+  message(FATAL_ERROR "cmake --install failed (${failed})")
+endif()
+check_copy(installed "${WORK}/prefix/bin/godfinger" "${WORK}/prefix/share/godfinger")
+
+file(MAKE_DIRECTORY "${WORK}/moved")
+file(COPY "${BINARY_DIR}/godfinger" DESTINATION "${WORK}/moved")
+file(COPY "${BINARY_DIR}/share" DESTINATION "${WORK}/moved")
+check_copy(moved "${WORK}/moved/godfinger" "${WORK}/moved/share/godfinger")
