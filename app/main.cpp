@@ -12,6 +12,7 @@
 #include "app/check.hpp"
 #include "app/interrupt.hpp"
 #include "app/live.hpp"
+#include "app/mesh_info.hpp"
 #include "app/patch_json.hpp"
 #include "app/plot.hpp"
 #include "app/scene_file.hpp"
@@ -362,6 +363,17 @@ int main(int argc, char** argv) {
   live_cmd->add_option("scene", live.scene_path, "Scene file or bundled scene name")->required();
   live_cmd->add_option("--set", live.overrides, "Override a scene field");
   live_cmd->add_option("--out", live.out_dir, "Folder for snapshots (contacts/)");
+  gf::app::MeshInfoOptions mesh_info;
+  bool mesh_info_json = false;
+  CLI::App* mesh_cmd = app.add_subcommand("mesh-info", "What a mesh file holds: parts, size, unit and up axis, whether it "
+                                                       "is closed and outward, volume, centre of mass and inertia");
+  mesh_cmd->add_option("file", mesh_info.path, "Mesh file (OBJ, PLY, STL, OFF, glTF, Collada, ...)")->required();
+  mesh_cmd->add_option("--scale", mesh_info.scale, "File units to metres, as a body's scale (default 1)")
+      ->check(settingCheck(gf::sim::bodySettings(), "scale"));
+  mesh_cmd->add_option("--mass", mesh_info.mass, "Mass (kg) for the inertia (default: from --density)")->check(CLI::Range(1e-9, 1e9));
+  mesh_cmd->add_option("--density", mesh_info.density, "Density (kg/m^3) when no mass is given (default 1000)")
+      ->check(CLI::Range(1e-6, 1e6));
+  mesh_cmd->add_flag("--json", mesh_info_json, "Print JSON instead of text");
   gf::app::PlotOptions plot;
   CLI::App* plot_cmd = app.add_subcommand("plot", "Draw columns of a CSV (trace.csv, forces.csv) against time as a PNG");
   plot_cmd->add_option("csv", plot.csv, "The CSV file (a header row, then numbers)")->required();
@@ -385,6 +397,15 @@ int main(int argc, char** argv) {
   CLI11_PARSE(app, argc, argv);
   try {
     if (app.got_subcommand("list")) return listCommand();
+    if (app.got_subcommand("mesh-info")) {
+      try {
+        const nlohmann::json info = gf::app::meshInfoJson(mesh_info);
+        std::fputs(mesh_info_json ? (info.dump(2) + "\n").c_str() : gf::app::meshInfoText(info).c_str(), stdout);
+      } catch (const gf::sim::MeshLoadError& e) {
+        throw InputError("command line", 0, 0, "file", e.what());
+      }
+      return 0;
+    }
     if (app.got_subcommand("plot")) {
       std::printf("wrote %s\n", gf::app::writePlot(plot).c_str());
       return 0;

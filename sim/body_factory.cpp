@@ -32,35 +32,6 @@ constexpr int kHacdVerticesPerPart = 64;
   throw DescriptionError("body '" + d.name + "'", {field, why});
 }
 
-// Volume, centroid and inertia per unit density of a closed mesh (signed tetrahedra).
-struct MassProperties {
-  double volume = 0.0;
-  Vec3 centroid = Vec3::Zero();
-  Eigen::Matrix3d inertia = Eigen::Matrix3d::Zero();  // about the centroid, unit density
-};
-
-MassProperties massProperties(const Mesh& m) {
-  // Covariance of the canonical tetrahedron (0, e1, e2, e3), unit density.
-  Eigen::Matrix3d c0;
-  c0 << 2, 1, 1, 1, 2, 1, 1, 1, 2;
-  c0 /= 120.0;
-  MassProperties mp;
-  Eigen::Matrix3d cov = Eigen::Matrix3d::Zero();
-  for (int f = 0; f < m.faceCount(); ++f) {
-    Eigen::Matrix3d a;
-    a << m.corner(f, 0), m.corner(f, 1), m.corner(f, 2);
-    const double det = a.determinant();
-    mp.volume += det / 6.0;
-    mp.centroid += det / 24.0 * (m.corner(f, 0) + m.corner(f, 1) + m.corner(f, 2));
-    cov += det * a * c0 * a.transpose();
-  }
-  if (!(mp.volume > 0.0)) return mp;
-  mp.centroid /= mp.volume;
-  cov -= mp.volume * mp.centroid * mp.centroid.transpose();
-  mp.inertia = cov.trace() * Eigen::Matrix3d::Identity() - cov;
-  return mp;
-}
-
 // Moves a loaded mesh into its principal frame and fills mass properties of `out`.
 std::shared_ptr<const Mesh> toBodyFrame(const BodyDesc& d, const Mesh& mesh, BodyShapes& out) {
   const MassProperties mp = massProperties(mesh);

@@ -141,6 +141,16 @@ class Mesh {
 /// neighbours through every edge and marks boundary and non-manifold edges. Deterministic.
 /// Throws std::invalid_argument for non-finite positions, positions beyond 1e150 m of the origin
 /// or out-of-range indices. Allocates.
+/// Volume, centroid and inertia of the solid a closed, outward-wound mesh encloses, per unit
+/// density (signed tetrahedra from the origin; an open or inside-out mesh gives a volume <= 0
+/// and the rest unset).
+struct MassProperties {
+  double volume = 0.0;                                ///< m^3
+  Vec3 centroid = Vec3::Zero();                       ///< m
+  Eigen::Matrix3d inertia = Eigen::Matrix3d::Zero();  ///< about the centroid, unit density (m^5)
+};
+MassProperties massProperties(const Mesh& mesh);
+
 Mesh buildMesh(const std::vector<Vec3>& positions,
                const std::vector<std::array<std::int32_t, 3>>& triangles,
                const MeshBuildSettings& settings = {});

@@ -4,6 +4,7 @@
 #include <assimp/scene.h>
 
 #include <assimp/Importer.hpp>
+#include <algorithm>
 #include <cctype>
 #include <cmath>
 #include <cstdlib>
@@ -236,7 +237,76 @@ void checkFaces(const std::string& path, const aiScene& scene) {
   }
 }
 
+const std::string kAxisNames[] = {"X", "Y", "Z"};
+
+// Collada's declared unit (<unit meter="...">) and up axis (<up_axis>Z_UP</up_axis>), from the
+// file's <asset> block.
+void colladaAsset(const std::string& path, MeshFileInfo& info) {
+  std::ifstream in(path);
+  std::string head(16384, '\0');
+  in.read(head.data(), static_cast<std::streamsize>(head.size()));
+  head.resize(static_cast<std::size_t>(in.gcount()));
+  if (const std::size_t at = head.find("<unit"); at != std::string::npos) {
+    if (const std::size_t m = head.find("meter=\"", at); m != std::string::npos && m < head.find('>', at)) {
+      info.declared_unit_m = std::strtod(head.c_str() + m + 7, nullptr);
+    }
+  }
+  if (const std::size_t at = head.find("<up_axis>"); at != std::string::npos) {
+    info.declared_up = head.substr(at + 9, 1);
+  }
+  info.unit_and_up_applied = true;  // the Collada importer scales and turns the root node
+}
+
+void addParts(const aiScene& scene, const aiNode& node, const aiMatrix4x4& parent, MeshFileInfo& info) {
+  const aiMatrix4x4 global = parent * node.mTransformation;
+  for (unsigned i = 0; i < node.mNumMeshes; ++i) {
+    const aiMesh& mesh = *scene.mMeshes[node.mMeshes[i]];
+    MeshPart part;
+    part.mesh = mesh.mName.C_Str();
+    part.node = node.mName.C_Str();
+    part.vertices = static_cast<int>(mesh.mNumVertices);
+    for (unsigned f = 0; f < mesh.mNumFaces; ++f) part.triangles += mesh.mFaces[f].mNumIndices >= 3 ? static_cast<int>(mesh.mFaces[f].mNumIndices) - 2 : 0;
+    for (int r = 0; r < 4; ++r) {
+      for (int c = 0; c < 4; ++c) part.transform(r, c) = global[static_cast<unsigned>(r)][static_cast<unsigned>(c)];
+    }
+    info.parts.push_back(part);
+  }
+  for (unsigned i = 0; i < node.mNumChildren; ++i) addParts(scene, *node.mChildren[i], global, info);
+}
+
 }  // namespace
+
+MeshFileInfo describeMeshFile(const std::string& path) {
+  checkHeader(path);
+  Assimp::Importer importer;
+  const aiScene* scene = importer.ReadFile(path, 0);
+  if (scene == nullptr) throw MeshLoadError(path + ": cannot read mesh: " + importer.GetErrorString());
+  checkFaces(path, *scene);
+  MeshFileInfo info;
+  if (scene->mMetaData) {
+    for (unsigned i = 0; i < scene->mMetaData->mNumProperties; ++i) {
+      const std::string key = scene->mMetaData->mKeys[i].C_Str();
+      const aiMetadataEntry& e = scene->mMetaData->mValues[i];
+      if (key == "SourceAsset_Format" && e.mType == AI_AISTRING) info.format = static_cast<const aiString*>(e.mData)->C_Str();
+      // FBX: centimetres per unit, and the up axis as 0, 1, 2 with a sign.
+      double unit = 0.0;
+      if (e.mType == AI_DOUBLE) unit = *static_cast<const double*>(e.mData);
+      if (e.mType == AI_FLOAT) unit = *static_cast<const float*>(e.mData);
+      if (key == "UnitScaleFactor" && unit > 0.0) info.declared_unit_m = 0.01 * unit;
+      if (key == "UpAxis" && e.mType == AI_INT32) {
+        info.declared_up = kAxisNames[std::clamp(*static_cast<const std::int32_t*>(e.mData), 0, 2)];
+      }
+    }
+  }
+  const std::string ext = lower(std::filesystem::path(path).extension().string());
+  if (ext == ".dae") colladaAsset(path, info);
+  if (ext == ".gltf" || ext == ".glb") {
+    info.declared_unit_m = 1.0;
+    info.declared_up = kAxisNames[1];
+  }
+  if (scene->mRootNode) addParts(*scene, *scene->mRootNode, aiMatrix4x4(), info);
+  return info;
+}
 
 RawMesh readMeshFile(const std::string& path, double scale) {
   if (!std::isfinite(scale) || scale <= 0.0) {
