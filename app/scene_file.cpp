@@ -190,6 +190,27 @@ void readMesh(Reader& r, const std::string& base_dir, sim::MeshCache& meshes, si
   }
 }
 
+// A body's `density` may lie in this range (kg/m^3: from aerogel to osmium, twice over).
+constexpr double kMinDensity = 1.0, kMaxDensity = 50000.0;
+
+// The volume of a body's shape (m^3): analytic for primitives, the enclosed volume for meshes
+// (<= 0 for an open or inside-out mesh).
+double bodyVolume(const sim::BodyDesc& b) {
+  constexpr double pi = 3.14159265358979323846;
+  switch (b.shape) {
+    case sim::ShapeKind::kSphere: return 4.0 / 3.0 * pi * b.radius * b.radius * b.radius;
+    case sim::ShapeKind::kBox: return 8.0 * b.half_extents.prod();
+    case sim::ShapeKind::kCylinder: return pi * b.radius * b.radius * 2.0 * b.half_height;
+    case sim::ShapeKind::kCapsule:
+      return pi * b.radius * b.radius * 2.0 * b.half_height + 4.0 / 3.0 * pi * b.radius * b.radius * b.radius;
+    case sim::ShapeKind::kPlane: return 0.0;
+    case sim::ShapeKind::kConvexHull:
+    case sim::ShapeKind::kConvexDecomposition:
+    case sim::ShapeKind::kConcaveMesh: return b.mesh ? sim::massProperties(*b.mesh).volume : 0.0;
+  }
+  return 0.0;
+}
+
 // Body settings every shape has (dimensions, scale and mass are read where they apply).
 bool commonBodySetting(const sim::Setting<sim::BodyDesc>& s) {
   for (const sim::ShapeInfo& shape : sim::shapeInfos()) {
@@ -215,8 +236,24 @@ sim::BodyDesc readBody(const std::string& name, const toml::table& t, const Read
   const bool is_static = r.boolean("static", is_plane);
   if (is_plane && !is_static) r.fail(r.find("static"), "static", "a plane is always static");
   if (is_static) {
-    if (r.has("mass")) r.fail(r.find("mass"), "mass", "a static body has no mass; remove the field");
+    for (const char* field : {"mass", "density"}) {
+      if (r.has(field)) r.fail(r.find(field), field, "a static body has no mass; remove the field");
+    }
     b.mass = 0.0;
+  } else if (r.has("density")) {  // the mass from the shape's volume
+    if (r.has("mass")) r.fail(r.find("density"), "density", "give mass or density, not both");
+    const double density = r.requiredNumber("density", kMinDensity, kMaxDensity);
+    const double volume = bodyVolume(b);
+    if (!(volume > 0.0)) {
+      r.fail(r.find("density"), "density", "the mesh encloses no volume (open or inside-out): give a mass instead");
+    }
+    b.mass = density * volume;
+    const sim::Setting<sim::BodyDesc>& mass = *sim::findSetting(sim::bodySettings(), "mass");
+    if (const std::optional<std::string> why = sim::checkGiven(mass, b.mass)) {
+      char text[160];
+      std::snprintf(text, sizeof text, "gives a mass of %g kg (volume %g m^3): ", b.mass, volume);
+      r.fail(r.find("density"), "density", text + *why);
+    }
   } else {
     r.setting(*sim::findSetting(sim::bodySettings(), "mass"), b, "mass", true);
   }
@@ -568,7 +605,8 @@ void checkMassRatios(Reader& r, const sim::SceneDesc& scene) {
                   "must be at least 1/100 of the heaviest proxy, %g kg here (fingers.%s.proxy_mass %g kg): the solver "
                   "cannot hold a lighter body in a pinch, got %g",
                   lightest, heaviest->name.c_str(), heaviest->proxy.mass, body->mass);
-    br.fail(br.find("mass"), "mass", why);
+    const char* field = br.has("density") ? "density" : "mass";  // the field the user wrote
+    br.fail(br.find(field), field, why);
   }
 }
 

@@ -54,6 +54,30 @@ std::string replaced(const std::string& from, const std::string& to) {
   return s.replace(at, from.size(), to);
 }
 
+// `density` instead of `mass`: the mass is the density times the shape's volume (a sphere's
+// 4/3 pi r^3; a closed mesh's enclosed volume); with mass, on a static body, on an open mesh or
+// giving a mass outside the mass range, it is an error naming the field.
+TEST(SceneFile, DensityGivesTheMassFromTheVolume) {
+  const SessionDesc s = parseSceneText(replaced("mass = 0.1", "density = 1000"), "scene.toml", "");
+  EXPECT_NEAR(s.scene.bodies[1].mass, 1000.0 * 4.0 / 3.0 * std::numbers::pi * 0.03 * 0.03 * 0.03, 1e-12);
+  const fs::path dir = fs::temp_directory_path() / "gf_density";
+  fs::create_directories(dir);
+  std::ofstream(dir / "cube.obj") << "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 0 0 1\nv 1 0 1\nv 1 1 1\nv 0 1 1\n"
+                                     "f 1 3 2\nf 1 4 3\nf 5 6 7\nf 5 7 8\nf 1 2 6\nf 1 6 5\nf 2 3 7\nf 2 7 6\n"
+                                     "f 3 4 8\nf 3 8 7\nf 4 1 5\nf 4 5 8\n";
+  const std::string cube = replaced("shape = \"sphere\"\nradius = 0.03\nmass = 0.1",
+                                    "shape = \"mesh\"\ncollision = \"convex_hull\"\nmesh = \"cube.obj\"\nscale = 0.04\ndensity = 500");
+  const SessionDesc c = parseSceneText(cube, "scene.toml", dir.string());
+  EXPECT_NEAR(c.scene.bodies[1].mass, 500.0 * 0.04 * 0.04 * 0.04, 1e-12);
+  EXPECT_EQ(errorOf(replaced("mass = 0.1", "mass = 0.1\ndensity = 1000")).field(), "bodies.ball.density");
+  EXPECT_EQ(errorOf(replaced("mass = 0.1", "density = 0.5")).field(), "bodies.ball.density");  // below 1 kg/m^3
+  EXPECT_NE(errorOf(replaced("radius = 0.03\nmass = 0.1", "radius = 0.001\ndensity = 1")).reason().find("gives a mass of"),
+            std::string::npos);
+  // Too light for the proxies: the error names density, the field the user wrote.
+  EXPECT_EQ(errorOf(replaced("mass = 0.1", "density = 1")).field(), "bodies.ball.density");
+  EXPECT_EQ(errorOf(replaced("mass = 0.1", "static = true\ndensity = 1000")).field(), "bodies.ball.density");
+}
+
 TEST(SceneFile, ReadsBodiesFingersAndEffectsInFileOrder) {
   const SessionDesc s = parseSceneText(kMinimal, "scene.toml", "");
   ASSERT_EQ(s.scene.bodies.size(), 2u);
