@@ -335,6 +335,9 @@ void clearEarlierOutputs(const fs::path& dir) {
   sweep(dir / "contacts", isContactName);
 }
 
+// Bodies overlapping by more than this at the start (m) are reported.
+constexpr double kStartOverlap = 1e-3;
+
 // Progress on stderr: on a terminal one line rewritten in place once per simulated second;
 // otherwise (a log file, a pipe) a plain line at every tenth of the run, so logs stay readable.
 class Progress {
@@ -397,8 +400,15 @@ sim::LoopStats runSession(const SessionDesc& session, const SessionOptions& opti
   if (!options.camera.empty() && !options.frames && options.video_path.empty()) {
     warnings.push_back("--camera " + options.camera + ": no --frames or --video, so nothing is drawn with it");
   }
-  for (const std::string& w : warnings) std::fprintf(stderr, "%s: warning: %s\n", scene.name.c_str(), w.c_str());
   sim::World world(scene);
+  for (const sim::World::Overlap& o : world.bodyOverlaps(kStartOverlap)) {
+    char text[256];
+    std::snprintf(text, sizeof text, "bodies.%s and bodies.%s start %.1f mm inside each other: the solver will push them apart",
+                  scene.bodies[static_cast<std::size_t>(o.body_a)].name.c_str(),
+                  scene.bodies[static_cast<std::size_t>(o.body_b)].name.c_str(), 1e3 * o.depth);
+    warnings.emplace_back(text);
+  }
+  for (const std::string& w : warnings) std::fprintf(stderr, "%s: warning: %s\n", scene.name.c_str(), w.c_str());
   const std::vector<sim::DeviceTrack> devices = sim::deviceTracks(scene);
   const double rate = scene.world.haptic_rate_hz, dt = 1.0 / rate;
   const long steps = sim::stepCount(scene.duration, rate);

@@ -643,6 +643,31 @@ Vec3 World::bodyAngularVelocity(int body) const {
   return toEigen(impl_->bodies[body].rigid->getAngularVelocity());
 }
 
+std::vector<World::Overlap> World::bodyOverlaps(double tolerance) const {
+  GF_ASSERT_OWNER();
+  struct Deepest : btCollisionWorld::ContactResultCallback {
+    double depth = 0.0;
+    btScalar addSingleResult(btManifoldPoint& p, const btCollisionObjectWrapper*, int, int,
+                             const btCollisionObjectWrapper*, int, int) override {
+      depth = std::max(depth, -static_cast<double>(p.getDistance()));
+      return 0;
+    }
+  };
+  std::vector<Overlap> out;
+  auto& bodies = impl_->bodies;
+  for (std::size_t a = 0; a < bodies.size(); ++a) {
+    for (std::size_t b = a + 1; b < bodies.size(); ++b) {
+      btRigidBody& ra = *bodies[a].rigid;
+      btRigidBody& rb = *bodies[b].rigid;
+      if (ra.getInvMass() == 0.0 && rb.getInvMass() == 0.0) continue;
+      Deepest deepest;
+      impl_->world.contactPairTest(&ra, &rb, deepest);
+      if (deepest.depth > tolerance) out.push_back({static_cast<int>(a), static_cast<int>(b), deepest.depth});
+    }
+  }
+  return out;
+}
+
 Vec3 World::bodyInertia(int body) const {
   GF_ASSERT_OWNER();
   const btRigidBody& r = *impl_->bodies[body].rigid;

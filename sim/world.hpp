@@ -86,6 +86,17 @@ class World {
   /// Throws DescriptionError naming the finger and the first setting that is not legal.
   void setPatchSettings(int finger, const PatchSettings& settings);
 
+  /// Two bodies whose shapes overlap: `depth` metres into each other (> 0).
+  struct Overlap {
+    int body_a = -1, body_b = -1;
+    double depth = 0.0;
+  };
+  /// The pairs of bodies (static ones included, proxies not; two static bodies never) whose
+  /// shapes overlap now by more than `tolerance` metres, each with its deepest point: a check
+  /// for scenes that start with bodies inside each other. Runs the collision tests of those
+  /// pairs on their own, leaving the world's contact state as it was. Allocates.
+  std::vector<Overlap> bodyOverlaps(double tolerance) const;
+
  private:
   struct Impl;
   std::unique_ptr<Impl> impl_;

@@ -318,6 +318,32 @@ TEST(Outputs, PlotDrawsTraceColumnsAndNamesBadOnes) {
   EXPECT_NE(readFile(said).find("bad.csv:3:2: a.x: expected a number, got 'oops'"), std::string::npos) << readFile(said);
 }
 
+// A body that starts inside the ground (a 3 cm ball with its centre 2.5 cm up: 5 mm in) is a
+// warning on stderr and in summary.json; one resting on it (centre 3 cm up) is not.
+TEST(Outputs, ABodyStartingInsideAnotherIsAWarning) {
+  const fs::path dir = freshFolder("gf_out_overlap");
+  const auto scene = [&](double y) {
+    std::ofstream(dir / "scene.toml") << "name = \"overlap\"\nduration = 0.01\neffects = [\"gravity\"]\n"
+                                         "[bodies.ground]\nshape = \"plane\"\n"
+                                         "[bodies.ball]\nshape = \"sphere\"\nradius = 0.03\nmass = 0.1\nposition = [0, "
+                                      << y << ", 0]\n";
+  };
+  const fs::path log = dir / "stderr.txt";
+  scene(0.025);
+  ASSERT_EQ(exitStatus(kBin + " run " + (dir / "scene.toml").string() + " --quiet --out " + (dir / "run").string() +
+                       " 2> " + log.string() + " > /dev/null"),
+            0);
+  EXPECT_NE(readFile(log).find("warning: bodies.ground and bodies.ball start 5.0 mm inside each other"), std::string::npos)
+      << readFile(log);
+  EXPECT_EQ(summaryOf(dir / "run")["warnings"].size(), 1u);
+  scene(0.03);
+  ASSERT_EQ(exitStatus(kBin + " run " + (dir / "scene.toml").string() + " --quiet --out " + (dir / "run").string() +
+                       " 2> " + log.string() + " > /dev/null"),
+            0);
+  EXPECT_EQ(readFile(log).find("inside each other"), std::string::npos) << readFile(log);
+  EXPECT_TRUE(summaryOf(dir / "run")["warnings"].empty());
+}
+
 // Bare `godfinger` prints the usage with the commands.
 TEST(Outputs, BareGodfingerPrintsTheUsage) {
   const fs::path dir = freshFolder("gf_out_bare");
