@@ -188,6 +188,25 @@ void readMesh(Reader& r, const std::string& base_dir, sim::MeshCache& meshes, si
   } catch (const sim::MeshLoadError& e) {
     r.fail(n, "mesh", e.what());
   }
+  // The file's up axis when it is not the scene's +y (CAD and 3D-printing files are mostly +z
+  // up): the mesh turned so that axis points up. Files that declare theirs (Collada) are turned
+  // on reading already; "y" keeps the mesh as read.
+  static constexpr const char* kUpAxes[] = {"y", "z", "-z", "x", "-x", "-y"};
+  const int up = r.choice("up_axis", kUpAxes, 0);
+  if (up != 0) {
+    // Rotations taking the named axis onto +y (right-handed, proper).
+    static const Eigen::Matrix3d kTurns[] = {
+        Eigen::Matrix3d::Identity(),
+        (Eigen::Matrix3d() << 1, 0, 0, 0, 0, 1, 0, -1, 0).finished(),   // +z up: (x, y, z) -> (x, z, -y)
+        (Eigen::Matrix3d() << 1, 0, 0, 0, 0, -1, 0, 1, 0).finished(),   // -z up: (x, y, z) -> (x, -z, y)
+        (Eigen::Matrix3d() << 0, -1, 0, 1, 0, 0, 0, 0, 1).finished(),   // +x up: (x, y, z) -> (-y, x, z)
+        (Eigen::Matrix3d() << 0, 1, 0, -1, 0, 0, 0, 0, 1).finished(),   // -x up: (x, y, z) -> (y, -x, z)
+        (Eigen::Matrix3d() << 1, 0, 0, 0, -1, 0, 0, 0, -1).finished()}; // -y up: (x, y, z) -> (x, -y, -z)
+    std::vector<sim::Vec3> turned;
+    turned.reserve(b.mesh->vertices().size());
+    for (const sim::Vec3& p : b.mesh->vertices()) turned.push_back(kTurns[up] * p);
+    b.mesh = std::make_shared<const sim::Mesh>(sim::buildMesh(turned, b.mesh->triangles()));
+  }
 }
 
 // A body's `density` may lie in this range (kg/m^3: from aerogel to osmium, twice over).

@@ -78,6 +78,34 @@ TEST(SceneFile, DensityGivesTheMassFromTheVolume) {
   EXPECT_EQ(errorOf(replaced("mass = 0.1", "static = true\ndensity = 1000")).field(), "bodies.ball.density");
 }
 
+// `up_axis`: a mesh drawn with +z up (a 1 x 1 x 3 box, tall along z) stands 3 units tall along
+// +y with up_axis = "z", and its top (z = 3) ends at +y; an unknown axis is named.
+TEST(SceneFile, UpAxisTurnsTheMeshUp) {
+  const fs::path dir = fs::temp_directory_path() / "gf_up_axis";
+  fs::create_directories(dir);
+  std::ofstream(dir / "tall.obj") << "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 0 0 3\nv 1 0 3\nv 1 1 3\nv 0 1 3\n"
+                                     "f 1 3 2\nf 1 4 3\nf 5 6 7\nf 5 7 8\nf 1 2 6\nf 1 6 5\nf 2 3 7\nf 2 7 6\n"
+                                     "f 3 4 8\nf 3 8 7\nf 4 1 5\nf 4 5 8\n";
+  const auto scene = [&](const std::string& up) {
+    return replaced("shape = \"sphere\"\nradius = 0.03\nmass = 0.1",
+                    "shape = \"mesh\"\ncollision = \"convex_hull\"\nmesh = \"tall.obj\"\nscale = 0.01\nmass = 0.1" + up);
+  };
+  const SessionDesc as_read = parseSceneText(scene(""), "scene.toml", dir.string());
+  EXPECT_NEAR(as_read.scene.bodies[1].mesh->boundsMax().y(), 0.01, 1e-12);
+  const SessionDesc z_up = parseSceneText(scene("\nup_axis = \"z\""), "scene.toml", dir.string());
+  const sim::Mesh& m = *z_up.scene.bodies[1].mesh;
+  EXPECT_NEAR(m.boundsMax().y() - m.boundsMin().y(), 0.03, 1e-12);
+  EXPECT_NEAR(m.boundsMax().y(), 0.03, 1e-12);  // the top, z = 3, is up
+  EXPECT_NEAR(m.boundsMax().z() - m.boundsMin().z(), 0.01, 1e-12);
+  EXPECT_GT(sim::massProperties(m).volume, 0.0);  // still outward: a proper rotation
+  try {
+    parseSceneText(scene("\nup_axis = \"up\""), "scene.toml", dir.string());
+    ADD_FAILURE() << "no error";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.field(), "bodies.ball.up_axis");
+  }
+}
+
 TEST(SceneFile, ReadsBodiesFingersAndEffectsInFileOrder) {
   const SessionDesc s = parseSceneText(kMinimal, "scene.toml", "");
   ASSERT_EQ(s.scene.bodies.size(), 2u);
