@@ -8,7 +8,11 @@ namespace {
 
 std::atomic<int> g_signal{0};
 
-extern "C" void onInterrupt(int signal) { g_signal.store(signal, std::memory_order_relaxed); }
+// The first signal is kept: SIGTERM then Ctrl-C still ends with SIGTERM's status.
+extern "C" void onInterrupt(int signal) {
+  int none = 0;
+  g_signal.compare_exchange_strong(none, signal, std::memory_order_relaxed);
+}
 
 struct sigaction g_old_int {}, g_old_term {};
 
@@ -20,8 +24,11 @@ InterruptScope::InterruptScope() {
   a.sa_handler = onInterrupt;
   a.sa_flags = SA_RESETHAND;  // no SA_RESTART: a read waiting for input returns
   sigemptyset(&a.sa_mask);
-  sigaction(SIGINT, &a, &g_old_int);
-  sigaction(SIGTERM, &a, &g_old_term);
+  // A signal the process was started ignoring (a background job, nohup) stays ignored.
+  sigaction(SIGINT, nullptr, &g_old_int);
+  sigaction(SIGTERM, nullptr, &g_old_term);
+  if (g_old_int.sa_handler != SIG_IGN) sigaction(SIGINT, &a, nullptr);
+  if (g_old_term.sa_handler != SIG_IGN) sigaction(SIGTERM, &a, nullptr);
 }
 
 InterruptScope::~InterruptScope() {

@@ -4,9 +4,10 @@
 
 namespace gf::app {
 
-/// While alive, SIGINT and SIGTERM record their signal instead of ending the process; each
-/// handler resets itself, so a second Ctrl-C ends the process at once. Blocking reads are not
-/// restarted after the signal (a `live` session waiting on its input stops). One at a time.
+/// While alive, SIGINT and SIGTERM record their signal (the first one) instead of ending the
+/// process; each handler resets itself, so a second Ctrl-C ends the process at once. A signal the
+/// process was started ignoring stays ignored. Blocking reads are not restarted after the signal
+/// (a `live` session waiting on its input stops). One at a time.
 class InterruptScope {
  public:
   InterruptScope();

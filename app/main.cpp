@@ -161,7 +161,8 @@ int runCommand(const RunArgs& a) {
   if (a.frames) std::printf("frames: %s/frames/\n", a.out.c_str());
   if (!a.video.empty()) std::printf("video: %s\n", a.video.c_str());
   // Ctrl-C or SIGTERM: the outputs hold the time reached; the shell's status for the signal.
-  if (stats.stopped) return gf::app::interruptedStatus();
+  // A signal while the outputs were being finished ends with its status too (they are complete).
+  if (stats.stopped || gf::app::interruptSignal() != 0) return gf::app::interruptedStatus();
   // 3: the run was fine, the scene's expectations were not.
   return failed.empty() || a.expectations == "report" ? 0 : 3;
 }
@@ -393,6 +394,7 @@ int main(int argc, char** argv) {
   // A reader that went away (ffmpeg, a closed pipe) is a write error we report, not a signal
   // that kills the run before it writes what it reached.
   std::signal(SIGPIPE, SIG_IGN);
+  std::signal(SIGXFSZ, SIG_IGN);  // a file past the size limit: a write error too
   run_args.command_line.assign(argv, argv + argc);
   CLI11_PARSE(app, argc, argv);
   try {

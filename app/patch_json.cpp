@@ -140,7 +140,8 @@ std::string patchExplanation(const sim::Patch& patch, const sim::PatchSettings& 
     text.append(std::to_string(settings.n_sgo)).append(" radial vectors ").append(kStopMeanings[k]);
   }
   if (text.empty()) return text;
-  return std::string("the hit is on a ") + featureName(patch.hit.feature) + ": " + text;
+  const char* feature = featureName(patch.hit.feature);
+  return std::string("the hit is on ") + (feature[0] == 'e' ? "an " : "a ") + feature + ": " + text;
 }
 
 }  // namespace gf::app

@@ -35,6 +35,7 @@ std::vector<std::string> splitRow(const std::string& line) {
 }  // namespace
 
 std::string writePlot(const PlotOptions& o) {
+  if (std::filesystem::is_directory(o.csv)) throw InputError(o.csv, 0, 0, "file", "is a folder; give a CSV file");
   std::ifstream in(o.csv);
   if (!in) throw InputError(o.csv, 0, 0, "file", "cannot read");
   std::string line;

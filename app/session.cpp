@@ -6,6 +6,7 @@
 #include <atomic>
 #include <chrono>
 #include <csignal>
+#include <cctype>
 #include <cerrno>
 #include <cmath>
 #include <cstdio>
@@ -15,6 +16,7 @@
 #include <memory>
 #include <optional>
 
+#include <pthread.h>
 #include <unistd.h>
 
 #include "app/frame_driver.hpp"
@@ -335,6 +337,25 @@ void clearEarlierOutputs(const fs::path& dir) {
   sweep(dir / "contacts", isContactName);
 }
 
+// While alive, SIGINT and SIGTERM are blocked on this thread, so the threads it starts meanwhile
+// never take them (they stay with the haptic loop's thread, which waits for them).
+class SignalsBlocked {
+ public:
+  SignalsBlocked() {
+    sigset_t both;
+    sigemptyset(&both);
+    sigaddset(&both, SIGINT);
+    sigaddset(&both, SIGTERM);
+    pthread_sigmask(SIG_BLOCK, &both, &old_);
+  }
+  ~SignalsBlocked() { pthread_sigmask(SIG_SETMASK, &old_, nullptr); }
+  SignalsBlocked(const SignalsBlocked&) = delete;
+  SignalsBlocked& operator=(const SignalsBlocked&) = delete;
+
+ private:
+  sigset_t old_{};
+};
+
 // Bodies overlapping by more than this at the start (m) are reported.
 constexpr double kStartOverlap = 1e-3;
 
@@ -371,20 +392,30 @@ class Progress {
 
 void prepareOutputs(const SessionOptions& options) {
   const fs::path dir(options.out_dir);
-  if (!options.video_path.empty()) {
-    const fs::path video(options.video_path);
-    if (fs::is_directory(video)) throw std::runtime_error(options.video_path + " is a folder; give a file such as out.mp4");
-    requireWritableFolder(video.parent_path().empty() ? fs::path(".") : video.parent_path(), "the video");
-  }
   requireWritableFolder(dir, "the run's outputs");
   requireWritableFolder(dir / "contacts", "contact snapshots");
   if (options.frames) requireWritableFolder(dir / "frames", "frames");
-  clearEarlierOutputs(dir);  // only once every path is known to work
+  if (!options.video_path.empty()) {
+    const fs::path video(options.video_path);
+    std::error_code ec;
+    if (fs::is_directory(video, ec)) throw std::runtime_error(options.video_path + " is a folder; give a file such as out.mp4");
+    std::string ext = video.extension().string();
+    for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+    if (ext != ".mp4" && ext != ".mkv" && ext != ".mov") {
+      throw std::runtime_error(options.video_path + ": the video's name must end in .mp4, .mkv or .mov");
+    }
+    requireWritableFolder(video.parent_path().empty() ? fs::path(".") : video.parent_path(), "the video");
+  }
 }
 
 sim::LoopStats runSession(const SessionDesc& session, const SessionOptions& options) {
   const sim::SceneDesc& scene = session.scene;
   const fs::path dir(options.out_dir);
+  // Ctrl-C and SIGTERM are recorded from here on (the outputs are finished when one comes); the
+  // threads started below (writers, the render thread, its encoders) do not take them.
+  std::optional<InterruptScope> interrupt;
+  if (options.stop_on_interrupt) interrupt.emplace();
+  std::optional<SignalsBlocked> quiet_threads(std::in_place);
   prepareOutputs(options);
   // Requests this run cannot carry out but that do not make it useless: said on stderr now and
   // listed in summary.json.
@@ -412,9 +443,6 @@ sim::LoopStats runSession(const SessionDesc& session, const SessionOptions& opti
   const std::vector<sim::DeviceTrack> devices = sim::deviceTracks(scene);
   const double rate = scene.world.haptic_rate_hz, dt = 1.0 / rate;
   const long steps = sim::stepCount(scene.duration, rate);
-  std::optional<TraceWriter> trace;
-  if (session.record.trace) trace.emplace(world, (dir / "trace.csv").string());
-  ForceWriter forces(world, session.record.force_bodies, steps, (dir / "forces.csv").string());
   std::vector<double> pending = session.record.contact_times;
   std::sort(pending.begin(), pending.end(), std::greater<>());  // next time at the back
   std::vector<std::pair<double, sim::Snapshot>> contact_snaps;  // serialised after the run
@@ -427,6 +455,12 @@ sim::LoopStats runSession(const SessionDesc& session, const SessionOptions& opti
     if (!stream) fo.overlay = false;
     renderer = std::make_unique<render::RenderThread>(scene, fo);
   }
+  // Everything that can fail before the first step has: what an earlier run left of this run's
+  // outputs goes now, then the files are opened.
+  clearEarlierOutputs(dir);
+  std::optional<TraceWriter> trace;
+  if (session.record.trace) trace.emplace(world, (dir / "trace.csv").string());
+  ForceWriter forces(world, session.record.force_bodies, steps, (dir / "forces.csv").string());
   sim::LiveTimings live;
   std::unique_ptr<FrameDriver> frames;
   if (stream) frames = std::make_unique<FrameDriver>(*renderer, 60.0, options.realtime, session.view.actions, &live);
@@ -438,8 +472,7 @@ sim::LoopStats runSession(const SessionDesc& session, const SessionOptions& opti
   loop.spin_us = options.spin_us;
   if (frames) frames->start(world);
   ExpectChecker expect(session.expect, world);
-  std::optional<InterruptScope> interrupt;
-  if (options.stop_on_interrupt) interrupt.emplace();
+  quiet_threads.reset();  // this thread takes the signals again
   // The loop stops before its next step on a signal or when an output fails (a full disk, a
   // dead ffmpeg): the run then writes what it reached and reports the failure.
   std::atomic<bool> halt{false};
@@ -453,22 +486,29 @@ sim::LoopStats runSession(const SessionDesc& session, const SessionOptions& opti
   const sim::LoopStats stats = sim::runHapticLoop(world, devices, loop, [&](const sim::World& w) {
     if (interrupt && interruptSignal() != 0) halt.store(true, std::memory_order_relaxed);
     expect.afterStep(w);
-    try {
+    try {  // each output on its own: one failing does not skip the others' row of this step
       if (trace) trace->record(w);
       if (!forces.empty()) forces.record(w, dt);
-      if (frames) frames->afterStep(world, dt);
-      while (!pending.empty() && pending.back() <= w.time() + 0.5 * dt) {
-        w.snapshot(contact_snaps.emplace_back(pending.back(), sim::Snapshot{}).second);
+    } catch (const std::exception& e) {
+      failed_output(e);
+    }
+    while (!pending.empty() && pending.back() <= w.time() + 0.5 * dt) {
+      w.snapshot(contact_snaps.emplace_back(pending.back(), sim::Snapshot{}).second);
+      try {
         if (closeups) renderer->submitCloseUps(contact_snaps.back().second,
                                                (dir / "contacts" / contactFileName(pending.back())).string());
-        pending.pop_back();
+      } catch (const std::exception& e) {
+        failed_output(e);
       }
+      pending.pop_back();
+    }
+    try {
+      if (frames) frames->afterStep(world, dt);
     } catch (const std::exception& e) {
       failed_output(e);
     }
     progress.step(w.time(), ++done);
   });
-  interrupt.reset();
   progress.finish();
   const bool interrupted = stats.stopped && failure.empty();
   if (interrupted) {
@@ -548,7 +588,8 @@ sim::LoopStats runSession(const SessionDesc& session, const SessionOptions& opti
   }
   if (!failure.empty()) summary["error"] = failure;
   summary["warnings"] = warnings;
-  writeFileAtomically((dir / "summary.json").string(), summary.dump(2) + "\n");
+  finish([&] { writeFileAtomically((dir / "summary.json").string(), summary.dump(2) + "\n"); });
+  interrupt.reset();
   if (!failure.empty()) throw std::runtime_error(failure + " (the outputs hold t = " + std::to_string(world.time()) + " s)");
   return stats;
 }

@@ -1,5 +1,6 @@
 #include "app/trace_writer.hpp"
 
+#include <atomic>
 #include <charconv>
 #include <condition_variable>
 #include <cstdio>
@@ -24,7 +25,12 @@ void writeFileAtomically(const std::string& path, const std::string& text) {
   {
     std::ofstream f(tmp, std::ios::binary);
     f.write(text.data(), static_cast<std::streamsize>(text.size()));
-    if (!f) throw std::runtime_error(tmp + ": cannot write");
+    f.close();
+    if (!f) {
+      std::error_code ignored;
+      std::filesystem::remove(tmp, ignored);  // no half file left behind
+      throw std::runtime_error(path + ": cannot write (disk full?)");
+    }
   }
   std::error_code ec;
   std::filesystem::rename(tmp, path, ec);
@@ -44,7 +50,7 @@ struct StreamedFile::Writer {
   std::deque<std::unique_ptr<std::string>> full;   // owner -> writer
   std::vector<std::unique_ptr<std::string>> free;  // writer -> owner, emptied, capacity kept
   bool closing = false;
-  bool failed = false;
+  std::atomic<bool> failed{false};  // set by the writer, seen by the owner at its next hand-over
   bool closed = false;
   std::thread thread;
 
@@ -93,6 +99,12 @@ StreamedFile::~StreamedFile() {
   }
 }
 
+void StreamedFile::handOverFull() {
+  // A write that failed (a full disk) stops the owner now, not at close().
+  if (writer_->failed.load(std::memory_order_relaxed)) throw std::runtime_error(writer_->path + ": cannot write (disk full?)");
+  handOver();
+}
+
 void StreamedFile::handOver() {
   Writer& w = *writer_;
   std::unique_ptr<std::string> next;
@@ -127,7 +139,7 @@ void StreamedFile::close() {
   if (w.failed || !w.out) {
     std::error_code ignored;
     std::filesystem::remove(w.tmp, ignored);
-    throw std::runtime_error(w.tmp + ": cannot write (disk full?); " + w.path + " left as it was");
+    throw std::runtime_error(w.path + ": cannot write (disk full?); its rows could not be kept");
   }
   std::error_code ec;
   std::filesystem::rename(w.tmp, w.path, ec);

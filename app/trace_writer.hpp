@@ -25,7 +25,7 @@ class StreamedFile {
   std::string& block() { return *block_; }
   /// Hands the block to the writer when it is full.
   void rowDone() {
-    if (block_->size() >= kBlockBytes) handOver();
+    if (block_->size() >= kBlockBytes) handOverFull();
   }
   /// Writes everything and renames `path.tmp` to `path`. Throws std::runtime_error on I/O failure
   /// (a full disk), naming the file; the earlier `path`, if any, is then left as it was.
@@ -36,6 +36,7 @@ class StreamedFile {
  private:
   struct Writer;
   void handOver();
+  void handOverFull();  // handOver, throwing std::runtime_error first when a write has failed
   std::unique_ptr<Writer> writer_;
   std::unique_ptr<std::string> block_;
 };

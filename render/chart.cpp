@@ -99,11 +99,15 @@ Range fitLinearY(std::vector<double> v, const ChartSpec& chart) {
   if (!v.empty()) {
     std::sort(v.begin(), v.end());
     const Range all{v.front(), v.back()};
-    const Range middle{v[static_cast<std::size_t>(0.002 * (v.size() - 1))],
-                       v[static_cast<std::size_t>(0.998 * (v.size() - 1))]};
+    // Outward-rounded indices: a series of fewer than 500 values keeps its extremes.
+    const Range middle{v[static_cast<std::size_t>(std::floor(0.002 * static_cast<double>(v.size() - 1)))],
+                       v[static_cast<std::size_t>(std::ceil(0.998 * static_cast<double>(v.size() - 1)))]};
     y = all.hi - all.lo > kClipRatio * (middle.hi - middle.lo) && middle.hi > middle.lo ? middle : all;
   }
-  if (!(y.hi > y.lo)) y = {y.lo - 1.0, y.lo + 1.0};
+  if (!(y.hi > y.lo)) {  // one value: a span around it that its magnitude can show
+    const double half = y.lo != 0.0 ? 0.05 * std::abs(y.lo) : 1.0;
+    y = {y.lo - half, y.lo + half};
+  }
   const double pad = 0.05 * (y.hi - y.lo);
   return {y.lo - pad, y.hi + pad};
 }
@@ -227,6 +231,13 @@ Layout layout(const ChartSpec& chart, float font) {
   }
   l.legend_top = l.lo.y - 0.2f * font;
   l.lo.y += static_cast<float>(l.legend.size()) * legendRowHeight(font);
+  // The y label sits just above the plot, on the last legend row's line: a line of its own when
+  // that row reaches back over it.
+  if (!l.legend.empty()) {
+    float last = 0.0f;
+    for (const LegendEntry& e : l.legend.back()) last += e.width;
+    if (l.hi.x - last + 1.2f * font < y_label_end + font) l.lo.y += 1.4f * font;
+  }
   l.title = ImVec2(l.lo.x, 0.6f * font);
   l.y_label = ImVec2(0.4f * font, l.lo.y - 1.6f * font);
   return l;
@@ -491,7 +502,7 @@ void drawChart(ImGuiLayer& layer, const ChartSpec& chart) {
             kInk, chart.x_label.c_str());
   d.AddText(l.y_label, kInk, chart.y_label.c_str());
   drawLegend(c, l);
-  if (beyond) {  // say what the edge triangles mean, under the plot on the left
+  if (beyond) {  // say what the edge triangles mean, under the plot on the right
     const char* note = "triangles at the edges: values beyond the y axis";
     d.AddText(ImVec2(l.hi.x - ImGui::CalcTextSize(note).x, static_cast<float>(chart.height) - 1.6f * font), kInk, note);
   }

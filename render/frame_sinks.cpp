@@ -1,8 +1,17 @@
 #include "render/frame_sinks.hpp"
 
+#include <cerrno>
 #include <chrono>
+#include <csignal>
+#include <cstring>
 #include <filesystem>
+
+#include <fcntl.h>
+#include <spawn.h>
 #include <sys/wait.h>
+#include <unistd.h>
+
+extern char** environ;
 
 namespace gf::render {
 namespace {
@@ -89,19 +98,48 @@ SinkStats PngSequenceWriter::finish() {
 
 VideoWriter::VideoWriter(const std::string& path, int width, int height, double fps, int crf)
     : path_(path), width_(width), height_(height) {
-  // Quoting: the path goes to the shell inside single quotes; a quote in it is refused.
-  if (path.find('\'') != std::string::npos) throw ImageError(path + ": quote in video path");
-  char command[1024];
-  std::snprintf(command, sizeof command,
-                "ffmpeg -loglevel error -y -f rawvideo -pix_fmt rgb24 -s %dx%d -r %g -i - "
-                "-c:v libx264 -preset veryfast -crf %d -pix_fmt yuv420p -movflags +faststart '%s'",
-                width, height, fps, crf, path.c_str());
-  pipe_ = popen(command, "w");
-  if (!pipe_) throw ImageError(path + ": cannot start ffmpeg");
+  // ffmpeg reads the frames from a pipe on its standard input. It is started without a shell
+  // (any path works), in a process group of its own, so a Ctrl-C at the terminal reaches only
+  // godfinger, which then ends the video by closing the pipe; and with no signal blocked.
+  const std::string size = std::to_string(width) + "x" + std::to_string(height);
+  char rate[32], quality[16];
+  std::snprintf(rate, sizeof rate, "%g", fps);
+  std::snprintf(quality, sizeof quality, "%d", crf);
+  const char* argv[] = {"ffmpeg", "-loglevel", "error", "-y", "-f", "rawvideo", "-pix_fmt", "rgb24", "-s",
+                        size.c_str(), "-r", rate, "-i", "-", "-c:v", "libx264", "-preset", "veryfast", "-crf",
+                        quality, "-pix_fmt", "yuv420p", "-movflags", "+faststart", path.c_str(), nullptr};
+  int fds[2];
+  if (pipe2(fds, O_CLOEXEC) != 0) throw ImageError(path + ": cannot start ffmpeg: no pipe");
+  posix_spawn_file_actions_t actions;
+  posix_spawn_file_actions_init(&actions);
+  posix_spawn_file_actions_adddup2(&actions, fds[0], STDIN_FILENO);
+  posix_spawnattr_t attributes;
+  posix_spawnattr_init(&attributes);
+  sigset_t none;
+  sigemptyset(&none);
+  posix_spawnattr_setsigmask(&attributes, &none);
+  posix_spawnattr_setpgroup(&attributes, 0);
+  posix_spawnattr_setflags(&attributes, POSIX_SPAWN_SETPGROUP | POSIX_SPAWN_SETSIGMASK);
+  const int failed = posix_spawnp(&child_, "ffmpeg", &actions, &attributes, const_cast<char* const*>(argv), environ);
+  posix_spawn_file_actions_destroy(&actions);
+  posix_spawnattr_destroy(&attributes);
+  close(fds[0]);
+  if (failed != 0) {
+    close(fds[1]);
+    throw ImageError(path + ": cannot start ffmpeg (is the ffmpeg package installed?): " + std::strerror(failed));
+  }
+  pipe_ = fdopen(fds[1], "w");
+  if (!pipe_) {
+    close(fds[1]);
+    waitpid(child_, nullptr, 0);
+    throw ImageError(path + ": cannot start ffmpeg: no stream");
+  }
 }
 
 VideoWriter::~VideoWriter() {
-  if (pipe_) pclose(pipe_);
+  if (!pipe_) return;
+  std::fclose(pipe_);
+  waitpid(child_, nullptr, 0);
 }
 
 void VideoWriter::push(const Image& frame) {
@@ -118,9 +156,12 @@ void VideoWriter::push(const Image& frame) {
 
 SinkStats VideoWriter::finish() {
   if (!pipe_) return stats_;
-  const int status = pclose(pipe_);
+  std::fclose(pipe_);  // end of input: ffmpeg finishes the file
   pipe_ = nullptr;
-  if (status == -1 || !WIFEXITED(status) || WEXITSTATUS(status) != 0) {
+  int status = 0;
+  while (waitpid(child_, &status, 0) < 0 && errno == EINTR) {
+  }
+  if (!WIFEXITED(status) || WEXITSTATUS(status) != 0) {
     throw ImageError(path_ + ": ffmpeg failed (is the ffmpeg package installed?)");
   }
   std::error_code ec;

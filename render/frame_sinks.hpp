@@ -2,6 +2,8 @@
 // the ffmpeg binary from raw frames on a pipe. Both are fed by the render thread only.
 #pragma once
 
+#include <sys/types.h>
+
 #include <condition_variable>
 #include <cstdio>
 #include <deque>
@@ -68,7 +70,8 @@ class VideoWriter {
  private:
   std::string path_;
   int width_, height_;
-  std::FILE* pipe_ = nullptr;
+  std::FILE* pipe_ = nullptr;  // ffmpeg's standard input
+  pid_t child_ = 0;
   SinkStats stats_;
 };
 

@@ -85,7 +85,12 @@ void writePng(const std::string& path, const Image& image, int zlib_level) {
   {
     std::ofstream out(temporary, std::ios::binary | std::ios::trunc);
     out.write(reinterpret_cast<const char*>(bytes.data()), static_cast<std::streamsize>(bytes.size()));
-    if (!out) throw ImageError(path + ": cannot write");
+    out.close();
+    if (!out) {
+      std::error_code ignored;
+      std::filesystem::remove(temporary, ignored);  // no half picture left behind
+      throw ImageError(path + ": cannot write (disk full?)");
+    }
   }
   std::error_code ec;
   std::filesystem::rename(temporary, path, ec);

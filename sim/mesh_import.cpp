@@ -247,12 +247,15 @@ void colladaAsset(const std::string& path, MeshFileInfo& info) {
   in.read(head.data(), static_cast<std::streamsize>(head.size()));
   head.resize(static_cast<std::size_t>(in.gcount()));
   if (const std::size_t at = head.find("<unit"); at != std::string::npos) {
-    if (const std::size_t m = head.find("meter=\"", at); m != std::string::npos && m < head.find('>', at)) {
-      info.declared_unit_m = std::strtod(head.c_str() + m + 7, nullptr);
+    const std::size_t end = head.find('>', at);
+    if (const std::size_t m = head.find("meter=", at); m != std::string::npos && m < end) {
+      const std::size_t value = head.find_first_of("\"'", m);  // meter="0.01" or meter='0.01'
+      if (value != std::string::npos && value < end) info.declared_unit_m = std::strtod(head.c_str() + value + 1, nullptr);
     }
   }
   if (const std::size_t at = head.find("<up_axis>"); at != std::string::npos) {
-    info.declared_up = head.substr(at + 9, 1);
+    const std::size_t axis = head.find_first_not_of(" \t\r\n", at + 9);  // X_UP, Y_UP or Z_UP
+    if (axis != std::string::npos) info.declared_up = head.substr(axis, 1);
   }
   info.unit_and_up_applied = true;  // the Collada importer scales and turns the root node
 }
@@ -283,6 +286,8 @@ MeshFileInfo describeMeshFile(const std::string& path) {
   if (scene == nullptr) throw MeshLoadError(path + ": cannot read mesh: " + importer.GetErrorString());
   checkFaces(path, *scene);
   MeshFileInfo info;
+  int up_axis = -1;
+  bool up_negative = false;
   if (scene->mMetaData) {
     for (unsigned i = 0; i < scene->mMetaData->mNumProperties; ++i) {
       const std::string key = scene->mMetaData->mKeys[i].C_Str();
@@ -293,11 +298,11 @@ MeshFileInfo describeMeshFile(const std::string& path) {
       if (e.mType == AI_DOUBLE) unit = *static_cast<const double*>(e.mData);
       if (e.mType == AI_FLOAT) unit = *static_cast<const float*>(e.mData);
       if (key == "UnitScaleFactor" && unit > 0.0) info.declared_unit_m = 0.01 * unit;
-      if (key == "UpAxis" && e.mType == AI_INT32) {
-        info.declared_up = kAxisNames[std::clamp(*static_cast<const std::int32_t*>(e.mData), 0, 2)];
-      }
+      if (key == "UpAxis" && e.mType == AI_INT32) up_axis = std::clamp(*static_cast<const std::int32_t*>(e.mData), 0, 2);
+      if (key == "UpAxisSign" && e.mType == AI_INT32) up_negative = *static_cast<const std::int32_t*>(e.mData) < 0;
     }
   }
+  if (up_axis >= 0) info.declared_up = (up_negative ? "-" : "") + kAxisNames[up_axis];
   const std::string ext = lower(std::filesystem::path(path).extension().string());
   if (ext == ".dae") colladaAsset(path, info);
   if (ext == ".gltf" || ext == ".glb") {

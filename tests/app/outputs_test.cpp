@@ -23,9 +23,9 @@ namespace fs = std::filesystem;
 const std::string kBin = std::string(GF_BINARY_DIR) + "/godfinger";
 const std::string kFig8 = std::string(GF_SOURCE_DIR) + "/assets/scenes/fig8-pinch-oscillation.toml";
 
-// A fresh, empty folder under the temporary directory.
+// A fresh, empty folder of this build's own (two build trees may run their tests at once).
 fs::path freshFolder(const std::string& name) {
-  const fs::path dir = fs::temp_directory_path() / name;
+  const fs::path dir = fs::path(GF_BINARY_DIR) / "test-outputs" / name;
   fs::remove_all(dir);
   fs::create_directories(dir);
   return dir;
@@ -64,7 +64,7 @@ long countFiles(const fs::path& dir) {
 
 // The frames and MP4's duration as ffprobe reads it (negative when it cannot read the file).
 double videoSeconds(const fs::path& video) {
-  const std::string command = "ffprobe -v error -show_entries format=duration -of csv=p=0 '" + video.string() + "'";
+  const std::string command = "ffprobe -v error -show_entries format=duration -of csv=p=0 \"" + video.string() + "\"";
   std::FILE* p = popen(command.c_str(), "r");
   if (!p) return -1.0;
   char line[128] = {};
@@ -81,9 +81,12 @@ struct Child {
   pid_t pid = 0;
 };
 
+// The child runs in a session and process group of its own (setsid keeps its pid: sh is not a
+// group leader), so kill(-pid, ...) is what a terminal's Ctrl-C does: the signal reaches every
+// process of the group.
 Child start(const std::string& command, const std::string& stdout_file) {
   Child c;
-  c.lines = popen(("sh -c 'echo $$; exec " + command + " 2>&1 >" + stdout_file + "'").c_str(), "r");
+  c.lines = popen(("sh -c 'echo $$; exec setsid " + command + " 2>&1 >" + stdout_file + "'").c_str(), "r");
   if (!c.lines) return c;
   char line[64] = {};
   if (std::fgets(line, sizeof line, c.lines)) c.pid = static_cast<pid_t>(std::atol(line));
@@ -109,12 +112,13 @@ int finish(Child& c) {
   return WEXITSTATUS(status);
 }
 
-// `--video missing/x.mp4`: the folder is made before the run, and the run writes everything.
+// `--video missing/x.mp4`: the folder is made before the run, and the run writes everything
+// (any file name: here with a space and a quote, ffmpeg is started without a shell).
 TEST(Outputs, AVideoInAMissingFolderGetsTheFolder) {
   const fs::path dir = freshFolder("gf_out_missing_video");
-  const fs::path video = dir / "missing" / "deeper" / "x.mp4";
+  const fs::path video = dir / "missing" / "deeper" / "it's a.mp4";
   ASSERT_EQ(exitStatus(kBin + " run " + kFig8 + " --quiet --duration 0.2 --out " + (dir / "run").string() +
-                       " --video " + video.string() + " > /dev/null 2>&1"),
+                       " --video \"" + video.string() + "\" > /dev/null 2>&1"),
             0);
   EXPECT_GT(videoSeconds(video), 0.15);
   EXPECT_TRUE(fs::exists(dir / "run" / "summary.json"));
@@ -133,6 +137,14 @@ TEST(Outputs, AnUnwritablePathFailsBeforeAnyStepAndKeepsEarlierOutputs) {
   EXPECT_NE(readFile(log).find("/proc/godfinger"), std::string::npos) << readFile(log);
   EXPECT_EQ(readFile(dir / "trace.csv"), "earlier\n");
   EXPECT_FALSE(fs::exists(dir / "summary.json"));
+  // A video name ffmpeg cannot tell the format of, or the --out folder itself: the same.
+  for (const std::string& video : {(dir / "movie").string(), dir.string()}) {
+    EXPECT_EQ(exitStatus(kBin + " run " + kFig8 + " --quiet --duration 0.2 --out " + dir.string() + " --video " + video +
+                         " 2> " + log.string() + " > /dev/null"),
+              1);
+    EXPECT_NE(readFile(log).find(video), std::string::npos) << readFile(log);
+    EXPECT_EQ(readFile(dir / "trace.csv"), "earlier\n");
+  }
   // --out under a file: the same, naming the folder.
   std::ofstream(dir / "a-file") << "x";
   EXPECT_EQ(exitStatus(kBin + " run " + kFig8 + " --quiet --duration 0.2 --out " + (dir / "a-file" / "out").string() +
@@ -169,6 +181,26 @@ TEST(Outputs, ADeadFfmpegIsAnErrorAndTheOtherOutputsKeepTheTimeReached) {
   EXPECT_FALSE(fs::exists(out / "trace.csv.tmp"));
 }
 
+// Files that stop growing mid-run (here a 100 kB file size limit, as a full disk would): the run
+// stops at the next step, says which file, keeps what still fits (summary.json with the error
+// and the time reached) and leaves no temporary file; exit 1.
+TEST(Outputs, AFileThatCannotGrowStopsTheRunAndTheRestIsKept) {
+  const fs::path dir = freshFolder("gf_out_file_limit");
+  const fs::path out = dir / "run", log = dir / "stderr.txt";
+  EXPECT_EQ(exitStatus("ulimit -f 200; " + kBin + " run " + kFig8 + " --quiet --duration 6 --out " + out.string() + " 2> " +
+                       log.string() + " > /dev/null"),
+            1);
+  const std::string said = readFile(log);
+  EXPECT_NE(said.find("trace.csv: cannot write"), std::string::npos) << said;
+  const nlohmann::json summary = summaryOf(out);
+  EXPECT_NE(summary["error"].get<std::string>().find("cannot write"), std::string::npos);
+  EXPECT_LT(summary["time_reached_s"].get<double>(), 6.0);
+  for (const fs::directory_entry& e : fs::recursive_directory_iterator(out)) {
+    const std::string name = e.path().filename().string();
+    EXPECT_FALSE(name.ends_with(".tmp") || name.ends_with(".part")) << e.path();
+  }
+}
+
 // A run owns its --out folder: a 0.5 s run after a 1 s run shows 31 frames, not 61, and the
 // first run's contact snapshot (at 0.8 s) is gone; files that are not a run's stay.
 TEST(Outputs, ARunIntoAUsedFolderShowsOnlyThatRun) {
@@ -190,8 +222,10 @@ TEST(Outputs, ARunIntoAUsedFolderShowsOnlyThatRun) {
 }
 
 // Ctrl-C (and SIGTERM) during a frames + video run: it stops at a step boundary and finishes:
-// trace.csv to the time reached, summary.json marked interrupted, the MP4 closed so it plays,
-// exit 130 (143). The signal is sent once the run has printed its first progress line.
+// trace.csv to the time reached, summary.json marked interrupted (and no error: ffmpeg, in a
+// process group of its own, does not get the terminal's signal), the MP4 closed so it plays,
+// exit 130 (143). The signal goes to the whole process group, as from a terminal, once the run
+// has printed its first progress line.
 TEST(Outputs, AnInterruptedRunFinishesItsOutputsForTheTimeReached) {
   for (const int signal : {SIGINT, SIGTERM}) {
     const fs::path dir = freshFolder("gf_out_interrupted_" + std::to_string(signal));
@@ -201,10 +235,11 @@ TEST(Outputs, AnInterruptedRunFinishesItsOutputsForTheTimeReached) {
     ASSERT_NE(c.lines, nullptr);
     ASSERT_GT(c.pid, 0);
     ASSERT_TRUE(waitForLine(c.lines, "[godfinger]"));  // 10 % of the run done
-    ASSERT_EQ(kill(c.pid, signal), 0);
+    ASSERT_EQ(kill(-c.pid, signal), 0);
     EXPECT_EQ(finish(c), 128 + signal);
     const nlohmann::json summary = summaryOf(dir / "run");
     EXPECT_TRUE(summary["interrupted"].get<bool>());
+    EXPECT_FALSE(summary.contains("error")) << summary["error"];
     EXPECT_EQ(summary["signal"], signal == SIGINT ? "SIGINT" : "SIGTERM");
     const double reached = summary["time_reached_s"].get<double>();
     EXPECT_GE(reached, 0.4);
@@ -359,7 +394,7 @@ TEST(Outputs, AnInterruptedLiveSessionEndsWith130) {
   const fs::path dir = freshFolder("gf_out_live");
   std::ofstream(dir / "input.txt") << "step 10000000\nstate\n";
   // live answers on stdout: read that (stderr to a file) to know it started.
-  std::FILE* lines = popen(("sh -c 'echo $$; exec " + kBin + " live " + kFig8 + " --out " + dir.string() + " < " +
+  std::FILE* lines = popen(("sh -c 'echo $$; exec setsid " + kBin + " live " + kFig8 + " --out " + dir.string() + " < " +
                             (dir / "input.txt").string() + " 2> " + (dir / "stderr.txt").string() + "'")
                                .c_str(),
                            "r");
@@ -368,7 +403,7 @@ TEST(Outputs, AnInterruptedLiveSessionEndsWith130) {
   ASSERT_NE(std::fgets(line, sizeof line, lines), nullptr);
   const pid_t pid = static_cast<pid_t>(std::atol(line));
   ASSERT_TRUE(waitForLine(lines, "ok ready"));
-  ASSERT_EQ(kill(pid, SIGINT), 0);
+  ASSERT_EQ(kill(-pid, SIGINT), 0);
   std::string rest;
   while (std::fgets(line, sizeof line, lines)) rest += line;
   const int status = pclose(lines);
