@@ -185,6 +185,11 @@ TEST(Outputs, ADeadFfmpegIsAnErrorAndTheOtherOutputsKeepTheTimeReached) {
 // stops at the next step, says which file, keeps what still fits (summary.json with the error
 // and the time reached) and leaves no temporary file; exit 1.
 TEST(Outputs, AFileThatCannotGrowStopsTheRunAndTheRestIsKept) {
+#ifdef __SANITIZE_THREAD__
+  // ThreadSanitizer's runtime itself dies of a bus error under a 100 kB file-size limit; the
+  // release and AddressSanitizer builds run this test.
+  GTEST_SKIP() << "not under ThreadSanitizer";
+#endif
   const fs::path dir = freshFolder("gf_out_file_limit");
   const fs::path out = dir / "run", log = dir / "stderr.txt";
   EXPECT_EQ(exitStatus("ulimit -f 200; " + kBin + " run " + kFig8 + " --quiet --duration 6 --out " + out.string() + " 2> " +
