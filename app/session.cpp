@@ -530,10 +530,10 @@ sim::LoopStats runSession(const SessionDesc& session, const SessionOptions& opti
   };
   if (trace) finish([&] { trace->close(); });
   finish([&] { forces.close(); });
-  for (const auto& [t, snap] : contact_snaps) {
+  for (const std::pair<double, sim::Snapshot>& snap : contact_snaps) {  // (no structured binding: clang 14 lambdas)
     finish([&] {
-      writeFileAtomically((dir / "contacts" / (contactFileName(t) + ".json")).string(),
-                          contactsJson(snap, scene).dump(1) + "\n");
+      writeFileAtomically((dir / "contacts" / (contactFileName(snap.first) + ".json")).string(),
+                          contactsJson(snap.second, scene).dump(1) + "\n");
     });
   }
   // The chart reruns the whole session with god-objects: not after a Ctrl-C or a failure.
