@@ -298,20 +298,21 @@ void requireWritableFolder(const fs::path& folder, const std::string& what) {
 // True for the names of what a run writes into a folder of its own output kinds: the frame
 // sequence (000000.png ...), contact snapshots and close-ups (t0.500.json, t0.500-left.png),
 // and the temporary names they are written under.
-bool isFrameName(const std::string& name) {
-  std::string stem = name;
+std::string withoutTemporarySuffix(std::string name) {
   for (const char* suffix : {".part", ".tmp"}) {
-    if (stem.ends_with(suffix)) stem.resize(stem.size() - std::strlen(suffix));
+    if (name.ends_with(suffix)) name.resize(name.size() - std::strlen(suffix));
   }
+  return name;
+}
+
+bool isFrameName(const std::string& name) {
+  const std::string stem = withoutTemporarySuffix(name);
   return stem.size() == 10 && stem.ends_with(".png") &&
          std::all_of(stem.begin(), stem.begin() + 6, [](char c) { return c >= '0' && c <= '9'; });
 }
 
 bool isContactName(const std::string& name) {
-  std::string stem = name;
-  for (const char* suffix : {".part", ".tmp"}) {
-    if (stem.ends_with(suffix)) stem.resize(stem.size() - std::strlen(suffix));
-  }
+  const std::string stem = withoutTemporarySuffix(name);
   return stem.size() > 2 && stem[0] == 't' && stem[1] >= '0' && stem[1] <= '9' &&
          (stem.ends_with(".json") || stem.ends_with(".png"));
 }
@@ -365,11 +366,11 @@ class Progress {
  public:
   Progress(std::string name, double duration, long steps, bool on)
       : name_(std::move(name)), duration_(duration), steps_(std::max(1L, steps)), on_(on),
-        terminal_(isatty(STDERR_FILENO) == 1), start_(std::chrono::steady_clock::now()) {}
+        terminal_(isatty(STDERR_FILENO) == 1),
+        every_(terminal_ ? std::max(1L, steps_ / std::max(1L, std::lround(duration_))) : std::max(1L, steps_ / 10)),
+        start_(std::chrono::steady_clock::now()) {}
   void step(double t, long done) {
-    if (!on_) return;
-    const long every = terminal_ ? std::max(1L, steps_ / std::max(1L, std::lround(duration_))) : std::max(1L, steps_ / 10);
-    if (done % every != 0) return;
+    if (!on_ || done % every_ != 0) return;
     const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
     std::fprintf(stderr, "%s[godfinger] %s: t = %.1f / %.1f s, %ld / %ld steps, ETA %.1f s%s", terminal_ ? "\r" : "",
                  name_.c_str(), t, duration_, done, steps_, wall / static_cast<double>(done) * static_cast<double>(steps_ - done),
@@ -385,6 +386,7 @@ class Progress {
   double duration_;
   long steps_;
   bool on_, terminal_, printed_ = false;
+  long every_;  // steps between lines: a simulated second on a terminal, a tenth of the run otherwise
   std::chrono::steady_clock::time_point start_;
 };
 
