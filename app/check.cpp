@@ -71,7 +71,23 @@ std::vector<std::string> checkedScenes(const std::vector<std::string>& paths) {
 }
 
 int runCheck(const CheckOptions& options) {
-  const std::vector<std::string> scenes = checkedScenes(options.paths);
+  std::vector<std::string> scenes;
+  int live = 0;  // scenes a live device drives: they cannot run offline
+  for (const std::string& s : checkedScenes(options.paths)) {
+    bool udp = false;
+    try {
+      udp = !loadSceneFile(s, options.overrides).udp_devices.empty();
+    } catch (const std::exception&) {
+      // the run reports why it does not load
+    }
+    if (!udp) {
+      scenes.push_back(s);
+      continue;
+    }
+    std::printf("%-5s %-40s a live UDP device drives it: run it with --realtime and a device program\n", "SKIP",
+                fs::path(s).stem().string().c_str());
+    ++live;
+  }
   std::vector<std::string> names, lines;
   for (const std::string& s : scenes) {
     std::string name = fs::path(s).stem().string();
@@ -131,8 +147,10 @@ int runCheck(const CheckOptions& options) {
     std::fflush(stdout);
   });
   const std::size_t skipped = scenes.size() - static_cast<std::size_t>(passed + failed);
-  std::printf("%zu scenes: %d passed, %d failed, %zu not run%s; runs in %s/\n", scenes.size(), passed, failed, skipped,
-              interrupted ? " (interrupted)" : "", options.out.c_str());
+  std::printf("%zu scenes: %d passed, %d failed, %zu not run%s", scenes.size() + static_cast<std::size_t>(live), passed,
+              failed, skipped + static_cast<std::size_t>(live), interrupted ? " (interrupted)" : "");
+  if (live > 0) std::printf(" (%d with a live device)", live);
+  std::printf("; runs in %s/\n", options.out.c_str());
   if (interrupted) return 130;
   return failed == 0 ? 0 : 1;
 }

@@ -28,6 +28,13 @@ class Live {
  public:
   Live(const LiveOptions& o, std::ostream& out)
       : options_(o), out_(out), session_(loadSceneFile(o.scene_path, o.overrides)), world_(session_.scene) {
+    // Live steps when told to; a UDP device's packets come in wall-clock time.
+    if (!session_.udp_devices.empty()) {
+      const UdpDeviceDesc& d = session_.udp_devices.front();
+      throw InputError(session_.source, d.line, 0,
+                       "fingers." + session_.scene.fingers[static_cast<std::size_t>(d.finger)].name + ".device.udp",
+                       "`live` steps on command and cannot follow a UDP device: use `godfinger run --realtime`");
+    }
     devices_ = sim::deviceTracks(session_.scene);
     samples_.resize(devices_.size());
   }

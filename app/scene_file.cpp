@@ -2,6 +2,8 @@
 
 #include <toml++/toml.h>
 
+#include <arpa/inet.h>
+
 #include <algorithm>
 #include <cctype>
 #include <charconv>
@@ -309,13 +311,70 @@ void readKeyframes(Reader& r, sim::DeviceTrack& d) {
   }
 }
 
-sim::DeviceTrack readDevice(Reader& parent, const std::string& base_dir) {
+// `udp = PORT` or `udp = "HOST:PORT"` (an IPv4 address, or "localhost"; a bare port listens on
+// loopback), with the UDP device's own fields.
+UdpDeviceDesc readUdpDevice(Reader& r) {
+  UdpDeviceDesc u;
+  const toml::node* n = r.find("udp");
+  u.line = static_cast<int>(n->source().begin.line);
+  constexpr const char* kForm = "expected a port (listening on 127.0.0.1) or \"HOST:PORT\" with HOST an IPv4 address";
+  std::string port_text;
+  if (n->is_integer()) {
+    port_text = std::to_string(n->as_integer()->get());
+  } else if (n->is_string()) {
+    const std::string text = n->as_string()->get();
+    const std::size_t colon = text.rfind(':');
+    if (colon == std::string::npos || colon == 0) r.fail(n, "udp", std::string(kForm) + ", got '" + text + "'");
+    u.host = text.substr(0, colon);
+    if (u.host == "localhost") u.host = "127.0.0.1";
+    in_addr address{};
+    if (inet_pton(AF_INET, u.host.c_str(), &address) != 1) {
+      r.fail(n, "udp", "'" + u.host + "' is not an IPv4 address (such as 127.0.0.1, or 0.0.0.0 for every interface)");
+    }
+    port_text = text.substr(colon + 1);
+  } else {
+    r.fail(n, "udp", kForm);
+  }
+  int port = -1;
+  const auto [end, error] = std::from_chars(port_text.data(), port_text.data() + port_text.size(), port);
+  if (error != std::errc() || end != port_text.data() + port_text.size() || port < 0 || port > 65535) {
+    r.fail(n, "udp", "the port must be a whole number in 0..65535 (0: any free port), got '" + port_text + "'");
+  }
+  u.port = port;
+  u.channel = r.integer("channel", 0, 0, 255);
+  u.workspace_scale = r.number("workspace_scale", u.workspace_scale, 0.01, 100.0);
+  u.workspace_offset = r.vec3("workspace_offset", u.workspace_offset);
+  if (u.workspace_offset.cwiseAbs().maxCoeff() > sim::kMaxSceneCoordinate) {
+    r.fail(r.nodeOf("workspace_offset"), "workspace_offset", "each coordinate must be in [-1000, 1000] m");
+  }
+  u.start = r.vec3("start", u.workspace_offset);
+  if (u.start.cwiseAbs().maxCoeff() > sim::kMaxSceneCoordinate) {
+    r.fail(r.nodeOf("start"), "start", "each coordinate must be in [-1000, 1000] m");
+  }
+  u.force_scale = r.number("force_scale", u.force_scale, 0.0, 100.0);
+  u.stale_after = r.number("stale_after", u.stale_after, 0.005, 1.0);
+  u.force_ramp = r.number("force_ramp", u.force_ramp, 0.005, 10.0);
+  u.velocity_smoothing = r.number("velocity_smoothing", u.velocity_smoothing, 0.0, 0.1);
+  return u;
+}
+
+// A finger's device: keyframes, a recorded CSV, or a live UDP device (then `udp` is set and
+// the track holds the device at its start, where the proxy starts).
+sim::DeviceTrack readDevice(Reader& parent, const std::string& base_dir, std::optional<UdpDeviceDesc>& udp) {
   const toml::node* n = parent.find("device");
-  if (!n) parent.fail(nullptr, "device", "missing: the finger needs a device (keyframes or csv)");
+  if (!n) parent.fail(nullptr, "device", "missing: the finger needs a device (keyframes, csv or udp)");
   if (!n->is_table()) parent.fail(n, "device", "expected a table");
   Reader r(*n->as_table(), parent.field("device"), parent.file());
   sim::DeviceTrack d;
-  if (r.has("csv") == r.has("keyframes")) r.fail(nullptr, "keyframes", "give exactly one of keyframes and csv");
+  if (static_cast<int>(r.has("csv")) + static_cast<int>(r.has("keyframes")) + static_cast<int>(r.has("udp")) != 1) {
+    r.fail(nullptr, "keyframes", "give exactly one of keyframes, csv and udp");
+  }
+  if (!r.has("udp")) {
+    for (const char* key : {"channel", "workspace_scale", "workspace_offset", "start", "force_scale", "stale_after",
+                            "force_ramp", "velocity_smoothing"}) {
+      if (r.has(key)) r.fail(r.nodeOf(key), key, "belongs to a UDP device (udp = ...)");
+    }
+  }
   d.interpolation = r.choice("interpolation", kInterpolations, 1) == 0 ? sim::Interpolation::kLinear
                                                                        : sim::Interpolation::kSmooth;
   if (r.has("csv")) {
@@ -323,6 +382,10 @@ sim::DeviceTrack readDevice(Reader& parent, const std::string& base_dir) {
     if (!c->is_string()) r.fail(c, "csv", "expected the CSV file's path (a string)");
     if (r.has("interpolation")) r.fail(r.find("interpolation"), "interpolation", "a recorded CSV is always linear");
     d = readDeviceCsv(resolvePath(base_dir, c->as_string()->get()));
+  } else if (r.has("udp")) {
+    if (r.has("interpolation")) r.fail(r.find("interpolation"), "interpolation", "a live device is not interpolated");
+    udp = readUdpDevice(r);
+    d.keyframes.push_back({0.0, udp->start});
   } else {
     readKeyframes(r, d);
   }
@@ -331,12 +394,12 @@ sim::DeviceTrack readDevice(Reader& parent, const std::string& base_dir) {
 }
 
 sim::FingerDesc readFinger(const std::string& name, const toml::table& t, const Reader& parent,
-                           const std::string& base_dir, double haptic_rate_hz) {
+                           const std::string& base_dir, double haptic_rate_hz, std::optional<UdpDeviceDesc>& udp) {
   Reader r(t, parent.field("fingers." + name), parent.file());
   sim::FingerDesc f;
   f.name = name;
   for (const sim::Setting<sim::FingerDesc>& s : sim::fingerSettings()) r.setting(s, f, std::string(s.name));
-  f.device = readDevice(r, base_dir);
+  f.device = readDevice(r, base_dir, udp);
   r.failOn(sim::validateFinger(f));
   r.failOn(sim::validateCouplingStability(f, haptic_rate_hz));
   r.finish();
@@ -654,7 +717,12 @@ SessionDesc readSession(toml::table& root, const std::string& source, const std:
   if (s.scene.bodies.empty()) r.fail(nullptr, "bodies", "missing: a scene needs at least one body");
   for (const auto& [name, t] : r.namedTables("fingers")) {
     checkName("fingers", name, t);
-    s.scene.fingers.push_back(readFinger(name, *t, r, base_dir, s.scene.world.haptic_rate_hz));
+    std::optional<UdpDeviceDesc> udp;
+    s.scene.fingers.push_back(readFinger(name, *t, r, base_dir, s.scene.world.haptic_rate_hz, udp));
+    if (udp) {
+      udp->finger = static_cast<int>(s.scene.fingers.size()) - 1;
+      s.udp_devices.push_back(*udp);
+    }
   }
   checkMassRatios(r, s.scene);
   for (const auto& [name, t] : r.namedTables("cameras")) {

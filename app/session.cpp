@@ -25,6 +25,7 @@
 #include "app/patch_json.hpp"
 #include "app/scene_file.hpp"
 #include "app/trace_writer.hpp"
+#include "app/udp_device.hpp"
 #include "sim/settings.hpp"
 #include "sim/world.hpp"
 
@@ -415,6 +416,13 @@ sim::LoopStats runSession(const SessionDesc& session, const SessionOptions& opti
   const fs::path dir(options.out_dir);
   // Ctrl-C and SIGTERM are recorded from here on (the outputs are finished when one comes); the
   // threads started below (writers, the render thread, its encoders) do not take them.
+  // A live device's packets arrive in wall-clock time: it needs the realtime clock.
+  if (!session.udp_devices.empty() && !options.realtime) {
+    const UdpDeviceDesc& d = session.udp_devices.front();
+    throw InputError(session.source, d.line, 0,
+                     "fingers." + scene.fingers[static_cast<std::size_t>(d.finger)].name + ".device.udp",
+                     "a UDP device drives the session in real time: run it with --realtime");
+  }
   std::optional<InterruptScope> interrupt;
   if (options.stop_on_interrupt) interrupt.emplace();
   std::optional<SignalsBlocked> quiet_threads(std::in_place);
@@ -457,6 +465,16 @@ sim::LoopStats runSession(const SessionDesc& session, const SessionOptions& opti
     if (!stream) fo.overlay = false;
     renderer = std::make_unique<render::RenderThread>(scene, fo);
   }
+  // Live devices: their sockets are bound now (a port in use fails the run here).
+  std::optional<UdpDeviceBridge> udp;
+  if (!session.udp_devices.empty()) {
+    udp.emplace(session);
+    for (const UdpDeviceDesc& d : session.udp_devices) {
+      const std::string& name = scene.fingers[static_cast<std::size_t>(d.finger)].name;
+      std::fprintf(stderr, "%s: fingers.%s.device: listening on %s, channel %d\n", scene.name.c_str(), name.c_str(),
+                   udp->address(d.finger).c_str(), d.channel);
+    }
+  }
   // Everything that can fail before the first step has: what an earlier run left of this run's
   // outputs goes now, then the files are opened.
   clearEarlierOutputs(dir);
@@ -472,6 +490,7 @@ sim::LoopStats runSession(const SessionDesc& session, const SessionOptions& opti
   loop.live = &live;
   loop.fifo = options.fifo;
   loop.spin_us = options.spin_us;
+  if (udp) loop.sources = udp->sources();
   if (frames) frames->start(world);
   ExpectChecker expect(session.expect, world);
   quiet_threads.reset();  // this thread takes the signals again
@@ -588,6 +607,7 @@ sim::LoopStats runSession(const SessionDesc& session, const SessionOptions& opti
     });
     if (frames) summary["overlay_changes"] = changesJson(frames->changes(), scene);
   }
+  if (udp) summary["udp_devices"] = udp->json();
   if (!failure.empty()) summary["error"] = failure;
   summary["warnings"] = warnings;
   finish([&] { writeFileAtomically((dir / "summary.json").string(), summary.dump(2) + "\n"); });

@@ -34,6 +34,25 @@ struct ViewSettings {
   std::vector<render::WidgetAction> actions;  ///< scripted overlay input, by time
 };
 
+/// A finger driven by a live device over UDP (docs/device-protocol.md); its sim track holds
+/// the device at `start`, where the proxy starts and stays until the first packet.
+struct UdpDeviceDesc {
+  int finger = 0;                      ///< index into scene.fingers
+  std::string host = "127.0.0.1";      ///< IPv4 address bound (loopback unless the scene says)
+  int port = 0;                        ///< UDP port (0: any free port, printed at the start)
+  int channel = 0;                     ///< packets' channel field for this finger (0..255)
+  double workspace_scale = 1.0;        ///< scene m per device m
+  sim::Vec3 workspace_offset = sim::Vec3::Zero();  ///< m: scene position of the device's origin
+  sim::Vec3 start = sim::Vec3::Zero();  ///< m: scene position held until the first packet
+  double force_scale = 1.0;            ///< device N per scene N of the force sent back
+  double stale_after = 0.05;           ///< s without a packet before the device is stale
+  double force_ramp = 0.1;             ///< s for the force sent back to ramp from 0 to full (or back)
+  /// s: time constant of the low-pass filter on the velocity from successive packets (0: raw
+  /// differences); the coupling damps on it.
+  double velocity_smoothing = 0.005;
+  int line = 0;                        ///< line of `udp` in the scene file, for errors
+};
+
 /// A camera for the renderer (one is rendered per output stream).
 using CameraDesc = render::Camera;
 
@@ -47,6 +66,7 @@ struct SessionDesc {
   ExpectDesc expect;  ///< [expect]: what the run must show
   ViewSettings view;
   std::vector<CameraDesc> cameras;
+  std::vector<UdpDeviceDesc> udp_devices;  ///< fingers with a live UDP device
 };
 
 }  // namespace gf::app

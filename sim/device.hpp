@@ -33,4 +33,24 @@ struct DeviceTrack {
   DeviceSample sample(double t) const;
 };
 
+/// What a finger did in a step, handed back to its device.
+struct DeviceFeedback {
+  Vec3 force = Vec3::Zero();  ///< N: the force the device is to render (World::feedbackForce)
+  double radius = 0.0;        ///< m: mean Eq. 1 radius of the finger's patches; 0 without one
+  int sgo_count = 0;          ///< SGOs the finger fed to the solver
+  bool touching = false;      ///< the proxy touched a body
+};
+
+/// A device the haptic loop reads at the start of each step and hands the step's feedback to
+/// afterwards: a live transport (app/ bridges one to a UDP socket). Both calls come from the
+/// haptic thread and must neither block nor allocate.
+class DeviceSource {
+ public:
+  virtual ~DeviceSource() = default;
+  /// The device for the step starting at simulated time t (s).
+  virtual DeviceSample sample(double t) = 0;
+  /// The finger's state after that step, at simulated time t (s), the step's end.
+  virtual void feedback(double t, const DeviceFeedback& feedback) = 0;
+};
+
 }  // namespace gf::sim

@@ -94,6 +94,9 @@ LoopStats runHapticLoop(World& world, const std::vector<DeviceTrack>& devices,
     throw std::invalid_argument("haptic rate must be > 0 and duration >= 0, both finite");
   }
   const double dt = 1.0 / settings.rate_hz;
+  if (!settings.sources.empty() && settings.sources.size() != devices.size()) {
+    throw std::invalid_argument("LoopSettings::sources needs one entry per finger (nullptr for a track)");
+  }
   const long steps = stepCount(settings.duration, settings.rate_hz);
   std::vector<DeviceSample> samples(devices.size());
   std::vector<float> step_us(static_cast<std::size_t>(steps));
@@ -134,10 +137,19 @@ LoopStats runHapticLoop(World& world, const std::vector<DeviceTrack>& devices,
     }
     // Time of step k from its index, so no rounding accumulates over long runs.
     const double t = t0 + static_cast<double>(k) * dt;
-    for (std::size_t i = 0; i < devices.size(); ++i) samples[i] = devices[i].sample(t);
+    for (std::size_t i = 0; i < devices.size(); ++i) {
+      DeviceSource* source = i < settings.sources.size() ? settings.sources[i] : nullptr;
+      samples[i] = source ? source->sample(t) : devices[i].sample(t);
+    }
     const auto before = Clock::now();
     world.step(dt, samples);
     step_us[k] = std::chrono::duration<float, std::micro>(Clock::now() - before).count();
+    for (std::size_t i = 0; i < settings.sources.size(); ++i) {
+      if (DeviceSource* source = settings.sources[i]) {
+        const int f = static_cast<int>(i);
+        source->feedback(world.time(), {world.feedbackForce(f), world.contactRadius(f), world.sgoCount(f), world.touching(f)});
+      }
+    }
     if (LiveTimings* live = settings.live) live->recent_us[live->steps++ % live->recent_us.size()] = step_us[k];
     if (observer) observer(world);
   }

@@ -4,6 +4,7 @@
 
 #include <atomic>
 #include <functional>
+#include <span>
 #include <vector>
 
 #include "sim/world.hpp"
@@ -43,6 +44,9 @@ struct LoopSettings {
   /// (us; 0: sleep to it; the period or more: never sleep). Ignored under SCHED_FIFO, where a
   /// thread that never sleeps is throttled by the kernel.
   double spin_us = 0.0;
+  /// Live devices, in finger order (empty, or one entry per finger): a finger with a source is
+  /// sampled from it instead of its track, and gets each step's feedback.
+  std::span<DeviceSource* const> sources{};
 };
 
 /// Timing statistics of a run (wall-clock, so not deterministic).
@@ -67,7 +71,8 @@ struct LoopStats {
 using StepObserver = std::function<void(const World&)>;
 
 /// Runs `world` for settings.duration at a constant dt = 1/rate_hz. Devices are sampled at the
-/// start time of each step, in finger order. Allocates only before the first step. A realtime
+/// start time of each step, in finger order (from settings.sources where given, which then get
+/// each step's feedback). Allocates only before the first step. A realtime
 /// loop asks for SCHED_FIFO priority for the calling thread while it runs (so rendering and
 /// encoding threads cannot delay a step; settings.fifo) and a 1 us timer slack (the default 50 us
 /// delays every wake-up), and restores both afterwards.

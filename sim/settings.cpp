@@ -15,7 +15,7 @@ namespace {
 // Vector components are bounded to what a haptic scene can hold and the solver stays finite on
 // (a body at 1e155 m or a gravity of 1e6 m/s^2 made every step roll back): positions within a
 // kilometre, gravity within 10 g, loads within 10 kN and 1 kN m.
-constexpr double kMaxCoordinate = 1e3;  // m
+constexpr double kMaxCoordinate = kMaxSceneCoordinate;  // m
 constexpr double kMaxGravity = 100.0;   // m/s^2
 constexpr double kMaxLoadForce = 1e4;   // N
 constexpr double kMaxLoadTorque = 1e3;  // N m

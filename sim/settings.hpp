@@ -15,6 +15,9 @@
 
 namespace gf::sim {
 
+/// m: the largest scene coordinate a position (body, keyframe, device) may have.
+inline constexpr double kMaxSceneCoordinate = 1e3;
+
 /// A dynamic body must weigh at least this fraction of every proxy: the solver holds a pinched
 /// body down to 1/100 of the proxy's mass and lets a 1/1000 one tumble.
 inline constexpr double kMinBodyToProxyMass = 0.01;

@@ -689,6 +689,16 @@ Vec3 World::couplingForce(int finger) const {
   return impl_->fingers[finger].force;
 }
 
+Vec3 World::feedbackForce(int finger) const {
+  GF_ASSERT_OWNER();
+  return impl_->desc.effects.force_feedback ? Vec3(-impl_->fingers[finger].force) : Vec3::Zero();
+}
+
+bool World::touching(int finger) const {
+  GF_ASSERT_OWNER();
+  return impl_->fingers[finger].contact_count > 0;
+}
+
 int World::sgoCount(int finger) const {
   GF_ASSERT_OWNER();
   const Finger& f = impl_->fingers[finger];
@@ -770,7 +780,7 @@ void World::snapshot(Snapshot& out) const {
     fs.device = f.device.position;
     fs.proxy = toEigen(f.proxy->getCenterOfMassPosition());
     fs.coupling_force = f.force;
-    fs.feedback_force = w.desc.effects.force_feedback ? Vec3(-f.force) : Vec3::Zero();
+    fs.feedback_force = feedbackForce(static_cast<int>(i));
     fs.sgo_count = sgoCount(static_cast<int>(i));
     fs.contacts.resize(f.contact_count);
     // One pose per contact: the body's now, after the step that computed its patch.

@@ -69,6 +69,11 @@ class World {
   /// The finger's device position of the last step (m).
   Vec3 devicePosition(int finger) const;
   Vec3 couplingForce(int finger) const;
+  /// The force the finger's device is to render (N): the opposite of the coupling force, or
+  /// zero when the scene turns force feedback off.
+  Vec3 feedbackForce(int finger) const;
+  /// Finger i's proxy touched a body in the last step.
+  bool touching(int finger) const;
   /// SGOs finger i fed to the solver in the last step, over all its contacts.
   int sgoCount(int finger) const;
   /// Mean Eq. 1 radius of the finger's patches this step (m); 0 without a patch.

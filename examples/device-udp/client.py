@@ -1,0 +1,166 @@
+#!/usr/bin/env python3
+"""A device program for godfinger's UDP device protocol (docs/device-protocol.md).
+
+It stands in for a real device: it replays the keyframe tracks of a scene's fingers (the Fig. 8
+pinch by default), sending each finger's position on its own channel at --rate packets per second,
+and reads godfinger's replies (the force to render). At the end it prints one JSON line:
+sent, answered (packets whose seq came back), rtt_us_p50 / rtt_us_p99 (from sending a packet to
+the first reply echoing it), max_force_n, and a few more counts.
+
+    godfinger run device-udp --realtime --out udp-run &
+    python3 examples/device-udp/client.py --port 47001 --seconds 8 --rate 1000
+
+To drive godfinger from a real device, keep send_packet() and read_replies() and replace the
+track with the device SDK's position reading and force command. Python standard library only.
+"""
+
+import argparse
+import json
+import math
+import os
+import select
+import socket
+import struct
+import sys
+import time
+
+PACKET = struct.Struct("<IIIId3d")       # magic, seq, channel, buttons, time, x, y, z (48 bytes)
+REPLY = struct.Struct("<IIIId3ddIf")     # magic, seq, channel, flags, time, fx, fy, fz, radius, n_sgo, gain (64 bytes)
+PACKET_MAGIC = 0x31444647                # "GFD1"
+REPLY_MAGIC = 0x31524647                 # "GFR1"
+STALE, TOUCHING, RAMPING = 1, 2, 4
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+DEFAULT_SCENE = os.path.join(HERE, "..", "..", "assets", "scenes", "fig8-pinch-oscillation.toml")
+
+
+def load_tracks(path):
+    """Each finger's (interpolation, [(t, (x, y, z)), ...]) in the scene file's order."""
+    import tomllib  # Python 3.11+
+    with open(path, "rb") as f:
+        scene = tomllib.load(f)
+    tracks = []
+    for name, finger in scene.get("fingers", {}).items():
+        device = finger.get("device", {})
+        if "keyframes" not in device:
+            sys.exit(f"{path}: fingers.{name}.device has no keyframes to replay")
+        frames = [(float(k["t"]), tuple(float(v) for v in k["p"])) for k in device["keyframes"]]
+        tracks.append((device.get("interpolation", "smooth"), frames))
+    if not tracks:
+        sys.exit(f"{path}: no fingers")
+    return tracks
+
+
+def position(track, t):
+    """The track's position at time t, as godfinger plays keyframes back (held at both ends)."""
+    interpolation, frames = track
+    if t <= frames[0][0]:
+        return frames[0][1]
+    if t >= frames[-1][0]:
+        return frames[-1][1]
+    for (t0, p0), (t1, p1) in zip(frames, frames[1:]):
+        if t < t1:
+            u = (t - t0) / (t1 - t0)
+            if interpolation == "smooth":
+                u = u * u * (3.0 - 2.0 * u)
+            return tuple(a + u * (b - a) for a, b in zip(p0, p1))
+    return frames[-1][1]
+
+
+def percentile(values, q):
+    if not values:
+        return None
+    ordered = sorted(values)
+    return ordered[min(len(ordered) - 1, int(q * (len(ordered) - 1) + 0.5))]
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    parser.add_argument("--port", type=int, required=True, help="godfinger's UDP port (the scene's udp = ...)")
+    parser.add_argument("--host", default="127.0.0.1", help="godfinger's address (default 127.0.0.1)")
+    parser.add_argument("--seconds", type=float, default=8.0, help="how long to replay (default 8)")
+    parser.add_argument("--rate", type=float, default=1000.0, help="packets per second per finger (default 1000)")
+    parser.add_argument("--scene", default=DEFAULT_SCENE,
+                        help="scene file whose fingers' keyframes are replayed, finger i on channel i "
+                             "(default: the Fig. 8 pinch)")
+    args = parser.parse_args()
+    if not (args.rate > 0 and args.seconds >= 0 and 0 < args.port < 65536):
+        parser.error("--rate must be > 0, --seconds >= 0 and --port in 1..65535")
+    tracks = load_tracks(args.scene)
+
+    sock = socket.socket(socket.AF_INET, socket.SOCK_DGRAM)
+    sock.setblocking(False)
+    target = (args.host, args.port)
+    sent_at = [dict() for _ in tracks]     # per channel: seq -> send time, until answered
+    rtts = []
+    counts = {"sent": 0, "answered": 0, "replies": 0, "stale_replies": 0, "bad_replies": 0}
+    max_force = 0.0
+
+    def read_replies():
+        nonlocal max_force
+        while True:
+            try:
+                data = sock.recv(128)
+            except (BlockingIOError, InterruptedError):
+                return
+            except ConnectionRefusedError:  # nothing listens (yet)
+                return
+            now = time.perf_counter()
+            if len(data) != REPLY.size:
+                counts["bad_replies"] += 1
+                continue
+            magic, seq, channel, flags, _, fx, fy, fz, _, _, _ = REPLY.unpack(data)
+            if magic != REPLY_MAGIC or channel >= len(tracks):
+                counts["bad_replies"] += 1
+                continue
+            counts["replies"] += 1
+            if flags & STALE:
+                counts["stale_replies"] += 1
+            max_force = max(max_force, math.sqrt(fx * fx + fy * fy + fz * fz))
+            sent = sent_at[channel].pop(seq, None)
+            if sent is not None:
+                counts["answered"] += 1
+                rtts.append((now - sent) * 1e6)
+
+    def send_packet(channel, seq, t, p):
+        sock.sendto(PACKET.pack(PACKET_MAGIC, seq, channel, 0, t, *p), target)
+        sent_at[channel][seq] = time.perf_counter()
+        counts["sent"] += 1
+
+    period = 1.0 / args.rate
+    ticks = int(round(args.seconds * args.rate))
+    start = time.perf_counter()
+    for k in range(ticks + 1):
+        deadline = start + k * period
+        while True:  # answer replies until the tick's deadline
+            left = deadline - time.perf_counter()
+            if left <= 0:
+                break
+            select.select([sock], [], [], left)
+            read_replies()
+        t = k * period
+        for channel, track in enumerate(tracks):
+            send_packet(channel, k, t, position(track, t))
+        read_replies()
+    end = time.perf_counter() + 0.05  # the last replies
+    while time.perf_counter() < end:
+        select.select([sock], [], [], max(0.0, end - time.perf_counter()))
+        read_replies()
+
+    p50, p99 = percentile(rtts, 0.5), percentile(rtts, 0.99)
+    print(json.dumps({
+        "sent": counts["sent"],
+        "answered": counts["answered"],
+        "rtt_us_p50": round(p50, 1) if p50 is not None else None,
+        "rtt_us_p99": round(p99, 1) if p99 is not None else None,
+        "max_force_n": round(max_force, 4),
+        "replies": counts["replies"],
+        "stale_replies": counts["stale_replies"],
+        "bad_replies": counts["bad_replies"],
+        "channels": len(tracks),
+    }))
+    return 0 if counts["answered"] > 0 else 1
+
+
+if __name__ == "__main__":
+    sys.exit(main())

@@ -1,0 +1,420 @@
+// The UDP device protocol without a network: the documented byte layout, datagrams that must be
+// ignored, and one device link's state (newest packet, staleness, the force ramp, the workspace
+// mapping) stepped on simulated time. Also the scene fields of a `udp` device and the runs that
+// cannot take one. The loopback run is tests/app/device_udp_test.cpp.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdint>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <vector>
+
+#include "app/device_protocol.hpp"
+#include "app/live.hpp"
+#include "app/scene_file.hpp"
+#include "app/session.hpp"
+#include "app/udp_device.hpp"
+#include "sim/world.hpp"
+
+namespace gf::app {
+namespace {
+
+using sim::Vec3;
+
+constexpr double kDt = 0.001;  // s: the haptic step of these tests
+
+// Bytes of a little-endian u32 / f64 written by hand (not by the code under test).
+void putU32(std::vector<std::uint8_t>& b, std::uint32_t v) {
+  for (int i = 0; i < 4; ++i) b.push_back(static_cast<std::uint8_t>(v >> (8 * i)));
+}
+void putF64(std::vector<std::uint8_t>& b, double d) {
+  std::uint64_t v;
+  std::memcpy(&v, &d, sizeof v);
+  for (int i = 0; i < 8; ++i) b.push_back(static_cast<std::uint8_t>(v >> (8 * i)));
+}
+
+std::vector<std::uint8_t> packetBytes(std::uint32_t magic, std::uint32_t seq, std::uint32_t channel, double x) {
+  std::vector<std::uint8_t> b;
+  putU32(b, magic);
+  putU32(b, seq);
+  putU32(b, channel);
+  putU32(b, 0x5);  // buttons
+  putF64(b, 12.5);
+  putF64(b, x);
+  putF64(b, -0.25);
+  putF64(b, 0.125);
+  return b;
+}
+
+// docs/device-protocol.md: "GFD1", seq, channel, buttons, time, x, y, z at offsets 0..47.
+TEST(DeviceProtocol, APacketIsReadAsDocumented) {
+  const std::vector<std::uint8_t> b = packetBytes(0x31444647, 0x01020304, 3, 0.5);
+  ASSERT_EQ(b.size(), 48u);
+  EXPECT_EQ(std::string(b.begin(), b.begin() + 4), "GFD1");
+  DevicePacket p;
+  ASSERT_EQ(parseDevicePacket(b, p), PacketError::kNone);
+  EXPECT_EQ(p.seq, 0x01020304u);
+  EXPECT_EQ(p.channel, 3u);
+  EXPECT_EQ(p.buttons, 5u);
+  EXPECT_EQ(p.time, 12.5);
+  EXPECT_EQ(p.position, Vec3(0.5, -0.25, 0.125));
+  std::array<std::uint8_t, DevicePacket::kSize> again;
+  encodeDevicePacket(p, again);
+  EXPECT_TRUE(std::equal(again.begin(), again.end(), b.begin()));
+}
+
+// The reply: "GFR1", seq, channel, flags, time, force, radius, n_sgo, gain (f32) at 0..63.
+TEST(DeviceProtocol, AReplyIsWrittenAsDocumented) {
+  DeviceReply r;
+  r.seq = 7;
+  r.channel = 1;
+  r.flags = DeviceReply::kTouching | DeviceReply::kRamping;
+  r.time = 2.0;
+  r.force = Vec3(1.0, -2.0, 3.0);
+  r.radius = 0.004;
+  r.sgo_count = 8;
+  r.gain = 0.5f;
+  std::array<std::uint8_t, DeviceReply::kSize> b;
+  encodeDeviceReply(r, b);
+  std::vector<std::uint8_t> expected;
+  putU32(expected, 0x31524647);
+  putU32(expected, 7);
+  putU32(expected, 1);
+  putU32(expected, 6);
+  putF64(expected, 2.0);
+  putF64(expected, 1.0);
+  putF64(expected, -2.0);
+  putF64(expected, 3.0);
+  putF64(expected, 0.004);
+  putU32(expected, 8);
+  putU32(expected, 0x3f000000);  // 0.5f
+  ASSERT_EQ(expected.size(), 64u);
+  EXPECT_TRUE(std::equal(b.begin(), b.end(), expected.begin()));
+  DeviceReply back;
+  ASSERT_TRUE(parseDeviceReply(b, back));
+  EXPECT_EQ(back.force, r.force);
+  EXPECT_EQ(back.gain, 0.5f);
+  EXPECT_FALSE(parseDeviceReply(std::span<const std::uint8_t>(b.data(), 63), back));
+}
+
+// Short, long, foreign, non-finite and out-of-range datagrams are each told apart, never taken.
+TEST(DeviceProtocol, BadDatagramsAreRejectedWithTheirReason) {
+  DevicePacket p;
+  p.seq = 99;
+  std::vector<std::uint8_t> b = packetBytes(0x31444647, 1, 0, 0.1);
+  EXPECT_EQ(parseDevicePacket(std::span<const std::uint8_t>(b.data(), 0), p), PacketError::kSize);
+  EXPECT_EQ(parseDevicePacket(std::span<const std::uint8_t>(b.data(), 47), p), PacketError::kSize);
+  b.push_back(0);
+  EXPECT_EQ(parseDevicePacket(b, p), PacketError::kSize);
+  EXPECT_EQ(parseDevicePacket(packetBytes(0x32444647, 1, 0, 0.1), p), PacketError::kMagic);  // "GFD2"
+  EXPECT_EQ(parseDevicePacket(packetBytes(0x31444647, 1, 0, std::nan("")), p), PacketError::kBadValue);
+  EXPECT_EQ(parseDevicePacket(packetBytes(0x31444647, 1, 0, HUGE_VAL), p), PacketError::kBadValue);
+  EXPECT_EQ(parseDevicePacket(packetBytes(0x31444647, 1, 0, kMaxDeviceCoordinate * 1.01), p), PacketError::kBadValue);
+  EXPECT_EQ(p.seq, 99u);  // untouched
+}
+
+DevicePacket packet(std::uint32_t seq, double time, const Vec3& position) {
+  DevicePacket p;
+  p.seq = seq;
+  p.time = time;
+  p.position = position;
+  return p;
+}
+
+sim::DeviceFeedback pressing(double fy) { return {Vec3(0.0, fy, 0.0), 0.004, 8, true}; }
+
+// A device sends for 0.2 s, falls silent for 0.2 s, and comes back. The force sent back rises
+// from 0 to full over force_ramp at the start, holds, ramps to 0 over force_ramp once no packet
+// came for stale_after, and ramps back up: it never changes by more than dt / force_ramp of the
+// full force between two steps. Meanwhile the position is held and the velocity is zero.
+TEST(DeviceLink, AStaleDeviceRampsItsForceToZeroAndBack) {
+  UdpDeviceDesc d;
+  d.stale_after = 0.05;
+  d.force_ramp = 0.1;
+  d.start = Vec3(0.0, 0.2, 0.0);
+  DeviceLink link(d);
+  const double full = 5.0, per_step = kDt / d.force_ramp;
+  double previous_gain = 0.0;
+  long first_stale = -1, first_zero = -1, back_to_full = -1;
+  const Vec3 hold(0.01, 0.05, 0.0);
+  for (long k = 0; k < 700; ++k) {
+    const double t = static_cast<double>(k) * kDt;
+    const bool sending = k < 200 || k >= 400;
+    if (sending) { ASSERT_TRUE(link.take(packet(static_cast<std::uint32_t>(k), t, hold), t)); }
+    const sim::DeviceSample s = link.sample(t);
+    EXPECT_EQ(s.position, hold) << k;  // held while silent
+    if (!sending) { EXPECT_EQ(s.velocity, Vec3::Zero()) << k; }
+    const DeviceReply r = link.reply(t + kDt, pressing(full));
+    EXPECT_LE(std::abs(link.gain() - previous_gain), per_step * (1.0 + 1e-9)) << "force step at k = " << k;
+    EXPECT_NEAR(r.force.y(), full * link.gain(), 1e-12);
+    EXPECT_EQ(r.gain, static_cast<float>(link.gain()));
+    EXPECT_EQ((r.flags & DeviceReply::kStale) != 0, link.stale());
+    EXPECT_EQ((r.flags & DeviceReply::kRamping) != 0, link.gain() < 1.0);
+    EXPECT_TRUE(r.flags & DeviceReply::kTouching);
+    if (k < 200) { EXPECT_NEAR(link.gain(), std::min(1.0, static_cast<double>(k + 1) * per_step), 1e-9) << k; }
+    if (link.stale() && first_stale < 0 && k > 0) first_stale = k;
+    if (first_stale >= 0 && first_zero < 0 && link.gain() == 0.0) first_zero = k;
+    if (k >= 400 && back_to_full < 0 && link.gain() == 1.0) back_to_full = k;
+    previous_gain = link.gain();
+  }
+  // Last packet taken at k = 199: stale once more than 50 ms passed (k = 249 or 250 by rounding).
+  EXPECT_GE(first_stale, 249);
+  EXPECT_LE(first_stale, 250);
+  EXPECT_GE(first_zero - first_stale, 98);  // 0.1 s of ramp at 0.01 a step
+  EXPECT_LE(first_zero - first_stale, 100);
+  EXPECT_GE(back_to_full - 400, 98);
+  EXPECT_LE(back_to_full - 400, 101);
+  EXPECT_EQ(link.counters().stale_periods, 1);
+  EXPECT_EQ(link.counters().taken, 500);
+}
+
+// Sequence numbers compare with wrap-around; an older one is ignored and counted, unless the
+// device went stale first (a restarted device program starts its count again).
+TEST(DeviceLink, OlderPacketsAreIgnoredExceptAfterADropout) {
+  DeviceLink link(UdpDeviceDesc{});
+  double t = 0.0;
+  const auto at = [&](std::uint32_t seq, double x) { return link.take(packet(seq, t, Vec3(x, 0.1, 0.0)), t); };
+  EXPECT_TRUE(at(0xFFFFFFFEu, 0.0));
+  link.sample(t);
+  t += kDt;
+  EXPECT_TRUE(at(0xFFFFFFFFu, 0.001));
+  EXPECT_TRUE(at(0u, 0.002));  // wraps
+  EXPECT_EQ(link.counters().superseded, 1);  // 0xFFFFFFFF never reached a step
+  EXPECT_EQ(link.sample(t).position.x(), 0.002);
+  t += kDt;
+  EXPECT_FALSE(at(0xFFFFFFFFu, 0.5));
+  EXPECT_FALSE(at(0u, 0.5));  // not newer either
+  EXPECT_EQ(link.counters().out_of_order, 2);
+  EXPECT_EQ(link.sample(t).position.x(), 0.002);
+  t += 0.06;  // silent for longer than stale_after
+  EXPECT_TRUE(link.sample(t).velocity.isZero());
+  EXPECT_TRUE(link.stale());
+  EXPECT_TRUE(at(5u, 0.003));  // older, but a new stream
+  EXPECT_EQ(link.sample(t).position.x(), 0.003);
+  EXPECT_EQ(link.lastSeq(), 5u);
+}
+
+// Scene position = workspace_offset + workspace_scale * device position; the velocity is the
+// packets' difference over their device times, low-pass filtered with velocity_smoothing.
+TEST(DeviceLink, TheWorkspaceMapsPositionsAndVelocities) {
+  UdpDeviceDesc d;
+  d.workspace_scale = 2.0;
+  d.workspace_offset = Vec3(1.0, 0.5, 0.0);
+  d.velocity_smoothing = 0.0;
+  DeviceLink raw(d);
+  d.velocity_smoothing = 0.005;
+  DeviceLink smooth(d);
+  for (int k = 0; k <= 100; ++k) {
+    const double t = k * kDt;
+    const DevicePacket p = packet(static_cast<std::uint32_t>(k), 100.0 + t, Vec3(0.1 * t, 0.0, -0.02));
+    raw.take(p, t);
+    smooth.take(p, t);
+    const sim::DeviceSample a = raw.sample(t), b = smooth.sample(t);
+    EXPECT_TRUE(a.position.isApprox(Vec3(1.0 + 0.2 * t, 0.5, -0.04), 1e-12)) << k;
+    if (k >= 1) { EXPECT_NEAR(a.velocity.x(), 0.2, 1e-9) << k; }
+    if (k == 50) { EXPECT_NEAR(b.velocity.x(), 0.2, 0.2 * std::exp(-10.0) * 1.01); }  // 50 ms = 10 time constants
+  }
+}
+
+// At the validator's limits and beyond: coordinates mapped outside the scene's range are
+// ignored, a device clock that jumps back or repeats does not make a velocity, and a World
+// driven by the wildest packets the link takes (±100 m at 10 us apart) stays finite.
+TEST(DeviceLink, ExtremePacketsKeepTheWorldFinite) {
+  const SessionDesc session = parseSceneText(R"(name = "wild"
+duration = 1.0
+effects = ["gravity", "friction", "god_finger", "force_feedback"]
+[bodies.ground]
+shape = "plane"
+[bodies.box]
+shape = "box"
+half_extents = [0.05, 0.05, 0.05]
+mass = 0.5
+position = [0, 0.05, 0]
+[fingers.f]
+n_sgo = 8
+[fingers.f.device]
+udp = 0
+start = [0, 0.2, 0]
+workspace_scale = 100
+velocity_smoothing = 0
+)", "wild.toml", "");
+  DeviceLink link(session.udp_devices.at(0));  // the largest workspace_scale taken
+  EXPECT_FALSE(link.take(packet(1, 0.0, Vec3(10.1, 0.0, 0.0)), 0.0));  // 1010 m in the scene
+  EXPECT_EQ(link.counters().out_of_range, 1);
+  sim::World world(session.scene);
+  std::vector<sim::DeviceSample> samples(1);
+  double device_time = 0.0;
+  for (long k = 0; k < 2000; ++k) {
+    const double t = static_cast<double>(k) * kDt;
+    // Alternating ends of the range, device times 10 us apart, sometimes repeated or going back.
+    const double x = (k % 2 == 0 ? 1.0 : -1.0) * 9.99;
+    device_time += (k % 7 == 0) ? -0.5 : (k % 5 == 0 ? 0.0 : kMinVelocityInterval);
+    link.take(packet(static_cast<std::uint32_t>(k + 2), device_time, Vec3(x, 0.001 * (k % 3), -x)), t);
+    samples[0] = link.sample(t);
+    ASSERT_TRUE(samples[0].position.allFinite() && samples[0].velocity.allFinite()) << k;
+    world.step(kDt, samples);
+    const DeviceReply r = link.reply(world.time(), {world.feedbackForce(0), world.contactRadius(0), world.sgoCount(0),
+                                                    world.touching(0)});
+    ASSERT_TRUE(r.force.allFinite()) << k;
+    ASSERT_LE(r.force.norm(), session.scene.fingers[0].coupling.max_force + 1e-9) << k;
+    ASSERT_TRUE(world.proxyPosition(0).allFinite()) << k;
+  }
+  EXPECT_EQ(world.counters().nan_recoveries, 0);
+}
+
+const std::string kUdpScene = R"(name = "udp"
+duration = 0.2
+effects = ["gravity", "friction", "god_finger", "force_feedback"]
+[bodies.ground]
+shape = "plane"
+[fingers.a]
+n_sgo = 8
+[fingers.a.device]
+udp = "127.0.0.1:0"
+start = [0, 0.05, 0]
+[fingers.b]
+n_sgo = 8
+[fingers.b.device]
+udp = "127.0.0.1:0"
+channel = 1
+start = [0.1, 0.05, 0]
+)";
+
+std::string withDevice(const std::string& fields) {
+  std::string s = kUdpScene;
+  const std::string from = "udp = \"127.0.0.1:0\"\nstart = [0, 0.05, 0]";
+  return s.replace(s.find(from), from.size(), fields);
+}
+
+InputError sceneError(const std::string& text) {
+  try {
+    parseSceneText(text, "scene.toml", "");
+  } catch (const InputError& e) {
+    return e;
+  }
+  ADD_FAILURE() << "no error for:\n" << text;
+  return InputError("", 0, 0, "", "");
+}
+
+// The scene's `udp` device: its fields with their defaults, and each bad value named.
+TEST(UdpDeviceScene, FieldsAreReadAndBadOnesNamed) {
+  const SessionDesc s = parseSceneText(withDevice(R"(udp = 47011
+workspace_scale = 0.5
+workspace_offset = [0, 0.1, 0]
+force_scale = 0.25
+stale_after = 0.02
+force_ramp = 0.2
+velocity_smoothing = 0)"), "scene.toml", "");
+  ASSERT_EQ(s.udp_devices.size(), 2u);
+  const UdpDeviceDesc& a = s.udp_devices[0];
+  EXPECT_EQ(a.finger, 0);
+  EXPECT_EQ(a.host, "127.0.0.1");  // a bare port listens on loopback
+  EXPECT_EQ(a.port, 47011);
+  EXPECT_EQ(a.channel, 0);
+  EXPECT_EQ(a.workspace_scale, 0.5);
+  EXPECT_EQ(a.start, Vec3(0.0, 0.1, 0.0));  // the offset, when no start is given
+  EXPECT_EQ(a.force_scale, 0.25);
+  EXPECT_EQ(a.stale_after, 0.02);
+  EXPECT_EQ(a.force_ramp, 0.2);
+  EXPECT_EQ(a.velocity_smoothing, 0.0);
+  EXPECT_EQ(a.line, 9);
+  EXPECT_EQ(s.scene.fingers[0].device.sample(5.0).position, Vec3(0.0, 0.1, 0.0));  // held at start
+  const UdpDeviceDesc& b = s.udp_devices[1];
+  EXPECT_EQ(b.finger, 1);
+  EXPECT_EQ(b.channel, 1);
+  EXPECT_EQ(b.stale_after, 0.05);
+  EXPECT_EQ(parseSceneText(withDevice("udp = \"localhost:5\""), "s", "").udp_devices[0].host, "127.0.0.1");
+  EXPECT_EQ(parseSceneText(withDevice("udp = \"0.0.0.0:5\""), "s", "").udp_devices[0].host, "0.0.0.0");
+
+  const auto field = [](const std::string& fields) { return sceneError(withDevice(fields)); };
+  EXPECT_EQ(field("udp = \"example.org:5\"").field(), "fingers.a.device.udp");
+  EXPECT_NE(std::string(field("udp = \"example.org:5\"").what()).find("not an IPv4 address"), std::string::npos);
+  EXPECT_EQ(field("udp = \"127.0.0.1:70000\"").field(), "fingers.a.device.udp");
+  EXPECT_EQ(field("udp = \"127.0.0.1\"").field(), "fingers.a.device.udp");
+  EXPECT_EQ(field("udp = -1").field(), "fingers.a.device.udp");
+  EXPECT_EQ(field("udp = 1.5").field(), "fingers.a.device.udp");
+  EXPECT_EQ(field("udp = 5\nchannel = 256").field(), "fingers.a.device.channel");
+  EXPECT_EQ(field("udp = 5\nworkspace_scale = 0").field(), "fingers.a.device.workspace_scale");
+  EXPECT_EQ(field("udp = 5\nworkspace_offset = [2000, 0, 0]").field(), "fingers.a.device.workspace_offset");
+  EXPECT_EQ(field("udp = 5\nstart = [0, -1001, 0]").field(), "fingers.a.device.start");
+  EXPECT_EQ(field("udp = 5\nforce_scale = -1").field(), "fingers.a.device.force_scale");
+  EXPECT_EQ(field("udp = 5\nstale_after = 0.001").field(), "fingers.a.device.stale_after");
+  EXPECT_EQ(field("udp = 5\nforce_ramp = 0").field(), "fingers.a.device.force_ramp");
+  EXPECT_EQ(field("udp = 5\nvelocity_smoothing = 1").field(), "fingers.a.device.velocity_smoothing");
+  EXPECT_EQ(field("udp = 5\ninterpolation = \"linear\"").field(), "fingers.a.device.interpolation");
+  const InputError both = field("udp = 5\nkeyframes = [ { t = 0.0, p = [0, 0.1, 0] } ]");
+  EXPECT_NE(std::string(both.what()).find("exactly one of keyframes, csv and udp"), std::string::npos) << both.what();
+  const InputError stray = field("keyframes = [ { t = 0.0, p = [0, 0.1, 0] } ]\nchannel = 2");
+  EXPECT_EQ(stray.field(), "fingers.a.device.channel");
+  EXPECT_NE(std::string(stray.what()).find("belongs to a UDP device"), std::string::npos) << stray.what();
+}
+
+// Two fingers on one socket must read different channels; a port another program holds is
+// named with the scene line.
+TEST(UdpDeviceScene, ChannelsAndPortsInUseAreErrorsNamingTheField) {
+  std::string same = kUdpScene;
+  same.replace(same.find("channel = 1"), 11, "channel = 0");
+  const SessionDesc s = parseSceneText(same, "same.toml", "");
+  try {
+    UdpDeviceBridge bridge(s);
+    ADD_FAILURE() << "two fingers on channel 0 of one socket";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.field(), "fingers.b.device.channel");
+    EXPECT_EQ(e.line(), 14);  // the finger's udp line
+  }
+  const SessionDesc ok = parseSceneText(kUdpScene, "ok.toml", "");
+  UdpDeviceBridge first(ok);
+  const std::string address = first.address(0);
+  EXPECT_EQ(address, first.address(1));  // one socket, two channels
+  const std::string port = address.substr(address.find(':') + 1);
+  EXPECT_NE(port, "0");
+  const SessionDesc taken = parseSceneText(withDevice("udp = " + port), "taken.toml", "");
+  try {
+    UdpDeviceBridge second(taken);
+    ADD_FAILURE() << "port " << port << " bound twice";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.field(), "fingers.a.device.udp");
+    EXPECT_NE(std::string(e.what()).find("cannot listen on 127.0.0.1:" + port), std::string::npos) << e.what();
+  }
+}
+
+// Offline runs and `live` step on their own clock: a UDP device there is an error that says so,
+// before any output is touched.
+TEST(UdpDeviceScene, OfflineRunsAndLiveRefuseIt) {
+  const SessionDesc s = parseSceneText(kUdpScene, "udp.toml", "");
+  SessionOptions options;
+  options.out_dir = std::string(GF_BINARY_DIR) + "/test-outputs/udp-offline";
+  options.progress = false;
+  try {
+    runSession(s, options);
+    ADD_FAILURE() << "an offline run with a UDP device";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.file(), "udp.toml");
+    EXPECT_EQ(e.line(), 9);
+    EXPECT_EQ(e.field(), "fingers.a.device.udp");
+    EXPECT_NE(std::string(e.what()).find("--realtime"), std::string::npos) << e.what();
+  }
+  EXPECT_FALSE(std::filesystem::exists(options.out_dir));
+  const std::string path = std::string(GF_BINARY_DIR) + "/test-outputs/udp-live.toml";
+  std::filesystem::create_directories(std::filesystem::path(path).parent_path());
+  std::ofstream(path) << kUdpScene;
+  LiveOptions live;
+  live.scene_path = path;
+  std::istringstream in("step 1\n");
+  std::ostringstream out;
+  try {
+    runLive(live, in, out);
+    ADD_FAILURE() << "live with a UDP device";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.field(), "fingers.a.device.udp");
+    EXPECT_NE(std::string(e.what()).find("godfinger run --realtime"), std::string::npos) << e.what();
+  }
+}
+
+}  // namespace
+}  // namespace gf::app
