@@ -123,7 +123,10 @@ sim::DeviceSample DeviceLink::sample(double t) {
 
 DeviceReply DeviceLink::reply(double t, const sim::DeviceFeedback& f) {
   const double change = (t - sample_time_) / desc_.force_ramp;
-  gain_ = stale_ ? std::max(0.0, gain_ - change) : std::min(1.0, gain_ + change);
+  gain_ = stale_ ? gain_ - change : gain_ + change;
+  // Whole steps of the ramp add up to 1 only within rounding: the ends are exact.
+  if (gain_ < kGainRounding) gain_ = 0.0;
+  if (gain_ > 1.0 - kGainRounding) gain_ = 1.0;
   DeviceReply r;
   r.seq = seq_;
   r.channel = static_cast<std::uint32_t>(desc_.channel);

@@ -51,6 +51,8 @@ enum class PacketError {
 
 /// m: the largest device coordinate taken (a device's workspace is well under a metre).
 inline constexpr double kMaxDeviceCoordinate = 100.0;
+/// The stale ramp's gain snaps to 0 or 1 within this of either (the steps' sum is rounded).
+inline constexpr double kGainRounding = 1e-9;
 /// s: successive packets' device times closer than this do not update the velocity estimate.
 inline constexpr double kMinVelocityInterval = 1e-5;
 

@@ -1,0 +1,282 @@
+// A live device through loopback: a C++ device program drives `godfinger run --realtime` over
+// UDP (docs/device-protocol.md), in lockstep (each packet is sent once the reply echoing the one
+// before has come, so nothing depends on how fast either side runs). Every reply is checked; the
+// run is stopped with Ctrl-C and its summary.json checked for what was sent.
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include <algorithm>
+#include <array>
+#include <chrono>
+#include <cmath>
+#include <csignal>
+#include <cstdio>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <arpa/inet.h>
+#include <netinet/in.h>
+#include <poll.h>
+#include <sys/socket.h>
+#include <unistd.h>
+
+#include "app/device_protocol.hpp"
+#include "tests/app/run_helpers.hpp"
+
+namespace gf::app {
+namespace {
+
+using namespace test;
+using sim::Vec3;
+
+constexpr double kDt = 0.001;          // s: the scene's haptic step
+constexpr double kStaleAfter = 0.05;   // s: the scene's stale_after
+constexpr double kRamp = 0.1;          // s: the scene's force_ramp
+constexpr double kMaxForce = 40.0;     // N: the coupling's default clamp
+constexpr int kGuardMs = 20000;        // a reply not here by then means the run is gone (a hang guard)
+
+// A finger above the ground, driven over UDP on any free loopback port.
+const std::string kScene = R"(name = "udp-loopback"
+duration = 600.0
+effects = ["gravity", "friction", "god_finger", "force_feedback"]
+[bodies.ground]
+shape = "plane"
+friction = 0.8
+[fingers.finger]
+n_sgo = 8
+r_max = 0.01
+[fingers.finger.device]
+udp = "127.0.0.1:0"
+start = [0, 0.05, 0]
+stale_after = 0.05
+force_ramp = 0.1
+[record]
+trace = false
+)";
+
+// The device side: one loopback socket, packets out, replies in; every reply is checked against
+// the protocol's promises as it arrives.
+class Device {
+ public:
+  explicit Device(int port) {
+    fd_ = socket(AF_INET, SOCK_DGRAM | SOCK_CLOEXEC, 0);
+    server_.sin_family = AF_INET;
+    server_.sin_port = htons(static_cast<std::uint16_t>(port));
+    inet_pton(AF_INET, "127.0.0.1", &server_.sin_addr);
+  }
+  ~Device() { close(fd_); }
+
+  // A valid packet; returns its seq.
+  std::uint32_t send(const Vec3& position) {
+    DevicePacket p;
+    p.seq = next_seq_++;
+    p.time = 1000.0 + p.seq * kDt;
+    p.position = position;
+    std::array<std::uint8_t, DevicePacket::kSize> bytes;
+    encodeDevicePacket(p, bytes);
+    raw(bytes);
+    sent_at_.push_back(std::chrono::steady_clock::now());
+    ++valid_;
+    return p.seq;
+  }
+  void raw(std::span<const std::uint8_t> bytes) {
+    sendto(fd_, bytes.data(), bytes.size(), 0, reinterpret_cast<const sockaddr*>(&server_), sizeof server_);
+  }
+  std::uint32_t nextSeq() const { return next_seq_; }
+  long validSent() const { return valid_; }
+
+  // The next reply, checked; nullopt when none came within the guard.
+  std::optional<DeviceReply> next() {
+    pollfd p{fd_, POLLIN, 0};
+    if (poll(&p, 1, kGuardMs) != 1) return std::nullopt;
+    std::array<std::uint8_t, 128> buffer;
+    const ssize_t size = recv(fd_, buffer.data(), buffer.size(), 0);
+    DeviceReply r;
+    EXPECT_TRUE(size >= 0 && parseDeviceReply(std::span<const std::uint8_t>(buffer.data(), static_cast<std::size_t>(size)), r))
+        << "a reply of " << size << " bytes";
+    check(r);
+    return r;
+  }
+
+  // Replies until one echoes `seq`; that one (nullopt when the guard ran out).
+  std::optional<DeviceReply> echo(std::uint32_t seq) {
+    for (;;) {
+      std::optional<DeviceReply> r = next();
+      if (!r || r->seq == seq) {
+        if (r && seq < sent_at_.size() && !answered_[seq]) {
+          rtt_us_.push_back(std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - sent_at_[seq]).count());
+        }
+        if (r) answered_[seq] = true;
+        return r;
+      }
+    }
+  }
+
+  std::vector<double>& rtts() { return rtt_us_; }
+  long replies() const { return replies_; }
+
+ private:
+  void check(const DeviceReply& r) {
+    ++replies_;
+    EXPECT_EQ(r.channel, 0u);
+    EXPECT_TRUE(r.force.allFinite());
+    EXPECT_LE(r.force.norm(), kMaxForce * r.gain + 1e-6) << "at t = " << r.time;
+    EXPECT_GE(r.gain, 0.0f);
+    EXPECT_LE(r.gain, 1.0f);
+    EXPECT_EQ((r.flags & DeviceReply::kRamping) != 0, r.gain < 1.0f) << "at t = " << r.time;
+    EXPECT_LT(r.seq, next_seq_) << "echoes a seq not sent";
+    if (previous_) {
+      // One reply a step, in order; the seq echoed never goes back; the gain never steps.
+      EXPECT_GT(r.time, previous_->time);
+      EXPECT_GE(r.seq, previous_->seq);
+      EXPECT_LE(std::abs(r.gain - previous_->gain), (r.time - previous_->time) / kRamp + 1e-5) << "force step at t = " << r.time;
+    }
+    previous_ = r;
+  }
+
+  int fd_ = -1;
+  sockaddr_in server_{};
+  std::uint32_t next_seq_ = 0;
+  long valid_ = 0, replies_ = 0;
+  std::optional<DeviceReply> previous_;
+  std::vector<std::chrono::steady_clock::time_point> sent_at_;
+  std::array<bool, 100000> answered_{};
+  std::vector<double> rtt_us_;
+};
+
+std::vector<std::uint8_t> packetBytes(std::uint32_t seq, std::uint32_t channel, const Vec3& p) {
+  DevicePacket packet;
+  packet.seq = seq;
+  packet.channel = channel;
+  packet.position = p;
+  std::array<std::uint8_t, DevicePacket::kSize> bytes;
+  encodeDevicePacket(packet, bytes);
+  return {bytes.begin(), bytes.end()};
+}
+
+TEST(UdpDevice, ADeviceDrivesARealtimeRunThroughLoopback) {
+  const fs::path dir = freshFolder("gf_udp_loopback");
+  {
+    std::ofstream(dir / "scene.toml") << kScene;
+  }
+  Child child = start(kBin + " run " + (dir / "scene.toml").string() + " --realtime --quiet --out " + (dir / "run").string(),
+                      (dir / "stdout.txt").string());
+  ASSERT_GT(child.pid, 0);
+  const std::string listening = lineWith(child.lines, "listening on 127.0.0.1:");
+  ASSERT_FALSE(listening.empty()) << "the run did not say where it listens";
+  const int port = std::atoi(listening.c_str() + listening.find("127.0.0.1:") + 10);
+  ASSERT_GT(port, 0) << listening;
+  // Whatever happens below, the run does not outlive the test.
+  struct Stop {
+    pid_t pid;
+    bool done = false;
+    ~Stop() {
+      if (!done) kill(-pid, SIGKILL);
+    }
+  } stop{child.pid};
+  Device device(port);
+
+  // 1. Down from 5 cm above the ground to the ground in 200 packets, then held there: the
+  // proxy (8 mm radius) rests on the ground, and the device feels the coupling spring pushing it
+  // up. Held until the start ramp has reached full force and the proxy has settled.
+  const Vec3 hold(0.0, 0.0, 0.0);
+  std::optional<DeviceReply> r;
+  for (int k = 0; k < 20000; ++k) {
+    const double y = std::max(0.0, 0.05 * (1.0 - k / 200.0));
+    r = device.echo(device.send(Vec3(0.0, y, 0.0)));
+    ASSERT_TRUE(r) << "no reply to packet " << k;
+    if (k >= 600 && r->gain == 1.0f) break;
+  }
+  ASSERT_EQ(r->gain, 1.0f);
+  EXPECT_FALSE(r->flags & DeviceReply::kStale);
+  EXPECT_TRUE(r->flags & DeviceReply::kTouching);
+  EXPECT_EQ(r->sgo_count, 8u);
+  EXPECT_GT(r->radius, 0.0);
+  // At rest the coupling (800 N/m) and the contact (20000 N/m) are springs in series over the
+  // proxy's radius: F = 800 * 0.008 / (1 + 800 / 20000) = 6.154 N, up.
+  const double spring = 800.0 * 0.008 / (1.0 + 800.0 / 20000.0);
+  EXPECT_NEAR(r->force.y(), spring, 0.01 * spring);
+  EXPECT_NEAR(r->force.x(), 0.0, 0.01);
+  const double held_force = r->force.norm();
+
+  // 2. Garbage between two valid packets: each ignored, none fatal.
+  std::vector<std::uint8_t> bytes = packetBytes(device.nextSeq(), 0, hold);
+  device.raw(std::span<const std::uint8_t>(bytes.data(), 47));  // short
+  bytes.push_back(0);
+  device.raw(bytes);                                             // long
+  bytes.pop_back();
+  bytes[3] = '2';
+  device.raw(bytes);                                             // "GFD2": another version
+  device.raw(packetBytes(device.nextSeq(), 0, Vec3(std::nan(""), 0.0, 0.0)));  // not finite
+  device.raw(packetBytes(device.nextSeq(), 0, Vec3(0.0, 150.0, 0.0)));         // beyond 100 m
+  device.raw(packetBytes(device.nextSeq(), 7, hold));                          // no finger reads channel 7
+  device.raw(packetBytes(device.nextSeq() - 5, 0, Vec3(0.0, 0.04, 0.0)));      // older than the last
+  r = device.echo(device.send(hold));
+  ASSERT_TRUE(r);
+  EXPECT_NEAR(r->force.norm(), held_force, 0.01 * held_force);  // the garbage moved nothing
+
+  // 3. Silence: once no packet came for stale_after the device is stale, the proxy holds, and
+  // the force ramps to zero over force_ramp (times are simulated: exact to a step).
+  const double last_taken = r->time - kDt;  // the step that took the last packet started here
+  std::optional<DeviceReply> first_stale, zero;
+  while (!zero) {
+    r = device.next();
+    ASSERT_TRUE(r);
+    if (!(r->flags & DeviceReply::kStale)) continue;
+    if (!first_stale) first_stale = r;
+    if (r->gain > 0.1f) {
+      EXPECT_NEAR(r->force.norm() / r->gain, held_force, 0.01 * held_force) << "the proxy held";
+    }
+    if (r->gain == 0.0f) zero = r;
+  }
+  EXPECT_GT(first_stale->time - last_taken, kStaleAfter);
+  EXPECT_LE(first_stale->time - last_taken, kStaleAfter + 2 * kDt + 1e-9);
+  EXPECT_NEAR(zero->time - first_stale->time, kRamp, 1.5 * kDt);
+  EXPECT_EQ(zero->force.norm(), 0.0);
+
+  // 4. Packets again: the device is followed at once and the force ramps back up, no step.
+  r = device.echo(device.send(hold));
+  ASSERT_TRUE(r);
+  EXPECT_FALSE(r->flags & DeviceReply::kStale);
+  EXPECT_LE(r->gain, 2 * kDt / kRamp + 1e-6);
+  for (int k = 0; r->gain < 1.0f && k < 20000; ++k) {
+    r = device.echo(device.send(hold));
+    ASSERT_TRUE(r);
+  }
+  EXPECT_EQ(r->gain, 1.0f);
+  EXPECT_NEAR(r->force.norm(), held_force, 0.02 * held_force);
+
+  // 5. Ctrl-C: the run stops, writes its summary, and exits 130.
+  kill(-child.pid, SIGINT);
+  EXPECT_EQ(finish(child), 130);
+  stop.done = true;
+  const nlohmann::json summary = summaryOf(dir / "run");
+  EXPECT_TRUE(summary["interrupted"].get<bool>());
+  const nlohmann::json& socket = summary["udp_devices"]["sockets"][0];
+  EXPECT_EQ(socket["wrong_size"], 2);
+  EXPECT_EQ(socket["bad_magic"], 1);
+  EXPECT_EQ(socket["bad_value"], 2);
+  EXPECT_EQ(socket["unknown_channel"], 1);
+  EXPECT_EQ(socket["receive_errors"], 0);
+  const nlohmann::json& finger = summary["udp_devices"]["fingers"][0];
+  EXPECT_EQ(finger["finger"], "finger");
+  EXPECT_EQ(finger["out_of_order"], 1);
+  EXPECT_EQ(finger["packets_taken"], device.validSent());
+  EXPECT_GE(finger["stale_periods"].get<long>(), 1);
+  EXPECT_GE(finger["replies_sent"].get<long>(), device.replies());
+  EXPECT_EQ(finger["send_errors"], 0);
+
+  // The loopback round trip (send to the reply echoing it: the wait for the next step, the
+  // step, both sockets), for the record; not a pass/fail figure.
+  std::vector<double>& rtt = device.rtts();
+  std::sort(rtt.begin(), rtt.end());
+  if (!rtt.empty()) {
+    std::printf("loopback round trip over %zu packets: p50 %.0f us, p99 %.0f us, max %.0f us; late steps %s\n",
+                rtt.size(), rtt[rtt.size() / 2], rtt[rtt.size() * 99 / 100], rtt.back(),
+                summary["realtime"]["late_steps"].dump().c_str());
+  }
+}
+
+}  // namespace
+}  // namespace gf::app
