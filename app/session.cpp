@@ -26,6 +26,7 @@
 #include "app/scene_file.hpp"
 #include "app/trace_writer.hpp"
 #include "app/udp_device.hpp"
+#include "sim/mesh_import.hpp"
 #include "sim/settings.hpp"
 #include "sim/world.hpp"
 
@@ -79,6 +80,23 @@ nlohmann::json summaryJson(const SessionDesc& session, const sim::World& world,
     bodies.push_back({{"name", scene.bodies[b].name}, {"mass_kg", scene.bodies[b].mass},
                       {"inertia_kg_m2", {inertia.x(), inertia.y(), inertia.z()}}});
   }
+  // Mesh bodies: the file's parts joined into the body (each node's mesh, its transform applied)
+  // and what welding left.
+  nlohmann::json meshes = nlohmann::json::array();
+  for (const sim::BodyDesc& b : scene.bodies) {
+    if (b.mesh_path.empty()) continue;
+    nlohmann::json m = {{"body", b.name}, {"file", b.mesh_path}, {"scale", b.mesh_scale}};
+    try {
+      m["parts"] = sim::describeMeshFile(b.mesh_path).parts.size();
+    } catch (const sim::MeshLoadError& e) {
+      m["parts"] = nullptr;  // read when the scene loaded; gone or changed since
+    }
+    if (b.mesh) {
+      m["vertices"] = b.mesh->vertexCount();
+      m["faces"] = b.mesh->faceCount();
+    }
+    meshes.push_back(m);
+  }
   return {{"scene", scene.name},
           {"source", session.source},
           {"overrides", session.overrides},
@@ -87,6 +105,7 @@ nlohmann::json summaryJson(const SessionDesc& session, const sim::World& world,
           {"effects", effectsJson(scene.effects)},
           {"fingers", fingers},
           {"bodies", bodies},
+          {"meshes", meshes},
           {"step_time_us", {{"median", stats.step_median_us}, {"p99", stats.step_p99_us},
                             {"max", stats.step_max_us}}},
           {"interrupted", stats.stopped},

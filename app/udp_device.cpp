@@ -71,6 +71,7 @@ class UdpDeviceBridge::Device final : public sim::DeviceSource {
             {"channel", channel_},
             {"packets_taken", c.taken},
             {"out_of_order", c.out_of_order},
+            {"out_of_range", c.out_of_range},
             {"superseded", c.superseded},
             {"first_packet_s", link_.heard() ? nlohmann::json(link_.firstPacketTime()) : nlohmann::json(nullptr)},
             {"last_seq", link_.lastSeq()},

@@ -278,5 +278,59 @@ TEST(UdpDevice, ADeviceDrivesARealtimeRunThroughLoopback) {
   }
 }
 
+// The example device program and the bundled scene it is written for: client.py replays the
+// Fig. 8 pinch on both channels of the scene's socket (here any free port) and reports what it
+// sent and got back. Its JSON line and the run's summary must agree on a pinch that squeezed.
+TEST(UdpDevice, TheExampleClientDrivesTheBundledScene) {
+  const fs::path dir = freshFolder("gf_udp_example");
+  Child child = start(kBin + " run device-udp --realtime --quiet --set duration=30 --set fingers.left.device.udp=0 " +
+                          "--set fingers.right.device.udp=0 --out " + (dir / "run").string(),
+                      (dir / "stdout.txt").string());
+  ASSERT_GT(child.pid, 0);
+  const std::string listening = lineWith(child.lines, "listening on 127.0.0.1:");
+  ASSERT_FALSE(listening.empty()) << "the run did not say where it listens";
+  const int port = std::atoi(listening.c_str() + listening.find("127.0.0.1:") + 10);
+  struct Stop {
+    pid_t pid;
+    bool done = false;
+    ~Stop() {
+      if (!done) kill(-pid, SIGKILL);
+    }
+  } stop{child.pid};
+  // 1.5 s of the pinch: the fingers close in by 0.5 s and squeeze (about 4 N each).
+  const std::string command = std::string(GF_PYTHON3) + " " + GF_SOURCE_DIR + "/examples/device-udp/client.py --port " +
+                              std::to_string(port) + " --seconds 1.5 --rate 1000";
+  std::FILE* client = popen(command.c_str(), "r");
+  ASSERT_NE(client, nullptr);
+  char line[1024] = {};
+  const bool read = std::fgets(line, sizeof line, client) != nullptr;
+  EXPECT_EQ(pclose(client), 0) << line;
+  ASSERT_TRUE(read) << "client.py printed nothing";
+  const nlohmann::json report = nlohmann::json::parse(line);
+  EXPECT_EQ(report["sent"], 2 * 1501);  // both fingers, 1.5 s at 1 kHz, both ends
+  EXPECT_EQ(report["channels"], 2);
+  EXPECT_EQ(report["bad_replies"], 0);
+  EXPECT_GT(report["answered"].get<long>(), 0);
+  EXPECT_LE(report["answered"].get<long>(), report["sent"].get<long>());
+  EXPECT_GT(report["rtt_us_p50"].get<double>(), 0.0);
+  EXPECT_GE(report["rtt_us_p99"].get<double>(), report["rtt_us_p50"].get<double>());
+  EXPECT_GT(report["max_force_n"].get<double>(), 1.0);  // the squeeze was felt
+  EXPECT_LE(report["max_force_n"].get<double>(), kMaxForce);
+  kill(-child.pid, SIGINT);
+  EXPECT_EQ(finish(child), 130);
+  stop.done = true;
+  const nlohmann::json summary = summaryOf(dir / "run");
+  const nlohmann::json& sockets = summary["udp_devices"]["sockets"];
+  ASSERT_EQ(sockets.size(), 1u);  // both fingers on one socket
+  EXPECT_EQ(sockets[0]["datagrams"], report["sent"]);
+  long taken = 0;
+  for (const nlohmann::json& f : summary["udp_devices"]["fingers"]) {
+    taken += f["packets_taken"].get<long>();
+    EXPECT_EQ(f["out_of_order"], 0);
+    EXPECT_EQ(f["last_seq"], 1500);
+  }
+  EXPECT_EQ(taken, report["sent"].get<long>());  // in order on loopback: every packet taken
+}
+
 }  // namespace
 }  // namespace gf::app

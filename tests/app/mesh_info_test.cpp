@@ -7,6 +7,8 @@
 #include <filesystem>
 #include <fstream>
 
+#include "app/scene_file.hpp"
+#include "app/session.hpp"
 #include "sim/mesh_import.hpp"
 
 namespace gf::app {
@@ -21,7 +23,8 @@ fs::path scratch(const std::string& name) {
 }
 
 // A Collada file in centimetres, Z up, whose one tetrahedron (legs 10 units) two nodes place
-// 30 units apart: two parts, unit 0.01 m, up Z, applied on reading.
+// 30 units apart: two parts, unit 0.01 m, up Z, applied on reading; a body made of it lists its
+// two parts in summary.json.
 TEST(MeshInfo, ColladaPartsUnitAndUpAxis) {
   const fs::path path = scratch("two-tetrahedra.dae");
   std::ofstream(path) << R"(<?xml version="1.0" encoding="utf-8"?>
@@ -57,6 +60,34 @@ TEST(MeshInfo, ColladaPartsUnitAndUpAxis) {
   // The size in metres: 0.1 up (Z up turned to Y), 0.4 along x.
   EXPECT_NEAR(info["bounds_m"]["size"][0].get<double>(), 0.4, 1e-7);
   EXPECT_NEAR(info["bounds_m"]["size"][1].get<double>(), 0.1, 1e-7);
+
+  // As a body, both parts join it, and the run's summary.json says so.
+  const std::string scene = R"(name = "two-parts"
+duration = 0.01
+effects = ["gravity"]
+[bodies.ground]
+shape = "plane"
+[bodies.pair]
+shape = "mesh"
+mesh = ")" + path.string() + R"("
+collision = "convex_hull"
+mass = 0.2
+position = [0, 0.2, 0]
+[fingers.f]
+[fingers.f.device]
+keyframes = [ { t = 0.0, p = [0, 0.5, 0] } ]
+)";
+  SessionOptions options;
+  options.out_dir = scratch("two-parts-run").string();
+  options.progress = false;
+  runSession(parseSceneText(scene, "two-parts.toml", ""), options);
+  std::ifstream in(fs::path(options.out_dir) / "summary.json");
+  const nlohmann::json summary = nlohmann::json::parse(in);
+  ASSERT_EQ(summary["meshes"].size(), 1u);
+  EXPECT_EQ(summary["meshes"][0]["body"], "pair");
+  EXPECT_EQ(summary["meshes"][0]["parts"], 2);
+  EXPECT_EQ(summary["meshes"][0]["faces"], 8);
+  EXPECT_EQ(summary["meshes"][0]["vertices"], 8);
 }
 
 // A 50 mm cube written in millimetres: 50 m across at scale 1, so mesh-info suggests 0.001; at
