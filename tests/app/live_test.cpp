@@ -5,6 +5,7 @@
 
 #include <filesystem>
 #include <sstream>
+#include "tests/scratch.hpp"
 
 namespace gf::app {
 namespace {
@@ -21,7 +22,7 @@ struct Answers {
 Answers runFig7SidePick(const std::string& input, const std::string& out_name) {
   LiveOptions o;
   o.scene_path = std::string(GF_SOURCE_DIR) + "/assets/scenes/fig7-side-pick.toml";
-  o.out_dir = (fs::temp_directory_path() / out_name).string();
+  o.out_dir = (gf::test::scratchRoot() / out_name).string();
   std::istringstream in(input);
   std::ostringstream out;
   Answers a;

@@ -5,6 +5,7 @@
 #include <filesystem>
 #include <fstream>
 #include <sstream>
+#include "tests/scratch.hpp"
 
 namespace gf::app {
 namespace {
@@ -12,7 +13,7 @@ namespace {
 // The command line: a bad scene or override exits non-zero and leaves an earlier run's files.
 TEST(Command, BadInputExitsNonZeroAndKeepsEarlierOutputs) {
   namespace fs = std::filesystem;
-  const fs::path out = fs::temp_directory_path() / "gf_command_out";
+  const fs::path out = gf::test::scratchRoot() / "gf_command_out";
   fs::remove_all(out);
   fs::create_directories(out);
   std::ofstream(out / "trace.csv") << "earlier\n";
@@ -34,7 +35,7 @@ TEST(Command, BadInputExitsNonZeroAndKeepsEarlierOutputs) {
 // FAIL line naming the expectation, with exit 1.
 TEST(Command, CheckPassesTheBundledScenesAndFailsAGodObjectLift) {
   namespace fs = std::filesystem;
-  const fs::path out = fs::temp_directory_path() / "gf_check_out";
+  const fs::path out = gf::test::scratchRoot() / "gf_check_out";
   fs::remove_all(out);
   const std::string bin = std::string(GF_BINARY_DIR) + "/godfinger";
   const std::string all = bin + " check " + GF_SOURCE_DIR + "/assets/scenes --jobs 2 --out " + out.string() +
@@ -57,7 +58,7 @@ TEST(Command, CheckPassesTheBundledScenesAndFailsAGodObjectLift) {
       << "every bundled scene passes";
 
   // Fig. 6 with a god-object, as a scene file of its own.
-  const fs::path dir = fs::temp_directory_path() / "gf_check_scenes";
+  const fs::path dir = gf::test::scratchRoot() / "gf_check_scenes";
   fs::remove_all(dir);
   fs::create_directories(dir);
   std::ifstream in(std::string(GF_SOURCE_DIR) + "/assets/scenes/fig6-lift-one-finger.toml");

@@ -14,6 +14,7 @@
 #include "sim/haptic_loop.hpp"
 #include "sim/mesh_import.hpp"
 #include "sim/world.hpp"
+#include "tests/scratch.hpp"
 
 namespace gf::app {
 namespace {
@@ -60,7 +61,7 @@ std::string replaced(const std::string& from, const std::string& to) {
 TEST(SceneFile, DensityGivesTheMassFromTheVolume) {
   const SessionDesc s = parseSceneText(replaced("mass = 0.1", "density = 1000"), "scene.toml", "");
   EXPECT_NEAR(s.scene.bodies[1].mass, 1000.0 * 4.0 / 3.0 * std::numbers::pi * 0.03 * 0.03 * 0.03, 1e-12);
-  const fs::path dir = fs::temp_directory_path() / "gf_density";
+  const fs::path dir = gf::test::scratchRoot() / "gf_density";
   fs::create_directories(dir);
   std::ofstream(dir / "cube.obj") << "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 0 0 1\nv 1 0 1\nv 1 1 1\nv 0 1 1\n"
                                      "f 1 3 2\nf 1 4 3\nf 5 6 7\nf 5 7 8\nf 1 2 6\nf 1 6 5\nf 2 3 7\nf 2 7 6\n"
@@ -81,7 +82,7 @@ TEST(SceneFile, DensityGivesTheMassFromTheVolume) {
 // `up_axis`: a mesh drawn with +z up (a 1 x 1 x 3 box, tall along z) stands 3 units tall along
 // +y with up_axis = "z", and its top (z = 3) ends at +y; an unknown axis is named.
 TEST(SceneFile, UpAxisTurnsTheMeshUp) {
-  const fs::path dir = fs::temp_directory_path() / "gf_up_axis";
+  const fs::path dir = gf::test::scratchRoot() / "gf_up_axis";
   fs::create_directories(dir);
   std::ofstream(dir / "tall.obj") << "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 0 0 3\nv 1 0 3\nv 1 1 3\nv 0 1 3\n"
                                      "f 1 3 2\nf 1 4 3\nf 5 6 7\nf 5 7 8\nf 1 2 6\nf 1 6 5\nf 2 3 7\nf 2 7 6\n"
@@ -172,7 +173,7 @@ TEST(SceneFile, AntialiasingIsOneOfThreeNames) {
 }
 
 TEST(SceneFile, MissingAndEmptyMeshesAreNamed) {
-  const fs::path dir = fs::temp_directory_path() / "gf_scene_file_test";
+  const fs::path dir = gf::test::scratchRoot() / "gf_scene_file_test";
   fs::create_directories(dir);
   std::ofstream(dir / "empty.obj") << "# no triangle\nv 0 0 0\n";
   const std::string body = "shape = \"sphere\"\nradius = 0.03";
@@ -201,7 +202,7 @@ TEST(SceneFile, BadOverridesAreNamed) {
 }
 
 TEST(SceneFile, DeviceCsvErrorsNameTheLine) {
-  const fs::path dir = fs::temp_directory_path() / "gf_scene_file_test";
+  const fs::path dir = gf::test::scratchRoot() / "gf_scene_file_test";
   fs::create_directories(dir);
   std::ofstream(dir / "good.csv") << "t,x,y,z\n0,0,0.1,0\n0.5,0,0.05,0\n";
   std::ofstream(dir / "bad.csv") << "t,x,y,z\n0,0,0.1,0\n0.5,0,oops,0\n";
@@ -228,7 +229,7 @@ TEST(SceneFile, DeviceCsvErrorsNameTheLine) {
 // Two bodies on one mesh file share one loaded mesh; the World and the renderer use it without
 // reading the file again (it is gone by then).
 TEST(SceneFile, EachMeshFileIsReadOnceAndShared) {
-  const fs::path dir = fs::temp_directory_path() / "gf_scene_file_mesh_once";
+  const fs::path dir = gf::test::scratchRoot() / "gf_scene_file_mesh_once";
   fs::create_directories(dir);
   std::ofstream(dir / "tet.obj") << "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\n";
   const std::string ball = "shape = \"sphere\"\nradius = 0.03\nmass = 0.1";

@@ -13,6 +13,7 @@
 #include "app/study.hpp"
 #include "app/study_measure.hpp"
 #include "sim/god_finger.hpp"
+#include "tests/scratch.hpp"
 
 namespace gf::app {
 namespace {
@@ -62,7 +63,7 @@ Csv readCsv(const fs::path& p) {
 }
 
 fs::path freshDir(const std::string& name) {
-  const fs::path d = fs::temp_directory_path() / name;
+  const fs::path d = gf::test::scratchRoot() / name;
   fs::remove_all(d);
   return d;
 }

@@ -13,6 +13,7 @@
 #include "sim/god_finger.hpp"
 #include "sim/mesh.hpp"
 #include "sim/mesh_import.hpp"
+#include "tests/scratch.hpp"
 
 namespace gf::sim {
 namespace {
@@ -21,7 +22,7 @@ std::string regression(const std::string& name) { return std::string(GF_SOURCE_D
 
 // What loading `text` as a mesh file called `name` throws (without the path), or "accepted".
 std::string loadError(const std::string& name, const std::string& text) {
-  const std::filesystem::path dir = std::filesystem::temp_directory_path() / "gf_fuzz_regressions";
+  const std::filesystem::path dir = gf::test::scratchRoot() / "gf_fuzz_regressions";
   std::filesystem::create_directories(dir);
   const std::string path = (dir / name).string();
   std::ofstream(path, std::ios::binary) << text;

@@ -13,6 +13,7 @@
 
 #include "render/image.hpp"
 #include "render/render_thread.hpp"
+#include "tests/scratch.hpp"
 
 namespace gf::render {
 namespace {
@@ -25,7 +26,7 @@ constexpr double kLogPad = 0.04;  // ChartSpec: a log axis is padded by 4 % of i
 // Draws `chart` through writeChartPng into a file of the running test's own, and reads it back.
 Image drawChart(const ChartSpec& chart) {
   const std::string name = ::testing::UnitTest::GetInstance()->current_test_info()->name();
-  const fs::path path = fs::temp_directory_path() / ("gf_chart_" + name + ".png");
+  const fs::path path = gf::test::scratchRoot() / ("gf_chart_" + name + ".png");
   writeChartPng(chart, path.string());
   return readPng(path.string());
 }

@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
+#include "tests/scratch.hpp"
 
 namespace gf {
 namespace {
@@ -13,7 +14,7 @@ namespace fs = std::filesystem;
 TEST(Png, RoundTripsExactly) {
   render::Image image{37, 11, {}};
   for (int i = 0; i < 37 * 11 * 3; ++i) image.rgb.push_back(static_cast<std::uint8_t>((i * 7919) % 251));
-  const fs::path path = fs::temp_directory_path() / "gf_png_roundtrip.png";
+  const fs::path path = gf::test::scratchRoot() / "gf_png_roundtrip.png";
   render::writePng(path.string(), image);
   const render::Image back = render::readPng(path.string());
   EXPECT_EQ(back.width, 37);

@@ -8,6 +8,7 @@
 #include <fstream>
 
 #include "sim/primitives.hpp"
+#include "tests/scratch.hpp"
 
 namespace gf::sim {
 namespace {
@@ -20,7 +21,7 @@ HullParts twoParts() {
 }
 
 fs::path freshDir(const std::string& name) {
-  const fs::path dir = fs::temp_directory_path() / name;
+  const fs::path dir = gf::test::scratchRoot() / name;
   fs::remove_all(dir);
   return dir;
 }

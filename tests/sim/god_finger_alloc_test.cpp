@@ -4,33 +4,20 @@
 
 #include <LinearMath/btAlignedAllocator.h>
 
-#include <atomic>
 #include <cstdlib>
-#include <new>
 #include <random>
 
 #include "sim/god_finger.hpp"
 #include "sim/primitives.hpp"
 #include "sim/world.hpp"
+#include "tests/alloc_counter.hpp"
 #include "tests/sim/pressed_box.hpp"
-
-namespace {
-std::atomic<long> g_allocations{0};
-}  // namespace
-
-void* operator new(std::size_t size) {
-  g_allocations.fetch_add(1, std::memory_order_relaxed);
-  if (void* p = std::malloc(size == 0 ? 1 : size)) return p;
-  throw std::bad_alloc();
-}
-void operator delete(void* p) noexcept { std::free(p); }
-void operator delete(void* p, std::size_t) noexcept { std::free(p); }
 
 namespace gf::sim {
 namespace {
 
 void* countedAlloc(std::size_t size) {
-  g_allocations.fetch_add(1, std::memory_order_relaxed);
+  gf::test::countAllocation();
   return std::malloc(size);
 }
 
@@ -51,14 +38,14 @@ TEST(PatchAllocation, NoHeapAllocationInSteadyState) {
     const auto [c, v] = contact();
     computePatch(sphere, c, v, s, p);
   }
-  const long before = g_allocations.load();
+  const long before = gf::test::allocations();
   std::size_t sgos = 0;
   for (int i = 0; i < 2000; ++i) {
     const auto [c, v] = contact();
     computePatch(sphere, c, v, s, p);
     sgos += p.sgos.size();
   }
-  EXPECT_EQ(g_allocations.load() - before, 0);
+  EXPECT_EQ(gf::test::allocations() - before, 0);
   EXPECT_EQ(sgos, 2000u * 16u);
 }
 
@@ -72,18 +59,18 @@ long allocationsOfPressedBoxSteps(ContactSolver solver) {
   SceneDesc s = pressed_box::scene(patch, 0.0, load);
   s.world.contact_solver = solver;
   btAlignedAllocSetCustom(countedAlloc, std::free);
-  const long before_world = g_allocations.load();
+  const long before_world = gf::test::allocations();
   World w(s);
-  EXPECT_GT(g_allocations.load() - before_world, 0) << "building a World allocates: the counter sees it";
+  EXPECT_GT(gf::test::allocations() - before_world, 0) << "building a World allocates: the counter sees it";
   const auto step = [&] {
     const DeviceSample d = s.fingers[0].device.sample(w.time());
     w.step(1e-3, std::span(&d, 1));
   };
   for (int i = 0; i < 700; ++i) step();  // pressed, turning: storage at its working size
-  const long before = g_allocations.load();
+  const long before = gf::test::allocations();
   for (int i = 0; i < 500; ++i) step();
   EXPECT_EQ(w.sgoCount(0), 16);
-  return g_allocations.load() - before;
+  return gf::test::allocations() - before;
 }
 
 TEST(WorldAllocation, NoHeapAllocationPerStepWithEitherSolver) {

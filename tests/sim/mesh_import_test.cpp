@@ -6,6 +6,7 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include "tests/scratch.hpp"
 
 namespace gf::sim {
 namespace {
@@ -46,7 +47,7 @@ std::string stlText() {
 class MeshImport : public ::testing::Test {
  protected:
   void SetUp() override {
-    dir_ = fs::temp_directory_path() /
+    dir_ = gf::test::scratchRoot() /
            ("gf_mesh_import_" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
     fs::create_directories(dir_);
   }

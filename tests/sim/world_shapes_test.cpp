@@ -8,13 +8,14 @@
 #include "sim/primitives.hpp"
 #include "sim/settings.hpp"
 #include "sim/world.hpp"
+#include "tests/scratch.hpp"
 
 namespace gf::sim {
 namespace {
 
 // Writes an L-shaped (concave) prism, 6 cm x 6 cm x 2 cm, as OBJ; returns its path.
 std::string writeLShapeObj() {
-  const std::filesystem::path path = std::filesystem::temp_directory_path() / "gf_world_shapes_l.obj";
+  const std::filesystem::path path = gf::test::scratchRoot() / "gf_world_shapes_l.obj";
   const double outline[6][2] = {{-0.03, -0.03}, {0.03, -0.03}, {0.03, 0.0},
                                 {0.0, 0.0},     {0.0, 0.03},   {-0.03, 0.03}};
   std::ofstream f(path);
@@ -82,7 +83,7 @@ TEST(WorldShapes, EveryShapeTakesSgosWhenPressed) {
 }
 
 TEST(WorldShapes, DynamicMeshBodiesNeedAClosedMesh) {
-  const std::filesystem::path path = std::filesystem::temp_directory_path() / "gf_open_square.obj";
+  const std::filesystem::path path = gf::test::scratchRoot() / "gf_open_square.obj";
   std::ofstream(path) << "v 0 0 0\nv 1 0 0\nv 1 0 1\nv 0 0 1\nf 1 3 2\nf 1 4 3\n";
   BodyDesc sheet;
   sheet.name = "sheet";
