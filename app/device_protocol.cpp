@@ -80,10 +80,12 @@ void encodeDeviceReply(const DeviceReply& r, std::span<std::uint8_t, DeviceReply
   writeU32(out, 60, std::bit_cast<std::uint32_t>(r.gain));
 }
 
-DeviceLink::DeviceLink(const UdpDeviceDesc& desc) : desc_(desc), position_(desc.start) {}
+DeviceLink::DeviceLink(const UdpDeviceDesc& desc, double max_force)
+    : desc_(desc), max_force_(max_force), position_(desc.start) {}
 
 bool DeviceLink::take(const DevicePacket& p, double t) {
-  if (heard_ && !stale_ && static_cast<std::int32_t>(p.seq - seq_) <= 0) {
+  const auto ahead = static_cast<std::int32_t>(p.seq - seq_);  // serial-number order
+  if (heard_ && !resync_ && ahead <= 0) {
     ++counters_.out_of_order;
     return false;
   }
@@ -101,7 +103,9 @@ bool DeviceLink::take(const DevicePacket& p, double t) {
     velocity_.setZero();  // a new stream: no estimate yet
   }
   if (heard_ && received_at_ == t) ++counters_.superseded;  // the previous one was never used
+  if (heard_ && !resync_) counters_.lost += ahead - 1;
   if (!heard_) first_packet_at_ = t;
+  resync_ = false;
   position_ = position;
   device_time_ = p.time;
   seq_ = p.seq;
@@ -117,23 +121,34 @@ sim::DeviceSample DeviceLink::sample(double t) {
   const bool stale = !heard_ || t - received_at_ > desc_.stale_after;
   if (stale && !stale_ && heard_) ++counters_.stale_periods;
   stale_ = stale;
+  if (stale_) resync_ = ramping_ = true;
   if (stale_) ++counters_.stale_steps;
   return {position_, stale_ ? sim::Vec3::Zero() : velocity_};
 }
 
 DeviceReply DeviceLink::reply(double t, const sim::DeviceFeedback& f) {
-  const double change = (t - sample_time_) / desc_.force_ramp;
-  gain_ = stale_ ? gain_ - change : gain_ + change;
+  const double step = (t - sample_time_) / desc_.force_ramp;  // of the gain's 0..1
+  gain_ = stale_ ? gain_ - step : gain_ + step;
   // Whole steps of the ramp add up to 1 only within rounding: the ends are exact.
   if (gain_ < kGainRounding) gain_ = 0.0;
   if (gain_ > 1.0 - kGainRounding) gain_ = 1.0;
+  const sim::Vec3 target = (gain_ * desc_.force_scale) * f.force;
+  if (ramping_) {
+    const double limit = max_force_ * desc_.force_scale * step;
+    const sim::Vec3 change = target - sent_;
+    const double size = change.norm();
+    sent_ = size > limit ? sim::Vec3(sent_ + (limit / size) * change) : target;
+    ramping_ = !(gain_ == 1.0 && size <= limit);  // caught up: the force follows the coupling again
+  } else {
+    sent_ = target;
+  }
   DeviceReply r;
   r.seq = seq_;
   r.channel = static_cast<std::uint32_t>(desc_.channel);
   r.flags = (stale_ ? DeviceReply::kStale : 0u) | (f.touching ? DeviceReply::kTouching : 0u) |
-            (gain_ < 1.0 ? DeviceReply::kRamping : 0u);
+            (ramping_ ? DeviceReply::kRamping : 0u);
   r.time = t;
-  r.force = (gain_ * desc_.force_scale) * f.force;
+  r.force = sent_;
   r.radius = f.radius;
   r.sgo_count = static_cast<std::uint32_t>(std::max(0, f.sgo_count));
   r.gain = static_cast<float>(gain_);

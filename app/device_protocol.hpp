@@ -8,6 +8,7 @@
 #include <span>
 
 #include "app/session_desc.hpp"
+#include "sim/coupling.hpp"
 #include "sim/device.hpp"
 #include "sim/settings.hpp"
 
@@ -30,7 +31,7 @@ struct DeviceReply {
   static constexpr std::size_t kSize = 64;
   static constexpr std::uint32_t kStale = 1u << 0;     ///< no packet for stale_after: position held
   static constexpr std::uint32_t kTouching = 1u << 1;  ///< the proxy touches a body
-  static constexpr std::uint32_t kRamping = 1u << 2;   ///< force gain below 1 (ramping after a dropout)
+  static constexpr std::uint32_t kRamping = 1u << 2;   ///< force rate-limited: ramping at the start or after a dropout
   std::uint32_t seq = 0;      ///< the newest packet's seq taken for this channel
   std::uint32_t channel = 0;
   std::uint32_t flags = 0;
@@ -74,30 +75,38 @@ class DeviceLink {
   struct Counters {
     long taken = 0;               ///< packets used
     long out_of_order = 0;        ///< seq not newer than the last taken (ignored)
+    long lost = 0;                ///< seqs skipped between packets taken (lost or never sent)
     long out_of_range = 0;        ///< mapped outside the scene's coordinate range (ignored)
     long superseded = 0;          ///< taken, then replaced by a newer one before a step used it
     long stale_periods = 0;       ///< dropouts: the device went stale after a first packet
     long stale_steps = 0;         ///< steps sampled while stale (before the first packet too)
   };
 
-  explicit DeviceLink(const UdpDeviceDesc& desc);
+  /// `max_force`: the finger's coupling clamp (N), the full scale of the force ramp.
+  explicit DeviceLink(const UdpDeviceDesc& desc, double max_force = sim::CouplingSettings{}.max_force);
 
   /// A packet of this link's channel read before the step starting at t: false (and counted)
   /// when its seq is not newer than the last taken, or its position maps outside the scene's
-  /// coordinate range (sim::kMaxSceneCoordinate). Seqs compare with wrap-around; after a
-  /// dropout any seq is taken, so a restarted device is followed at once.
+  /// coordinate range (sim::kMaxSceneCoordinate). Seqs compare with wrap-around; the first
+  /// packet after a dropout is taken whatever its seq (a restarted device is followed at once),
+  /// the ones after it are ordered again.
   bool take(const DevicePacket& packet, double t);
   /// The device for the step starting at t: the newest packet's position in the scene
   /// (workspace_offset + workspace_scale * position) and a low-pass velocity from successive
   /// packets; while stale (no packet for stale_after) the position held, velocity 0; before the
   /// first packet, the start position.
   sim::DeviceSample sample(double t);
-  /// The reply after the step that ended at t: the feedback force times force_scale times the
-  /// gain, which ramps at 1 / force_ramp per second towards 0 while stale and towards 1 otherwise.
+  /// The reply after the step that ended at t. The target is the feedback force times
+  /// force_scale times the gain, which ramps at 1 / force_ramp per second towards 0 while stale
+  /// and towards 1 otherwise. From the first stale step (and the start) until the gain is back
+  /// to 1 and the force sent has caught up with the target, the force sent moves towards the
+  /// target by at most max_force * force_scale * dt / force_ramp a step: a device that comes
+  /// back elsewhere gets the new force faded in, never a step.
   DeviceReply reply(double t, const sim::DeviceFeedback& feedback);
 
   bool heard() const { return heard_; }  ///< a packet has been taken
   bool stale() const { return stale_; }   ///< as of the last sample
+  bool ramping() const { return ramping_; }  ///< the force sent is rate-limited (see reply)
   double gain() const { return gain_; }
   double firstPacketTime() const { return first_packet_at_; }
   std::uint32_t buttons() const { return buttons_; }
@@ -106,7 +115,9 @@ class DeviceLink {
 
  private:
   UdpDeviceDesc desc_;
-  bool heard_ = false, stale_ = true;
+  double max_force_;
+  bool heard_ = false, stale_ = true, resync_ = true, ramping_ = true;
+  sim::Vec3 sent_ = sim::Vec3::Zero();  // the force of the last reply
   std::uint32_t seq_ = 0, buttons_ = 0;
   double received_at_ = 0.0, device_time_ = 0.0, sample_time_ = 0.0, first_packet_at_ = 0.0, gain_ = 0.0;
   sim::Vec3 position_, velocity_ = sim::Vec3::Zero();  // scene frame

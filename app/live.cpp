@@ -31,7 +31,7 @@ class Live {
     // Live steps when told to; a UDP device's packets come in wall-clock time.
     if (!session_.udp_devices.empty()) {
       const UdpDeviceDesc& d = session_.udp_devices.front();
-      throw InputError(session_.source, d.line, 0,
+      throw InputError(d.file, d.line, d.column,
                        "fingers." + session_.scene.fingers[static_cast<std::size_t>(d.finger)].name + ".device.udp",
                        "`live` steps on command and cannot follow a UDP device: use `godfinger run --realtime`");
     }

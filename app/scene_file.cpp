@@ -316,7 +316,9 @@ void readKeyframes(Reader& r, sim::DeviceTrack& d) {
 UdpDeviceDesc readUdpDevice(Reader& r) {
   UdpDeviceDesc u;
   const toml::node* n = r.find("udp");
+  u.file = sourceOf(*n, r.file());
   u.line = static_cast<int>(n->source().begin.line);
+  u.column = static_cast<int>(n->source().begin.column);
   constexpr const char* kForm = "expected a port (listening on 127.0.0.1) or \"HOST:PORT\" with HOST an IPv4 address";
   std::string port_text;
   if (n->is_integer()) {

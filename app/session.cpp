@@ -433,15 +433,26 @@ void prepareOutputs(const SessionOptions& options) {
 sim::LoopStats runSession(const SessionDesc& session, const SessionOptions& options) {
   const sim::SceneDesc& scene = session.scene;
   const fs::path dir(options.out_dir);
-  // Ctrl-C and SIGTERM are recorded from here on (the outputs are finished when one comes); the
-  // threads started below (writers, the render thread, its encoders) do not take them.
   // A live device's packets arrive in wall-clock time: it needs the realtime clock.
   if (!session.udp_devices.empty() && !options.realtime) {
     const UdpDeviceDesc& d = session.udp_devices.front();
-    throw InputError(session.source, d.line, 0,
+    throw InputError(d.file, d.line, d.column,
                      "fingers." + scene.fingers[static_cast<std::size_t>(d.finger)].name + ".device.udp",
                      "a UDP device drives the session in real time: run it with --realtime");
   }
+  // Live devices: their sockets are bound before anything else (a port in use fails the run
+  // here, with nothing written).
+  std::optional<UdpDeviceBridge> udp;
+  if (!session.udp_devices.empty()) {
+    udp.emplace(session);
+    for (const UdpDeviceDesc& d : session.udp_devices) {
+      const std::string& name = scene.fingers[static_cast<std::size_t>(d.finger)].name;
+      std::fprintf(stderr, "%s: fingers.%s.device: listening on %s, channel %d\n", scene.name.c_str(), name.c_str(),
+                   udp->address(d.finger).c_str(), d.channel);
+    }
+  }
+  // Ctrl-C and SIGTERM are recorded from here on (the outputs are finished when one comes); the
+  // threads started below (writers, the render thread, its encoders) do not take them.
   std::optional<InterruptScope> interrupt;
   if (options.stop_on_interrupt) interrupt.emplace();
   std::optional<SignalsBlocked> quiet_threads(std::in_place);
@@ -483,16 +494,6 @@ sim::LoopStats runSession(const SessionDesc& session, const SessionOptions& opti
     render::FrameOutputSettings fo = frameSettings(session, options);
     if (!stream) fo.overlay = false;
     renderer = std::make_unique<render::RenderThread>(scene, fo);
-  }
-  // Live devices: their sockets are bound now (a port in use fails the run here).
-  std::optional<UdpDeviceBridge> udp;
-  if (!session.udp_devices.empty()) {
-    udp.emplace(session);
-    for (const UdpDeviceDesc& d : session.udp_devices) {
-      const std::string& name = scene.fingers[static_cast<std::size_t>(d.finger)].name;
-      std::fprintf(stderr, "%s: fingers.%s.device: listening on %s, channel %d\n", scene.name.c_str(), name.c_str(),
-                   udp->address(d.finger).c_str(), d.channel);
-    }
   }
   // Everything that can fail before the first step has: what an earlier run left of this run's
   // outputs goes now, then the files are opened.

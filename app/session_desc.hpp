@@ -50,7 +50,8 @@ struct UdpDeviceDesc {
   /// s: time constant of the low-pass filter on the velocity from successive packets (0: raw
   /// differences); the coupling damps on it.
   double velocity_smoothing = 0.005;
-  int line = 0;                        ///< line of `udp` in the scene file, for errors
+  std::string file;                    ///< where `udp` was given (the scene file, or a --set), for errors
+  int line = 0, column = 0;
 };
 
 /// A camera for the renderer (one is rendered per output stream).

@@ -23,10 +23,11 @@ struct UdpDeviceBridge::Socket {
   int fd = -1;
   std::string host;
   int requested_port = 0;                      // as the scene gives it (0: any)
+  std::string field;                           // the first finger's udp field, for errors
   int port = 0;                                // bound
   std::array<Device*, 256> by_channel{};       // the finger reading each channel
   double polled_at = std::numeric_limits<double>::quiet_NaN();
-  long datagrams = 0, wrong_size = 0, bad_magic = 0, bad_value = 0, unknown_channel = 0, receive_errors = 0;
+  long datagrams = 0, kernel_drops = 0, wrong_size = 0, bad_magic = 0, bad_value = 0, unknown_channel = 0, receive_errors = 0;
 
   ~Socket() {
     if (fd >= 0) close(fd);
@@ -37,8 +38,8 @@ struct UdpDeviceBridge::Socket {
 
 class UdpDeviceBridge::Device final : public sim::DeviceSource {
  public:
-  Device(const UdpDeviceDesc& desc, std::string finger, Socket& socket)
-      : link_(desc), channel_(desc.channel), finger_(std::move(finger)), socket_(socket) {}
+  Device(const UdpDeviceDesc& desc, std::string finger, double max_force, Socket& socket)
+      : link_(desc, max_force), channel_(desc.channel), finger_(std::move(finger)), socket_(socket) {}
 
   sim::DeviceSample sample(double t) override {
     socket_.poll(t);
@@ -71,9 +72,11 @@ class UdpDeviceBridge::Device final : public sim::DeviceSource {
             {"channel", channel_},
             {"packets_taken", c.taken},
             {"out_of_order", c.out_of_order},
+            {"lost", c.lost},
             {"out_of_range", c.out_of_range},
             {"superseded", c.superseded},
-            {"first_packet_s", link_.heard() ? nlohmann::json(link_.firstPacketTime()) : nlohmann::json(nullptr)},
+            {"first_packet_s", link_.heard() ? nlohmann::json(std::round(link_.firstPacketTime() * 1e9) / 1e9)
+                                             : nlohmann::json(nullptr)},
             {"last_seq", link_.lastSeq()},
             {"buttons", link_.buttons()},
             {"stale_periods", c.stale_periods},
@@ -94,17 +97,32 @@ class UdpDeviceBridge::Device final : public sim::DeviceSource {
 void UdpDeviceBridge::Socket::poll(double t) {
   if (polled_at == t) return;
   polled_at = t;
-  // One byte more than a packet, so a longer datagram shows as one (MSG_TRUNC gives its length).
+  // One byte more than a packet, so a longer datagram shows as one (MSG_TRUNC gives its length);
+  // the control message carries the kernel's count of datagrams dropped on a full buffer.
   std::array<std::uint8_t, DevicePacket::kSize + 1> buffer;
+  alignas(cmsghdr) std::array<char, CMSG_SPACE(sizeof(std::uint32_t))> control;
   for (int n = 0; n < kMaxDatagramsPerStep; ++n) {
     sockaddr_in from{};
-    socklen_t from_size = sizeof from;
-    const ssize_t size = recvfrom(fd, buffer.data(), buffer.size(), MSG_DONTWAIT | MSG_TRUNC,
-                                  reinterpret_cast<sockaddr*>(&from), &from_size);
+    iovec io{buffer.data(), buffer.size()};
+    msghdr message{};
+    message.msg_name = &from;
+    message.msg_namelen = sizeof from;
+    message.msg_iov = &io;
+    message.msg_iovlen = 1;
+    message.msg_control = control.data();
+    message.msg_controllen = control.size();
+    const ssize_t size = recvmsg(fd, &message, MSG_DONTWAIT | MSG_TRUNC);
     if (size < 0) {
       if (errno == EINTR) continue;
       if (errno != EAGAIN && errno != EWOULDBLOCK) ++receive_errors;
       return;
+    }
+    for (cmsghdr* c = CMSG_FIRSTHDR(&message); c; c = CMSG_NXTHDR(&message, c)) {
+      if (c->cmsg_level == SOL_SOCKET && c->cmsg_type == SO_RXQ_OVFL) {
+        std::uint32_t dropped = 0;
+        std::memcpy(&dropped, CMSG_DATA(c), sizeof dropped);
+        kernel_drops = std::max<long>(kernel_drops, dropped);
+      }
     }
     ++datagrams;
     DevicePacket p;
@@ -127,38 +145,51 @@ void UdpDeviceBridge::Socket::poll(double t) {
 UdpDeviceBridge::UdpDeviceBridge(const SessionDesc& session)
     : sources_(session.scene.fingers.size(), nullptr), dt_(1.0 / session.scene.world.haptic_rate_hz) {
   for (const UdpDeviceDesc& d : session.udp_devices) {
-    const std::string& finger = session.scene.fingers[static_cast<std::size_t>(d.finger)].name;
-    const std::string field = "fingers." + finger + ".device.udp";
+    const sim::FingerDesc& finger = session.scene.fingers[static_cast<std::size_t>(d.finger)];
+    const std::string field = "fingers." + finger.name + ".device.udp";
+    const auto fail = [&](const std::string& at, const std::string& why) {
+      throw InputError(d.file, d.line, d.column, at, why);
+    };
     Socket* socket = nullptr;
     for (const std::unique_ptr<Socket>& s : sockets_) {
-      if (s->host == d.host && s->requested_port == d.port) socket = s.get();
+      if (s->requested_port != d.port) continue;
+      if (s->host == d.host) {
+        socket = s.get();  // fingers giving one address share its socket (port 0: one free port)
+      } else if (d.port != 0) {
+        fail(field, d.host + ":" + std::to_string(d.port) + " and " + s->field + " (" + s->host + ":" +
+                        std::to_string(d.port) + ") cannot both listen on port " + std::to_string(d.port) +
+                        ": give both the same address, and each finger its own channel");
+      }
     }
     if (!socket) {
       auto s = std::make_unique<Socket>();
       s->host = d.host;
       s->requested_port = d.port;
+      s->field = field;
       sockaddr_in address{};
       address.sin_family = AF_INET;
       address.sin_port = htons(static_cast<std::uint16_t>(d.port));
-      if (inet_pton(AF_INET, d.host.c_str(), &address.sin_addr) != 1) {
-        throw InputError(session.source, d.line, 0, field, "'" + d.host + "' is not an IPv4 address");
-      }
+      if (inet_pton(AF_INET, d.host.c_str(), &address.sin_addr) != 1) fail(field, "'" + d.host + "' is not an IPv4 address");
       s->fd = ::socket(AF_INET, SOCK_DGRAM | SOCK_NONBLOCK | SOCK_CLOEXEC, 0);
       if (s->fd < 0 || bind(s->fd, reinterpret_cast<const sockaddr*>(&address), sizeof address) != 0) {
-        throw InputError(session.source, d.line, 0, field,
-                         "cannot listen on " + d.host + ":" + std::to_string(d.port) + ": " + std::strerror(errno));
+        fail(field, "cannot listen on " + d.host + ":" + std::to_string(d.port) + ": " + std::strerror(errno));
       }
+      // Room for bursts (the kernel caps it at net.core.rmem_max), and the kernel's count of
+      // datagrams dropped when the buffer is full anyway.
+      const int buffer = kReceiveBufferBytes, on = 1;
+      setsockopt(s->fd, SOL_SOCKET, SO_RCVBUF, &buffer, sizeof buffer);
+      setsockopt(s->fd, SOL_SOCKET, SO_RXQ_OVFL, &on, sizeof on);
       socklen_t size = sizeof address;
       getsockname(s->fd, reinterpret_cast<sockaddr*>(&address), &size);
       s->port = ntohs(address.sin_port);
       socket = sockets_.emplace_back(std::move(s)).get();
     }
     if (socket->by_channel[static_cast<std::size_t>(d.channel)]) {
-      throw InputError(session.source, d.line, 0, "fingers." + finger + ".device.channel",
-                       "channel " + std::to_string(d.channel) + " of " + d.host + ":" + std::to_string(socket->port) +
-                           " already drives another finger; give each finger on one port its own channel");
+      fail("fingers." + finger.name + ".device.channel",
+           "channel " + std::to_string(d.channel) + " of " + d.host + ":" + std::to_string(socket->port) +
+               " already drives another finger; give each finger on one port its own channel");
     }
-    auto device = std::make_unique<Device>(d, finger, *socket);
+    auto device = std::make_unique<Device>(d, finger.name, finger.coupling.max_force, *socket);
     socket->by_channel[static_cast<std::size_t>(d.channel)] = device.get();
     sources_[static_cast<std::size_t>(d.finger)] = device.get();
     devices_.push_back(std::move(device));
@@ -179,6 +210,7 @@ nlohmann::json UdpDeviceBridge::json() const {
   for (const std::unique_ptr<Socket>& s : sockets_) {
     sockets.push_back({{"address", s->host + ":" + std::to_string(s->port)},
                        {"datagrams", s->datagrams},
+                       {"kernel_drops", s->kernel_drops},
                        {"wrong_size", s->wrong_size},
                        {"bad_magic", s->bad_magic},
                        {"bad_value", s->bad_value},

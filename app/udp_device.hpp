@@ -17,6 +17,8 @@ namespace gf::app {
 /// Datagrams one socket reads at most per haptic step (the rest wait for the next step), so a
 /// flood cannot stretch a step.
 inline constexpr int kMaxDatagramsPerStep = 64;
+/// Receive buffer asked for each socket (bytes; the kernel caps it at net.core.rmem_max).
+inline constexpr int kReceiveBufferBytes = 1 << 20;
 
 /// Binds one non-blocking socket per distinct host:port of the session's UDP devices (fingers
 /// sharing one differ by channel). Each step the haptic loop samples a finger's source, which
@@ -26,7 +28,9 @@ inline constexpr int kMaxDatagramsPerStep = 64;
 /// but construction and json() runs on the haptic thread; nothing there blocks or allocates.
 class UdpDeviceBridge {
  public:
-  /// Throws InputError naming the scene file, line and field when a socket cannot be bound.
+  /// Binds the sockets now. Throws InputError naming the scene file (or --set), line and field
+  /// when a socket cannot be bound, two fingers give one port different addresses, or two on
+  /// one socket read one channel.
   explicit UdpDeviceBridge(const SessionDesc& session);
   ~UdpDeviceBridge();
   UdpDeviceBridge(const UdpDeviceBridge&) = delete;

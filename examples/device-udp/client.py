@@ -11,10 +11,12 @@ the first reply echoing it), max_force_n, and a few more counts.
     python3 examples/device-udp/client.py --port 47001 --seconds 8 --rate 1000
 
 To drive godfinger from a real device, keep send_packet() and read_replies() and replace the
-track with the device SDK's position reading and force command. Python standard library only.
+track with the device SDK's position reading and force command. Python 3.11+ standard library
+only (tomllib reads the scene whose keyframes are replayed).
 """
 
 import argparse
+import collections
 import json
 import math
 import os
@@ -91,7 +93,9 @@ def main():
     sock = socket.socket(socket.AF_INET, socket.SOCK_DGRAM)
     sock.setblocking(False)
     target = (args.host, args.port)
-    sent_at = [dict() for _ in tracks]     # per channel: seq -> send time, until answered
+    # Per channel, (seq, send time) of the packets not answered yet, oldest first: a reply echoes
+    # the newest seq taken, so the ones before it will never be echoed and are dropped.
+    sent_at = [collections.deque() for _ in tracks]
     rtts = []
     counts = {"sent": 0, "answered": 0, "replies": 0, "stale_replies": 0, "bad_replies": 0}
     max_force = 0.0
@@ -117,14 +121,16 @@ def main():
             if flags & STALE:
                 counts["stale_replies"] += 1
             max_force = max(max_force, math.sqrt(fx * fx + fy * fy + fz * fz))
-            sent = sent_at[channel].pop(seq, None)
-            if sent is not None:
+            waiting = sent_at[channel]
+            while waiting and waiting[0][0] < seq:
+                waiting.popleft()
+            if waiting and waiting[0][0] == seq:
                 counts["answered"] += 1
-                rtts.append((now - sent) * 1e6)
+                rtts.append((now - waiting.popleft()[1]) * 1e6)
 
     def send_packet(channel, seq, t, p):
         sock.sendto(PACKET.pack(PACKET_MAGIC, seq, channel, 0, t, *p), target)
-        sent_at[channel][seq] = time.perf_counter()
+        sent_at[channel].append((seq, time.perf_counter()))
         counts["sent"] += 1
 
     period = 1.0 / args.rate

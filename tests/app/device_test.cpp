@@ -11,6 +11,7 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <optional>
 #include <sstream>
 #include <vector>
 
@@ -151,10 +152,13 @@ TEST(DeviceLink, AStaleDeviceRampsItsForceToZeroAndBack) {
     if (!sending) { EXPECT_EQ(s.velocity, Vec3::Zero()) << k; }
     const DeviceReply r = link.reply(t + kDt, pressing(full));
     EXPECT_LE(std::abs(link.gain() - previous_gain), per_step * (1.0 + 1e-9)) << "force step at k = " << k;
-    EXPECT_NEAR(r.force.y(), full * link.gain(), 1e-12);
+    EXPECT_NEAR(r.force.y(), full * link.gain(), 1e-12);  // a constant force: the limit never bites
     EXPECT_EQ(r.gain, static_cast<float>(link.gain()));
     EXPECT_EQ((r.flags & DeviceReply::kStale) != 0, link.stale());
-    EXPECT_EQ((r.flags & DeviceReply::kRamping) != 0, link.gain() < 1.0);
+    EXPECT_EQ((r.flags & DeviceReply::kRamping) != 0, link.ramping());
+    if (link.gain() < 1.0) {
+      EXPECT_TRUE(link.ramping()) << k;
+    }
     EXPECT_TRUE(r.flags & DeviceReply::kTouching);
     if (k < 200) { EXPECT_NEAR(link.gain(), std::min(1.0, static_cast<double>(k + 1) * per_step), 1e-9) << k; }
     if (link.stale() && first_stale < 0 && k > 0) first_stale = k;
@@ -171,6 +175,70 @@ TEST(DeviceLink, AStaleDeviceRampsItsForceToZeroAndBack) {
   EXPECT_LE(back_to_full - 400, 101);
   EXPECT_EQ(link.counters().stale_periods, 1);
   EXPECT_EQ(link.counters().taken, 500);
+}
+
+// The coupling spring of a proxy held at the origin, felt by the device (N).
+sim::DeviceFeedback spring(const sim::DeviceSample& s) {
+  const Vec3 f = -800.0 * s.position;
+  return {f.norm() > 40.0 ? Vec3(40.0 * f.normalized()) : f, 0.004, 8, true};
+}
+
+// A device that falls silent a little longer than stale_after and comes back 6 mm away: the
+// gain is still near 1, but the new force is faded in at the ramp's rate (max_force / force_ramp),
+// never stepped; once caught up, the force follows the coupling again exactly.
+TEST(DeviceLink, ADeviceThatComesBackElsewhereGetsItsForceFadedIn) {
+  UdpDeviceDesc d;
+  d.stale_after = 0.05;
+  d.force_ramp = 0.1;
+  DeviceLink link(d, 40.0);
+  const double limit = 40.0 * kDt / d.force_ramp;  // N a step
+  Vec3 previous = Vec3::Zero();
+  bool was_ramping = true, caught_up_after_resume = false;
+  double largest_resume_change = 0.0;
+  for (long k = 0; k < 600; ++k) {
+    const double t = static_cast<double>(k) * kDt;
+    const Vec3 at = k < 300 ? Vec3(0.0, -0.001, 0.0) : Vec3(0.0, -0.007, 0.0);  // 0.8 N, then 5.6 N
+    if (k < 240 || k >= 300) link.take(packet(static_cast<std::uint32_t>(k), t, at), t);  // silent 60 ms
+    const sim::DeviceSample s = link.sample(t);
+    const DeviceReply r = link.reply(t + kDt, spring(s));
+    const double change = (r.force - previous).norm();
+    if (was_ramping || link.ramping()) {
+      EXPECT_LE(change, limit * (1.0 + 1e-9)) << "force step at k = " << k;
+    }
+    if (k >= 300 && k < 320) largest_resume_change = std::max(largest_resume_change, change);
+    if (k >= 300 && !link.ramping()) {
+      caught_up_after_resume = true;
+      EXPECT_TRUE(r.force.isApprox(spring(s).force, 1e-12)) << k;  // follows the coupling exactly
+    }
+    was_ramping = link.ramping();
+    previous = r.force;
+  }
+  EXPECT_EQ(link.counters().stale_periods, 1);
+  EXPECT_TRUE(caught_up_after_resume);
+  EXPECT_NEAR(largest_resume_change, limit, 1e-9);  // 4.8 N more, at 0.4 N a step
+}
+
+// After a dropout only the first packet skips the order check: a reordered burst does not move
+// the device back. Seqs skipped between packets taken are counted as lost.
+TEST(DeviceLink, OnlyTheFirstPacketAfterADropoutSkipsTheOrder) {
+  DeviceLink link(UdpDeviceDesc{});
+  double t = 0.0;
+  EXPECT_TRUE(link.take(packet(10, t, Vec3(0.0, 0.1, 0.0)), t));
+  link.sample(t);
+  t = 0.001;
+  EXPECT_TRUE(link.take(packet(14, t, Vec3(0.0, 0.1, 0.0)), t));  // 11, 12, 13 lost
+  EXPECT_EQ(link.counters().lost, 3);
+  link.sample(t);
+  t = 0.2;  // silent: stale
+  link.sample(t);
+  EXPECT_TRUE(link.stale());
+  t = 0.201;
+  EXPECT_TRUE(link.take(packet(300, t, Vec3(0.01, 0.1, 0.0)), t));
+  EXPECT_TRUE(link.take(packet(301, t, Vec3(0.02, 0.1, 0.0)), t));
+  EXPECT_FALSE(link.take(packet(250, t, Vec3(0.03, 0.1, 0.0)), t));
+  EXPECT_EQ(link.sample(t).position.x(), 0.02);
+  EXPECT_EQ(link.counters().out_of_order, 1);
+  EXPECT_EQ(link.counters().lost, 3);  // the jump to 300 starts a new stream
 }
 
 // Sequence numbers compare with wrap-around; an older one is ignored and counted, unless the
@@ -243,7 +311,7 @@ start = [0, 0.2, 0]
 workspace_scale = 100
 velocity_smoothing = 0
 )", "wild.toml", "");
-  DeviceLink link(session.udp_devices.at(0));  // the largest workspace_scale taken
+  DeviceLink link(session.udp_devices.at(0), session.scene.fingers[0].coupling.max_force);  // the largest scale taken
   EXPECT_FALSE(link.take(packet(1, 0.0, Vec3(10.1, 0.0, 0.0)), 0.0));  // 1010 m in the scene
   EXPECT_EQ(link.counters().out_of_range, 1);
   sim::World world(session.scene);
@@ -365,12 +433,13 @@ TEST(UdpDeviceScene, ChannelsAndPortsInUseAreErrorsNamingTheField) {
     ADD_FAILURE() << "two fingers on channel 0 of one socket";
   } catch (const InputError& e) {
     EXPECT_EQ(e.field(), "fingers.b.device.channel");
+    EXPECT_EQ(e.file(), "same.toml");
     EXPECT_EQ(e.line(), 14);  // the finger's udp line
   }
   const SessionDesc ok = parseSceneText(kUdpScene, "ok.toml", "");
-  UdpDeviceBridge first(ok);
-  const std::string address = first.address(0);
-  EXPECT_EQ(address, first.address(1));  // one socket, two channels
+  std::optional<UdpDeviceBridge> first(std::in_place, ok);
+  const std::string address = first->address(0);
+  EXPECT_EQ(address, first->address(1));  // one socket, two channels
   const std::string port = address.substr(address.find(':') + 1);
   EXPECT_NE(port, "0");
   const SessionDesc taken = parseSceneText(withDevice("udp = " + port), "taken.toml", "");
@@ -380,6 +449,18 @@ TEST(UdpDeviceScene, ChannelsAndPortsInUseAreErrorsNamingTheField) {
   } catch (const InputError& e) {
     EXPECT_EQ(e.field(), "fingers.a.device.udp");
     EXPECT_NE(std::string(e.what()).find("cannot listen on 127.0.0.1:" + port), std::string::npos) << e.what();
+  }
+  first.reset();  // the port is free again
+  // One port, two addresses in one scene: both fields named, not "in use by another program".
+  std::string mixed = kUdpScene;
+  mixed.replace(mixed.find("udp = \"127.0.0.1:0\""), 19, "udp = \"0.0.0.0:" + port + "\"");
+  mixed.replace(mixed.find("udp = \"127.0.0.1:0\""), 19, "udp = \"127.0.0.1:" + port + "\"");
+  try {
+    UdpDeviceBridge third(parseSceneText(mixed, "mixed.toml", ""));
+    ADD_FAILURE() << "two addresses on one port";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.field(), "fingers.b.device.udp");
+    EXPECT_NE(std::string(e.what()).find("fingers.a.device.udp (0.0.0.0:" + port + ")"), std::string::npos) << e.what();
   }
 }
 
@@ -400,6 +481,15 @@ TEST(UdpDeviceScene, OfflineRunsAndLiveRefuseIt) {
     EXPECT_NE(std::string(e.what()).find("--realtime"), std::string::npos) << e.what();
   }
   EXPECT_FALSE(std::filesystem::exists(options.out_dir));
+  // Given on the command line: the error names the --set, not the scene file's line.
+  const std::vector<std::string> set = {"fingers.a.device.udp=5000"};
+  try {
+    runSession(parseSceneText(kUdpScene, "udp.toml", "", set), options);
+    ADD_FAILURE() << "an offline run with a UDP device from --set";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.file(), "--set fingers.a.device.udp=5000") << e.what();
+    EXPECT_EQ(e.field(), "fingers.a.device.udp");
+  }
   const std::string path = std::string(GF_BINARY_DIR) + "/test-outputs/udp-live.toml";
   std::filesystem::create_directories(std::filesystem::path(path).parent_path());
   std::ofstream(path) << kUdpScene;

@@ -10,6 +10,7 @@
 #include "app/scene_file.hpp"
 #include "app/session.hpp"
 #include "sim/mesh_import.hpp"
+#include "tests/scratch.hpp"
 
 namespace gf::app {
 namespace {
@@ -17,7 +18,7 @@ namespace {
 namespace fs = std::filesystem;
 
 fs::path scratch(const std::string& name) {
-  const fs::path dir = fs::temp_directory_path() / "gf_mesh_info";
+  const fs::path dir = gf::test::scratchRoot() / "gf_mesh_info";
   fs::create_directories(dir);
   return dir / name;
 }

@@ -1,9 +1,10 @@
 // Fuzzes the UDP device protocol: the input is a stream of datagrams, each read as a packet
 // (app::parseDevicePacket) and as a reply (app::parseDeviceReply); the packets taken drive a
 // device link (app::DeviceLink) stepped at 1 kHz, with settings taken from the input within the
-// scene validator's ranges. Whatever the bytes, every sample and reply must be finite, the gain
-// within [0, 1] and never changing by more than a step of the ramp, and the force sent no larger
-// than the feedback force times force_scale.
+// scene validator's ranges and the feedback of a coupling spring to a fixed proxy (so the force
+// follows the packets' positions). Whatever the bytes, every sample and reply must be finite, the
+// gain within [0, 1] and never changing by more than a step of the ramp, the force sent at most
+// max_force times force_scale, and while ramping never changing by more than the ramp's rate.
 //
 // Input: 8 bytes of settings, then records of [length byte][steps byte][length bytes]: the
 // datagram, then that many haptic steps (0..3) before the next one.
@@ -37,20 +38,31 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   d.force_ramp = within(data[5], 0.005, 10.0);
   d.velocity_smoothing = within(data[6], 0.0, 0.1);
   d.channel = data[7];
-  gf::app::DeviceLink link(d);
-  constexpr double kDt = 0.001;
-  const gf::sim::DeviceFeedback feedback{gf::sim::Vec3(3.0, -40.0, 0.5), 0.01, 8, true};
+  constexpr double kMaxForce = 40.0, kStiffness = 800.0, kDt = 0.001;
+  gf::app::DeviceLink link(d, kMaxForce);
+  // The coupling of a proxy held at (0.01, 0.02, 0) in the scene, clamped as the World clamps it.
+  const auto coupling = [&](const gf::sim::DeviceSample& s) {
+    gf::sim::Vec3 f = -kStiffness * (s.position - gf::sim::Vec3(0.01, 0.02, 0.0));
+    if (f.norm() > kMaxForce) f *= kMaxForce / f.norm();
+    return gf::sim::DeviceFeedback{f, 0.01, 8, true};
+  };
   double t = 0.0, gain = link.gain();
+  gf::sim::Vec3 sent = gf::sim::Vec3::Zero();
+  bool was_ramping = true;
+  const double rate_limit = kMaxForce * d.force_scale * kDt / d.force_ramp;
   const auto step = [&] {
     const gf::sim::DeviceSample s = link.sample(t);
     require(s.position.allFinite() && s.velocity.allFinite());
     require(s.position.cwiseAbs().maxCoeff() <= gf::sim::kMaxSceneCoordinate);
     t += kDt;
-    const gf::app::DeviceReply r = link.reply(t, feedback);
+    const gf::app::DeviceReply r = link.reply(t, coupling(s));
     require(r.force.allFinite() && r.gain >= 0.0f && r.gain <= 1.0f);
-    require(r.force.norm() <= d.force_scale * feedback.force.norm() * (1.0 + 1e-12));
+    require(r.force.norm() <= kMaxForce * d.force_scale * (1.0 + 1e-12));
     require(std::abs(link.gain() - gain) <= kDt / d.force_ramp * (1.0 + 1e-9) + gf::app::kGainRounding);
+    if (was_ramping || link.ramping()) require((r.force - sent).norm() <= rate_limit * (1.0 + 1e-9) + 1e-12);
     gain = link.gain();
+    sent = r.force;
+    was_ramping = link.ramping();
   };
   std::size_t at = 8;
   while (at + 2 <= size) {
