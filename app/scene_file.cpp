@@ -842,6 +842,8 @@ std::string dataDir() {
       if (fs::is_directory(candidate / "scenes", ec)) return candidate.lexically_normal().string();
     }
   }
+  // An application embedding the installed library, anywhere: the prefix it was installed to.
+  if (fs::is_directory(fs::path(GF_PREFIX_DATA) / "scenes", ec)) return GF_PREFIX_DATA;
   return GF_ASSET_DIR;
 }
 

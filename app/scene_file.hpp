@@ -48,7 +48,8 @@ sim::DeviceTrack readDeviceCsv(const std::string& path);
 
 /// The folder of bundled data (scenes/, studies/, meshes/, hard-cases/): $GODFINGER_DATA if
 /// set; else beside the executable, installed (<prefix>/share/godfinger) or in a build tree
-/// (<build>/share/godfinger, copied there by every build); else the source tree's assets/.
+/// (<build>/share/godfinger, copied there by every build); else the install prefix's data (an
+/// application embedding the installed library); else the source tree's assets/.
 std::string dataDir();
 
 /// The folder of bundled scene files: $GODFINGER_SCENES if set, else dataDir()/scenes.

@@ -1,4 +1,4 @@
-#include "sim/body_factory.hpp"
+#include "sim/detail/body_factory.hpp"
 
 #include <BulletCollision/Gimpact/btGImpactShape.h>
 #include <HACD/hacdHACD.h>
@@ -10,7 +10,7 @@
 #include <stdexcept>
 
 #include "sim/assert.hpp"
-#include "sim/decomposition_cache.hpp"
+#include "sim/detail/decomposition_cache.hpp"
 #include "sim/mesh_import.hpp"
 #include "sim/primitives.hpp"
 #include "sim/settings.hpp"

@@ -1,4 +1,4 @@
-#include "sim/contact_injection.hpp"
+#include "sim/detail/contact_injection.hpp"
 
 #include <algorithm>
 #include <cmath>

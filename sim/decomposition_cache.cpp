@@ -1,4 +1,4 @@
-#include "sim/decomposition_cache.hpp"
+#include "sim/detail/decomposition_cache.hpp"
 
 #include <cstdio>
 #include <cstdlib>

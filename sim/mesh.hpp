@@ -2,15 +2,14 @@
 // walk needs. Built once at load time; read-only afterwards and safe to share between threads.
 #pragma once
 
-#include <Eigen/Geometry>
 #include <array>
 #include <cstdint>
 #include <string>
 #include <vector>
 
-namespace gf::sim {
+#include "sim/math.hpp"
 
-using Vec3 = Eigen::Vector3d;
+namespace gf::sim {
 
 /// How an edge of a triangle is shared.
 enum class EdgeKind : std::uint8_t {

@@ -1,4 +1,4 @@
-#include "sim/patch_friction.hpp"
+#include "sim/detail/patch_friction.hpp"
 
 #include <Eigen/Dense>
 #include <algorithm>

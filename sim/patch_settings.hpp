@@ -23,7 +23,7 @@ enum class PatchFill : std::uint8_t {
 enum class ContactSolver : std::uint8_t {
   kPoints,     ///< "points": every patch point is a contact row of Bullet's solver
   kAggregate,  ///< "aggregate": one block per contact (normal, 2 tilt, 2 tangential, torsion
-               ///< rows) whose limits come from the patch's points (sim/patch_friction.hpp)
+               ///< rows) whose limits come from the patch's points (sim/detail/patch_friction.hpp)
 };
 
 /// A finger's choice of solver (`contact_solver` of a finger): the world's, or one of them.

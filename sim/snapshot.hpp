@@ -3,21 +3,13 @@
 // Every position and direction in a Snapshot is in the world frame.
 #pragma once
 
-#include <Eigen/Geometry>
 #include <string>
 #include <vector>
 
+#include "sim/math.hpp"
 #include "sim/mesh.hpp"
 
 namespace gf::sim {
-
-/// A rigid pose: a point p of the posed frame is at orientation * p + position in the world.
-struct Pose {
-  Vec3 position = Vec3::Zero();  ///< origin of the frame (m)
-  Eigen::Quaterniond orientation = Eigen::Quaterniond::Identity();
-  /// A point given in this frame, in the world (m).
-  Vec3 toWorld(const Vec3& local) const { return orientation * local + position; }
-};
 
 /// One contact of one finger with one body, with its patch, in the world frame.
 struct ContactSnapshot {

@@ -9,10 +9,10 @@
 #include <thread>
 
 #include "sim/assert.hpp"
-#include "sim/body_factory.hpp"
-#include "sim/contact_injection.hpp"
+#include "sim/detail/body_factory.hpp"
+#include "sim/detail/contact_injection.hpp"
 #include "sim/contact_record.hpp"
-#include "sim/patch_friction.hpp"
+#include "sim/detail/patch_friction.hpp"
 #include "sim/settings.hpp"
 
 namespace gf::sim {

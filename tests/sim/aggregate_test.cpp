@@ -10,7 +10,7 @@
 #include <numbers>
 #include <vector>
 
-#include "sim/patch_friction.hpp"
+#include "sim/detail/patch_friction.hpp"
 
 namespace gf::sim {
 namespace {

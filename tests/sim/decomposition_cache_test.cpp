@@ -1,6 +1,6 @@
 // The on-disk cache of convex decompositions: what is stored is read back bit for bit, under
 // its key only, and a file that is not whole is never used.
-#include "sim/decomposition_cache.hpp"
+#include "sim/detail/decomposition_cache.hpp"
 
 #include <gtest/gtest.h>
 

@@ -6,7 +6,7 @@
 #include <cmath>
 #include <numbers>
 
-#include "sim/contact_injection.hpp"
+#include "sim/detail/contact_injection.hpp"
 #include "sim/world.hpp"
 #include "tests/sim/test_context.hpp"
 

@@ -160,7 +160,7 @@ TEST(WorldDeterminism, PinchStateAfter2000StepsHasTheCommittedHash) {
   EXPECT_EQ(hash, 0x559319d24df09f98ull) << std::hex << "state hash 0x" << hash;
 }
 
-// The same with the aggregate solver (sim/patch_friction.hpp): its own committed value.
+// The same with the aggregate solver (sim/detail/patch_friction.hpp): its own committed value.
 TEST(WorldDeterminism, AggregatePinchStateAfter2000StepsHasTheCommittedHash) {
   TestContext ctx("fig8-pinch-oscillation", 8, {"world.contact_solver=aggregate"});
   ctx.simulate(2.0);

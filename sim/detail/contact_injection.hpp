@@ -77,7 +77,7 @@ void keepOnlyPoint(btPersistentManifold& m, int index, const PointMaterial& mat,
 /// points (world frame), all with the true contact's normal (paper, Sec. 3.2), point i with
 /// separation separations[i] (m, negative when penetrating), four per new manifold. The new manifolds are appended to `added` (reserve it: no allocation
 /// then). Point i has materials[i] and is warm-started from warm[i]. A finger's points carry
-/// friction 0: their contact's friction is one FrictionBlock (sim/patch_friction.hpp).
+/// friction 0: their contact's friction is one FrictionBlock (sim/detail/patch_friction.hpp).
 void injectPoints(btDispatcher& dispatcher, const btCollisionObject* proxy,
                   const btCollisionObject* object, const btVector3* points_world, int count,
                   const btVector3& outward_normal_world, const double* separations,
