@@ -189,7 +189,21 @@ class Live {
                          {"force_n", {force.x(), force.y(), force.z()}},
                          {"n_sgo", world_.sgoCount(f)}});
     }
-    out_ << "ok " << nlohmann::json{{"t", world_.time()}, {"fingers", fingers}}.dump() << '\n';
+    // Every dynamic body: pose (position m, orientation quaternion x y z w), velocities.
+    nlohmann::json bodies = nlohmann::json::array();
+    for (std::size_t i = 0; i < session_.scene.bodies.size(); ++i) {
+      if (session_.scene.bodies[i].mass <= 0.0) continue;
+      const int b = static_cast<int>(i);
+      const sim::Pose pose = world_.bodyPose(b);
+      const sim::Vec3 v = world_.bodyLinearVelocity(b), w = world_.bodyAngularVelocity(b);
+      const sim::Quat& q = pose.orientation;
+      bodies.push_back({{"name", session_.scene.bodies[i].name},
+                        {"position", {pose.position.x(), pose.position.y(), pose.position.z()}},
+                        {"orientation", {q.x(), q.y(), q.z(), q.w()}},
+                        {"velocity", {v.x(), v.y(), v.z()}},
+                        {"angular_velocity", {w.x(), w.y(), w.z()}}});
+    }
+    out_ << "ok " << nlohmann::json{{"t", world_.time()}, {"fingers", fingers}, {"bodies", bodies}}.dump() << '\n';
   }
 
   const LiveOptions& options_;

@@ -27,7 +27,9 @@ struct LiveOptions {
 ///                                 alpha, stretch_length, max_stretch, tau_a in
 ///                                 degrees, friction), checked by its validator
 ///   step [N]                      N haptic steps (default 1), then the state
-///   state                         the state: time, and per finger proxy, force, SGOs
+///   state                         the state: time, per finger proxy, force, SGOs, and per
+///                                 dynamic body position, orientation (x y z w), velocity and
+///                                 angular velocity (world frame)
 ///   snapshot [NAME]               contacts JSON to out_dir/contacts/NAME.json
 ///   help, quit
 /// Answers start with "ok" or "error: INPUT:LINE: ...". Returns 0 when every command

@@ -20,7 +20,9 @@
 #include "app/session.hpp"
 #include "app/study.hpp"
 #include "app/trace_writer.hpp"
+#include "render/context.hpp"
 #include "render/render_thread.hpp"
+#include "sim/about.hpp"
 #include "sim/contact_record.hpp"
 #include "sim/mesh_import.hpp"
 #include "sim/settings.hpp"
@@ -325,6 +327,19 @@ int studyCommand(const StudyArgs& a) {
   return gf::app::runStudy(plan, options);
 }
 
+// `godfinger --version`: this build and what it runs on.
+std::string versionText() {
+  std::string text = "godfinger " + gf::app::versionString() + " (commit " + gf::app::commitString() + ")\n";
+  text += gf::sim::bulletVersion() + ", " + gf::sim::assimpVersion() + ", " + gf::sim::eigenVersion() + "\n";
+  try {
+    const gf::render::GlContext context;  // a 1x1 OSMesa context, just to ask it
+    text += "OpenGL " + context.description() + " (OSMesa, offscreen)";
+  } catch (const std::exception& e) {
+    text += std::string("OpenGL: unavailable (") + e.what() + ")";
+  }
+  return text;
+}
+
 int listCommand() {
   for (const std::string& path : gf::app::bundledScenePaths()) {
     const std::string name = std::filesystem::path(path).stem().string();
@@ -343,6 +358,7 @@ int listCommand() {
 int main(int argc, char** argv) {
   CLI::App app{"godfinger: god-finger contact areas for haptic interaction on Bullet", "godfinger"};
   app.require_subcommand(1);
+  app.set_version_flag("--version", versionText, "Print the version, the git commit and the libraries' versions");
   RunArgs run_args;
   addRun(app, run_args);
   PatchArgs patch_args;

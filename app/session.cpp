@@ -26,6 +26,7 @@
 #include "app/scene_file.hpp"
 #include "app/trace_writer.hpp"
 #include "app/udp_device.hpp"
+#include "sim/about.hpp"
 #include "sim/mesh_import.hpp"
 #include "sim/settings.hpp"
 #include "sim/world.hpp"
@@ -198,7 +199,7 @@ std::string contactFileName(double t) {
 
 }  // namespace
 
-std::string versionString() { return GF_VERSION; }
+std::string versionString() { return sim::libraryVersion(); }
 std::string commitString() { return GF_GIT_COMMIT; }
 
 render::Camera sessionCamera(const SessionDesc& session, const std::string& name) {

@@ -2,6 +2,9 @@
 #include "app/live.hpp"
 
 #include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include <cmath>
 
 #include <filesystem>
 #include <sstream>
@@ -81,6 +84,28 @@ TEST(Live, BadLinesGetOneErrorAndChangeNothing) {
   EXPECT_NE(a.lines[7].find("\"t\":0.002"), std::string::npos) << "only the good line stepped: " << a.lines[7];
   EXPECT_EQ(a.lines[8], "ok bye");
   EXPECT_EQ(a.exit_code, 1);
+}
+
+// `state` lists every dynamic body with its pose and velocities (the static ground is left out):
+// the box of fig7-side-pick, resting where the scene puts it before the fingers arrive.
+TEST(Live, StateListsEveryDynamicBody) {
+  const Answers a = runFig7SidePick("step 100\nstate\n", "gf_live_state");
+  ASSERT_EQ(a.lines.size(), 3u);
+  ASSERT_EQ(a.lines[2].rfind("ok {", 0), 0u) << a.lines[2];
+  const nlohmann::json state = nlohmann::json::parse(a.lines[2].substr(3));
+  EXPECT_NEAR(state["t"].get<double>(), 0.1, 1e-12);
+  ASSERT_EQ(state["bodies"].size(), 1u);
+  const nlohmann::json& box = state["bodies"][0];
+  EXPECT_EQ(box["name"], "box");
+  EXPECT_NEAR(box["position"][0].get<double>(), 0.0, 1e-4);
+  EXPECT_NEAR(box["position"][1].get<double>(), 0.04, 1e-3);  // half height 4 cm, on the ground
+  double norm = 0.0;
+  for (const nlohmann::json& c : box["orientation"]) norm += c.get<double>() * c.get<double>();
+  EXPECT_NEAR(norm, 1.0, 1e-9);
+  EXPECT_NEAR(box["orientation"][3].get<double>(), 1.0, 1e-4);  // w: upright
+  EXPECT_EQ(box["velocity"].size(), 3u);
+  EXPECT_EQ(box["angular_velocity"].size(), 3u);
+  EXPECT_LT(std::abs(box["velocity"][1].get<double>()), 0.01);  // at rest
 }
 
 }  // namespace

@@ -1,6 +1,7 @@
 // The `godfinger` command line: bad input exits non-zero and keeps what an earlier run wrote.
 #include <gtest/gtest.h>
 
+#include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -75,6 +76,22 @@ TEST(Command, CheckPassesTheBundledScenesAndFailsAGodObjectLift) {
   std::getline(result, line);
   EXPECT_EQ(line.rfind("FAIL  fig6-god-object", 0), 0u) << line;
   EXPECT_NE(line.find("bodies.tile."), std::string::npos) << line;
+}
+
+// `godfinger --version`: the version and commit, the physics and mesh libraries, and the GL the
+// frames are drawn with; exit 0 (no subcommand needed).
+TEST(Command, VersionNamesTheBuildAndItsLibraries) {
+  const std::string command = std::string(GF_BINARY_DIR) + "/godfinger --version";
+  std::FILE* p = popen(command.c_str(), "r");
+  ASSERT_NE(p, nullptr);
+  std::string text;
+  char buffer[512];
+  while (std::fgets(buffer, sizeof buffer, p)) text += buffer;
+  EXPECT_EQ(pclose(p), 0) << text;
+  for (const char* needed : {"godfinger 0.1.0 (commit ", "Bullet 3.", "(double precision)", "assimp 5.", "Eigen 3.",
+                             "OpenGL ", "(OSMesa, offscreen)"}) {
+    EXPECT_NE(text.find(needed), std::string::npos) << "no '" << needed << "' in:\n" << text;
+  }
 }
 
 }  // namespace

@@ -104,7 +104,8 @@ TEST_P(BundledStudy, QuickGridRunsWithEveryColumnAndAFiniteError) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Study, BundledStudy,
-                         testing::Values("torsion", "sliding", "rolling", "pinch", "geodesic", "timestep", "effects"));
+                         testing::Values("torsion", "sliding", "rolling", "pinch", "geodesic", "timestep", "effects"),
+                         [](const testing::TestParamInfo<const char*>& i) { return std::string(i.param); });
 
 // A hand-made run folder: a pressed puck (the pressed-puck scene) spinning up at a known angular
 // acceleration while the finger presses with a known force.
