@@ -400,6 +400,7 @@ int main(int argc, char** argv) {
   plot_cmd->add_option("--title", plot.title, "Chart title (default: the file and the columns)");
   plot_cmd->add_option("--width", plot.width, "Pixels (default 1200)")->check(CLI::Range(200, 4000));
   plot_cmd->add_option("--height", plot.height, "Pixels (default 600)")->check(CLI::Range(150, 4000));
+  app.add_subcommand("schema", "Print the JSON Schema of scene files (for editors that check TOML against a schema)");
   std::string shots_out = "screenshots";
   app.add_subcommand("screenshots", "Render the reference pictures (visual-regression goldens) into --out")
       ->add_option("--out", shots_out, "Folder (default: screenshots, the goldens when run from the repository)");
@@ -415,6 +416,10 @@ int main(int argc, char** argv) {
   CLI11_PARSE(app, argc, argv);
   try {
     if (app.got_subcommand("list")) return listCommand();
+    if (app.got_subcommand("schema")) {
+      std::fputs((gf::app::sceneSchema().dump(2) + "\n").c_str(), stdout);
+      return 0;
+    }
     if (app.got_subcommand("mesh-info")) {
       try {
         const nlohmann::json info = gf::app::meshInfoJson(mesh_info);

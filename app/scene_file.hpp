@@ -2,6 +2,8 @@
 // The format is documented field by field in assets/scenes/README.md.
 #pragma once
 
+#include <nlohmann/json.hpp>
+
 #include <span>
 #include <stdexcept>
 #include <string>
@@ -45,6 +47,12 @@ SessionDesc parseSceneText(const std::string& text, const std::string& source_na
 /// Reads a recorded device path: CSV with a header row "t,x,y,z" (s, m), strictly increasing
 /// times; played back with linear interpolation. Throws InputError naming file and line.
 sim::DeviceTrack readDeviceCsv(const std::string& path);
+
+/// A JSON Schema (draft 2020-12) of scene files, built from the same tables that validate them
+/// (sim/settings.hpp: each setting's type, range, choices and unit), for editors that check and
+/// complete TOML against a schema. Rules across fields (a mesh needs `mesh`, n_sgo 0 or 3..64)
+/// are only checked when a scene loads. `godfinger schema` prints it.
+nlohmann::json sceneSchema();
 
 /// The folder of bundled data (scenes/, studies/, meshes/, hard-cases/): $GODFINGER_DATA if
 /// set; else beside the executable, installed (<prefix>/share/godfinger) or in a build tree

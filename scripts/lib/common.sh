@@ -12,7 +12,7 @@ GF_PACKAGES=(
   libcli11-dev libtomlplusplus-dev nlohmann-json3-dev
   ffmpeg
   parallel
-  python3   # examples/device-udp/client.py and its test
+  python3 python3-jsonschema  # examples/device-udp/client.py, the scene schema's test
 )
 
 gf_log() { printf '[godfinger] %s\n' "$*" >&2; }

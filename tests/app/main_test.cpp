@@ -94,5 +94,41 @@ TEST(Command, VersionNamesTheBuildAndItsLibraries) {
   }
 }
 
+// `godfinger schema`: a JSON Schema every bundled scene and hard case meets, and that catches the
+// mistakes an editor should underline: a misspelt field, a value out of its range, an unknown
+// shape or effect, a device with two sources (checked with python3-jsonschema).
+TEST(Command, SchemaAcceptsTheBundledScenesAndCatchesMistakes) {
+  namespace fs = std::filesystem;
+  const fs::path dir = gf::test::scratchRoot() / "gf_schema";
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  const std::string schema = (dir / "schema.json").string();
+  ASSERT_EQ(std::system((std::string(GF_BINARY_DIR) + "/godfinger schema > " + schema).c_str()), 0);
+  const std::string validate = std::string(GF_PYTHON3) + " " + GF_SOURCE_DIR + "/tests/app/validate_schema.py " + schema + " ";
+  const std::string assets = std::string(GF_SOURCE_DIR) + "/assets/";
+  EXPECT_EQ(std::system((validate + "'" + assets + "scenes/*.toml' '" + assets + "hard-cases/*.toml' > " +
+                         (dir / "bundled.txt").string()).c_str()),
+            0)
+      << std::ifstream(dir / "bundled.txt").rdbuf();
+  std::ifstream in(assets + "scenes/press-box.toml");
+  std::stringstream text;
+  text << in.rdbuf();
+  const std::string good = text.str();
+  const auto mistake = [&](const std::string& name, const std::string& from, const std::string& to) {
+    std::string scene = good;
+    const std::size_t at = scene.find(from);
+    ASSERT_NE(at, std::string::npos) << from;
+    scene.replace(at, from.size(), to);
+    std::ofstream(dir / (name + ".toml")) << scene;
+    EXPECT_NE(std::system((validate + (dir / (name + ".toml")).string() + " > /dev/null").c_str()), 0) << name;
+  };
+  mistake("misspelt-field", "n_sgo =", "n_sog =");
+  mistake("out-of-range", "n_sgo = 8", "n_sgo = 1000");
+  mistake("unknown-shape", "shape = \"box\"", "shape = \"cube\"");
+  mistake("unknown-effect", "\"gravity\"", "\"gravitation\"");
+  mistake("two-device-sources", "keyframes = [", "csv = \"x.csv\"\nkeyframes = [");
+  mistake("negative-mass", "mass = ", "mass = -");
+}
+
 }  // namespace
 }  // namespace gf::app
