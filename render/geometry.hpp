@@ -5,7 +5,7 @@
 #include <memory>
 #include <vector>
 
-#include "render/gpu.hpp"
+#include "render/vertex.hpp"
 #include "sim/mesh.hpp"
 #include "sim/scene_desc.hpp"
 

@@ -31,11 +31,6 @@ unsigned compile(const char* name, GLenum kind, const char* source, const char* 
 
 }  // namespace
 
-Vertex makeVertex(const Eigen::Vector3d& p, const Eigen::Vector3d& n) {
-  return {{static_cast<float>(p.x()), static_cast<float>(p.y()), static_cast<float>(p.z())},
-          {static_cast<float>(n.x()), static_cast<float>(n.y()), static_cast<float>(n.z())}};
-}
-
 Program::Program(const char* name, const char* vertex_source, const char* fragment_source,
                  const char* defines) {
   GF_ASSERT_GL_THREAD();
@@ -139,6 +134,15 @@ void GpuMesh::draw(unsigned mode) const {
   } else {
     glDrawArrays(mode, 0, count_);
   }
+  glBindVertexArray(0);
+}
+
+void GpuMesh::draw(unsigned mode, int first, int count) const {
+  GF_ASSERT_GL_THREAD();
+  GF_ASSERT(!ebo_ && first >= 0 && first + count <= count_ && "a range of a dynamic mesh's vertices");
+  if (count <= 0) return;
+  glBindVertexArray(vao_);
+  glDrawArrays(mode, first, count);
   glBindVertexArray(0);
 }
 

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "render/image.hpp"
+#include "render/vertex.hpp"
 #include "render/view_desc.hpp"
 
 namespace gf::render {
@@ -32,15 +33,6 @@ class Program {
   unsigned id_ = 0;
 };
 
-/// Interleaved vertex: position (m) and unit normal.
-struct Vertex {
-  float position[3];
-  float normal[3];
-};
-
-/// A vertex from double-precision position and normal.
-Vertex makeVertex(const Eigen::Vector3d& position, const Eigen::Vector3d& normal);
-
 /// Triangles in a vertex buffer (attributes 0: position, 1: normal). Static meshes are given
 /// their vertices once (equal vertices shared through an index buffer); `dynamic` ones are
 /// refilled each frame with upload().
@@ -54,6 +46,8 @@ class GpuMesh {
   void upload(const std::vector<Vertex>& vertices);
   /// Draws the vertices as `mode` (GL_TRIANGLES, GL_LINES, ...).
   void draw(unsigned mode) const;
+  /// Draws `count` vertices of a dynamic mesh from vertex `first` as `mode`.
+  void draw(unsigned mode, int first, int count) const;
 
  private:
   unsigned vao_ = 0, vbo_ = 0, ebo_ = 0;

@@ -4,7 +4,7 @@
 
 #include <vector>
 
-#include "render/gpu.hpp"
+#include "render/vertex.hpp"
 #include "sim/mesh.hpp"
 #include "sim/snapshot.hpp"
 

@@ -3,11 +3,12 @@
 #include <algorithm>
 #include <cmath>
 #include <numbers>
+#include <optional>
 
 #include "render/context.hpp"
 #include "render/geometry.hpp"
 #include "render/gl.hpp"
-#include "render/patch_mesh.hpp"
+#include "render/draw_list.hpp"
 #include "render/shaders.hpp"
 
 namespace gf::render {
@@ -18,21 +19,7 @@ using sim::Vec3;
 const Eigen::Vector3f kBackground(0.62f, 0.68f, 0.76f);  // linear RGB
 const Eigen::Vector3f kGround(0.55f, 0.55f, 0.53f);
 constexpr int kRoundSegments = 24;
-constexpr float kGhostAlpha = 0.28f;
-constexpr float kPatchAlpha = 0.55f;
-constexpr float kProxyAlpha = 0.6f;
 constexpr double kLightHalf = 1.5;  // half side of the key light's view, in scene radii
-
-Eigen::Matrix4f modelMatrix(const Vec3& position, const Eigen::Quaterniond& orientation,
-                            const Vec3& scale) {
-  Eigen::Affine3d a = Eigen::Translation3d(position) * orientation * Eigen::Scaling(scale);
-  return a.matrix().cast<float>();
-}
-
-// Rotation taking +y onto `direction` (unit).
-Eigen::Quaterniond fromY(const Vec3& direction) {
-  return Eigen::Quaterniond::FromTwoVectors(Vec3::UnitY(), direction);
-}
 
 // One body as the GPU sees it.
 struct BodyDraw {
@@ -79,12 +66,6 @@ bool sameView(const Camera& a, const Camera& b) {
 
 }  // namespace
 
-Eigen::Vector3f fingerColour(int finger) {
-  static const Eigen::Vector3f kPalette[] = {{0.10f, 0.35f, 0.95f}, {0.90f, 0.12f, 0.30f},
-                                             {0.10f, 0.70f, 0.25f}, {0.85f, 0.65f, 0.05f}};
-  return kPalette[static_cast<std::size_t>(finger) % 4];
-}
-
 struct SceneRenderer::Impl {
   sim::SceneDesc scene;
   RenderSettings settings;
@@ -106,9 +87,10 @@ struct SceneRenderer::Impl {
   // Clear colour and ground for the last camera, restored each frame instead of redrawn.
   std::unique_ptr<Backdrop> backdrop;
   Camera backdrop_camera;
-  GpuMesh patch_fill{{}, true}, patch_lines{{}, true}, spring_lines{{}, true};
-  std::vector<Vertex> fill_vertices, line_vertices, spring_vertices;
-  PatchMeshBuilder patch_builder;
+  // The contact overlay: built as plain data (draw_list.hpp), its vertices in one buffer.
+  std::optional<DrawListBuilder> overlay_builder;  // made once the bodies' surfaces are
+  DrawList overlay;
+  GpuMesh overlay_vertices{{}, true};
   Vec3 centre = Vec3::Zero();
   double extent = 0.1;
   Eigen::Matrix4f view, view_proj, light_view_proj;  // view, view_proj: this frame's camera
@@ -126,6 +108,9 @@ struct SceneRenderer::Impl {
       }
       bodies.push_back(std::move(d));
     }
+    std::vector<std::shared_ptr<const sim::Mesh>> surfaces;
+    for (const BodyDraw& d : bodies) surfaces.push_back(d.mesh);
+    overlay_builder.emplace(scene, std::move(surfaces));
     std::tie(centre, extent) = sceneBounds(scene, bodies);
     // The ground: a square of 40 scene radii, fading into the background.
     const float h = static_cast<float>(40.0 * extent);
@@ -274,7 +259,7 @@ struct SceneRenderer::Impl {
       const double r = scene.fingers[i].proxy.radius;
       add(f.proxy, r);
       add(f.device, r);
-      if (!f.contacts.empty()) add(f.proxy + forceArrow(f), r);
+      if (!f.contacts.empty()) add(f.proxy + forceArrow(f, drawSettings()), r);
       for (const sim::ContactSnapshot& c : f.contacts) add(c.point_world, std::max(c.radius, scene.fingers[i].patch.r_max));
     }
     if (everywhere) return {0, 0, width, height};
@@ -346,132 +331,93 @@ struct SceneRenderer::Impl {
     }
   }
 
-  void drawArrow(const Vec3& from, const Vec3& vector, double radius, const Eigen::Vector3f& colour) {
-    const double length = vector.norm();
-    if (length < 1e-6) return;
-    const Vec3 dir = vector / length;
-    const double head = std::min(0.45 * length, 5.0 * radius);
-    const Eigen::Quaterniond q = fromY(dir);
-    drawShape(cylinder, modelMatrix(from, q, Vec3(radius, length - head, radius)), colour, 1.0f);
-    drawShape(cone, modelMatrix(from + (length - head) * dir, q, Vec3(2.5 * radius, head, 2.5 * radius)),
-              colour, 1.0f);
-  }
-
-  // Proxies are drawn after the patches and a little translucent: the patch under the finger
-  // stays readable.
-  void drawFingers(const sim::Snapshot& snap) {
-    use(lit);
-    glEnable(GL_BLEND);
-    glEnable(GL_CULL_FACE);  // spheres are closed: the back half would only be blended twice
-    for (std::size_t i = 0; i < snap.fingers.size(); ++i) {
-      const sim::FingerSnapshot& f = snap.fingers[i];
-      const double r = scene.fingers[i].proxy.radius;
-      drawShape(sphere, modelMatrix(f.proxy, Eigen::Quaterniond::Identity(), Vec3::Constant(r)),
-                fingerColour(static_cast<int>(i)) * 0.8f + Eigen::Vector3f::Constant(0.15f), kProxyAlpha);
-    }
-    glDisable(GL_CULL_FACE);
-    glDisable(GL_BLEND);
-  }
-
-  // Ghosts and springs see through bodies: the device sits inside the object while pressing.
-  void drawDeviceGhosts(const sim::Snapshot& snap) {
-    glDisable(GL_DEPTH_TEST);
-    glEnable(GL_BLEND);
-    use(lit);
-    glEnable(GL_CULL_FACE);
-    spring_vertices.clear();
-    for (std::size_t i = 0; i < snap.fingers.size(); ++i) {
-      const sim::FingerSnapshot& f = snap.fingers[i];
-      const double r = scene.fingers[i].proxy.radius;
-      drawShape(sphere, modelMatrix(f.device, Eigen::Quaterniond::Identity(), Vec3::Constant(r)),
-                fingerColour(static_cast<int>(i)), kGhostAlpha);
-      appendSpring(f.proxy, f.device, 0.5 * r);
-    }
-    glDisable(GL_CULL_FACE);
-    spring_lines.upload(spring_vertices);
-    use(flat);
-    setMatrices(Eigen::Matrix4f::Identity());
-    setColour(Eigen::Vector3f::Constant(0.1f), 0.85f);
-    spring_lines.draw(GL_LINES);
-    glDisable(GL_BLEND);
-    glEnable(GL_DEPTH_TEST);
-  }
-
-  // A coil of 8 turns from the proxy centre to the device.
-  void appendSpring(const Vec3& a, const Vec3& b, double coil_radius) {
-    const Vec3 axis = b - a;
-    if (axis.norm() < 1e-4) return;
-    const Eigen::Quaterniond q = fromY(axis.normalized());
-    constexpr int kSegments = 96;
-    Vec3 previous = a;
-    for (int s = 1; s <= kSegments; ++s) {
-      const double u = double(s) / kSegments, angle = 8 * 2 * std::numbers::pi * u;
-      const double taper = std::min(1.0, std::min(u, 1 - u) * 12);
-      const Vec3 p = a + u * axis + q * Vec3(taper * coil_radius * std::cos(angle), 0,
-                                             taper * coil_radius * std::sin(angle));
-      spring_vertices.push_back(makeVertex(previous, Vec3::UnitY()));
-      spring_vertices.push_back(makeVertex(p, Vec3::UnitY()));
-      previous = p;
+  // The GL state of each pass of the overlay (draw_list.hpp), set on entering and undone on
+  // leaving: depth test on, blending, culling, polygon offset off, depth writes on between passes.
+  void enterPass(DrawPass pass) {
+    switch (pass) {
+      case DrawPass::kPatchFill:
+        glEnable(GL_BLEND);
+        glDepthMask(GL_FALSE);
+        glEnable(GL_POLYGON_OFFSET_FILL);
+        glPolygonOffset(-2.0f, -4.0f);
+        use(shadow ? lit_shadowed : lit);  // lit like the body under it
+        break;
+      case DrawPass::kPatchLines: use(flat); break;
+      case DrawPass::kMarks: use(lit); break;
+      case DrawPass::kArrows:
+        use(lit);
+        glDisable(GL_DEPTH_TEST);  // arrows read through the proxy and the body
+        break;
+      case DrawPass::kProxies:
+        use(lit);
+        glEnable(GL_BLEND);
+        glEnable(GL_CULL_FACE);  // spheres are closed: the back half would only be blended twice
+        break;
+      case DrawPass::kGhosts:
+        glDisable(GL_DEPTH_TEST);
+        glEnable(GL_BLEND);
+        use(lit);
+        glEnable(GL_CULL_FACE);
+        break;
+      case DrawPass::kSprings:
+        glDisable(GL_DEPTH_TEST);
+        glEnable(GL_BLEND);
+        use(flat);
+        break;
     }
   }
 
-  void drawPatches(const sim::Snapshot& snap) {
-    // Translucent fills on the surface, then the walked paths and rim, then dots and arrows.
-    for (std::size_t i = 0; i < snap.fingers.size(); ++i) {
-      fill_vertices.clear();
-      line_vertices.clear();
-      for (const sim::ContactSnapshot& c : snap.fingers[i].contacts) {
-        const std::size_t b = static_cast<std::size_t>(c.body);
-        if (b < bodies.size() && bodies[b].mesh) {
-          patch_builder.build(c, *bodies[b].mesh, snap.bodies[b], fill_vertices, line_vertices);
-        }
+  void leavePass(DrawPass pass) {
+    switch (pass) {
+      case DrawPass::kPatchFill:
+        glDisable(GL_POLYGON_OFFSET_FILL);
+        glDepthMask(GL_TRUE);
+        glDisable(GL_BLEND);
+        break;
+      case DrawPass::kPatchLines:
+      case DrawPass::kMarks: break;
+      case DrawPass::kArrows: glEnable(GL_DEPTH_TEST); break;
+      case DrawPass::kProxies:
+      case DrawPass::kGhosts:
+        glDisable(GL_CULL_FACE);
+        glDisable(GL_BLEND);
+        glEnable(GL_DEPTH_TEST);
+        break;
+      case DrawPass::kSprings:
+        glDisable(GL_BLEND);
+        glEnable(GL_DEPTH_TEST);
+        break;
+    }
+  }
+
+  DrawSettings drawSettings() const {
+    return {settings.patch_highlight, settings.fingers, settings.force_arrow_m_per_n, settings.max_arrow_m};
+  }
+
+  // Draws the overlay of `snap`: the list is built without GL, then each item drawn in order.
+  void drawOverlay(const sim::Snapshot& snap) {
+    overlay_builder->build(snap, drawSettings(), overlay);
+    if (overlay.items.empty()) return;
+    overlay_vertices.upload(overlay.vertices);
+    const GpuMesh* shapes[] = {&sphere, &dot_sphere, &cylinder, &cone};
+    bool in_pass = false;
+    DrawPass pass = DrawPass::kMarks;
+    for (const DrawItem& item : overlay.items) {
+      if (!in_pass || item.pass != pass) {
+        if (in_pass) leavePass(pass);
+        pass = item.pass;
+        enterPass(pass);
+        in_pass = true;
       }
-      const Eigen::Vector3f colour = fingerColour(static_cast<int>(i));
-      glEnable(GL_BLEND);
-      glDepthMask(GL_FALSE);
-      glEnable(GL_POLYGON_OFFSET_FILL);
-      glPolygonOffset(-2.0f, -4.0f);
-      patch_fill.upload(fill_vertices);
-      use(shadow ? lit_shadowed : lit);  // lit like the body under it
-      drawShape(patch_fill, Eigen::Matrix4f::Identity(), colour, kPatchAlpha);
-      glDisable(GL_POLYGON_OFFSET_FILL);
-      glDepthMask(GL_TRUE);
-      glDisable(GL_BLEND);
-      patch_lines.upload(line_vertices);
-      use(flat);
-      setMatrices(Eigen::Matrix4f::Identity());
-      setColour(0.5f * colour, 1.0f);
-      patch_lines.draw(GL_LINES);
-      drawContactMarks(snap.fingers[i], static_cast<int>(i));
-    }
-  }
-
-  // The force arrow of a touching finger, from its proxy (m).
-  Vec3 forceArrow(const sim::FingerSnapshot& f) const {
-    const double n = f.coupling_force.norm();
-    if (n < 1e-9) return Vec3::Zero();
-    return std::min(settings.max_arrow_m, n * settings.force_arrow_m_per_n) / n * f.coupling_force;
-  }
-
-  void drawContactMarks(const sim::FingerSnapshot& f, int finger) {
-    const Eigen::Vector3f colour = fingerColour(finger);
-    const double dot = 0.12 * scene.fingers[static_cast<std::size_t>(finger)].proxy.radius;
-    use(lit);
-    for (const sim::ContactSnapshot& c : f.contacts) {
-      // The god-object's contact point; with n_SGO = 0 it is the whole patch.
-      drawShape(dot_sphere, modelMatrix(c.point_world, Eigen::Quaterniond::Identity(), Vec3::Constant(1.3 * dot)),
-                Eigen::Vector3f(0.95f, 0.95f, 0.95f), 1.0f);
-      for (const Vec3& s : c.sgos_world) {
-        drawShape(dot_sphere, modelMatrix(s, Eigen::Quaterniond::Identity(), Vec3::Constant(dot)), colour, 1.0f);
+      if (item.shape == DrawShape::kTriangles || item.shape == DrawShape::kLines) {
+        setMatrices(Eigen::Matrix4f::Identity());
+        setColour(item.colour, item.alpha);
+        overlay_vertices.draw(item.shape == DrawShape::kTriangles ? GL_TRIANGLES : GL_LINES, item.first, item.count);
+      } else {
+        drawShape(*shapes[static_cast<int>(item.shape)], item.model, item.colour, item.alpha);
       }
     }
-    glDisable(GL_DEPTH_TEST);  // arrows read through the proxy and the body
-    for (const sim::ContactSnapshot& c : f.contacts) {
-      const double length = std::max(c.radius, 0.6 * scene.fingers[static_cast<std::size_t>(finger)].patch.r_max);
-      drawArrow(c.point_world, length * c.outward_normal_world, 0.3 * dot, Eigen::Vector3f(0.95f, 0.95f, 0.95f));
-    }
-    if (!f.contacts.empty()) drawArrow(f.proxy, forceArrow(f), 0.6 * dot, Eigen::Vector3f(1.0f, 0.75f, 0.1f));
-    glEnable(GL_DEPTH_TEST);
+    leavePass(pass);
   }
 };
 
@@ -505,9 +451,7 @@ PixelRect SceneRenderer::draw(const sim::Snapshot& snapshot, const Camera& camer
   impl_->drawBackdrop(snapshot, camera, width, height);
   impl_->drawBodies(snapshot);
   if (impl_->shadow) impl_->drawGroundShadows(snapshot);
-  if (impl_->settings.patch_highlight) impl_->drawPatches(snapshot);
-  if (impl_->settings.fingers) impl_->drawFingers(snapshot);
-  if (impl_->settings.fingers) impl_->drawDeviceGhosts(snapshot);
+  impl_->drawOverlay(snapshot);
   return impl_->dynamicRect(snapshot, camera, width, height);
 }
 

@@ -7,6 +7,7 @@
 #include <memory>
 
 #include "render/camera.hpp"
+#include "render/draw_list.hpp"
 #include "render/gpu.hpp"
 #include "sim/scene_desc.hpp"
 #include "sim/snapshot.hpp"
@@ -22,9 +23,6 @@ struct RenderSettings {
   double force_arrow_m_per_n = 0.01; ///< arrow length per newton of coupling force (m/N)
   double max_arrow_m = 0.08;         ///< longest force arrow (m)
 };
-
-/// Colour of finger i (linear RGB), shared by every view and the overlay.
-Eigen::Vector3f fingerColour(int finger);
 
 /// Draws snapshots of one scene. Construction builds every body's render surface (meshes come
 /// from the description, loaded once per run) and makes the GL objects (allocates; throws

@@ -1,0 +1,101 @@
+// What the contact overlay of a frame draws, as plain data: the highlighted patches with their
+// walked paths, SGO dots, normals and force arrows, the proxies, the device ghosts and the
+// coupling springs of one Snapshot, in drawing order. Built without GL (testable anywhere, no
+// allocation per frame once its arrays have grown); SceneRenderer's GL pass draws it, in the
+// manner of an abstract scene handed to a renderer.
+#pragma once
+
+#include <Eigen/Geometry>
+#include <cstdint>
+#include <memory>
+#include <vector>
+
+#include "render/patch_mesh.hpp"
+#include "render/vertex.hpp"
+#include "sim/scene_desc.hpp"
+#include "sim/snapshot.hpp"
+
+namespace gf::render {
+
+/// Colour of finger i (linear RGB), shared by every view and the overlay.
+Eigen::Vector3f fingerColour(int finger);
+
+/// The placement of a unit shape: translate * rotate * scale (float, for GL).
+Eigen::Matrix4f modelMatrix(const sim::Vec3& position, const sim::Quat& orientation, const sim::Vec3& scale);
+
+/// The unit shapes an item may stand for, or a range of DrawList::vertices.
+enum class DrawShape : std::uint8_t {
+  kSphere,     ///< unit sphere (proxies, ghosts)
+  kDot,        ///< coarse unit sphere (contact points, SGOs: a few pixels each)
+  kCylinder,   ///< unit cylinder along +y from 0 to 1 (arrow shafts)
+  kCone,       ///< unit cone along +y (arrow heads)
+  kTriangles,  ///< vertices [first, first + count) as triangles
+  kLines,      ///< vertices [first, first + count) as line segments
+};
+
+/// How an item is drawn; consecutive items of one pass share the GL state.
+enum class DrawPass : std::uint8_t {
+  kPatchFill,   ///< translucent, lit like the body under it, pulled towards the eye, no depth writes
+  kPatchLines,  ///< flat colour, depth-tested: walked paths and the rim
+  kMarks,       ///< lit, opaque, depth-tested: the contact point and the SGOs
+  kArrows,      ///< lit, opaque, through everything: contact normals, force arrows
+  kProxies,     ///< lit, translucent, front faces: the god-objects
+  kGhosts,      ///< lit, translucent, front faces, through everything: the devices
+  kSprings,     ///< flat, translucent lines through everything: the couplings
+};
+
+struct DrawItem {
+  DrawPass pass = DrawPass::kMarks;
+  DrawShape shape = DrawShape::kDot;
+  Eigen::Vector3f colour = Eigen::Vector3f::Ones();  ///< linear RGB
+  float alpha = 1.0f;
+  Eigen::Matrix4f model = Eigen::Matrix4f::Identity();  ///< a unit shape's placement (identity for ranges)
+  int first = 0, count = 0;                              ///< kTriangles, kLines: the vertex range
+};
+
+/// One frame's overlay. clear() keeps the arrays' storage.
+struct DrawList {
+  std::vector<Vertex> vertices;  ///< world frame (m)
+  std::vector<DrawItem> items;   ///< in drawing order
+  void clear() {
+    vertices.clear();
+    items.clear();
+  }
+};
+
+/// What the overlay shows, and its scales.
+struct DrawSettings {
+  bool patch_highlight = true;        ///< patches, SGO dots, normals, force arrows
+  bool fingers = true;                ///< proxies, device ghosts, springs
+  double force_arrow_m_per_n = 0.01;  ///< arrow length per newton of coupling force (m/N)
+  double max_arrow_m = 0.08;          ///< longest force arrow (m)
+};
+
+/// The force arrow of a finger (m), drawn from its proxy: the coupling force at the settings'
+/// scale, capped at max_arrow_m; zero without a force.
+sim::Vec3 forceArrow(const sim::FingerSnapshot& finger, const DrawSettings& settings);
+
+/// Builds draw lists of one scene. Any thread (one at a time); build() allocates only while its
+/// arrays and the list's grow to the largest frame.
+class DrawListBuilder {
+ public:
+  /// `surfaces`: each body's render surface in its description frame (null: no patch is drawn
+  /// on it, e.g. a plane's).
+  DrawListBuilder(const sim::SceneDesc& scene, std::vector<std::shared_ptr<const sim::Mesh>> surfaces);
+
+  /// Replaces `out` with the overlay of `snapshot`.
+  void build(const sim::Snapshot& snapshot, const DrawSettings& settings, DrawList& out);
+
+ private:
+  void addPatches(const sim::Snapshot& snapshot, const DrawSettings& settings, DrawList& out);
+  void addFingers(const sim::Snapshot& snapshot, DrawList& out);
+  void addArrow(DrawList& out, const sim::Vec3& from, const sim::Vec3& vector, double radius, const Eigen::Vector3f& colour);
+  void addSpring(DrawList& out, const sim::Vec3& a, const sim::Vec3& b, double coil_radius);
+
+  std::vector<double> proxy_radius_, r_max_;  // per finger (m)
+  std::vector<std::shared_ptr<const sim::Mesh>> surfaces_;
+  PatchMeshBuilder patch_builder_;
+  std::vector<Vertex> fill_, lines_;  // one finger's patch, before joining the list
+};
+
+}  // namespace gf::render
