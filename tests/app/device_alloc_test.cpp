@@ -4,14 +4,13 @@
 
 #include <array>
 
-#include <arpa/inet.h>
-#include <netinet/in.h>
 #include <sys/socket.h>
 #include <unistd.h>
 
 #include "app/device_protocol.hpp"
 #include "app/scene_file.hpp"
 #include "app/udp_device.hpp"
+#include "tests/app/loopback.hpp"
 #include "tests/alloc_counter.hpp"
 
 namespace gf::app {
@@ -31,11 +30,7 @@ stale_after = 0.005
 )", "alloc.toml", "");
   UdpDeviceBridge bridge(session);
   sim::DeviceSource* source = bridge.sources()[0];
-  const std::string address = bridge.address(0);
-  sockaddr_in server{};
-  server.sin_family = AF_INET;
-  server.sin_port = htons(static_cast<std::uint16_t>(std::stoi(address.substr(address.find(':') + 1))));
-  inet_pton(AF_INET, "127.0.0.1", &server.sin_addr);
+  const sockaddr_in server = gf::test::loopback(gf::test::portOf(bridge.address(0)));
   const int device = socket(AF_INET, SOCK_DGRAM | SOCK_CLOEXEC, 0);
   ASSERT_GE(device, 0);
   const sim::DeviceFeedback feedback{sim::Vec3(0.0, 4.0, 0.0), 0.004, 8, true};

@@ -22,12 +22,15 @@
 #include <unistd.h>
 
 #include "app/device_protocol.hpp"
+#include "tests/app/loopback.hpp"
 #include "tests/app/run_helpers.hpp"
 
 namespace gf::app {
 namespace {
 
 using namespace test;
+using gf::test::loopback;
+using gf::test::portOf;
 using sim::Vec3;
 
 constexpr double kDt = 0.001;          // s: the scene's haptic step
@@ -37,6 +40,12 @@ constexpr double kStaleAfter = 1.0;
 constexpr double kRamp = 0.1;          // s: the scene's force_ramp
 constexpr double kMaxForce = 40.0;     // N: the coupling's default clamp
 constexpr int kGuardMs = 20000;        // a reply not here by then means the run is gone (a hang guard)
+
+// The port a run's first "listening on 127.0.0.1:PORT, channel C" line gives, or 0.
+int listeningPort(std::FILE* lines) {
+  const std::string line = lineWith(lines, "listening on 127.0.0.1:");
+  return line.empty() ? 0 : portOf(line.substr(0, line.find(',')));
+}
 
 // A finger above the ground, driven over UDP on any free loopback port.
 const std::string kScene = R"(name = "udp-loopback"
@@ -61,12 +70,7 @@ trace = false
 // the protocol's promises as it arrives.
 class Device {
  public:
-  explicit Device(int port) {
-    fd_ = socket(AF_INET, SOCK_DGRAM | SOCK_CLOEXEC, 0);
-    server_.sin_family = AF_INET;
-    server_.sin_port = htons(static_cast<std::uint16_t>(port));
-    inet_pton(AF_INET, "127.0.0.1", &server_.sin_addr);
-  }
+  explicit Device(int port) : server_(loopback(port)) { fd_ = socket(AF_INET, SOCK_DGRAM | SOCK_CLOEXEC, 0); }
   ~Device() { close(fd_); }
 
   // A valid packet; returns its seq.
@@ -175,18 +179,9 @@ TEST(UdpDevice, ADeviceDrivesARealtimeRunThroughLoopback) {
   Child child = start(kBin + " run " + (dir / "scene.toml").string() + " --realtime --quiet --out " + (dir / "run").string(),
                       (dir / "stdout.txt").string());
   ASSERT_GT(child.pid, 0);
-  const std::string listening = lineWith(child.lines, "listening on 127.0.0.1:");
-  ASSERT_FALSE(listening.empty()) << "the run did not say where it listens";
-  const int port = std::atoi(listening.c_str() + listening.find("127.0.0.1:") + 10);
-  ASSERT_GT(port, 0) << listening;
-  // Whatever happens below, the run does not outlive the test.
-  struct Stop {
-    pid_t pid;
-    bool done = false;
-    ~Stop() {
-      if (!done) kill(-pid, SIGKILL);
-    }
-  } stop{child.pid};
+  KillGroupOnExit stop{child.pid};  // whatever happens below, the run does not outlive the test
+  const int port = listeningPort(child.lines);
+  ASSERT_GT(port, 0) << "the run did not say where it listens";
   Device device(port);
 
   // 1. Down from 5 cm above the ground to the ground in 200 packets, then held there: the
@@ -300,16 +295,9 @@ TEST(UdpDevice, TheExampleClientDrivesTheBundledScene) {
                           "--set fingers.right.device.udp=0 --out " + (dir / "run").string(),
                       (dir / "stdout.txt").string());
   ASSERT_GT(child.pid, 0);
-  const std::string listening = lineWith(child.lines, "listening on 127.0.0.1:");
-  ASSERT_FALSE(listening.empty()) << "the run did not say where it listens";
-  const int port = std::atoi(listening.c_str() + listening.find("127.0.0.1:") + 10);
-  struct Stop {
-    pid_t pid;
-    bool done = false;
-    ~Stop() {
-      if (!done) kill(-pid, SIGKILL);
-    }
-  } stop{child.pid};
+  KillGroupOnExit stop{child.pid};
+  const int port = listeningPort(child.lines);
+  ASSERT_GT(port, 0) << "the run did not say where it listens";
   // 1.5 s of the pinch: the fingers close in by 0.5 s and squeeze (about 4 N each).
   const std::string command = std::string(GF_PYTHON3) + " " + GF_SOURCE_DIR + "/examples/device-udp/client.py --port " +
                               std::to_string(port) + " --seconds 1.5 --rate 1000";

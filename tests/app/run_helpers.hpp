@@ -12,6 +12,8 @@
 #include <sstream>
 #include <string>
 
+#include <csignal>
+
 #include <sys/types.h>
 #include <sys/wait.h>
 
@@ -119,5 +121,15 @@ inline std::string lineWith(std::FILE* lines, const std::string& text) {
   }
   return "";
 }
+
+/// Kills a child's process group when it goes out of scope, unless `done` (a failed assertion
+/// does not leave a run behind).
+struct KillGroupOnExit {
+  pid_t pid;
+  bool done = false;
+  ~KillGroupOnExit() {
+    if (!done) kill(-pid, SIGKILL);
+  }
+};
 
 }  // namespace gf::app::test

@@ -6,14 +6,13 @@
 
 #include <array>
 
-#include <arpa/inet.h>
-#include <netinet/in.h>
 #include <sys/socket.h>
 #include <unistd.h>
 
 #include "app/device_protocol.hpp"
 #include "app/scene_file.hpp"
 #include "app/udp_device.hpp"
+#include "tests/app/loopback.hpp"
 
 namespace {
 
@@ -32,11 +31,7 @@ start = [0, 0.1, 0]
 )", "bench.toml", "");
   gf::app::UdpDeviceBridge bridge(session);
   gf::sim::DeviceSource* source = bridge.sources()[0];
-  const std::string address = bridge.address(0);
-  sockaddr_in server{};
-  server.sin_family = AF_INET;
-  server.sin_port = htons(static_cast<std::uint16_t>(std::stoi(address.substr(address.find(':') + 1))));
-  inet_pton(AF_INET, "127.0.0.1", &server.sin_addr);
+  const sockaddr_in server = gf::test::loopback(gf::test::portOf(bridge.address(0)));
   const int device = socket(AF_INET, SOCK_DGRAM | SOCK_CLOEXEC, 0);
   gf::app::DevicePacket packet;
   packet.position = Vec3(0.0, 0.1, 0.0);
