@@ -10,6 +10,7 @@
 #include <thread>
 
 #include "app/check.hpp"
+#include "app/compare.hpp"
 #include "app/interrupt.hpp"
 #include "app/live.hpp"
 #include "app/mesh_info.hpp"
@@ -374,6 +375,32 @@ int main(int argc, char** argv) {
   check_cmd->add_option("--set", check.overrides, "Override a field of every scene, e.g. --set "
                                                   "world.contact_solver=aggregate");
   check_cmd->add_option("--jobs", check.jobs, "Scenes at a time (default: the number of cores)")->check(CLI::Range(1, 256));
+  gf::app::CompareOptions compare;
+  compare.jobs = check.jobs;
+  std::string compare_models;
+  CLI::App* compare_cmd = app.add_subcommand(
+      "compare", "Run a scene once per contact model (offline, in parallel) and draw one video of the runs side "
+                 "by side over a chart of a trace quantity; compare.json holds their measures");
+  compare_cmd->add_option("scene", compare.scene, "Scene file or bundled scene name")->required();
+  compare_cmd->add_option("--models", compare_models, "Contact models, comma-separated (1 to 4 of god_object, "
+                                                      "soft_finger, god_finger)")
+      ->default_val("god_object,soft_finger,god_finger");
+  compare_cmd->add_option("--set", compare.overrides, "Override a scene field in every run");
+  compare_cmd->add_option("--duration", compare.duration, "Simulated seconds (default: the scene's)")
+      ->check(CLI::Range(1e-3, 3600.0));
+  compare_cmd->add_option("--out", compare.out, "Folder for the runs, compare.json and frames (default: compare-SCENE)");
+  compare_cmd->add_option("--video", compare.video, "Write the comparison as an MP4 (H.264, via ffmpeg)");
+  compare_cmd->add_flag("--frames", compare.frames, "Write the comparison's frames/000000.png ... (always without --video)");
+  compare_cmd->add_flag("--keep-run-frames", compare.keep_run_frames, "Keep each run's own frames (MODEL/frames)");
+  compare_cmd->add_option("--camera", compare.camera, "Camera of the scene (default: its first)");
+  compare_cmd->add_option("--chart", compare.chart, "Quantity charted: of --body, rotation (angle turned, deg), tilt "
+                                                   "(angle from the start, deg), height (mm) or speed (m/s); or any "
+                                                   "trace.csv column (default: rotation)");
+  compare_cmd->add_option("--body", compare.body, "Body of the chart (default: the scene's first dynamic body)");
+  compare_cmd->add_option("--jobs", compare.jobs, "Runs at a time (default: the number of cores; 1 for step times "
+                                                  "to publish)")
+      ->check(CLI::Range(1, 256));
+  compare_cmd->add_flag("--quiet", compare.quiet, "Only errors");
   app.add_subcommand("list", "List the bundled scenes");
   gf::app::LiveOptions live;
   CLI::App* live_cmd = app.add_subcommand("live", "Interactive session: one command a line on standard input");
@@ -439,6 +466,15 @@ int main(int argc, char** argv) {
     if (app.got_subcommand("check")) {
       check.godfinger = std::filesystem::canonical("/proc/self/exe").string();
       return gf::app::runCheck(check);
+    }
+    if (app.got_subcommand("compare")) {
+      compare.godfinger = std::filesystem::canonical("/proc/self/exe").string();
+      for (std::size_t a = 0; a <= compare_models.size();) {
+        const std::size_t b = std::min(compare_models.find(',', a), compare_models.size());
+        if (b > a) compare.models.push_back(compare_models.substr(a, b - a));
+        a = b + 1;
+      }
+      return gf::app::runCompare(compare);
     }
     if (app.got_subcommand("live")) {
       live.scene_path = gf::app::resolveScenePath(live.scene_path);

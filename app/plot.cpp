@@ -34,41 +34,47 @@ std::vector<std::string> splitRow(const std::string& line) {
 
 }  // namespace
 
-std::string writePlot(const PlotOptions& o) {
-  if (std::filesystem::is_directory(o.csv)) throw InputError(o.csv, 0, 0, "file", "is a folder; give a CSV file");
-  std::ifstream in(o.csv);
-  if (!in) throw InputError(o.csv, 0, 0, "file", "cannot read");
+std::vector<std::vector<double>> readCsvColumns(const std::string& path, const std::vector<std::string>& names) {
+  if (std::filesystem::is_directory(path)) throw InputError(path, 0, 0, "file", "is a folder; give a CSV file");
+  std::ifstream in(path);
+  if (!in) throw InputError(path, 0, 0, "file", "cannot read");
   std::string line;
-  if (!std::getline(in, line)) throw InputError(o.csv, 1, 0, "header", "empty file: expected a header row");
+  if (!std::getline(in, line)) throw InputError(path, 1, 0, "header", "empty file: expected a header row");
   const std::vector<std::string> header = splitRow(line);
   const auto column = [&](const std::string& name) {
     for (std::size_t i = 0; i < header.size(); ++i) {
       if (header[i] == name) return i;
     }
-    std::string names;
-    for (const std::string& h : header) names.append(names.empty() ? "" : ", ").append(h);
-    throw InputError(o.csv, 1, 0, name, "no such column (the file has: " + names + ")");
+    std::string known;
+    for (const std::string& h : header) known.append(known.empty() ? "" : ", ").append(h);
+    throw InputError(path, 1, 0, name, "no such column (the file has: " + known + ")");
   };
-  const std::size_t xc = column(o.x);
-  std::vector<std::size_t> yc;
-  for (const std::string& y : o.y) yc.push_back(column(y));
-  std::vector<double> xs;
-  std::vector<std::vector<double>> ys(yc.size());
+  std::vector<std::size_t> columns;
+  for (const std::string& n : names) columns.push_back(column(n));
+  std::vector<std::vector<double>> out(columns.size());
   const auto number = [&](const std::vector<std::string>& cells, std::size_t c, int row) {
     if (c >= cells.size() || cells[c].empty()) return std::numeric_limits<double>::quiet_NaN();  // a gap
     char* end = nullptr;
     const double v = std::strtod(cells[c].c_str(), &end);
     if (end == cells[c].c_str() || *end != '\0') {
-      throw InputError(o.csv, row, static_cast<int>(c) + 1, header[c], "expected a number, got '" + cells[c] + "'");
+      throw InputError(path, row, static_cast<int>(c) + 1, header[c], "expected a number, got '" + cells[c] + "'");
     }
     return v;
   };
   for (int row = 2; std::getline(in, line); ++row) {
     if (line.empty()) continue;
     const std::vector<std::string> cells = splitRow(line);
-    xs.push_back(number(cells, xc, row));
-    for (std::size_t k = 0; k < yc.size(); ++k) ys[k].push_back(number(cells, yc[k], row));
+    for (std::size_t k = 0; k < columns.size(); ++k) out[k].push_back(number(cells, columns[k], row));
   }
+  return out;
+}
+
+std::string writePlot(const PlotOptions& o) {
+  std::vector<std::string> names = {o.x};
+  names.insert(names.end(), o.y.begin(), o.y.end());
+  std::vector<std::vector<double>> columns = readCsvColumns(o.csv, names);
+  const std::vector<double>& xs = columns.front();
+  const std::vector<std::vector<double>> ys(columns.begin() + 1, columns.end());
   render::ChartSpec chart;
   chart.width = o.width;
   chart.height = o.height;
@@ -77,7 +83,7 @@ std::string writePlot(const PlotOptions& o) {
   std::string joined;
   for (const std::string& y : o.y) joined.append(joined.empty() ? "" : ", ").append(y);
   chart.title = o.title.empty() ? std::filesystem::path(o.csv).filename().string() + ": " + joined : o.title;
-  for (std::size_t k = 0; k < yc.size(); ++k) {
+  for (std::size_t k = 0; k < ys.size(); ++k) {
     chart.series.push_back({o.y[k], kCurveColours[k % std::size(kCurveColours)], xs, ys[k]});
   }
   const std::string out =

@@ -1,5 +1,6 @@
 #include "app/screenshots.hpp"
 
+#include "app/compare.hpp"
 #include "app/scene_file.hpp"
 #include "app/session.hpp"
 #include "render/render_thread.hpp"
@@ -20,6 +21,8 @@ const std::vector<Shot>& referenceShots() {
       {"edge-contact", "edge-contact", 1.2, "", {}},
       {"vertex-contact", "vertex-contact", 1.2, "", {}},
       {"overlay", "overlay-demo", 2.0, "", {}},
+      {"compare-fig5", "fig5-push-ball", 1.5, "", {}, {"god_object", "god_finger"}, 3.0, 1280, 720},
+      {"compare-fig8", "fig8-pinch-oscillation", 2.5, "", {}, {"god_object", "god_finger"}, 5.0, 1280, 720},
   };
   return kShots;
 }
@@ -33,9 +36,13 @@ sim::Snapshot snapshotAt(const SessionDesc& session, double time) {
 }
 
 render::Image renderShot(const Shot& shot) {
+  if (!shot.models.empty()) {
+    return renderCompareFrame(shot.scene, shot.models, shot.overrides, shot.time, shot.chart_duration, shot.width,
+                              shot.height, shot.camera);
+  }
   SessionDesc session = loadSceneFile(resolveScenePath(shot.scene), shot.overrides);
-  session.view.width = kShotWidth;
-  session.view.height = kShotHeight;
+  session.view.width = shot.width;
+  session.view.height = shot.height;
   SessionOptions options;
   options.camera = shot.camera;
   return render::renderStill(session.scene, snapshotAt(session, shot.time), frameSettings(session, options));

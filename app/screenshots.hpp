@@ -13,21 +13,25 @@
 
 namespace gf::app {
 
-/// One reference picture.
+/// Size of the reference pictures (pixels).
+inline constexpr int kShotWidth = 640;
+inline constexpr int kShotHeight = 360;
+
+/// One reference picture: a frame of a scene, or (with `models`) a frame of `godfinger
+/// compare` drawn in-process (no step times in the labels).
 struct Shot {
   std::string name;                    ///< file name without .png
   std::string scene;                   ///< bundled scene name
   double time = 0.0;                   ///< s of simulated time
   std::string camera;                  ///< camera of the scene ("" for its first)
   std::vector<std::string> overrides;  ///< --set FIELD=VALUE applied to the scene
+  std::vector<std::string> models = {};  ///< a comparison of these contact models
+  double chart_duration = 0.0;           ///< s: the comparison's chart spans [0, chart_duration]
+  int width = kShotWidth, height = kShotHeight;
 };
 
 /// Every reference picture, in README order.
 const std::vector<Shot>& referenceShots();
-
-/// Size of the reference pictures (pixels).
-inline constexpr int kShotWidth = 640;
-inline constexpr int kShotHeight = 360;
 
 /// The state of `session`'s scene after running it offline from t = 0 to `time` (s).
 sim::Snapshot snapshotAt(const SessionDesc& session, double time);

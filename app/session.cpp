@@ -300,22 +300,6 @@ nlohmann::json changesJson(const std::vector<AppliedChange>& changes, const sim:
 
 namespace {
 
-// Creates `folder` (and its parents) and checks that a file can be written in it, before any
-// step runs. Throws std::runtime_error naming the folder and `what` it is for.
-void requireWritableFolder(const fs::path& folder, const std::string& what) {
-  std::error_code ec;
-  fs::create_directories(folder, ec);
-  if (ec || !fs::is_directory(folder)) {
-    throw std::runtime_error(folder.string() + ": cannot create the folder for " + what +
-                             (ec ? ": " + ec.message() : ": a file is in the way"));
-  }
-  const fs::path probe = folder / (".godfinger-probe-" + std::to_string(getpid()));
-  std::FILE* f = std::fopen(probe.c_str(), "wb");
-  if (!f) throw std::runtime_error(folder.string() + ": cannot write " + what + " there: " + std::strerror(errno));
-  std::fclose(f);
-  fs::remove(probe, ec);
-}
-
 // True for the names of what a run writes into a folder of its own output kinds: the frame
 // sequence (000000.png ...), contact snapshots and close-ups (t0.500.json, t0.500-left.png),
 // and the temporary names they are written under.
@@ -413,22 +397,38 @@ class Progress {
 
 }  // namespace
 
+void requireWritableFolder(const fs::path& folder, const std::string& what) {
+  std::error_code ec;
+  fs::create_directories(folder, ec);
+  if (ec || !fs::is_directory(folder)) {
+    throw std::runtime_error(folder.string() + ": cannot create the folder for " + what +
+                             (ec ? ": " + ec.message() : ": a file is in the way"));
+  }
+  const fs::path probe = folder / (".godfinger-probe-" + std::to_string(getpid()));
+  std::FILE* f = std::fopen(probe.c_str(), "wb");
+  if (!f) throw std::runtime_error(folder.string() + ": cannot write " + what + " there: " + std::strerror(errno));
+  std::fclose(f);
+  fs::remove(probe, ec);
+}
+
 void prepareOutputs(const SessionOptions& options) {
   const fs::path dir(options.out_dir);
   requireWritableFolder(dir, "the run's outputs");
   requireWritableFolder(dir / "contacts", "contact snapshots");
   if (options.frames) requireWritableFolder(dir / "frames", "frames");
-  if (!options.video_path.empty()) {
-    const fs::path video(options.video_path);
-    std::error_code ec;
-    if (fs::is_directory(video, ec)) throw std::runtime_error(options.video_path + " is a folder; give a file such as out.mp4");
-    std::string ext = video.extension().string();
-    for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-    if (ext != ".mp4" && ext != ".mkv" && ext != ".mov") {
-      throw std::runtime_error(options.video_path + ": the video's name must end in .mp4, .mkv or .mov");
-    }
-    requireWritableFolder(video.parent_path().empty() ? fs::path(".") : video.parent_path(), "the video");
+  if (!options.video_path.empty()) requireVideoPath(options.video_path);
+}
+
+void requireVideoPath(const std::string& path) {
+  const fs::path video(path);
+  std::error_code ec;
+  if (fs::is_directory(video, ec)) throw std::runtime_error(path + " is a folder; give a file such as out.mp4");
+  std::string ext = video.extension().string();
+  for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  if (ext != ".mp4" && ext != ".mkv" && ext != ".mov") {
+    throw std::runtime_error(path + ": the video's name must end in .mp4, .mkv or .mov");
   }
+  requireWritableFolder(video.parent_path().empty() ? fs::path(".") : video.parent_path(), "the video");
 }
 
 sim::LoopStats runSession(const SessionDesc& session, const SessionOptions& options) {

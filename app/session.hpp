@@ -1,6 +1,7 @@
 // A recorded session: run a scene through the haptic loop and write what it asks to record.
 #pragma once
 
+#include <filesystem>
 #include <string>
 #include <vector>
 
@@ -45,6 +46,14 @@ std::string commitString();
 /// contact snapshots and close-ups, trace.csv, forces.csv, forces.png, summary.json and their
 /// temporary names), nothing else. Throws std::runtime_error naming the path. runSession calls it.
 void prepareOutputs(const SessionOptions& options);
+
+/// Creates `folder` (and its parents) and checks that a file can be written in it. Throws
+/// std::runtime_error naming the folder and `what` it is for.
+void requireWritableFolder(const std::filesystem::path& folder, const std::string& what);
+
+/// Checks a video path before any work: not a folder, ends in .mp4, .mkv or .mov, its folder
+/// created and writable. Throws std::runtime_error naming the path.
+void requireVideoPath(const std::string& path);
 
 /// The camera called `name` in the session (the first when empty; a default view of the scene
 /// when it has none). Throws InputError naming the camera when there is no such camera.

@@ -208,13 +208,14 @@ struct Layout {
 
 float legendRowHeight(float font) { return 1.3f * font; }
 
-Layout layout(const ChartSpec& chart, float font) {
+// `origin`: the chart's top-left corner in the frame (pixels).
+Layout layout(const ChartSpec& chart, float font, ImVec2 origin) {
   Layout l;
-  l.lo = ImVec2(5.5f * font, 2.5f * font);
-  l.hi = ImVec2(static_cast<float>(chart.width) - 1.5f * font,
-                static_cast<float>(chart.height) - 3.5f * font);
+  l.lo = ImVec2(origin.x + 5.5f * font, origin.y + 2.5f * font);
+  l.hi = ImVec2(origin.x + static_cast<float>(chart.width) - 1.5f * font,
+                origin.y + static_cast<float>(chart.height) - 3.5f * font);
   // A y label that would run into the title gets a line of its own above the plot.
-  const float y_label_end = 0.4f * font + ImGui::CalcTextSize(chart.y_label.c_str()).x;
+  const float y_label_end = origin.x + 0.4f * font + ImGui::CalcTextSize(chart.y_label.c_str()).x;
   if (!chart.title.empty() && y_label_end > l.lo.x - 0.5f * font) l.lo.y += 1.4f * font;
   // Legend rows between the title and the plot, as many as its entries need beside the y label.
   const float room = l.hi.x - std::max(l.lo.x, y_label_end + font);
@@ -238,8 +239,8 @@ Layout layout(const ChartSpec& chart, float font) {
     for (const LegendEntry& e : l.legend.back()) last += e.width;
     if (l.hi.x - last + 1.2f * font < y_label_end + font) l.lo.y += 1.4f * font;
   }
-  l.title = ImVec2(l.lo.x, 0.6f * font);
-  l.y_label = ImVec2(0.4f * font, l.lo.y - 1.6f * font);
+  l.title = ImVec2(l.lo.x, origin.y + 0.6f * font);
+  l.y_label = ImVec2(origin.x + 0.4f * font, l.lo.y - 1.6f * font);
   return l;
 }
 
@@ -471,16 +472,12 @@ bool markBeyondRange(const Canvas& c, const ChartSeries& s) {
 
 }  // namespace
 
-void drawChart(ImGuiLayer& layer, const ChartSpec& chart) {
-  GF_ASSERT_GL_THREAD();
-  layer.beginFrame(1.0 / 60.0, {});
-  ImDrawList& d = *ImGui::GetForegroundDrawList();
+void addChart(ImDrawList& d, const ChartSpec& chart, float left, float top) {
   const float font = ImGui::GetFontSize();
-  const Layout l = layout(chart, font);
+  const Layout l = layout(chart, font, ImVec2(left, top));
   const Canvas c = canvas(d, chart, l, font);
-  d.AddRectFilled(ImVec2(0, 0),
-                  ImVec2(static_cast<float>(chart.width), static_cast<float>(chart.height)),
-                  IM_COL32(255, 255, 255, 255));
+  const float right = left + static_cast<float>(chart.width), bottom = top + static_cast<float>(chart.height);
+  d.AddRectFilled(ImVec2(left, top), ImVec2(right, bottom), IM_COL32(255, 255, 255, 255));
   drawGrid(c);
   d.AddRect(l.lo, l.hi, kInk);
   // Data, clipped to the plot: every series' lines, then markers over them, then point labels.
@@ -494,18 +491,27 @@ void drawChart(ImGuiLayer& layer, const ChartSpec& chart) {
   drawPointLabels(c, chart);
   bool beyond = false;
   for (const ChartSeries& s : chart.series) beyond = markBeyondRange(c, s) || beyond;
+  if (std::isfinite(chart.cursor_x) && onAxis(chart.cursor_x, chart.log_x)) {
+    const float x = c.x.pixel(chart.cursor_x);
+    d.AddLine(ImVec2(x, l.lo.y), ImVec2(x, l.hi.y), kInk, 1.5f);
+  }
   d.PopClipRect();
   // Title, axis labels, legend.
   d.AddText(l.title, kInk, chart.title.c_str());
-  d.AddText(ImVec2((l.lo.x + l.hi.x - ImGui::CalcTextSize(chart.x_label.c_str()).x) / 2,
-                   static_cast<float>(chart.height) - 1.6f * font),
+  d.AddText(ImVec2((l.lo.x + l.hi.x - ImGui::CalcTextSize(chart.x_label.c_str()).x) / 2, bottom - 1.6f * font),
             kInk, chart.x_label.c_str());
   d.AddText(l.y_label, kInk, chart.y_label.c_str());
   drawLegend(c, l);
   if (beyond) {  // say what the edge triangles mean, under the plot on the right
     const char* note = "triangles at the edges: values beyond the y axis";
-    d.AddText(ImVec2(l.hi.x - ImGui::CalcTextSize(note).x, static_cast<float>(chart.height) - 1.6f * font), kInk, note);
+    d.AddText(ImVec2(l.hi.x - ImGui::CalcTextSize(note).x, bottom - 1.6f * font), kInk, note);
   }
+}
+
+void drawChart(ImGuiLayer& layer, const ChartSpec& chart) {
+  GF_ASSERT_GL_THREAD();
+  layer.beginFrame(1.0 / 60.0, {});
+  addChart(*ImGui::GetForegroundDrawList(), chart, 0.0f, 0.0f);
   layer.render();
 }
 

@@ -3,8 +3,11 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <limits>
 #include <string>
 #include <vector>
+
+struct ImDrawList;
 
 namespace gf::render {
 
@@ -44,6 +47,9 @@ struct ChartSpec {
   double y_min = 0.0, y_max = 0.0;
   bool log_x = false, log_y = false;  ///< logarithmic (base 10) axes
   int width = 1200, height = 600;     ///< pixels
+  /// A vertical line across the plot at this x (e.g. the time a video frame shows); none
+  /// when not finite.
+  double cursor_x = std::numeric_limits<double>::quiet_NaN();
 };
 
 class ImGuiLayer;
@@ -51,5 +57,10 @@ class ImGuiLayer;
 /// Builds the chart as an ImGui frame in `layer` (whose size must match) and renders it over
 /// the bound framebuffer. Render thread only; allocates.
 void drawChart(ImGuiLayer& layer, const ChartSpec& chart);
+
+/// Adds the chart, chart.width x chart.height pixels with its top-left corner at (left, top),
+/// to `list` inside an ImGui frame the caller has begun (e.g. under other pictures of a
+/// frame). Render thread only; allocates.
+void addChart(ImDrawList& list, const ChartSpec& chart, float left, float top);
 
 }  // namespace gf::render

@@ -1,0 +1,47 @@
+// `godfinger compare`: the same scene and device tracks run once per contact model (offline,
+// each a `godfinger run` process), then one video whose frames hold a panel per model (same
+// camera, labelled with the model, its settings and its step time) above a chart of a trace
+// quantity for every model, with a cursor at the frame's time; summary.json per model and one
+// compare.json with the headline measures side by side.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "render/compare_view.hpp"
+#include "render/image.hpp"
+
+namespace gf::app {
+
+struct CompareOptions {
+  std::string scene;                   ///< scene file or bundled scene name
+  std::vector<std::string> models;     ///< contact models, each a `contact_model` name (1..4)
+  std::vector<std::string> overrides;  ///< --set for every run
+  double duration = 0.0;               ///< s; 0: the scene's
+  std::string out;                     ///< folder (default compare-SCENE)
+  std::string video;                   ///< MP4 of the comparison; empty: none
+  bool frames = false;                 ///< out/frames/000000.png ... (always when there is no video)
+  bool keep_run_frames = false;        ///< keep each run's own frames (out/MODEL/frames)
+  std::string camera;                  ///< the scene's camera (default its first)
+  /// The chart's quantity: of `body`, "rotation" (the angle it turned since the start, deg: a
+  /// rolling ball's keeps growing), "tilt" (the angle from its starting orientation, at most 180
+  /// deg), "height" (mm) or "speed" (m/s); or any trace.csv column.
+  std::string chart = "rotation";
+  std::string body;                    ///< default: the scene's first dynamic body
+  int jobs = 1;                        ///< runs at a time
+  std::string godfinger;               ///< the executable the runs are started with
+  bool quiet = false;
+};
+
+/// Runs the comparison; 0 when every run finished (an [expect] failing is reported, not an
+/// error), 1 when a run failed, 130/143 when interrupted. Throws InputError for bad options.
+int runCompare(const CompareOptions& options);
+
+/// One comparison frame rendered in-process (no child processes, no step times): each model's
+/// run of `scene` with `overrides` up to `time` (s), its chart over [0, duration], at
+/// width x height. For the visual-regression goldens. Throws InputError, render::GlError.
+render::Image renderCompareFrame(const std::string& scene, const std::vector<std::string>& models,
+                                 const std::vector<std::string>& overrides, double time, double duration, int width,
+                                 int height, const std::string& camera);
+
+}  // namespace gf::app
