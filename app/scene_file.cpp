@@ -46,6 +46,7 @@ struct ViewEffect {
 };
 constexpr ViewEffect kViewEffects[] = {
     {"patch_highlight", &ViewSettings::patch_highlight},
+    {"patch_insets", &ViewSettings::patch_insets},
     {"shadows", &ViewSettings::shadows},
     {"overlay", &ViewSettings::overlay},
 };

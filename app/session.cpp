@@ -230,6 +230,7 @@ render::FrameOutputSettings frameSettings(const SessionDesc& session, const Sess
   f.video_path = options.video_path;
   f.scene.shadows = v.shadows;
   f.scene.patch_highlight = v.patch_highlight;
+  f.patch_insets = v.patch_insets;
   f.overlay = v.overlay;
   f.overlay_settings.actions = v.actions;
   f.realtime = options.realtime;
@@ -493,7 +494,7 @@ sim::LoopStats runSession(const SessionDesc& session, const SessionOptions& opti
   std::unique_ptr<render::RenderThread> renderer;
   if (stream || closeups || session.record.force_chart) {
     render::FrameOutputSettings fo = frameSettings(session, options);
-    if (!stream) fo.overlay = false;
+    if (!stream) fo.overlay = fo.patch_insets = false;
     renderer = std::make_unique<render::RenderThread>(scene, fo);
   }
   // Everything that can fail before the first step has: what an earlier run left of this run's

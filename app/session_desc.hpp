@@ -26,6 +26,7 @@ struct RecordSettings {
 struct ViewSettings {
   bool patch_highlight = false;  ///< effect: contact patches, SGOs, normals, force arrows
   bool shadows = false;          ///< effect: soft shadows from the key light
+  bool patch_insets = false;     ///< effect: a close-up of each finger's patch in a corner of each frame
   bool overlay = false;          ///< effect: the ImGui overlay
   int width = 1280;              ///< frame size (pixels, up to 1920 x 1080)
   int height = 720;

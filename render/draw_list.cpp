@@ -10,8 +10,9 @@ namespace {
 using sim::Vec3;
 
 constexpr float kGhostAlpha = 0.28f;
-constexpr float kPatchAlpha = 0.55f;
-constexpr float kProxyAlpha = 0.6f;
+constexpr float kPatchAlpha = 0.65f;
+constexpr float kRimAlpha = 0.95f;
+constexpr float kProxyAlpha = 0.45f;
 constexpr int kSpringSegments = 96;  // a coil of 8 turns
 constexpr int kSpringTurns = 8;
 const Eigen::Vector3f kWhite(0.95f, 0.95f, 0.95f);
@@ -62,9 +63,9 @@ Eigen::Matrix4f modelMatrix(const Vec3& position, const sim::Quat& orientation, 
 }
 
 Vec3 forceArrow(const sim::FingerSnapshot& f, const DrawSettings& settings) {
-  const double n = f.coupling_force.norm();
+  const double n = f.feedback_force.norm();
   if (n < 1e-9) return Vec3::Zero();
-  return std::min(settings.max_arrow_m, n * settings.force_arrow_m_per_n) / n * f.coupling_force;
+  return std::min(settings.max_arrow_m, n * settings.force_arrow_m_per_n) / n * f.feedback_force;
 }
 
 DrawListBuilder::DrawListBuilder(const sim::SceneDesc& scene, std::vector<std::shared_ptr<const sim::Mesh>> surfaces)
@@ -75,8 +76,11 @@ DrawListBuilder::DrawListBuilder(const sim::SceneDesc& scene, std::vector<std::s
   }
 }
 
+// Proxies first: they write no depth, so the patch each one stands on is drawn over it (it
+// shows through), then the patches, then the ghosts and springs.
 void DrawListBuilder::build(const sim::Snapshot& snapshot, const DrawSettings& settings, DrawList& out) {
   out.clear();
+  if (settings.fingers) addProxies(snapshot, out);
   if (settings.patch_highlight) addPatches(snapshot, settings, out);
   if (settings.fingers) addFingers(snapshot, out);
 }
@@ -88,13 +92,17 @@ void DrawListBuilder::addPatches(const sim::Snapshot& snap, const DrawSettings& 
     const sim::FingerSnapshot& f = snap.fingers[i];
     const Eigen::Vector3f colour = fingerColour(static_cast<int>(i));
     fill_.clear();
+    rim_.clear();
     lines_.clear();
     for (const sim::ContactSnapshot& c : f.contacts) {
       const std::size_t b = static_cast<std::size_t>(c.body);
-      if (b < surfaces_.size() && surfaces_[b]) patch_builder_.build(c, *surfaces_[b], snap.bodies[b], fill_, lines_);
+      if (b < surfaces_.size() && surfaces_[b]) patch_builder_.build(c, *surfaces_[b], snap.bodies[b], fill_, rim_, lines_);
     }
+    // The fill in the finger's colour, a pale rim band that reads on any body colour, and dark
+    // lines (the walked paths and the edge) over both.
     addRange(out, DrawPass::kPatchFill, DrawShape::kTriangles, fill_, colour, kPatchAlpha);
-    addRange(out, DrawPass::kPatchLines, DrawShape::kLines, lines_, 0.5f * colour, 1.0f);
+    addRange(out, DrawPass::kPatchRim, DrawShape::kTriangles, rim_, 0.2f * colour + Eigen::Vector3f::Constant(0.8f), kRimAlpha);
+    addRange(out, DrawPass::kPatchLines, DrawShape::kLines, lines_, 0.4f * colour, 1.0f);
     const double dot = 0.12 * proxy_radius_[i];
     for (const sim::ContactSnapshot& c : f.contacts) {
       // The god-object's contact point; with n_SGO = 0 it is the whole patch.
@@ -109,20 +117,25 @@ void DrawListBuilder::addPatches(const sim::Snapshot& snap, const DrawSettings& 
       const double length = std::max(c.radius, 0.6 * r_max_[i]);
       addArrow(out, c.point_world, length * c.outward_normal_world, 0.3 * dot, kWhite);
     }
+    // The force rendered to the device, from the proxy: it points away from what is touched.
     if (!f.contacts.empty()) addArrow(out, f.proxy, forceArrow(f, settings), 0.6 * dot, kForceColour);
   }
 }
 
-// The proxies (after the patches, a little translucent: the patch under the finger stays
-// readable), then the device ghosts and the springs, which see through bodies: the device sits
-// inside the object while pressing.
-void DrawListBuilder::addFingers(const sim::Snapshot& snap, DrawList& out) {
+// The proxies: translucent, drawn before the patches without writing depth, so the patch under
+// the finger shows through.
+void DrawListBuilder::addProxies(const sim::Snapshot& snap, DrawList& out) {
   for (std::size_t i = 0; i < snap.fingers.size(); ++i) {
     const Eigen::Vector3f colour = fingerColour(static_cast<int>(i)) * 0.8f + Eigen::Vector3f::Constant(0.15f);
     out.items.push_back(shapeItem(DrawPass::kProxies, DrawShape::kSphere,
                                   modelMatrix(snap.fingers[i].proxy, sim::Quat::Identity(), Vec3::Constant(proxy_radius_[i])),
                                   colour, kProxyAlpha));
   }
+}
+
+// The device ghosts and the springs, which see through bodies: the device sits inside the
+// object while pressing.
+void DrawListBuilder::addFingers(const sim::Snapshot& snap, DrawList& out) {
   lines_.clear();
   for (std::size_t i = 0; i < snap.fingers.size(); ++i) {
     const sim::FingerSnapshot& f = snap.fingers[i];

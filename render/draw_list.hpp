@@ -36,10 +36,11 @@ enum class DrawShape : std::uint8_t {
 /// How an item is drawn; consecutive items of one pass share the GL state.
 enum class DrawPass : std::uint8_t {
   kPatchFill,   ///< translucent, lit like the body under it, pulled towards the eye, no depth writes
+  kPatchRim,    ///< the band along a patch's edge: as kPatchFill but flat (unlit), so it reads in shade
   kPatchLines,  ///< flat colour, depth-tested: walked paths and the rim
   kMarks,       ///< lit, opaque, depth-tested: the contact point and the SGOs
   kArrows,      ///< lit, opaque, through everything: contact normals, force arrows
-  kProxies,     ///< lit, translucent, front faces: the god-objects
+  kProxies,     ///< lit, translucent, front faces, no depth writes (drawn first): the god-objects
   kGhosts,      ///< lit, translucent, front faces, through everything: the devices
   kSprings,     ///< flat, translucent lines through everything: the couplings
 };
@@ -71,8 +72,8 @@ struct DrawSettings {
   double max_arrow_m = 0.08;          ///< longest force arrow (m)
 };
 
-/// The force arrow of a finger (m), drawn from its proxy: the coupling force at the settings'
-/// scale, capped at max_arrow_m; zero without a force.
+/// The force arrow of a finger (m), drawn from its proxy: the force rendered to the device (away
+/// from the surface touched) at the settings' scale, capped at max_arrow_m; zero without a force.
 sim::Vec3 forceArrow(const sim::FingerSnapshot& finger, const DrawSettings& settings);
 
 /// Builds draw lists of one scene. Any thread (one at a time); build() allocates only while its
@@ -88,6 +89,7 @@ class DrawListBuilder {
 
  private:
   void addPatches(const sim::Snapshot& snapshot, const DrawSettings& settings, DrawList& out);
+  void addProxies(const sim::Snapshot& snapshot, DrawList& out);
   void addFingers(const sim::Snapshot& snapshot, DrawList& out);
   void addArrow(DrawList& out, const sim::Vec3& from, const sim::Vec3& vector, double radius, const Eigen::Vector3f& colour);
   void addSpring(DrawList& out, const sim::Vec3& a, const sim::Vec3& b, double coil_radius);
@@ -95,7 +97,7 @@ class DrawListBuilder {
   std::vector<double> proxy_radius_, r_max_;  // per finger (m)
   std::vector<std::shared_ptr<const sim::Mesh>> surfaces_;
   PatchMeshBuilder patch_builder_;
-  std::vector<Vertex> fill_, lines_;  // one finger's patch, before joining the list
+  std::vector<Vertex> fill_, rim_, lines_;  // one finger's patch, before joining the list
 };
 
 }  // namespace gf::render

@@ -295,6 +295,15 @@ void Framebuffer::resolve(const std::optional<PixelRect>& edges) {
   if (blend) glEnable(GL_BLEND);
 }
 
+void Framebuffer::copyInto(unsigned target, int x, int y) {
+  GF_ASSERT_GL_THREAD();
+  if (!resolved_) resolve();
+  glBindFramebuffer(GL_READ_FRAMEBUFFER, aa_ == Antialiasing::kMsaa ? output_fbo_ : scene_fbo_);
+  glBindFramebuffer(GL_DRAW_FRAMEBUFFER, target);
+  glBlitFramebuffer(0, 0, width_, height_, x, y, x + width_, y + height_, GL_COLOR_BUFFER_BIT, GL_NEAREST);
+  glBindFramebuffer(GL_FRAMEBUFFER, target);
+}
+
 void Framebuffer::read(Image& out) {
   GF_ASSERT_GL_THREAD();
   if (!resolved_) resolve();

@@ -81,6 +81,9 @@ class Framebuffer {
   /// Resolves if that has not happened since bind(), then reads the output into `out` (rows
   /// top to bottom).
   void read(Image& out);
+  /// Resolves if that has not happened since bind(), then copies the output into framebuffer
+  /// `target` with its lower-left corner at (x, y) (GL pixels), and binds `target`.
+  void copyInto(unsigned target, int x, int y);
   int width() const { return width_; }
   int height() const { return height_; }
 

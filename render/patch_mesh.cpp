@@ -34,7 +34,7 @@ PatchMeshBuilder::Projected PatchMeshBuilder::project(const Vec3& world, const s
 }
 
 void PatchMeshBuilder::build(const sim::ContactSnapshot& contact, const sim::Mesh& mesh, const sim::Pose& pose,
-                             std::vector<Vertex>& triangles, std::vector<Vertex>& outline) {
+                             std::vector<Vertex>& triangles, std::vector<Vertex>& rim, std::vector<Vertex>& outline) {
   const PatchMeshSettings& settings = settings_;
   const int paths = static_cast<int>(contact.path_offsets.size()) - 1;
   if (paths < 2) return;
@@ -58,14 +58,16 @@ void PatchMeshBuilder::build(const sim::ContactSnapshot& contact, const sim::Mes
       grid[r * (rings + 1) + j] = project(p, mesh, pose);
     }
   }
-  // Fill: a fan around the centre, quads between rings.
+  // Fill: a fan around the centre, quads between rings; the outer quarter of the rings is the
+  // rim band.
   const auto at = [&](int r, int j) -> const Projected& { return grid[(r % rays) * (rings + 1) + j]; };
   for (int r = 0; r < rays; ++r) {
     for (int j = 0; j < rings; ++j) {
+      std::vector<Vertex>& out = j >= rings - std::max(1, rings / 4) && rings > 1 ? rim : triangles;
       const Projected &a = at(r, j), &b = at(r, j + 1), &c = at(r + 1, j + 1), &d = at(r + 1, j);
-      for (const Projected* p : {&a, &b, &c}) triangles.push_back(makeVertex(p->point, p->normal));
+      for (const Projected* p : {&a, &b, &c}) out.push_back(makeVertex(p->point, p->normal));
       if (j > 0) {
-        for (const Projected* p : {&a, &c, &d}) triangles.push_back(makeVertex(p->point, p->normal));
+        for (const Projected* p : {&a, &c, &d}) out.push_back(makeVertex(p->point, p->normal));
       }
     }
   }

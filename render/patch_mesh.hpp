@@ -27,10 +27,11 @@ class PatchMeshBuilder {
   /// render surface in its description frame, at the body pose `pose`. The region between
   /// neighbouring walked paths is filled with rays interpolated between them, each sample
   /// projected onto the surface, so the patch bends with the body (over edges and round
-  /// shapes) instead of floating. `outline` receives line segments (GL_LINES) of the walked
-  /// paths and the rim through the SGOs. Contacts with fewer than two paths add nothing.
+  /// shapes) instead of floating. `rim` receives the outer quarter of that surface (a band along
+  /// the patch's edge, drawn strong so the edge reads at any size), `triangles` the rest; `outline` line segments (GL_LINES) of the walked paths and
+  /// the rim through the SGOs. Contacts with fewer than two paths add nothing.
   void build(const sim::ContactSnapshot& contact, const sim::Mesh& mesh, const sim::Pose& pose,
-             std::vector<Vertex>& triangles, std::vector<Vertex>& outline);
+             std::vector<Vertex>& triangles, std::vector<Vertex>& rim, std::vector<Vertex>& outline);
 
  private:
   /// A sample projected onto the body surface: lifted point and face normal (world).

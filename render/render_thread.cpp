@@ -84,6 +84,7 @@ struct Gpu {
   SceneRenderer scene;
   Framebuffer frame;
   std::unique_ptr<Overlay> overlay;
+  std::unique_ptr<PatchInsets> insets;
   std::unique_ptr<Framebuffer> close_up_frame;
   Antialiasing antialiasing;
   int close_up_px;
@@ -93,6 +94,23 @@ struct Gpu {
         antialiasing(s.antialiasing),
         close_up_px(s.close_up_px) {
     if (s.overlay) overlay = std::make_unique<Overlay>(desc, s.overlay_settings, s.width, s.height);
+    if (s.patch_insets) {
+      // Beside the overlay's bottom-right panel when both are on.
+      insets = std::make_unique<PatchInsets>(desc, s.width, s.height,
+                                             s.overlay ? InsetCorner::kBottomLeft : InsetCorner::kBottomRight,
+                                             s.antialiasing, s.msaa_samples);
+    }
+  }
+
+  // The frame of `snap` from `camera`, with the insets, into `frame` (the output bound after).
+  void drawScene(const sim::Snapshot& snap, const Camera& camera, int width, int height) {
+    frame.bind();
+    frame.resolve(scene.draw(snap, camera, width, height));
+    if (insets) {
+      GLint target = 0;
+      glGetIntegerv(GL_FRAMEBUFFER_BINDING, &target);
+      insets->draw(scene, snap, static_cast<unsigned>(target));
+    }
   }
 };
 
@@ -101,19 +119,15 @@ void drawCloseUps(Gpu& gpu, const sim::SceneDesc& desc, const sim::Snapshot& sna
   RenderSettings settings = gpu.scene.settings();
   const RenderSettings saved = settings;
   settings.fingers = false;  // the proxy would hide the patch it stands on
+  settings.ground = false;   // a camera under a lifted body is under the ground
   settings.patch_highlight = true;
   gpu.scene.setSettings(settings);
+  sim::Snapshot only;
+  Camera camera;
   for (std::size_t f = 0; f < snap.fingers.size(); ++f) {
-    if (snap.fingers[f].contacts.empty()) continue;
-    const sim::ContactSnapshot& c = snap.fingers[f].contacts.front();
-    sim::Snapshot only = snap;  // this finger's patch alone
-    for (std::size_t g = 0; g < only.fingers.size(); ++g) {
-      if (g != f) only.fingers[g].contacts.clear();
-    }
-    const double half = std::max(1.5 * desc.fingers[f].patch.r_max, 1.3 * c.radius) + 0.002;
+    if (!contactCloseUp(desc, snap, f, only, camera)) continue;
     gpu.close_up_frame->bind();
-    gpu.close_up_frame->resolve(
-        gpu.scene.draw(only, closeUpCamera(c.point_world, c.outward_normal_world, half), gpu.close_up_px, gpu.close_up_px));
+    gpu.close_up_frame->resolve(gpu.scene.draw(only, camera, gpu.close_up_px, gpu.close_up_px));
     Image image;
     gpu.close_up_frame->read(image);
     writePng(closeUpPath(prefix, desc.fingers[f].name), image);
@@ -177,9 +191,8 @@ struct RenderThread::Impl {
   // Draws one frame of the stream and hands it to the encoders; returns the overlay's commands.
   std::vector<sim::SettingsCommand> drawFrame(Gpu& gpu, const sim::Snapshot& snap) {
     const auto begin = Clock::now();
-    gpu.frame.bind();
-    // The overlay goes on top of the anti-aliased scene.
-    gpu.frame.resolve(gpu.scene.draw(snap, settings.camera, settings.width, settings.height));
+    // The insets and the overlay go on top of the anti-aliased scene.
+    gpu.drawScene(snap, settings.camera, settings.width, settings.height);
     std::vector<sim::SettingsCommand> made;
     const double last_ms = frame_ms.empty() ? 0.0 : frame_ms.back();
     if (gpu.overlay) made = gpu.overlay->draw(snap, {last_ms});
@@ -381,8 +394,7 @@ void writeChartPng(const ChartSpec& chart, const std::string& path) {
 
 Image renderStill(const sim::SceneDesc& scene, const sim::Snapshot& snapshot, const FrameOutputSettings& settings) {
   Gpu gpu(scene, settings);
-  gpu.frame.bind();
-  gpu.frame.resolve(gpu.scene.draw(snapshot, settings.camera, settings.width, settings.height));
+  gpu.drawScene(snapshot, settings.camera, settings.width, settings.height);
   if (gpu.overlay) gpu.overlay->draw(snapshot, {});
   Image image;
   gpu.frame.read(image);

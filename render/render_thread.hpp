@@ -11,6 +11,7 @@
 #include "render/chart.hpp"
 #include "render/frame_sinks.hpp"
 #include "render/overlay.hpp"
+#include "render/patch_insets.hpp"
 #include "render/scene_renderer.hpp"
 #include "sim/settings.hpp"
 #include "sim/snapshot.hpp"
@@ -28,6 +29,7 @@ struct FrameOutputSettings {
   std::string frames_dir;         ///< PNG sequence folder; empty: none
   std::string video_path;         ///< MP4 file; empty: none
   RenderSettings scene;           ///< drawing switches (effects)
+  bool patch_insets = false;      ///< the patch_insets effect (render/patch_insets.hpp)
   bool overlay = false;           ///< the ImGui overlay effect
   OverlaySettings overlay_settings;
   int close_up_px = 480;          ///< side of contact close-up images (pixels)

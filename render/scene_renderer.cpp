@@ -1,6 +1,7 @@
 #include "render/scene_renderer.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <numbers>
 #include <optional>
@@ -84,9 +85,15 @@ struct SceneRenderer::Impl {
   std::unique_ptr<GpuMesh> ground_quad;
   GpuMesh receiver_quad{{}, true};  // where shadows can fall on one ground plane
   std::vector<Vertex> receiver_vertices;
-  // Clear colour and ground for the last camera, restored each frame instead of redrawn.
-  std::unique_ptr<Backdrop> backdrop;
-  Camera backdrop_camera;
+  // Clear colour and ground for the last camera of each frame size, restored each frame instead
+  // of redrawn (a frame and its patch insets are two sizes).
+  struct BackdropSlot {
+    std::unique_ptr<Backdrop> backdrop;
+    Camera camera;
+    bool ground = true;  // drawn with the ground planes
+  };
+  std::array<BackdropSlot, 3> backdrops;
+  std::size_t next_backdrop = 0;  // the slot a new size takes
   // The contact overlay: built as plain data (draw_list.hpp), its vertices in one buffer.
   std::optional<DrawListBuilder> overlay_builder;  // made once the bodies' surfaces are
   DrawList overlay;
@@ -213,21 +220,29 @@ struct SceneRenderer::Impl {
     glGetIntegerv(GL_FRAMEBUFFER_BINDING, &target);
     glGetIntegerv(GL_SAMPLES, &samples);
     samples = std::max(samples, 1);
-    if (!backdrop || !backdrop->fits(width, height, samples) || !sameView(camera, backdrop_camera)) {
-      if (!backdrop || !backdrop->fits(width, height, samples)) {
-        backdrop = std::make_unique<Backdrop>(width, height, samples);
-      }
-      backdrop->bind();
+    BackdropSlot* slot = nullptr;
+    for (BackdropSlot& b : backdrops) {
+      if (b.backdrop && b.backdrop->fits(width, height, samples)) slot = &b;
+    }
+    if (!slot) {
+      slot = &backdrops[next_backdrop];
+      next_backdrop = (next_backdrop + 1) % backdrops.size();
+      slot->backdrop = std::make_unique<Backdrop>(width, height, samples);
+      slot->camera.fov_deg = -1.0;  // matches no camera: drawn below
+    }
+    if (!sameView(camera, slot->camera) || slot->ground != settings.ground) {
+      slot->backdrop->bind();
       const Eigen::Vector3f bg = kBackground.cwiseSqrt();  // the shaders' display gamma
       glClearColor(bg.x(), bg.y(), bg.z(), 1.0f);
       glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
       use(ground);
-      for (std::size_t b = 0; b < bodies.size(); ++b) {
+      for (std::size_t b = 0; b < bodies.size() && settings.ground; ++b) {
         if (bodies[b].ground) drawShape(*ground_quad, bodyModel(snap, b), kGround.cwiseProduct(bodies[b].colour / 0.7f), 1.0f);
       }
-      backdrop_camera = camera;
+      slot->camera = camera;
+      slot->ground = settings.ground;
     }
-    backdrop->restoreInto(static_cast<unsigned>(target));
+    slot->backdrop->restoreInto(static_cast<unsigned>(target));
   }
 
   // Pixels that the bodies, fingers and contact marks of `snap` can cover: each drawn thing's
@@ -342,6 +357,13 @@ struct SceneRenderer::Impl {
         glPolygonOffset(-2.0f, -4.0f);
         use(shadow ? lit_shadowed : lit);  // lit like the body under it
         break;
+      case DrawPass::kPatchRim:
+        glEnable(GL_BLEND);
+        glDepthMask(GL_FALSE);
+        glEnable(GL_POLYGON_OFFSET_FILL);
+        glPolygonOffset(-2.0f, -4.0f);
+        use(flat);
+        break;
       case DrawPass::kPatchLines: use(flat); break;
       case DrawPass::kMarks: use(lit); break;
       case DrawPass::kArrows:
@@ -351,6 +373,7 @@ struct SceneRenderer::Impl {
       case DrawPass::kProxies:
         use(lit);
         glEnable(GL_BLEND);
+        glDepthMask(GL_FALSE);   // the patch under the proxy, drawn next, shows through it
         glEnable(GL_CULL_FACE);  // spheres are closed: the back half would only be blended twice
         break;
       case DrawPass::kGhosts:
@@ -370,6 +393,7 @@ struct SceneRenderer::Impl {
   void leavePass(DrawPass pass) {
     switch (pass) {
       case DrawPass::kPatchFill:
+      case DrawPass::kPatchRim:
         glDisable(GL_POLYGON_OFFSET_FILL);
         glDepthMask(GL_TRUE);
         glDisable(GL_BLEND);
@@ -378,6 +402,10 @@ struct SceneRenderer::Impl {
       case DrawPass::kMarks: break;
       case DrawPass::kArrows: glEnable(GL_DEPTH_TEST); break;
       case DrawPass::kProxies:
+        glDepthMask(GL_TRUE);
+        glDisable(GL_CULL_FACE);
+        glDisable(GL_BLEND);
+        break;
       case DrawPass::kGhosts:
         glDisable(GL_CULL_FACE);
         glDisable(GL_BLEND);
@@ -450,7 +478,7 @@ PixelRect SceneRenderer::draw(const sim::Snapshot& snapshot, const Camera& camer
   impl_->beginSurfacePass(camera, width, height);
   impl_->drawBackdrop(snapshot, camera, width, height);
   impl_->drawBodies(snapshot);
-  if (impl_->shadow) impl_->drawGroundShadows(snapshot);
+  if (impl_->shadow && impl_->settings.ground) impl_->drawGroundShadows(snapshot);
   impl_->drawOverlay(snapshot);
   return impl_->dynamicRect(snapshot, camera, width, height);
 }

@@ -19,6 +19,7 @@ struct RenderSettings {
   bool shadows = true;               ///< shadow map from the key light (soft: 2 bilinear taps)
   bool patch_highlight = true;       ///< contact patches, SGO dots, normals, force arrows
   bool fingers = true;               ///< proxies, device ghosts, springs
+  bool ground = true;                ///< ground planes (close-ups from under a lifted body hide them)
   int shadow_map_size = 1024;        ///< texels per side (the map covers 3 scene radii)
   double force_arrow_m_per_n = 0.01; ///< arrow length per newton of coupling force (m/N)
   double max_arrow_m = 0.08;         ///< longest force arrow (m)

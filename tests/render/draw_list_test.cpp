@@ -1,6 +1,7 @@
-// The overlay's draw list, without GL: what a Fig. 8 squeeze frame holds (patches on the
-// cylinder's surface, one dot per SGO where the snapshot puts it, normals and force arrows,
-// proxies, ghosts and springs), what the switches leave out, and that a rebuild is the same.
+// The overlay's draw list, without GL: what a Fig. 8 squeeze frame holds (patches with their rim
+// bands on the cylinder's surface, one dot per SGO where the snapshot puts it, normals and force
+// arrows pointing away from the surface, proxies drawn first so the patches show through, ghosts
+// and springs), what the switches leave out, and that a rebuild is the same.
 #include "render/draw_list.hpp"
 
 #include <gtest/gtest.h>
@@ -46,9 +47,10 @@ TEST(DrawList, AFig8SqueezeFrameHoldsEveryPartOfTheOverlay) {
   DrawListBuilder builder(frame.session.scene, frame.surfaces);
   DrawList list;
   builder.build(frame.snapshot, DrawSettings{}, list);
-  // Per finger: a fill, its lines, the contact point and 8 SGO dots, a normal and the force (two
-  // pieces each); then two proxies, two ghosts and one set of spring lines.
+  // Two proxies; per finger a fill, a rim band, its lines, the contact point and 8 SGO dots, a
+  // normal and the force (two pieces each); then two ghosts and one set of spring lines.
   EXPECT_EQ(itemsOf(list, DrawPass::kPatchFill).size(), 2u);
+  EXPECT_EQ(itemsOf(list, DrawPass::kPatchRim).size(), 2u);
   EXPECT_EQ(itemsOf(list, DrawPass::kPatchLines).size(), 2u);
   EXPECT_EQ(itemsOf(list, DrawPass::kMarks).size(), 2u * 9u);
   EXPECT_EQ(itemsOf(list, DrawPass::kArrows).size(), 2u * 4u);
@@ -56,12 +58,29 @@ TEST(DrawList, AFig8SqueezeFrameHoldsEveryPartOfTheOverlay) {
   EXPECT_EQ(itemsOf(list, DrawPass::kGhosts).size(), 2u);
   ASSERT_EQ(itemsOf(list, DrawPass::kSprings).size(), 1u);
   EXPECT_EQ(itemsOf(list, DrawPass::kSprings)[0]->count, 2 * 2 * 96);  // two coils of 96 segments
-  // Drawing order: finger 0's patch items, finger 1's, then proxies, ghosts, springs.
-  EXPECT_EQ(list.items.front().pass, DrawPass::kPatchFill);
+  // Drawing order: the proxies (they write no depth, so the patches drawn after show through
+  // them), finger 0's patch items, finger 1's, then ghosts, springs.
+  EXPECT_EQ(list.items[0].pass, DrawPass::kProxies);
+  EXPECT_EQ(list.items[1].pass, DrawPass::kProxies);
+  EXPECT_EQ(list.items[2].pass, DrawPass::kPatchFill);
   EXPECT_EQ(list.items.back().pass, DrawPass::kSprings);
-  // The fill lies on the cylinder (radius 3 cm about the y axis through its centre), lifted 0.2 mm.
+  // The force arrow points from the proxy away from the surface: it is the force rendered to the
+  // device, against the squeeze (the outward normal of each finger's contact).
+  const std::vector<const DrawItem*> arrows = itemsOf(list, DrawPass::kArrows);
+  for (std::size_t i = 0; i < 2; ++i) {
+    const sim::FingerSnapshot& f = frame.snapshot.fingers[i];
+    const sim::Vec3 arrow = forceArrow(f, DrawSettings{});
+    EXPECT_GT(arrow.normalized().dot(f.contacts.front().outward_normal_world), 0.5) << "finger " << i;
+    const DrawItem* shaft = arrows[4 * i + 2];  // after the normal's shaft and head
+    const Eigen::Vector3f from = shaft->model.block<3, 1>(0, 3);
+    EXPECT_LT((from.cast<double>() - f.proxy).norm(), 1e-6);
+  }
+  // The fill and rim lie on the cylinder (radius 3 cm about the y axis through its centre),
+  // lifted 0.2 mm.
   const sim::Pose cylinder = frame.snapshot.bodies[1];
-  for (const DrawItem* fill : itemsOf(list, DrawPass::kPatchFill)) {
+  std::vector<const DrawItem*> surfaces = itemsOf(list, DrawPass::kPatchFill);
+  for (const DrawItem* rim : itemsOf(list, DrawPass::kPatchRim)) surfaces.push_back(rim);
+  for (const DrawItem* fill : surfaces) {
     EXPECT_EQ(fill->shape, DrawShape::kTriangles);
     EXPECT_EQ(fill->count % 3, 0);
     EXPECT_GT(fill->count, 0);

@@ -1,0 +1,56 @@
+// The `patch_insets` effect: a picture-in-picture close-up of each finger's contact patch in a
+// bottom corner of every frame, seen down the contact normal with the proxies hidden, framed in
+// the finger's colour and labelled with the finger, its contact model, n_SGO, the patch radius
+// and the normal force. Render thread only.
+#pragma once
+
+#include <memory>
+
+#include "render/camera.hpp"
+#include "render/scene_renderer.hpp"
+#include "sim/scene_desc.hpp"
+#include "sim/snapshot.hpp"
+
+namespace gf::render {
+
+/// The close-up of finger `finger`'s first contact: `only` becomes `snapshot` with that finger's
+/// contacts alone (reusing its storage), `camera` looks down the contact normal at a square
+/// view holding the patch (r_max and the radius drawn, with a margin). False, and nothing
+/// changed, when the finger touches nothing.
+bool contactCloseUp(const sim::SceneDesc& scene, const sim::Snapshot& snapshot, std::size_t finger,
+                    sim::Snapshot& only, Camera& camera);
+
+/// Where the insets go: the frame's bottom-right corner, or its bottom-left (beside the
+/// overlay's bottom-right panel).
+enum class InsetCorner { kBottomRight, kBottomLeft };
+
+/// A finger's inset: its square, in pixels from the frame's top-left corner.
+struct InsetRect {
+  int x = 0, y = 0, size = 0;
+};
+
+/// The insets' squares of `fingers` fingers in a width x height frame: side 30 % of the height
+/// (narrower when they would not fit side by side), a margin of 1.5 % of the height, in finger
+/// order from left to right.
+std::vector<InsetRect> insetRects(int width, int height, int fingers, InsetCorner corner);
+
+class PatchInsets {
+ public:
+  /// Makes the insets' framebuffer (anti-aliased like the frame) and label layer. Throws GlError.
+  PatchInsets(const sim::SceneDesc& scene, int frame_width, int frame_height, InsetCorner corner,
+              Antialiasing antialiasing, int msaa_samples);
+  ~PatchInsets();
+  PatchInsets(const PatchInsets&) = delete;
+  PatchInsets& operator=(const PatchInsets&) = delete;
+
+  /// Draws every finger's inset into framebuffer `target` (the frame, already anti-aliased) with
+  /// `renderer`, whose settings it changes for the close-ups and restores. `target` is bound on
+  /// return.
+  void draw(SceneRenderer& renderer, const sim::Snapshot& snapshot, unsigned target);
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace gf::render

@@ -1,0 +1,107 @@
+// `godfinger compare`: the layout of its frames, the checks of its options, and a short
+// comparison of the Fig. 5 push run end to end as a user runs it: one run per model, the
+// composited frames and video, compare.json, and the physics the comparison exists to show (under
+// a god-object the pushed ball rolls; under a god-finger it slides).
+#include "app/compare.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "app/plot.hpp"
+#include "app/scene_file.hpp"
+#include "render/image.hpp"
+#include "tests/app/run_helpers.hpp"
+
+namespace gf::app {
+namespace {
+
+namespace fs = std::filesystem;
+using test::exitStatus;
+using test::freshFolder;
+using test::kBin;
+using test::readFile;
+
+TEST(Compare, PanelsKeepTheFrameAspectAndLeaveTheChartAThird) {
+  for (int n = 1; n <= 4; ++n) {
+    const render::CompareLayout l = render::compareLayout(1280, 720, n);
+    EXPECT_LE(n * l.panel_width + l.panels_left, 1280) << n;
+    EXPECT_NEAR(double(l.panel_height) / l.panel_width, 720.0 / 1280.0, 0.01) << n;
+    EXPECT_GE(l.chart_height, 0.3 * 720 - 1) << n;
+    EXPECT_EQ(l.chart_top + l.chart_height, 720) << n;
+  }
+  // Two models at 1280 x 720: two 640 x 360 panels over a 360-pixel chart.
+  const render::CompareLayout two = render::compareLayout(1280, 720, 2);
+  EXPECT_EQ(two.panel_width, 640);
+  EXPECT_EQ(two.panel_height, 360);
+  EXPECT_EQ(two.panels_left, 0);
+}
+
+TEST(Compare, BadModelsAreErrorsNamingTheOption) {
+  CompareOptions o;
+  o.scene = "fig5-push-ball";
+  o.godfinger = kBin;
+  o.out = freshFolder("compare-bad-models").string();  // nothing may be written; if it were, here
+  for (const std::vector<std::string>& models :
+       {std::vector<std::string>{}, {"god_object", "point"}, {"god_finger", "god_finger"},
+        {"god_object", "soft_finger", "god_finger", "god_object", "soft_finger"}}) {
+    o.models = models;
+    try {
+      runCompare(o);
+      ADD_FAILURE() << "accepted " << models.size() << " models";
+    } catch (const InputError& e) {
+      EXPECT_NE(std::string(e.what()).find("--models"), std::string::npos) << e.what();
+    }
+  }
+  o.models = {"god_object", "god_finger"};
+  o.body = "no_such_body";
+  EXPECT_THROW(runCompare(o), InputError);
+}
+
+TEST(Compare, AShortFig5ComparisonWritesFramesVideoAndMeasures) {
+  const fs::path out = freshFolder("compare-fig5");
+  const fs::path video = out / "fig5.mp4";
+  const int code = exitStatus(kBin + " compare fig5-push-ball --models god_object,god_finger --duration 1.2 --out " +
+                              out.string() + " --frames --video " + video.string() + " --quiet 2> " +
+                              (out / "stderr.txt").string());
+  ASSERT_EQ(code, 0) << readFile(out / "stderr.txt");
+  const nlohmann::json c = nlohmann::json::parse(readFile(out / "compare.json"));
+  ASSERT_EQ(c["models"].size(), 2u);
+  EXPECT_EQ(c["models"][0]["model"], "god_object");
+  EXPECT_EQ(c["models"][1]["model"], "god_finger");
+  // 1.2 s at 60 frames per second, from t = 0: 73 frames, each at the scene's frame size.
+  EXPECT_EQ(c["frames"], 73);
+  const render::Image last = render::readPng((out / "frames" / "000072.png").string());
+  EXPECT_EQ(last.width, 1280);
+  EXPECT_EQ(last.height, 720);
+  EXPECT_FALSE(fs::exists(out / "frames" / "000073.png"));
+  EXPECT_GT(fs::file_size(video), 10000u);
+  // Each run kept its summary and trace; its own frames were removed once composited.
+  for (const char* m : {"god_object", "god_finger"}) {
+    EXPECT_TRUE(fs::exists(out / m / "summary.json")) << m;
+    EXPECT_TRUE(fs::exists(out / m / "trace.csv")) << m;
+    EXPECT_FALSE(fs::exists(out / m / "frames")) << m;
+  }
+  // What the comparison shows: rolling without slipping turns a ball by its travel over its
+  // radius; the god-object's ball rolls (within 5 % of that), the god-finger's slides (less
+  // than a fifth of it).
+  const double radius = 0.03;  // m, the scene's ball
+  for (int i = 0; i < 2; ++i) {
+    const std::string m = c["models"][i]["model"];
+    const std::vector<std::vector<double>> x = readCsvColumns((out / m / "trace.csv").string(), {"ball.px"});
+    const double rolled_deg = (x[0].back() - x[0].front()) / radius * 180.0 / M_PI;
+    const double turned = c["models"][i]["chart"]["final"].get<double>();
+    RecordProperty(m + "_rolled_deg", std::to_string(rolled_deg));
+    RecordProperty(m + "_turned_deg", std::to_string(turned));
+    ASSERT_GT(rolled_deg, 20.0) << m << ": the ball was pushed";
+    if (i == 0) {
+      EXPECT_NEAR(turned / rolled_deg, 1.0, 0.05) << m;
+    } else {
+      EXPECT_LT(turned / rolled_deg, 0.2) << m;
+    }
+  }
+  EXPECT_GT(c["models"][0]["step_time_us"]["median"].get<double>(), 0.0);
+}
+
+}  // namespace
+}  // namespace gf::app
