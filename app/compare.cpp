@@ -16,6 +16,7 @@
 #include "app/plot.hpp"
 #include "app/scene_file.hpp"
 #include "app/session.hpp"
+#include "app/trace_writer.hpp"
 #include "render/context.hpp"
 #include "render/frame_sinks.hpp"
 #include "render/render_thread.hpp"
@@ -88,53 +89,62 @@ struct Quantity {
 Quantity chartQuantity(const SessionDesc& session, const std::string& chart, const std::string& body) {
   Quantity q;
   const std::vector<sim::BodyDesc>& bodies = session.scene.bodies;
-  std::string dynamic;
-  for (std::size_t b = 0; b < bodies.size(); ++b) {
-    const bool moves = bodies[b].mass > 0.0 && bodies[b].shape != sim::ShapeKind::kPlane;
-    if (moves) dynamic.append(dynamic.empty() ? "" : ", ").append(bodies[b].name);
-    if (moves && (body.empty() ? q.body < 0 : bodies[b].name == body)) q.body = static_cast<int>(b);
-  }
-  if (chart == "rotation" || chart == "tilt" || chart == "height" || chart == "speed") {
-    if (q.body < 0) {
-      throw InputError("command line", 0, 0, "--body",
-                       (body.empty() ? std::string("the scene has no dynamic body") : "no dynamic body '" + body + "'") +
-                           " (its dynamic bodies: " + (dynamic.empty() ? "none" : dynamic) + ")");
+  const bool of_body = chart == "rotation" || chart == "tilt" || chart == "height" || chart == "speed";
+  if (!of_body) {
+    // A trace.csv column: checked against the columns the runs will write.
+    const std::vector<std::string> columns = traceColumns(session.scene);
+    if (std::find(columns.begin(), columns.end(), chart) == columns.end()) {
+      std::string known;
+      for (const std::string& c : columns) known.append(known.empty() ? "" : ", ").append(c);
+      throw InputError("command line", 0, 0, "--chart",
+                       "'" + chart + "' is neither rotation, tilt, height, speed nor a trace.csv column of this scene (" +
+                           known + ")");
     }
-    q.body_name = bodies[static_cast<std::size_t>(q.body)].name;
-    q.kind = chart == "rotation" ? Quantity::kRotation
-             : chart == "tilt"   ? Quantity::kTilt
-             : chart == "height" ? Quantity::kHeight
-                                 : Quantity::kSpeed;
-    q.label = chart == "rotation" ? q.body_name + ": angle turned since the start (deg)"
-              : chart == "tilt"   ? q.body_name + ": angle from its starting orientation (deg)"
-              : chart == "height" ? q.body_name + ": height (mm)"
-                                  : q.body_name + ": speed (m/s)";
-  } else {
+    if (!body.empty()) throw InputError("command line", 0, 0, "--body", "a trace column names its body itself: drop --body");
     q.kind = Quantity::kColumn;
     q.column = chart;
     q.label = chart;
+    return q;
   }
+  std::string dynamic;
+  for (std::size_t b = 0; b < bodies.size(); ++b) {
+    if (bodies[b].mass <= 0.0) continue;
+    dynamic.append(dynamic.empty() ? "" : ", ").append(bodies[b].name);
+    if (body.empty() ? q.body < 0 : bodies[b].name == body) q.body = static_cast<int>(b);
+  }
+  if (q.body < 0 && body.empty()) {
+    throw InputError("command line", 0, 0, "--chart",
+                     chart + " is of a dynamic body and the scene has none: chart a trace.csv column (e.g. a finger's .fy)");
+  }
+  if (q.body < 0) {
+    throw InputError("command line", 0, 0, "--body", "no dynamic body '" + body + "' (the scene's: " + dynamic + ")");
+  }
+  q.body_name = bodies[static_cast<std::size_t>(q.body)].name;
+  q.kind = chart == "rotation" ? Quantity::kRotation
+           : chart == "tilt"   ? Quantity::kTilt
+           : chart == "height" ? Quantity::kHeight
+                               : Quantity::kSpeed;
+  q.label = chart == "rotation" ? q.body_name + ": angle turned since the start (deg)"
+            : chart == "tilt"   ? q.body_name + ": angle from its starting orientation (deg)"
+            : chart == "height" ? q.body_name + ": height (mm)"
+                                : q.body_name + ": speed (m/s)";
   return q;
 }
 
-// The quantity along one run, fed each state in time order: the angle turned (the integral of
-// |angular velocity| over time, so a rolling ball's keeps growing), the angle from the starting
-// orientation (at most 180 degrees), the centre's height or speed.
+// The quantity along one run, fed each state in time order after the start: the angle turned
+// (the integral of |angular velocity| over time, so a rolling ball's keeps growing), the angle
+// from the starting orientation (at most 180 degrees), the centre's height or speed.
 class QuantityTrack {
  public:
-  explicit QuantityTrack(const Quantity& q) : q_(q) {}
+  /// `start`: the body's orientation at t = 0.
+  QuantityTrack(const Quantity& q, const sim::Quat& start) : q_(q), start_(start) {}
   double next(double t, const sim::Pose& pose, const sim::Vec3& velocity, const sim::Vec3& angular_velocity) {
-    if (!started_) {
-      start_ = pose;
-      last_t_ = t;
-      started_ = true;
-    }
     turned_ += angular_velocity.norm() * (t - last_t_) * 180.0 / std::numbers::pi;
     last_t_ = t;
     switch (q_.kind) {
       case Quantity::kRotation: return turned_;
       case Quantity::kTilt: {
-        const sim::Quat d = start_.orientation.conjugate() * pose.orientation;
+        const sim::Quat d = start_.conjugate() * pose.orientation;
         return 2.0 * std::atan2(d.vec().norm(), std::abs(d.w())) * 180.0 / std::numbers::pi;
       }
       case Quantity::kHeight: return 1000.0 * pose.position.y();
@@ -143,52 +153,69 @@ class QuantityTrack {
     }
     return std::numeric_limits<double>::quiet_NaN();
   }
+  /// The value at t = 0 when the description gives it: nothing turned, at rest; NaN otherwise.
+  double atStart() const {
+    return q_.kind == Quantity::kRotation || q_.kind == Quantity::kTilt || q_.kind == Quantity::kSpeed
+               ? 0.0
+               : std::numeric_limits<double>::quiet_NaN();
+  }
 
  private:
   const Quantity& q_;
-  sim::Pose start_;
-  bool started_ = false;
+  sim::Quat start_;
   double last_t_ = 0.0, turned_ = 0.0;
 };
 
-// A series thinned to at most kMaxChartPoints points (every k-th sample).
+// A series thinned for the chart to at most kMaxChartPoints points: each bucket of samples keeps
+// its lowest and highest (in time order), so peaks survive; the last sample is always kept.
 void thin(std::vector<double>& x, std::vector<double>& y) {
-  const std::size_t k = (x.size() + kMaxChartPoints - 1) / kMaxChartPoints;
-  if (k <= 1) return;
-  std::size_t n = 0;
-  for (std::size_t i = 0; i < x.size(); i += k, ++n) {
-    x[n] = x[i];
-    y[n] = y[i];
+  const std::size_t n = std::min(x.size(), y.size());
+  const std::size_t k = (2 * n + kMaxChartPoints - 1) / kMaxChartPoints;
+  if (k <= 2) return;
+  std::size_t out = 0;
+  for (std::size_t a = 0; a < n; a += k) {
+    const std::size_t e = std::min(n, a + k);
+    std::size_t lo = a, hi = a;
+    for (std::size_t i = a; i < e; ++i) {
+      if (y[i] < y[lo]) lo = i;
+      if (y[i] > y[hi]) hi = i;
+    }
+    const std::size_t first = std::min(lo, hi), second = std::max(lo, hi);
+    x[out] = x[first], y[out] = y[first], ++out;
+    if (second != first) x[out] = x[second], y[out] = y[second], ++out;
   }
-  x.resize(n);
-  y.resize(n);
+  if (x[out - 1] != x[n - 1]) x[out] = x[n - 1], y[out] = y[n - 1], ++out;
+  x.resize(out);
+  y.resize(out);
 }
 
-// The quantity of one run from its trace.csv.
-render::ChartSeries traceSeries(const Quantity& q, const fs::path& trace) {
+// The quantity of one run from its trace.csv (every row, t = 0 first where it is known).
+render::ChartSeries traceSeries(const Quantity& q, const sim::SceneDesc& scene, const fs::path& trace) {
   render::ChartSeries s;
   if (q.kind == Quantity::kColumn) {
     std::vector<std::vector<double>> c = readCsvColumns(trace.string(), {"t", q.column});
     s.x = std::move(c[0]);
     s.y = std::move(c[1]);
-  } else {
-    std::vector<std::string> names = {"t"};
-    for (const char* k : {".px", ".py", ".pz", ".qx", ".qy", ".qz", ".qw", ".vx", ".vy", ".vz", ".wx", ".wy", ".wz"}) {
-      names.push_back(q.body_name + k);
-    }
-    const std::vector<std::vector<double>> c = readCsvColumns(trace.string(), names);
-    QuantityTrack track(q);
-    for (std::size_t i = 0; i < c[0].size(); ++i) {
-      const sim::Pose pose{sim::Vec3(c[1][i], c[2][i], c[3][i]), sim::Quat(c[7][i], c[4][i], c[5][i], c[6][i])};
-      s.x.push_back(c[0][i]);
-      s.y.push_back(track.next(c[0][i], pose, sim::Vec3(c[8][i], c[9][i], c[10][i]), sim::Vec3(c[11][i], c[12][i], c[13][i])));
-    }
+    return s;
   }
-  thin(s.x, s.y);
+  std::vector<std::string> names = {"t"};
+  for (const char* k : {".px", ".py", ".pz", ".qx", ".qy", ".qz", ".qw", ".vx", ".vy", ".vz", ".wx", ".wy", ".wz"}) {
+    names.push_back(q.body_name + k);
+  }
+  const std::vector<std::vector<double>> c = readCsvColumns(trace.string(), names);
+  QuantityTrack track(q, scene.bodies[static_cast<std::size_t>(q.body)].orientation);
+  if (std::isfinite(track.atStart())) {
+    s.x.push_back(0.0);
+    s.y.push_back(track.atStart());
+  }
+  for (std::size_t i = 0; i < c[0].size(); ++i) {
+    const sim::Pose pose{sim::Vec3(c[1][i], c[2][i], c[3][i]), sim::Quat(c[7][i], c[4][i], c[5][i], c[6][i])};
+    s.x.push_back(c[0][i]);
+    s.y.push_back(track.next(c[0][i], pose, sim::Vec3(c[8][i], c[9][i], c[10][i]), sim::Vec3(c[11][i], c[12][i], c[13][i])));
+  }
   return s;
 }
 
-// The chart: no title (the y label names the quantity), time along x.
 render::ChartSpec chartFor(const Quantity& q) {
   render::ChartSpec chart;
   chart.x_label = "time (s)";
@@ -279,21 +306,51 @@ int runCompare(const CompareOptions& o) {
   }
   const Quantity quantity = chartQuantity(base, o.chart, o.body);
   sessionCamera(base, o.camera);  // an unknown camera fails here, before any run
-  const std::vector<SessionDesc> sessions = modelSessions(scene_path, o.models, o.overrides, base);
+  // The overlay draws its own panels into each run's frames, and its scripted clicks change the
+  // settings being compared: the runs go without it, and a scene whose script changes them is
+  // refused.
+  std::vector<std::string> overrides = o.overrides;
+  if (base.view.overlay) {
+    if (!base.view.actions.empty()) {
+      throw InputError(scene_path, 0, 0, "render.actions",
+                       "scripted overlay input changes the finger settings during the run, so the runs would not "
+                       "compare the models: compare a scene without it");
+    }
+    std::string effects;
+    for (const sim::EffectSwitch& e : sim::effectSwitches()) {
+      if (base.scene.effects.*e.on) effects.append(effects.empty() ? "\"" : ", \"").append(e.name).append("\"");
+    }
+    for (const auto& [name, on] : {std::pair{"patch_highlight", base.view.patch_highlight},
+                                   std::pair{"patch_insets", base.view.patch_insets}, std::pair{"shadows", base.view.shadows}}) {
+      if (on) effects.append(effects.empty() ? "\"" : ", \"").append(name).append("\"");
+    }
+    overrides.push_back("effects=[" + effects + "]");
+  }
+  const std::vector<SessionDesc> sessions = modelSessions(scene_path, o.models, overrides, base);
   const double duration = o.duration > 0.0 ? o.duration : base.scene.duration;
   const int width = base.view.width, height = base.view.height;
+  if (width < 480 || height < 270) {
+    throw InputError(scene_path, 0, 0, width < 480 ? "render.width" : "render.height",
+                     "a comparison needs a frame of at least 480 x 270 pixels (this one is " + std::to_string(width) + " x " +
+                         std::to_string(height) + ")");
+  }
   const double fps = render::FrameOutputSettings{}.fps;  // what each run's frames are written at
   const render::CompareLayout layout = render::compareLayout(width, height, static_cast<int>(o.models.size()));
   const fs::path out = fs::absolute(o.out.empty() ? "compare-" + base.scene.name : o.out);
+  const fs::path video_path = o.video.empty() ? fs::path() : fs::absolute(o.video);
   const bool frames = o.frames || o.video.empty();
+  if (!o.video.empty()) requireVideoPath(video_path.string());
   requireWritableFolder(out, "the comparison");
-  if (frames) requireWritableFolder(out / "frames", "the comparison's frames");
-  if (!o.video.empty()) requireVideoPath(o.video);
+  if (frames) {
+    requireWritableFolder(out / "frames", "the comparison's frames");
+    clearFrames(out / "frames");  // a frame sequence left by an earlier comparison
+  }
+  const int jobs = std::min(o.jobs, static_cast<int>(o.models.size()));
 
   std::vector<std::string> lines;
   for (std::size_t i = 0; i < o.models.size(); ++i) {
     std::vector<std::string> args;
-    for (const std::string& s : o.overrides) args.insert(args.end(), {"--set", s});
+    for (const std::string& s : overrides) args.insert(args.end(), {"--set", s});
     for (const std::string& s : modelOverrides(base, o.models[i])) args.insert(args.end(), {"--set", s});
     for (const std::string& s : {"render.width=" + std::to_string(layout.panel_width),
                                  "render.height=" + std::to_string(layout.panel_height), std::string("record.trace=true"),
@@ -307,64 +364,67 @@ int runCompare(const CompareOptions& o) {
     lines.push_back(godfingerRunLine(o.godfinger, scene_path, (out / o.models[i]).string(), args));
   }
   if (!o.quiet) {
-    std::printf("compare %s: %zu models, %g s each, %d run%s at a time, into %s/\n", base.scene.name.c_str(),
-                o.models.size(), duration, o.jobs, o.jobs == 1 ? "" : "s", out.string().c_str());
+    std::printf("compare %s: %zu model%s, %g s each, %d run%s at a time, into %s/\n", base.scene.name.c_str(),
+                o.models.size(), o.models.size() == 1 ? "" : "s", duration, jobs, jobs == 1 ? "" : "s",
+                out.string().c_str());
     std::fflush(stdout);
   }
   std::vector<int> codes(o.models.size(), -1);
-  const bool interrupted = runJobs(lines, o.jobs, [&](std::size_t i, int code) {
+  std::vector<nlohmann::json> summaries(o.models.size());
+  const bool interrupted = runJobs(lines, jobs, [&](std::size_t i, int code) {
     codes[i] = code;
-    const nlohmann::json summary = readJson(out / o.models[i] / "summary.json");
-    const bool ok = (code == 0 || code == 3) && summary.is_object();
-    if (!o.quiet || !ok) {
-      if (ok) {
-        std::printf("%-12s done: step %.1f us (median)%s\n", o.models[i].c_str(),
-                    summary["step_time_us"].value("median", 0.0), code == 3 ? "; an [expect] of the scene failed" : "");
-      } else {
-        std::printf("%-12s ERROR exit %d: %s\n", o.models[i].c_str(), code,
-                    lastLine(out / o.models[i] / "run.log").c_str());
-      }
-      std::fflush(stdout);
+    summaries[i] = readJson(out / o.models[i] / "summary.json");
+    const bool ok = (code == 0 || code == 3) && summaries[i].is_object();
+    if (ok && !o.quiet) {
+      const nlohmann::json step = summaries[i].value("step_time_us", nlohmann::json::object());
+      std::printf("%-12s done: step %.1f us (median)%s\n", o.models[i].c_str(), step.value("median", 0.0),
+                  code == 3 ? "; an [expect] of the scene failed" : "");
+    } else if (!ok && jobsSignal() != 0) {
+      std::printf("%-12s interrupted\n", o.models[i].c_str());
+    } else if (!ok) {
+      std::printf("%-12s ERROR exit %d: %s\n", o.models[i].c_str(), code, lastLine(out / o.models[i] / "run.log").c_str());
     }
+    std::fflush(stdout);
   });
-  if (interrupted) return 130;
+  if (interrupted) return 128 + jobsSignal();
   for (std::size_t i = 0; i < codes.size(); ++i) {
-    if (codes[i] != 0 && codes[i] != 3) {
+    if ((codes[i] != 0 && codes[i] != 3) || !summaries[i].is_object()) {
       std::fprintf(stderr, "godfinger: error: the %s run failed; see %s\n", o.models[i].c_str(),
                    (out / o.models[i] / "run.log").c_str());
       return 1;
     }
   }
 
-  // The runs' measures and curves.
+  // The runs' measures and curves: measured on every row, thinned for drawing.
   render::ChartSpec chart = chartFor(quantity);
   std::vector<render::ComparePanel> panels;
   nlohmann::json models = nlohmann::json::array();
   for (std::size_t i = 0; i < o.models.size(); ++i) {
     const fs::path dir = out / o.models[i];
-    const nlohmann::json summary = readJson(dir / "summary.json");
-    render::ChartSeries series = traceSeries(quantity, dir / "trace.csv");
+    const nlohmann::json& summary = summaries[i];
+    render::ChartSeries series = traceSeries(quantity, sessions[i].scene, dir / "trace.csv");
+    const nlohmann::json measures = seriesMeasures(series);
+    thin(series.x, series.y);
     series.label = modelTitle(o.models[i]);
     series.colour = modelColour(o.models[i], i);
-    const double step_us = summary["step_time_us"].value("median", 0.0);
+    const nlohmann::json step = summary.value("step_time_us", nlohmann::json::object());
     char timing[96];
-    std::snprintf(timing, sizeof timing, "haptic step %.1f us (median)", step_us);
+    std::snprintf(timing, sizeof timing, "haptic step %.1f us (median)", step.value("median", 0.0));
     panels.push_back({modelTitle(o.models[i]), modelDetail(sessions[i]), timing, series.colour});
     nlohmann::json failed = nlohmann::json::array();
-    if (summary.contains("expectations")) {
-      for (const nlohmann::json& c : summary["expectations"]["checks"]) {
-        if (!c.value("passed", true)) failed.push_back(c["name"]);
-      }
+    const nlohmann::json expectations = summary.value("expectations", nlohmann::json::object());
+    for (const nlohmann::json& c : expectations.value("checks", nlohmann::json::array())) {
+      if (!c.value("passed", true)) failed.push_back(c.value("name", ""));
     }
     models.push_back({{"model", o.models[i]},
                       {"folder", dir.string()},
                       {"settings", modelDetail(sessions[i])},
                       {"exit_code", codes[i]},
                       {"expectations_failed", failed},
-                      {"step_time_us", summary["step_time_us"]},
+                      {"step_time_us", step},
                       {"patch_time_us", summary.value("patch_time_us", nlohmann::json(nullptr))},
-                      {"counters", summary["counters"]},
-                      {"chart", seriesMeasures(series)}});
+                      {"counters", summary.value("counters", nlohmann::json(nullptr))},
+                      {"chart", measures}});
     chart.series.push_back(std::move(series));
   }
 
@@ -383,7 +443,7 @@ int runCompare(const CompareOptions& o) {
     std::unique_ptr<render::PngSequenceWriter> png;
     if (frames) png = std::make_unique<render::PngSequenceWriter>((out / "frames").string());
     std::unique_ptr<render::VideoWriter> video;
-    if (!o.video.empty()) video = std::make_unique<render::VideoWriter>(o.video, width, height, fps);
+    if (!o.video.empty()) video = std::make_unique<render::VideoWriter>(video_path.string(), width, height, fps);
     std::vector<render::Image> images(o.models.size());
     std::vector<const render::Image*> pointers;
     for (const render::Image& image : images) pointers.push_back(&image);
@@ -419,11 +479,11 @@ int runCompare(const CompareOptions& o) {
       {"overrides", o.overrides},
       {"duration_s", duration},
       {"chart", {{"quantity", o.chart}, {"label", quantity.label}, {"body", quantity.body_name}}},
-      {"jobs", o.jobs},
-      {"step_time_note", o.jobs > 1 ? "runs shared the machine (--jobs > 1): step times are not for publication"
+      {"jobs", jobs},
+      {"step_time_note", jobs > 1 ? "runs shared the machine (--jobs > 1): step times are not for publication"
                                     : "one run at a time"},
       {"frames", written},
-      {"video", o.video},
+      {"video", video_path.string()},
       {"interrupted", stopped_by != 0},
       {"models", models}};
   {
@@ -435,8 +495,8 @@ int runCompare(const CompareOptions& o) {
     fs::rename(path.string() + ".tmp", path);
   }
   if (!o.quiet) {
-    std::printf("wrote %s/compare.json, %d frames%s%s\n", out.string().c_str(), written,
-                frames ? " in frames/" : "", o.video.empty() ? "" : (", " + o.video).c_str());
+    std::printf("wrote %s/compare.json, %d frame%s%s%s\n", out.string().c_str(), written, written == 1 ? "" : "s",
+                frames ? " in frames/" : "", o.video.empty() ? "" : (", " + video_path.string()).c_str());
   }
   return stopped_by != 0 ? 128 + stopped_by : 0;
 }
@@ -458,10 +518,10 @@ render::Image renderCompareFrame(const std::string& scene, const std::vector<std
     s.view.width = layout.panel_width;
     s.view.height = layout.panel_height;
     sim::World world(s.scene);
-    QuantityTrack track(quantity);
-    track.next(0.0, world.bodyPose(quantity.body), world.bodyLinearVelocity(quantity.body),
-               world.bodyAngularVelocity(quantity.body));
+    QuantityTrack track(quantity, world.bodyPose(quantity.body).orientation);
     render::ChartSeries series;
+    series.x.push_back(0.0);
+    series.y.push_back(track.atStart());
     sim::Snapshot at;
     const long snap_step = sim::stepCount(time, s.scene.world.haptic_rate_hz);
     long step = 0;

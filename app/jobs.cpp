@@ -15,8 +15,11 @@ extern char** environ;
 namespace gf::app {
 namespace {
 
-std::atomic<bool> g_interrupted{false};
-extern "C" void onJobsSignal(int) { g_interrupted = true; }
+std::atomic<int> g_signal{0};  // the first SIGINT or SIGTERM since runJobs began
+extern "C" void onJobsSignal(int signal) {
+  int none = 0;
+  g_signal.compare_exchange_strong(none, signal);
+}
 
 // Spawns `line` under /bin/sh; returns its pid (or -1).
 pid_t spawnShell(const std::string& line) {
@@ -51,7 +54,7 @@ std::string formatDuration(double s) {
 }
 
 bool runJobs(const std::vector<std::string>& lines, int jobs, const std::function<void(std::size_t, int)>& done) {
-  g_interrupted = false;
+  g_signal = 0;
   struct sigaction action{}, old_int{}, old_term{};
   action.sa_handler = onJobsSignal;  // no SA_RESTART: waitpid returns on a signal
   sigaction(SIGINT, &action, &old_int);
@@ -60,14 +63,14 @@ bool runJobs(const std::vector<std::string>& lines, int jobs, const std::functio
   std::size_t next = 0;
   bool forwarded = false;
   while (true) {
-    while (!g_interrupted && next < lines.size() && running.size() < static_cast<std::size_t>(std::max(1, jobs))) {
+    while (g_signal == 0 && next < lines.size() && running.size() < static_cast<std::size_t>(std::max(1, jobs))) {
       const pid_t pid = spawnShell(lines[next]);
       if (pid < 0) done(next, -1);
       else running[pid] = next;
       ++next;
     }
     if (running.empty()) break;
-    if (g_interrupted && !forwarded) {  // a signal sent to us alone reaches the running lines too
+    if (g_signal != 0 && !forwarded) {  // a signal sent to us alone reaches the running lines too
       for (const auto& [child, index] : running) kill(child, SIGINT);
       forwarded = true;
     }
@@ -85,7 +88,9 @@ bool runJobs(const std::vector<std::string>& lines, int jobs, const std::functio
   }
   sigaction(SIGINT, &old_int, nullptr);
   sigaction(SIGTERM, &old_term, nullptr);
-  return g_interrupted;
+  return g_signal != 0;
 }
+
+int jobsSignal() { return g_signal; }
 
 }  // namespace gf::app

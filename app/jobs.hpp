@@ -14,6 +14,9 @@ namespace gf::app {
 /// Returns true when it was interrupted (the lines not started were skipped).
 bool runJobs(const std::vector<std::string>& lines, int jobs, const std::function<void(std::size_t, int)>& done);
 
+/// The signal (SIGINT or SIGTERM) that interrupted the last runJobs, 0 if none.
+int jobsSignal();
+
 /// The shell line of one `godfinger run` of `scene` into `dir` (created), with `arguments`
 /// (each a single word, quoted here), its output in dir/run.log. Paths are made absolute, so the
 /// line works from any folder; `exec` makes the runner wait on godfinger itself, so a Ctrl-C

@@ -340,7 +340,7 @@ void clearEarlierOutputs(const fs::path& dir) {
       if (!fs::remove(p, ec) && ec) throw std::runtime_error(p.string() + ": cannot remove an earlier run's file: " + ec.message());
     }
   };
-  sweep(dir / "frames", isFrameName);
+  clearFrames(dir / "frames");
   sweep(dir / "contacts", isContactName);
 }
 
@@ -418,6 +418,18 @@ void prepareOutputs(const SessionOptions& options) {
   requireWritableFolder(dir / "contacts", "contact snapshots");
   if (options.frames) requireWritableFolder(dir / "frames", "frames");
   if (!options.video_path.empty()) requireVideoPath(options.video_path);
+}
+
+void clearFrames(const fs::path& folder) {
+  std::error_code ec;
+  if (!fs::is_directory(folder, ec)) return;
+  std::vector<fs::path> doomed;
+  for (const fs::directory_entry& e : fs::directory_iterator(folder, ec)) {
+    if (e.is_regular_file(ec) && isFrameName(e.path().filename().string())) doomed.push_back(e.path());
+  }
+  for (const fs::path& p : doomed) {
+    if (!fs::remove(p, ec) && ec) throw std::runtime_error(p.string() + ": cannot remove an earlier run's frame: " + ec.message());
+  }
 }
 
 void requireVideoPath(const std::string& path) {

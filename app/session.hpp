@@ -51,6 +51,10 @@ void prepareOutputs(const SessionOptions& options);
 /// std::runtime_error naming the folder and `what` it is for.
 void requireWritableFolder(const std::filesystem::path& folder, const std::string& what);
 
+/// Removes a frame sequence an earlier run left in `folder` (000000.png ... and their
+/// temporary names), nothing else. Throws std::runtime_error naming a file it cannot remove.
+void clearFrames(const std::filesystem::path& folder);
+
 /// Checks a video path before any work: not a folder, ends in .mp4, .mkv or .mov, its folder
 /// created and writable. Throws std::runtime_error naming the path.
 void requireVideoPath(const std::string& path);

@@ -146,24 +146,31 @@ void StreamedFile::close() {
   if (ec) throw std::runtime_error(w.path + ": cannot replace: " + ec.message());
 }
 
-TraceWriter::TraceWriter(const sim::World& world, const std::string& path) : file_(path) {
-  const sim::SceneDesc& d = world.desc();
-  std::string& text = file_.block();
-  text.push_back('t');  // (assigning a literal trips GCC 12 -Wrestrict, PR 105329)
-  for (std::size_t b = 0; b < d.bodies.size(); ++b) {
-    if (d.bodies[b].mass <= 0.0) continue;
-    dynamic_bodies_.push_back(static_cast<int>(b));
-    for (const char* c : {".px", ".py", ".pz", ".qx", ".qy", ".qz", ".qw"}) {
-      text.append(1, ',').append(d.bodies[b].name).append(c);
-    }
+std::vector<std::string> traceColumns(const sim::SceneDesc& d) {
+  std::vector<std::string> out = {"t"};
+  for (const sim::BodyDesc& b : d.bodies) {
+    if (b.mass <= 0.0) continue;
+    for (const char* c : {".px", ".py", ".pz", ".qx", ".qy", ".qz", ".qw"}) out.push_back(b.name + c);
   }
   for (const sim::FingerDesc& f : d.fingers) {
-    for (const char* c : {".fx", ".fy", ".fz", ".n_sgo", ".r", ".px", ".py", ".pz", ".dx", ".dy", ".dz"}) text.append(1, ',').append(f.name).append(c);
+    for (const char* c : {".fx", ".fy", ".fz", ".n_sgo", ".r", ".px", ".py", ".pz", ".dx", ".dy", ".dz"}) out.push_back(f.name + c);
   }
-  for (int b : dynamic_bodies_) {
-    for (const char* c : {".vx", ".vy", ".vz", ".wx", ".wy", ".wz"}) {
-      text.append(1, ',').append(d.bodies[static_cast<std::size_t>(b)].name).append(c);
-    }
+  for (const sim::BodyDesc& b : d.bodies) {
+    if (b.mass <= 0.0) continue;
+    for (const char* c : {".vx", ".vy", ".vz", ".wx", ".wy", ".wz"}) out.push_back(b.name + c);
+  }
+  return out;
+}
+
+TraceWriter::TraceWriter(const sim::World& world, const std::string& path) : file_(path) {
+  const sim::SceneDesc& d = world.desc();
+  for (std::size_t b = 0; b < d.bodies.size(); ++b) {
+    if (d.bodies[b].mass > 0.0) dynamic_bodies_.push_back(static_cast<int>(b));
+  }
+  std::string& text = file_.block();
+  for (const std::string& column : traceColumns(d)) {
+    if (!text.empty()) text += ',';
+    text += column;
   }
   text += '\n';
   file_.rowDone();

@@ -3,6 +3,7 @@
 
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "sim/world.hpp"
 
@@ -40,6 +41,9 @@ class StreamedFile {
   std::unique_ptr<Writer> writer_;
   std::unique_ptr<std::string> block_;
 };
+
+/// trace.csv's columns for a scene, in order (as TraceWriter documents them).
+std::vector<std::string> traceColumns(const sim::SceneDesc& scene);
 
 /// trace.csv, streamed to its file while the run goes (haptic thread only).
 class TraceWriter {

@@ -3,6 +3,7 @@
 #include <imgui.h>
 
 #include <algorithm>
+#include <cfloat>
 #include <cstdint>
 
 #include "render/context.hpp"
@@ -93,13 +94,15 @@ struct CompareCompositor::Impl {
 
   // The label in the panel's top-left corner: a dark box, a swatch of the model's chart colour,
   // the model, then its settings and step time.
+  // Text scales with the panel: 17 px on a 640-pixel panel, no smaller than 11.
   void label(ImDrawList& d, const ComparePanel& p, float left) const {
-    const float f = ImGui::GetFontSize(), pad = 0.4f * f;
+    ImFont* font = ImGui::GetFont();
+    const float f = std::clamp(static_cast<float>(layout.panel_width) / 38.0f, 11.0f, kFontPx), pad = 0.4f * f;
     std::vector<const char*> lines = {p.title.c_str()};
     if (!p.detail.empty()) lines.push_back(p.detail.c_str());
     if (!p.timing.empty()) lines.push_back(p.timing.c_str());
     float w = 0.0f;
-    for (const char* line : lines) w = std::max(w, ImGui::CalcTextSize(line).x);
+    for (const char* line : lines) w = std::max(w, font->CalcTextSizeA(f, FLT_MAX, 0.0f, line).x);
     const float swatch = f;
     w += swatch + pad;
     const float panel_right = left + static_cast<float>(layout.panel_width) - pad;
@@ -110,7 +113,7 @@ struct CompareCompositor::Impl {
     d.AddRectFilled(ImVec2(lo.x + pad, lo.y + pad + 0.1f * f), ImVec2(lo.x + pad + swatch, lo.y + pad + 0.9f * f),
                     imguiColour(p.colour));
     for (std::size_t k = 0; k < lines.size(); ++k) {
-      d.AddText(ImVec2(lo.x + pad + swatch + pad, lo.y + pad + 1.2f * f * static_cast<float>(k)),
+      d.AddText(font, f, ImVec2(lo.x + pad + swatch + pad, lo.y + pad + 1.2f * f * static_cast<float>(k)),
                 k == 0 ? IM_COL32(255, 255, 255, 255) : IM_COL32(215, 220, 228, 255), lines[k]);
     }
     d.PopClipRect();

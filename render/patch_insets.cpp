@@ -73,32 +73,37 @@ struct PatchInsets::Impl {
         labels(w, h, kLabelFontPx) {}
 
   // The label of finger f over the top of its inset, in three short lines: the finger and its
-  // model; n_SGO and the radius; the normal force (or "no contact").
+  // model; n_SGO and the radius; the normal force (or "no contact"). An inset under 120 pixels
+  // (a comparison's panel) says only the finger and the force.
   void label(ImDrawList& d, std::size_t f, const sim::Snapshot& snap, bool touching) const {
     const InsetRect& r = rects[f];
     const sim::FingerDesc& desc = scene.fingers[f];
+    const bool small = r.size < 120;
     char lines[3][64];
-    std::snprintf(lines[0], sizeof lines[0], "%s: %s", desc.name.c_str(), modelLabel(desc.patch));
-    int count = 2;
+    int count = 0;
+    if (small) {
+      std::snprintf(lines[count++], sizeof lines[0], "%s", desc.name.c_str());
+    } else {
+      std::snprintf(lines[count++], sizeof lines[0], "%s: %s", desc.name.c_str(), modelLabel(desc.patch));
+    }
     if (!touching) {
-      std::snprintf(lines[1], sizeof lines[1], "no contact");
+      std::snprintf(lines[count++], sizeof lines[0], "no contact");
     } else {
       const sim::FingerSnapshot& fs = snap.fingers[f];
       const sim::ContactSnapshot& c = fs.contacts.front();
-      if (fs.sgo_count > 0) {
-        std::snprintf(lines[1], sizeof lines[1], "%d SGOs, r %.1f mm", fs.sgo_count, 1000.0 * c.radius);
-      } else {
-        std::snprintf(lines[1], sizeof lines[1], "one point");
+      if (!small && fs.sgo_count > 0) {
+        std::snprintf(lines[count++], sizeof lines[0], "%d SGOs, r %.1f mm", fs.sgo_count, 1000.0 * c.radius);
+      } else if (!small) {
+        std::snprintf(lines[count++], sizeof lines[0], "one point");
       }
-      std::snprintf(lines[2], sizeof lines[2], "F_n %.2f N", std::max(0.0, fs.feedback_force.dot(c.outward_normal_world)));
-      count = 3;
+      std::snprintf(lines[count++], sizeof lines[0], "F_n %.2f N", std::max(0.0, fs.feedback_force.dot(c.outward_normal_world)));
     }
     ImFont* font = ImGui::GetFont();
     const float px = std::clamp(0.07f * static_cast<float>(r.size), 9.0f, kLabelFontPx), pad = 0.3f * px;
     const ImVec2 lo(static_cast<float>(r.x), static_cast<float>(r.y));
     const ImVec2 hi(lo.x + static_cast<float>(r.size), lo.y + static_cast<float>(r.size));
     if (!touching) d.AddRectFilled(lo, hi, IM_COL32(40, 44, 52, 150));
-    d.AddRectFilled(lo, ImVec2(hi.x, lo.y + static_cast<float>(count) * 1.15f * px + 2.0f * pad), IM_COL32(15, 18, 24, 170));
+    d.AddRectFilled(lo, ImVec2(hi.x, lo.y + static_cast<float>(count) * 1.15f * px + 2.0f * pad), IM_COL32(15, 18, 24, 150));
     d.PushClipRect(lo, hi, true);
     for (int k = 0; k < count; ++k) {
       d.AddText(font, px, ImVec2(lo.x + pad + 2.0f, lo.y + pad + 1.15f * px * static_cast<float>(k)),

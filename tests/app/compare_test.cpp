@@ -7,6 +7,8 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <fstream>
+#include <tuple>
 
 #include "app/plot.hpp"
 #include "app/scene_file.hpp"
@@ -37,7 +39,7 @@ TEST(Compare, PanelsKeepTheFrameAspectAndLeaveTheChartAThird) {
   EXPECT_EQ(two.panels_left, 0);
 }
 
-TEST(Compare, BadModelsAreErrorsNamingTheOption) {
+TEST(Compare, BadOptionsAreErrorsNamingTheOptionBeforeAnyRun) {
   CompareOptions o;
   o.scene = "fig5-push-ball";
   o.godfinger = kBin;
@@ -53,14 +55,31 @@ TEST(Compare, BadModelsAreErrorsNamingTheOption) {
       EXPECT_NE(std::string(e.what()).find("--models"), std::string::npos) << e.what();
     }
   }
+  // The chart's quantity is checked against the scene before any run, and nothing is written.
+  const fs::path out = fs::path(o.out) / "never";
+  o.out = out.string();
   o.models = {"god_object", "god_finger"};
-  o.body = "no_such_body";
-  EXPECT_THROW(runCompare(o), InputError);
+  for (const auto& [chart, body, option] : {std::tuple{"rotation", "no_such_body", "--body"},
+                                            std::tuple{"ball.qq", "", "--chart"},
+                                            std::tuple{"index.fy", "ball", "--body"}}) {
+    o.chart = chart;
+    o.body = body;
+    try {
+      runCompare(o);
+      ADD_FAILURE() << "accepted --chart " << chart << " --body " << body;
+    } catch (const InputError& e) {
+      EXPECT_NE(std::string(e.what()).find(option), std::string::npos) << e.what();
+    }
+    EXPECT_FALSE(fs::exists(out)) << chart;
+  }
 }
 
 TEST(Compare, AShortFig5ComparisonWritesFramesVideoAndMeasures) {
   const fs::path out = freshFolder("compare-fig5");
   const fs::path video = out / "fig5.mp4";
+  // A frame an earlier, longer comparison left: the new sequence replaces it.
+  fs::create_directories(out / "frames");
+  std::ofstream(out / "frames" / "000200.png") << "stale";
   const int code = exitStatus(kBin + " compare fig5-push-ball --models god_object,god_finger --duration 1.2 --out " +
                               out.string() + " --frames --video " + video.string() + " --quiet 2> " +
                               (out / "stderr.txt").string());
@@ -75,6 +94,7 @@ TEST(Compare, AShortFig5ComparisonWritesFramesVideoAndMeasures) {
   EXPECT_EQ(last.width, 1280);
   EXPECT_EQ(last.height, 720);
   EXPECT_FALSE(fs::exists(out / "frames" / "000073.png"));
+  EXPECT_FALSE(fs::exists(out / "frames" / "000200.png"));
   EXPECT_GT(fs::file_size(video), 10000u);
   // Each run kept its summary and trace; its own frames were removed once composited.
   for (const char* m : {"god_object", "god_finger"}) {
