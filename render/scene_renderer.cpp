@@ -79,6 +79,10 @@ struct SceneRenderer::Impl {
   Program depth{"depth", shaders::kDepthVertex, shaders::kDepthFragment};
   const Program* current = &lit;  // the program drawShape() feeds
   std::unique_ptr<ShadowMap> shadow;
+  // The state the shadow map was last drawn for: a second view of the same instant (the patch
+  // insets) reuses it.
+  double shadow_time = -1.0;
+  long shadow_step = -1;
   std::vector<BodyDraw> bodies;
   // Proxies and ghosts are large on screen; contact dots are a few pixels (and many).
   GpuMesh sphere{unitSphere(3)}, dot_sphere{unitSphere(1)}, cylinder{unitCylinder(kRoundSegments)}, cone{unitCone(kRoundSegments)};
@@ -458,7 +462,10 @@ SceneRenderer::~SceneRenderer() = default;
 
 void SceneRenderer::setSettings(const RenderSettings& settings) {
   impl_->settings = settings;
-  if (settings.shadows && !impl_->shadow) impl_->shadow = std::make_unique<ShadowMap>(settings.shadow_map_size);
+  if (settings.shadows && !impl_->shadow) {
+    impl_->shadow = std::make_unique<ShadowMap>(settings.shadow_map_size);
+    impl_->shadow_step = -1;  // a new map: drawn at the next draw
+  }
   if (!settings.shadows) impl_->shadow.reset();
 }
 
@@ -472,7 +479,11 @@ PixelRect SceneRenderer::draw(const sim::Snapshot& snapshot, const Camera& camer
   glEnable(GL_DEPTH_TEST);
   glDepthFunc(GL_LEQUAL);
   glBlendFunc(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA);
-  if (impl_->shadow) impl_->shadowPass(snapshot);
+  if (impl_->shadow && (snapshot.time != impl_->shadow_time || snapshot.step != impl_->shadow_step)) {
+    impl_->shadowPass(snapshot);
+    impl_->shadow_time = snapshot.time;
+    impl_->shadow_step = snapshot.step;
+  }
   glBindFramebuffer(GL_FRAMEBUFFER, static_cast<GLuint>(target));
   glViewport(0, 0, width, height);
   impl_->beginSurfacePass(camera, width, height);
