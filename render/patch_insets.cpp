@@ -69,7 +69,8 @@ struct PatchInsets::Impl {
         width(w),
         height(h),
         rects(insetRects(w, h, static_cast<int>(s.fingers.size()), corner)),
-        frame(rects.empty() ? 16 : rects.front().size, rects.empty() ? 16 : rects.front().size, aa, samples),
+        frame(rects.empty() ? 16 : rects.front().size, rects.empty() ? 16 : rects.front().size,
+              aa == Antialiasing::kMsaa ? aa : Antialiasing::kNone, samples),  // FXAA: not worth a pass at this size
         labels(w, h, kLabelFontPx) {}
 
   // The label of finger f over the top of its inset, in three short lines: the finger and its
