@@ -323,6 +323,20 @@ bool isContactName(const std::string& name) {
          (stem.ends_with(".json") || stem.ends_with(".png"));
 }
 
+// Removes the files of `folder` whose names are `ours`, nothing else. Throws std::runtime_error
+// naming a file it cannot remove.
+void sweep(const fs::path& folder, bool (*ours)(const std::string&)) {
+  std::error_code ec;
+  if (!fs::is_directory(folder, ec)) return;
+  std::vector<fs::path> doomed;
+  for (const fs::directory_entry& e : fs::directory_iterator(folder, ec)) {
+    if (e.is_regular_file(ec) && ours(e.path().filename().string())) doomed.push_back(e.path());
+  }
+  for (const fs::path& p : doomed) {
+    if (!fs::remove(p, ec) && ec) throw std::runtime_error(p.string() + ": cannot remove an earlier run's file: " + ec.message());
+  }
+}
+
 // A run owns its output folder: what an earlier run left of this run's kinds of output goes
 // before anything is written, so the folder shows one run. Nothing else is touched.
 void clearEarlierOutputs(const fs::path& dir) {
@@ -330,17 +344,7 @@ void clearEarlierOutputs(const fs::path& dir) {
   for (const char* name : {"trace.csv", "forces.csv", "forces.png", "summary.json"}) {
     for (const char* suffix : {"", ".tmp", ".part"}) fs::remove(dir / (std::string(name) + suffix), ec);
   }
-  const auto sweep = [&](const fs::path& folder, bool (*ours)(const std::string&)) {
-    if (!fs::is_directory(folder, ec)) return;
-    std::vector<fs::path> doomed;
-    for (const fs::directory_entry& e : fs::directory_iterator(folder, ec)) {
-      if (e.is_regular_file(ec) && ours(e.path().filename().string())) doomed.push_back(e.path());
-    }
-    for (const fs::path& p : doomed) {
-      if (!fs::remove(p, ec) && ec) throw std::runtime_error(p.string() + ": cannot remove an earlier run's file: " + ec.message());
-    }
-  };
-  clearFrames(dir / "frames");
+  sweep(dir / "frames", isFrameName);
   sweep(dir / "contacts", isContactName);
 }
 
@@ -420,17 +424,7 @@ void prepareOutputs(const SessionOptions& options) {
   if (!options.video_path.empty()) requireVideoPath(options.video_path);
 }
 
-void clearFrames(const fs::path& folder) {
-  std::error_code ec;
-  if (!fs::is_directory(folder, ec)) return;
-  std::vector<fs::path> doomed;
-  for (const fs::directory_entry& e : fs::directory_iterator(folder, ec)) {
-    if (e.is_regular_file(ec) && isFrameName(e.path().filename().string())) doomed.push_back(e.path());
-  }
-  for (const fs::path& p : doomed) {
-    if (!fs::remove(p, ec) && ec) throw std::runtime_error(p.string() + ": cannot remove an earlier run's frame: " + ec.message());
-  }
-}
+void clearFrames(const fs::path& folder) { sweep(folder, isFrameName); }
 
 void requireVideoPath(const std::string& path) {
   const fs::path video(path);
