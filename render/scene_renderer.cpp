@@ -355,18 +355,14 @@ struct SceneRenderer::Impl {
   void enterPass(DrawPass pass) {
     switch (pass) {
       case DrawPass::kPatchFill:
-        glEnable(GL_BLEND);
-        glDepthMask(GL_FALSE);
-        glEnable(GL_POLYGON_OFFSET_FILL);
-        glPolygonOffset(-2.0f, -4.0f);
-        use(shadow ? lit_shadowed : lit);  // lit like the body under it
-        break;
       case DrawPass::kPatchRim:
         glEnable(GL_BLEND);
         glDepthMask(GL_FALSE);
         glEnable(GL_POLYGON_OFFSET_FILL);
         glPolygonOffset(-2.0f, -4.0f);
-        use(flat);
+        // The fill is lit like the body under it; the rim band is flat, so it reads in shade.
+        if (pass == DrawPass::kPatchRim) use(flat);
+        else use(shadow ? lit_shadowed : lit);
         break;
       case DrawPass::kPatchLines: use(flat); break;
       case DrawPass::kMarks: use(lit); break;
