@@ -1,6 +1,6 @@
 # `cmake --install BUILD --prefix P` installs, for each library built:
 #   P/lib/libgodfinger_{sim,scene,render}.a        godfinger::sim, ::scene, ::render
-#   P/include/godfinger/{sim,app,render}/*.hpp     the public headers (not sim/detail/)
+#   P/include/godfinger/{sim,app/scene,render}/*.hpp  the public headers (not sim/detail/)
 #   P/lib/cmake/godfinger/                         find_package(godfinger [COMPONENTS ...])
 #   P/lib/pkgconfig/godfinger-{sim,scene,render}.pc
 #   P/share/godfinger/                             bundled scenes, studies, meshes, hard cases
@@ -20,17 +20,15 @@ install(EXPORT godfinger-sim NAMESPACE godfinger:: FILE godfinger-sim-targets.cm
         COMPONENT dev)
 if(GF_BUILD_SCENE)
   list(APPEND GF_INSTALLED_COMPONENTS scene)
-  install(FILES ${PROJECT_SOURCE_DIR}/app/scene_file.hpp ${PROJECT_SOURCE_DIR}/app/session_desc.hpp
-                ${PROJECT_SOURCE_DIR}/app/expectations.hpp DESTINATION ${GF_INCLUDE_DIR}/app COMPONENT dev)
+  # The scene library's public headers (not its internal sections.hpp and toml_reader.hpp).
+  set(GF_SCENE_HEADERS input_error scene_file session_desc expect_desc data_folder schema)
+  list(TRANSFORM GF_SCENE_HEADERS PREPEND ${PROJECT_SOURCE_DIR}/app/scene/)
+  list(TRANSFORM GF_SCENE_HEADERS APPEND .hpp)
+  install(FILES ${GF_SCENE_HEADERS} DESTINATION ${GF_INCLUDE_DIR}/app/scene COMPONENT dev)
   install(TARGETS gf_scene EXPORT godfinger-scene ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR} COMPONENT dev)
   install(EXPORT godfinger-scene NAMESPACE godfinger:: FILE godfinger-scene-targets.cmake DESTINATION ${GF_CMAKE_DIR}
           COMPONENT dev)
   install(DIRECTORY ${PROJECT_SOURCE_DIR}/assets/ DESTINATION ${CMAKE_INSTALL_DATADIR}/godfinger)
-endif()
-# The scene's view settings are plain data from render/, installed with the scene even without
-# the renderer.
-if(GF_BUILD_SCENE OR GF_BUILD_RENDER)
-  install(FILES ${PROJECT_SOURCE_DIR}/render/view_desc.hpp DESTINATION ${GF_INCLUDE_DIR}/render COMPONENT dev)
 endif()
 if(GF_BUILD_RENDER)
   list(APPEND GF_INSTALLED_COMPONENTS render)

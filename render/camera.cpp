@@ -44,10 +44,10 @@ sim::Vec3 upFor(const sim::Vec3& direction) {
   return std::abs(d.y()) > 0.99 ? sim::Vec3(0, 0, -1) : sim::Vec3::UnitY();
 }
 
-Camera closeUpCamera(const sim::Vec3& point, const sim::Vec3& outward_normal, double half_extent) {
+sim::Camera closeUpCamera(const sim::Vec3& point, const sim::Vec3& outward_normal, double half_extent) {
   constexpr double kFovDeg = 30.0;
   const double distance = half_extent / std::tan(0.5 * kFovDeg * std::numbers::pi / 180.0);
-  Camera c;
+  sim::Camera c;
   c.name = "close-up";
   c.position = point + distance * outward_normal.normalized();
   c.target = point;

@@ -3,7 +3,7 @@
 
 #include <Eigen/Geometry>
 
-#include "render/view_desc.hpp"
+#include "sim/view_desc.hpp"
 
 namespace gf::render {
 
@@ -19,6 +19,6 @@ sim::Vec3 upFor(const sim::Vec3& direction);
 
 /// A camera that looks at `point` straight down `-outward_normal` from `distance` m, showing
 /// about a square of 2 * half_extent m: the contact-area close-up.
-Camera closeUpCamera(const sim::Vec3& point, const sim::Vec3& outward_normal, double half_extent);
+sim::Camera closeUpCamera(const sim::Vec3& point, const sim::Vec3& outward_normal, double half_extent);
 
 }  // namespace gf::render

@@ -85,7 +85,7 @@ struct CompareCompositor::Impl {
         panels(std::move(p)),
         chart(std::move(c)),
         layout(compareLayout(w, h, static_cast<int>(panels.size()))),
-        frame(w, h, Antialiasing::kNone),
+        frame(w, h, sim::Antialiasing::kNone),
         imgui(w, h, kFontPx) {
     chart.width = w;
     chart.height = layout.chart_height;

@@ -216,22 +216,22 @@ struct Framebuffer::Fxaa {
   }
 };
 
-Framebuffer::Framebuffer(int width, int height, Antialiasing aa, int msaa_samples)
+Framebuffer::Framebuffer(int width, int height, sim::Antialiasing aa, int msaa_samples)
     : width_(width), height_(height), aa_(aa) {
   GF_ASSERT_GL_THREAD();
   if (width < 1 || height < 1 || width > 4096 || height > 4096) {
     throw GlError("frame size must be 1..4096 pixels each way");
   }
-  const int samples = aa == Antialiasing::kMsaa ? std::clamp(msaa_samples, 2, 8) : 1;
+  const int samples = aa == sim::Antialiasing::kMsaa ? std::clamp(msaa_samples, 2, 8) : 1;
   scene_fbo_ = colourDepthTarget(width, height, samples, scene_colour_, scene_depth_, "scene");
-  if (aa == Antialiasing::kMsaa) {
+  if (aa == sim::Antialiasing::kMsaa) {
     glGenFramebuffers(1, &output_fbo_);
     glBindFramebuffer(GL_FRAMEBUFFER, output_fbo_);
     output_colour_ = renderbuffer(GL_RGBA8, width, height, 1);
     glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, output_colour_);
     requireComplete("output");
   }
-  if (aa == Antialiasing::kFxaa) fxaa_ = std::make_unique<Fxaa>(width, height);
+  if (aa == sim::Antialiasing::kFxaa) fxaa_ = std::make_unique<Fxaa>(width, height);
   glBindFramebuffer(GL_FRAMEBUFFER, 0);
   checkGl("framebuffer");
 }
@@ -256,7 +256,7 @@ void Framebuffer::resolve(const std::optional<PixelRect>& edges) {
   GF_ASSERT_GL_THREAD();
   resolved_ = true;
   glViewport(0, 0, width_, height_);
-  if (aa_ == Antialiasing::kMsaa) {
+  if (aa_ == sim::Antialiasing::kMsaa) {
     glBindFramebuffer(GL_READ_FRAMEBUFFER, scene_fbo_);
     glBindFramebuffer(GL_DRAW_FRAMEBUFFER, output_fbo_);
     glBlitFramebuffer(0, 0, width_, height_, 0, 0, width_, height_, GL_COLOR_BUFFER_BIT, GL_NEAREST);
@@ -264,7 +264,7 @@ void Framebuffer::resolve(const std::optional<PixelRect>& edges) {
     return;
   }
   glBindFramebuffer(GL_FRAMEBUFFER, scene_fbo_);
-  if (aa_ == Antialiasing::kNone) return;
+  if (aa_ == sim::Antialiasing::kNone) return;
   PixelRect r = edges.value_or(PixelRect{0, 0, width_, height_});
   r = {std::max(r.x0 - 2, 0), std::max(r.y0 - 2, 0), std::min(r.x1 + 2, width_), std::min(r.y1 + 2, height_)};
   if (r.empty()) return;
@@ -298,7 +298,7 @@ void Framebuffer::resolve(const std::optional<PixelRect>& edges) {
 void Framebuffer::copyInto(unsigned target, int x, int y) {
   GF_ASSERT_GL_THREAD();
   if (!resolved_) resolve();
-  glBindFramebuffer(GL_READ_FRAMEBUFFER, aa_ == Antialiasing::kMsaa ? output_fbo_ : scene_fbo_);
+  glBindFramebuffer(GL_READ_FRAMEBUFFER, aa_ == sim::Antialiasing::kMsaa ? output_fbo_ : scene_fbo_);
   glBindFramebuffer(GL_DRAW_FRAMEBUFFER, target);
   glBlitFramebuffer(0, 0, width_, height_, x, y, x + width_, y + height_, GL_COLOR_BUFFER_BIT, GL_NEAREST);
   glBindFramebuffer(GL_FRAMEBUFFER, target);
@@ -307,7 +307,7 @@ void Framebuffer::copyInto(unsigned target, int x, int y) {
 void Framebuffer::read(Image& out) {
   GF_ASSERT_GL_THREAD();
   if (!resolved_) resolve();
-  glBindFramebuffer(GL_READ_FRAMEBUFFER, aa_ == Antialiasing::kMsaa ? output_fbo_ : scene_fbo_);
+  glBindFramebuffer(GL_READ_FRAMEBUFFER, aa_ == sim::Antialiasing::kMsaa ? output_fbo_ : scene_fbo_);
   out.width = width_;
   out.height = height_;
   const std::size_t w = static_cast<std::size_t>(width_), h = static_cast<std::size_t>(height_);

@@ -11,7 +11,7 @@
 
 #include "render/image.hpp"
 #include "render/vertex.hpp"
-#include "render/view_desc.hpp"
+#include "sim/view_desc.hpp"
 
 namespace gf::render {
 
@@ -69,7 +69,7 @@ struct PixelRect {
 class Framebuffer {
  public:
   /// width x height pixels (1..4096); `msaa_samples` (2..8) is used by kMsaa only. Throws GlError.
-  Framebuffer(int width, int height, Antialiasing aa, int msaa_samples = 4);
+  Framebuffer(int width, int height, sim::Antialiasing aa, int msaa_samples = 4);
   ~Framebuffer();
   Framebuffer(const Framebuffer&) = delete;
   Framebuffer& operator=(const Framebuffer&) = delete;
@@ -90,7 +90,7 @@ class Framebuffer {
  private:
   struct Fxaa;
   int width_, height_;
-  Antialiasing aa_;
+  sim::Antialiasing aa_;
   unsigned scene_fbo_ = 0, scene_colour_ = 0, scene_depth_ = 0;
   unsigned output_fbo_ = 0, output_colour_ = 0;  // kMsaa only; otherwise the scene is the output
   std::unique_ptr<Fxaa> fxaa_;

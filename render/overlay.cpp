@@ -21,7 +21,7 @@ constexpr ImGuiWindowFlags kPanelFlags = ImGuiWindowFlags_NoMove | ImGuiWindowFl
 
 // The scripted action in progress and how far it has got.
 struct RunningAction {
-  WidgetAction action;
+  sim::WidgetAction action;
   int step = 0;
   bool checkbox = false;
 };
@@ -54,7 +54,7 @@ struct Overlay::Impl {
 
   // Every slider spans legal values only (what a slider gives needs no further check).
   static void checkSliderSpans() {
-    for (const OverlayWidget& w : kOverlayWidgets) {
+    for (const sim::OverlayWidget& w : sim::kOverlayWidgets) {
       if (w.field == "god_finger") continue;
       const sim::Setting<sim::FingerDesc>* s = sim::findSetting(sim::fingerSettings(), w.field);
       GF_ASSERT(s != nullptr && s->live && "an overlay slider shows a live finger setting of sim/settings.cpp");
@@ -87,7 +87,7 @@ struct Overlay::Impl {
       if (r.step == 4) in.text = r.action.value;
       in.enter = r.step == 5;
     }
-    if (++r.step >= kActionFrames) running.pop_front();
+    if (++r.step >= sim::kActionFrames) running.pop_front();
     return in;
   }
 
@@ -147,7 +147,7 @@ struct Overlay::Impl {
       }
       remember(name + "/god_finger");
       ImGui::PushItemWidth(ImGui::GetFontSize() * 11);
-      const OverlayWidget& count = *findOverlayWidget("n_sgo");
+      const sim::OverlayWidget& count = *sim::findOverlayWidget("n_sgo");
       int n = on ? p.n_sgo : n_sgo_when_on[i];
       if (ImGui::SliderInt(count.label, &n, static_cast<int>(count.lo), static_cast<int>(count.hi), count.format,
                            ImGuiSliderFlags_AlwaysClamp)) {
@@ -156,7 +156,7 @@ struct Overlay::Impl {
         changed = true;
       }
       remember(name + "/n_sgo");
-      for (const OverlayWidget& w : kOverlayWidgets) {
+      for (const sim::OverlayWidget& w : sim::kOverlayWidgets) {
         if (w.field != "god_finger" && w.field != "n_sgo") changed |= slider(w, name, p);
       }
       ImGui::PopItemWidth();
@@ -169,7 +169,7 @@ struct Overlay::Impl {
 
   // The slider of widget `w` for the setting of the same name, shown in its unit times
   // w.shown_per_unit; writes the setting back when moved or typed.
-  bool slider(const OverlayWidget& w, const std::string& finger, sim::PatchSettings& p) {
+  bool slider(const sim::OverlayWidget& w, const std::string& finger, sim::PatchSettings& p) {
     const sim::Setting<sim::FingerDesc>& s = *sim::findSetting(sim::fingerSettings(), w.field);
     sim::FingerDesc f;
     f.patch = p;

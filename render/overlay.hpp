@@ -9,7 +9,7 @@
 #include <vector>
 
 #include "render/imgui_layer.hpp"
-#include "render/view_desc.hpp"
+#include "sim/view_desc.hpp"
 #include "sim/scene_desc.hpp"
 #include "sim/settings.hpp"
 #include "sim/snapshot.hpp"
@@ -18,7 +18,7 @@ namespace gf::render {
 
 /// What the overlay shows and does.
 struct OverlaySettings {
-  std::vector<WidgetAction> actions;  ///< sorted by time
+  std::vector<sim::WidgetAction> actions;  ///< sorted by time
   double plot_seconds = 5.0;          ///< span of the force plot (s)
   float font_px = 15.0f;              ///< at 720 rows; scaled with the frame height
 };

@@ -31,7 +31,7 @@ const char* modelLabel(const sim::PatchSettings& p) {
 }  // namespace
 
 bool contactCloseUp(const sim::SceneDesc& scene, const sim::Snapshot& snapshot, std::size_t finger,
-                    sim::Snapshot& only, Camera& camera) {
+                    sim::Snapshot& only, sim::Camera& camera) {
   if (finger >= snapshot.fingers.size() || snapshot.fingers[finger].contacts.empty()) return false;
   only = snapshot;
   for (std::size_t g = 0; g < only.fingers.size(); ++g) {
@@ -64,13 +64,13 @@ struct PatchInsets::Impl {
   ImGuiLayer labels;
   sim::Snapshot only;  // one finger's contacts, reused from frame to frame
 
-  Impl(const sim::SceneDesc& s, int w, int h, InsetCorner corner, Antialiasing aa, int samples)
+  Impl(const sim::SceneDesc& s, int w, int h, InsetCorner corner, sim::Antialiasing aa, int samples)
       : scene(s),
         width(w),
         height(h),
         rects(insetRects(w, h, static_cast<int>(s.fingers.size()), corner)),
         frame(rects.empty() ? 16 : rects.front().size, rects.empty() ? 16 : rects.front().size,
-              aa == Antialiasing::kMsaa ? aa : Antialiasing::kNone, samples),  // FXAA: not worth a pass at this size
+              aa == sim::Antialiasing::kMsaa ? aa : sim::Antialiasing::kNone, samples),  // FXAA: not worth a pass at this size
         labels(w, h, kLabelFontPx) {}
 
   // The label of finger f over the top of its inset, in three short lines: the finger and its
@@ -116,7 +116,7 @@ struct PatchInsets::Impl {
 };
 
 PatchInsets::PatchInsets(const sim::SceneDesc& scene, int frame_width, int frame_height, InsetCorner corner,
-                         Antialiasing antialiasing, int msaa_samples)
+                         sim::Antialiasing antialiasing, int msaa_samples)
     : impl_(std::make_unique<Impl>(scene, frame_width, frame_height, corner, antialiasing, msaa_samples)) {}
 
 PatchInsets::~PatchInsets() = default;
@@ -132,7 +132,7 @@ void PatchInsets::draw(SceneRenderer& renderer, const sim::Snapshot& snapshot, u
   renderer.setSettings(close);
   std::vector<bool> touching(m.rects.size(), false);
   for (std::size_t f = 0; f < m.rects.size(); ++f) {
-    Camera camera;
+    sim::Camera camera;
     if (!contactCloseUp(m.scene, snapshot, f, m.only, camera)) continue;
     touching[f] = true;
     const InsetRect& r = m.rects[f];

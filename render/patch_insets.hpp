@@ -18,7 +18,7 @@ namespace gf::render {
 /// view holding the patch (r_max and the radius drawn, with a margin). False, and nothing
 /// changed, when the finger touches nothing.
 bool contactCloseUp(const sim::SceneDesc& scene, const sim::Snapshot& snapshot, std::size_t finger,
-                    sim::Snapshot& only, Camera& camera);
+                    sim::Snapshot& only, sim::Camera& camera);
 
 /// Where the insets go: the frame's bottom-right corner, or its bottom-left (beside the
 /// overlay's bottom-right panel).
@@ -38,7 +38,7 @@ class PatchInsets {
  public:
   /// Makes the insets' framebuffer (anti-aliased like the frame) and label layer. Throws GlError.
   PatchInsets(const sim::SceneDesc& scene, int frame_width, int frame_height, InsetCorner corner,
-              Antialiasing antialiasing, int msaa_samples);
+              sim::Antialiasing antialiasing, int msaa_samples);
   ~PatchInsets();
   PatchInsets(const PatchInsets&) = delete;
   PatchInsets& operator=(const PatchInsets&) = delete;

@@ -86,7 +86,7 @@ struct Gpu {
   std::unique_ptr<Overlay> overlay;
   std::unique_ptr<PatchInsets> insets;
   std::unique_ptr<Framebuffer> close_up_frame;
-  Antialiasing antialiasing;
+  sim::Antialiasing antialiasing;
   int close_up_px;
   Gpu(const sim::SceneDesc& desc, const FrameOutputSettings& s)
       : scene(desc, s.scene),
@@ -103,7 +103,7 @@ struct Gpu {
   }
 
   // The frame of `snap` from `camera`, with the insets, into `frame` (the output bound after).
-  void drawScene(const sim::Snapshot& snap, const Camera& camera, int width, int height) {
+  void drawScene(const sim::Snapshot& snap, const sim::Camera& camera, int width, int height) {
     frame.bind();
     frame.resolve(scene.draw(snap, camera, width, height));
     if (insets) {
@@ -123,7 +123,7 @@ void drawCloseUps(Gpu& gpu, const sim::SceneDesc& desc, const sim::Snapshot& sna
   settings.patch_highlight = true;
   gpu.scene.setSettings(settings);
   sim::Snapshot only;
-  Camera camera;
+  sim::Camera camera;
   for (std::size_t f = 0; f < snap.fingers.size(); ++f) {
     if (!contactCloseUp(desc, snap, f, only, camera)) continue;
     gpu.close_up_frame->bind();
@@ -136,7 +136,7 @@ void drawCloseUps(Gpu& gpu, const sim::SceneDesc& desc, const sim::Snapshot& sna
 }
 
 void drawChartFile(const ChartSpec& chart, const std::string& path) {
-  Framebuffer frame(chart.width, chart.height, Antialiasing::kNone);  // ImGui smooths its own edges
+  Framebuffer frame(chart.width, chart.height, sim::Antialiasing::kNone);  // ImGui smooths its own edges
   ImGuiLayer layer(chart.width, chart.height, 17.0f);
   frame.bind();
   glClearColor(1, 1, 1, 1);

@@ -22,10 +22,10 @@ namespace gf::render {
 struct FrameOutputSettings {
   int width = 1280;               ///< pixels (1..1920 wide, 1..1080 high)
   int height = 720;
-  Antialiasing antialiasing = Antialiasing::kFxaa;
-  int msaa_samples = 4;           ///< with Antialiasing::kMsaa (2..8)
+  sim::Antialiasing antialiasing = sim::Antialiasing::kFxaa;
+  int msaa_samples = 4;           ///< with sim::Antialiasing::kMsaa (2..8)
   double fps = 60.0;              ///< frame rate of the outputs (frames per simulated second)
-  Camera camera;                  ///< the camera of the frame stream
+  sim::Camera camera;                  ///< the camera of the frame stream
   std::string frames_dir;         ///< PNG sequence folder; empty: none
   std::string video_path;         ///< MP4 file; empty: none
   RenderSettings scene;           ///< drawing switches (effects)

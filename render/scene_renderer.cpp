@@ -61,7 +61,7 @@ Vec3 boxCorner(const sim::Mesh& m, const sim::Pose& pose, int k) {
   return pose.position + pose.orientation * corner;
 }
 
-bool sameView(const Camera& a, const Camera& b) {
+bool sameView(const sim::Camera& a, const sim::Camera& b) {
   return a.position == b.position && a.target == b.target && a.fov_deg == b.fov_deg;
 }
 
@@ -93,7 +93,7 @@ struct SceneRenderer::Impl {
   // of redrawn (a frame and its patch insets are two sizes).
   struct BackdropSlot {
     std::unique_ptr<Backdrop> backdrop;
-    Camera camera;
+    sim::Camera camera;
     bool ground = true;  // drawn with the ground planes
   };
   std::array<BackdropSlot, 3> backdrops;
@@ -193,7 +193,7 @@ struct SceneRenderer::Impl {
   }
 
   // Camera, light and ground uniforms of every surface program for this frame.
-  void beginSurfacePass(const Camera& camera, int width, int height) {
+  void beginSurfacePass(const sim::Camera& camera, int width, int height) {
     const double far_m = 60.0 * extent + (camera.position - centre).norm();
     view = lookAt(camera.position, camera.target, upFor(camera.target - camera.position));
     view_proj = perspective(camera.fov_deg, double(width) / height, 0.002, far_m) * view;
@@ -219,7 +219,7 @@ struct SceneRenderer::Impl {
   // Background colour and ground: drawn into the backdrop when the view changed, then copied
   // into the frame. Ground planes are static bodies, so only the camera and the frame size
   // change what the backdrop holds.
-  void drawBackdrop(const sim::Snapshot& snap, const Camera& camera, int width, int height) {
+  void drawBackdrop(const sim::Snapshot& snap, const sim::Camera& camera, int width, int height) {
     GLint target = 0, samples = 0;
     glGetIntegerv(GL_FRAMEBUFFER_BINDING, &target);
     glGetIntegerv(GL_SAMPLES, &samples);
@@ -251,7 +251,7 @@ struct SceneRenderer::Impl {
 
   // Pixels that the bodies, fingers and contact marks of `snap` can cover: each drawn thing's
   // bounding sphere, projected conservatively. Outside it the frame is the smooth backdrop.
-  PixelRect dynamicRect(const sim::Snapshot& snap, const Camera& camera, int width, int height) const {
+  PixelRect dynamicRect(const sim::Snapshot& snap, const sim::Camera& camera, int width, int height) const {
     const Eigen::Matrix4d to_camera = view.cast<double>();  // set by beginSurfacePass()
     const double fy = 1.0 / std::tan(0.5 * camera.fov_deg * std::numbers::pi / 180.0);
     const double fx = fy * height / width;
@@ -467,7 +467,7 @@ void SceneRenderer::setSettings(const RenderSettings& settings) {
 
 const RenderSettings& SceneRenderer::settings() const { return impl_->settings; }
 
-PixelRect SceneRenderer::draw(const sim::Snapshot& snapshot, const Camera& camera, int width, int height) {
+PixelRect SceneRenderer::draw(const sim::Snapshot& snapshot, const sim::Camera& camera, int width, int height) {
   GF_ASSERT_GL_THREAD();
   GLint target = 0;
   glGetIntegerv(GL_FRAMEBUFFER_BINDING, &target);

@@ -40,7 +40,7 @@ class SceneRenderer {
   /// Returns the pixels where it drew anything but the backdrop (what anti-aliasing must see).
   /// The shadow map is drawn once per instant (snapshot time and step): further views of the
   /// same instant, such as the patch insets, reuse it.
-  PixelRect draw(const sim::Snapshot& snapshot, const Camera& camera, int width, int height);
+  PixelRect draw(const sim::Snapshot& snapshot, const sim::Camera& camera, int width, int height);
   /// Changes the switches for the next draw (close-ups hide the fingers).
   void setSettings(const RenderSettings& settings);
   const RenderSettings& settings() const;

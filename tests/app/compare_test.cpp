@@ -2,7 +2,7 @@
 // comparison of the Fig. 5 push run end to end as a user runs it: one run per model, the
 // composited frames and video, compare.json, and the physics the comparison exists to show (under
 // a god-object the pushed ball rolls; under a god-finger it slides).
-#include "app/compare.hpp"
+#include "app/compare/compare.hpp"
 
 #include <gtest/gtest.h>
 
@@ -10,8 +10,8 @@
 #include <fstream>
 #include <tuple>
 
-#include "app/plot.hpp"
-#include "app/scene_file.hpp"
+#include "app/commands/plot.hpp"
+#include "app/scene/scene_file.hpp"
 #include "render/image.hpp"
 #include "tests/app/run_helpers.hpp"
 

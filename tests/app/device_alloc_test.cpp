@@ -7,9 +7,9 @@
 #include <sys/socket.h>
 #include <unistd.h>
 
-#include "app/device_protocol.hpp"
-#include "app/scene_file.hpp"
-#include "app/udp_device.hpp"
+#include "app/session/device_protocol.hpp"
+#include "app/scene/scene_file.hpp"
+#include "app/session/udp_device.hpp"
 #include "tests/app/loopback.hpp"
 #include "tests/alloc_counter.hpp"
 

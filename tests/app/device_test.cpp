@@ -15,11 +15,11 @@
 #include <sstream>
 #include <vector>
 
-#include "app/device_protocol.hpp"
-#include "app/live.hpp"
-#include "app/scene_file.hpp"
-#include "app/session.hpp"
-#include "app/udp_device.hpp"
+#include "app/session/device_protocol.hpp"
+#include "app/session/live.hpp"
+#include "app/scene/scene_file.hpp"
+#include "app/session/session.hpp"
+#include "app/session/udp_device.hpp"
 #include "sim/world.hpp"
 
 namespace gf::app {

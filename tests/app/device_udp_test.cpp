@@ -21,7 +21,7 @@
 #include <sys/socket.h>
 #include <unistd.h>
 
-#include "app/device_protocol.hpp"
+#include "app/session/device_protocol.hpp"
 #include "tests/app/loopback.hpp"
 #include "tests/app/run_helpers.hpp"
 

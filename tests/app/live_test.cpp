@@ -1,5 +1,5 @@
 // `godfinger live`: one answer per line, errors naming the input line.
-#include "app/live.hpp"
+#include "app/session/live.hpp"
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>

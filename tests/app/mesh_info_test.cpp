@@ -1,14 +1,14 @@
 // `godfinger mesh-info` on files with several parts, a declared unit and up axis, and a size in
 // millimetres, against what the files hold by construction.
-#include "app/mesh_info.hpp"
+#include "app/commands/mesh_info.hpp"
 
 #include <gtest/gtest.h>
 
 #include <filesystem>
 #include <fstream>
 
-#include "app/scene_file.hpp"
-#include "app/session.hpp"
+#include "app/scene/scene_file.hpp"
+#include "app/session/session.hpp"
 #include "sim/mesh_import.hpp"
 #include "tests/scratch.hpp"
 

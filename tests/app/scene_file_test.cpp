@@ -1,5 +1,6 @@
 // Scene files: fields, overrides, and a clear error (file, line, field) for each bad input.
-#include "app/scene_file.hpp"
+#include "app/scene/scene_file.hpp"
+#include "app/scene/data_folder.hpp"
 
 #include <gtest/gtest.h>
 
@@ -159,10 +160,10 @@ TEST(SceneFile, ErrorsNameFileLineAndField) {
 }
 
 TEST(SceneFile, AntialiasingIsOneOfThreeNames) {
-  EXPECT_EQ(parseSceneText(kMinimal, "scene.toml", "").view.antialiasing, render::Antialiasing::kFxaa);
+  EXPECT_EQ(parseSceneText(kMinimal, "scene.toml", "").view.antialiasing, sim::Antialiasing::kFxaa);
   const std::string text = std::string(kMinimal) + "[render]\nantialiasing = \"msaa\"\nmsaa_samples = 8\n";
   const SessionDesc s = parseSceneText(text, "scene.toml", "");
-  EXPECT_EQ(s.view.antialiasing, render::Antialiasing::kMsaa);
+  EXPECT_EQ(s.view.antialiasing, sim::Antialiasing::kMsaa);
   EXPECT_EQ(s.view.msaa_samples, 8);
   const std::string minimal = kMinimal;
   const int render_line = static_cast<int>(std::count(minimal.begin(), minimal.end(), '\n')) + 2;

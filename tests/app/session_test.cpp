@@ -1,6 +1,6 @@
 // Sessions: what `godfinger run` writes (trace, summary, contacts, frames) and how scripted
 // overlay input reaches the simulation.
-#include "app/session.hpp"
+#include "app/session/session.hpp"
 
 #include <gtest/gtest.h>
 
@@ -12,8 +12,10 @@
 #include <sstream>
 #include <vector>
 
-#include "app/scene_file.hpp"
-#include "app/trace_writer.hpp"
+#include "app/scene/scene_file.hpp"
+#include "app/runs/trace.hpp"
+#include "app/scene/data_folder.hpp"
+#include "app/session/expectations.hpp"
 #include "render/image.hpp"
 #include "tests/scratch.hpp"
 

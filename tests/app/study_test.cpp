@@ -9,9 +9,9 @@
 #include <numbers>
 #include <sstream>
 
-#include "app/scene_file.hpp"
-#include "app/study.hpp"
-#include "app/study_measure.hpp"
+#include "app/scene/scene_file.hpp"
+#include "app/study/study.hpp"
+#include "app/study/study_measure.hpp"
 #include "sim/god_finger.hpp"
 #include "tests/scratch.hpp"
 

@@ -12,8 +12,9 @@
 #include <filesystem>
 #include <fstream>
 
-#include "app/scene_file.hpp"
-#include "app/session.hpp"
+#include "app/scene/scene_file.hpp"
+#include "app/session/session.hpp"
+#include "app/scene/data_folder.hpp"
 
 namespace {
 

@@ -4,9 +4,10 @@
 
 #include <optional>
 
-#include "app/scene_file.hpp"
-#include "app/screenshots.hpp"
-#include "app/session.hpp"
+#include "app/scene/scene_file.hpp"
+#include "app/session/screenshots.hpp"
+#include "app/session/session.hpp"
+#include "app/scene/data_folder.hpp"
 #include "render/context.hpp"
 #include "render/gpu.hpp"
 #include "render/scene_renderer.hpp"
@@ -28,7 +29,7 @@ Prepared prepare(const std::string& scene, double time) {
 
 // Draw + anti-aliasing + read-back of one frame, repeated; `aa` overrides the scene's choice.
 void drawFrames(benchmark::State& state, const char* scene, double time,
-                std::optional<render::Antialiasing> aa = std::nullopt) {
+                std::optional<sim::Antialiasing> aa = std::nullopt) {
   const Prepared p = prepare(scene, time);
   render::GlContext context;
   const render::FrameOutputSettings f = app::frameSettings(p.session, {});
@@ -54,12 +55,12 @@ BENCHMARK_CAPTURE(BM_RenderFrame1280x720, fig8, "fig8-pinch-oscillation", 4.0)->
 BENCHMARK_CAPTURE(BM_RenderFrame1280x720, concave_mesh, "concave-mesh", 1.5)->Unit(benchmark::kMillisecond);
 
 // What anti-aliasing costs: fig8 drawn without, with FXAA (the default) and with 4x MSAA.
-void BM_RenderAntialiasing1280x720(benchmark::State& state, render::Antialiasing aa) {
+void BM_RenderAntialiasing1280x720(benchmark::State& state, sim::Antialiasing aa) {
   drawFrames(state, "fig8-pinch-oscillation", 4.0, aa);
 }
-BENCHMARK_CAPTURE(BM_RenderAntialiasing1280x720, none, render::Antialiasing::kNone)->Unit(benchmark::kMillisecond);
-BENCHMARK_CAPTURE(BM_RenderAntialiasing1280x720, fxaa, render::Antialiasing::kFxaa)->Unit(benchmark::kMillisecond);
-BENCHMARK_CAPTURE(BM_RenderAntialiasing1280x720, msaa4, render::Antialiasing::kMsaa)->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_RenderAntialiasing1280x720, none, sim::Antialiasing::kNone)->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_RenderAntialiasing1280x720, fxaa, sim::Antialiasing::kFxaa)->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_RenderAntialiasing1280x720, msaa4, sim::Antialiasing::kMsaa)->Unit(benchmark::kMillisecond);
 
 void BM_PngEncode1280x720(benchmark::State& state) {
   const Prepared p = prepare("fig8-pinch-oscillation", 4.0);

@@ -7,8 +7,8 @@
 #include <sstream>
 #include <string>
 
-#include "app/scene_file.hpp"
-#include "app/study.hpp"
+#include "app/scene/scene_file.hpp"
+#include "app/study/study.hpp"
 
 namespace gf::app {
 namespace {

@@ -11,7 +11,7 @@
 #include <string>
 #include <vector>
 
-#include "app/live.hpp"
+#include "app/session/live.hpp"
 
 namespace {
 

@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-#include "app/scene_file.hpp"
+#include "app/scene/scene_file.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   const std::string input(reinterpret_cast<const char*>(data), size);

@@ -5,8 +5,8 @@
 #include <cstdint>
 #include <string>
 
-#include "app/scene_file.hpp"
-#include "app/study.hpp"
+#include "app/scene/scene_file.hpp"
+#include "app/study/study.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   const std::string text(reinterpret_cast<const char*>(data), size);

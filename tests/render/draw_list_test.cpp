@@ -9,7 +9,8 @@
 #include <cmath>
 #include <vector>
 
-#include "app/scene_file.hpp"
+#include "app/scene/scene_file.hpp"
+#include "app/scene/data_folder.hpp"
 #include "render/geometry.hpp"
 #include "sim/world.hpp"
 

@@ -7,7 +7,8 @@
 #include <cmath>
 #include <tuple>
 
-#include "app/scene_file.hpp"
+#include "app/scene/scene_file.hpp"
+#include "app/scene/data_folder.hpp"
 #include "sim/world.hpp"
 
 namespace gf::render {
@@ -44,7 +45,7 @@ TEST(PatchInsets, TheCloseUpLooksDownTheNormalAtOneFingersContact) {
   sim::Snapshot before;
   world.snapshot(before);
   sim::Snapshot only;
-  Camera camera;
+  sim::Camera camera;
   EXPECT_FALSE(contactCloseUp(session.scene, before, 0, only, camera)) << "nothing touched at t = 0";
   for (int k = 0; k < 800; ++k) {  // squeezing
     for (std::size_t i = 0; i < devices.size(); ++i) samples[i] = devices[i].sample(world.time());

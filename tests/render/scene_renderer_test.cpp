@@ -3,9 +3,9 @@
 
 #include <gtest/gtest.h>
 
-#include "app/scene_file.hpp"
-#include "app/screenshots.hpp"
-#include "app/session.hpp"
+#include "app/scene/scene_file.hpp"
+#include "app/session/screenshots.hpp"
+#include "app/session/session.hpp"
 #include "render/context.hpp"
 #include "render/gpu.hpp"
 #include "render/image.hpp"
@@ -22,14 +22,14 @@ class Frames : public ::testing::Test {
         settings_(app::frameSettings(session_, {})),
         renderer_(session_.scene, settings_.scene) {}
 
-  render::Image draw(render::Framebuffer& frame, const render::Camera& camera) {
+  render::Image draw(render::Framebuffer& frame, const sim::Camera& camera) {
     frame.bind();
     frame.resolve(renderer_.draw(snapshot_, camera, frame.width(), frame.height()));
     render::Image image;
     frame.read(image);
     return image;
   }
-  render::Image draw(render::Antialiasing aa) {
+  render::Image draw(sim::Antialiasing aa) {
     render::Framebuffer frame(kWidth, kHeight, aa);
     return draw(frame, settings_.camera);
   }
@@ -45,8 +45,8 @@ class Frames : public ::testing::Test {
 // Anti-aliasing only touches pixels at edges: a few percent of the frame change, and none in
 // the top-left corner (sky and far ground, where the frame has no geometric edge).
 TEST_F(Frames, AntialiasingChangesOnlyEdgePixels) {
-  const render::Image none = draw(render::Antialiasing::kNone);
-  for (const render::Antialiasing aa : {render::Antialiasing::kFxaa, render::Antialiasing::kMsaa}) {
+  const render::Image none = draw(sim::Antialiasing::kNone);
+  for (const sim::Antialiasing aa : {sim::Antialiasing::kFxaa, sim::Antialiasing::kMsaa}) {
     const render::Image smooth = draw(aa);
     ASSERT_EQ(smooth.rgb.size(), none.rgb.size());
     int changed = 0, changed_corner = 0;
@@ -59,19 +59,19 @@ TEST_F(Frames, AntialiasingChangesOnlyEdgePixels) {
       changed_corner += differs && x < kWidth / 4 && y < kHeight / 2;
     }
     const double share = double(changed) / (kWidth * kHeight);
-    EXPECT_GT(share, 0.002) << render::antialiasingName(aa);
-    EXPECT_LT(share, 0.08) << render::antialiasingName(aa);
-    EXPECT_EQ(changed_corner, 0) << render::antialiasingName(aa);
+    EXPECT_GT(share, 0.002) << sim::antialiasingName(aa);
+    EXPECT_LT(share, 0.08) << sim::antialiasingName(aa);
+    EXPECT_EQ(changed_corner, 0) << sim::antialiasingName(aa);
   }
 }
 
 // The backdrop is cached per camera: drawing again gives the same frame, and a frame after a
 // different camera's frame is the same as before (the cache was rebuilt for each view).
 TEST_F(Frames, CachedBackdropFollowsTheCamera) {
-  render::Framebuffer frame(kWidth, kHeight, render::Antialiasing::kFxaa);
+  render::Framebuffer frame(kWidth, kHeight, sim::Antialiasing::kFxaa);
   const render::Image first = draw(frame, settings_.camera);
   EXPECT_EQ(draw(frame, settings_.camera).rgb, first.rgb);
-  render::Camera other = settings_.camera;
+  sim::Camera other = settings_.camera;
   other.position += sim::Vec3(0.05, 0.02, 0.0);
   const render::Image moved = draw(frame, other);
   EXPECT_NE(moved.rgb, first.rgb);

@@ -7,7 +7,7 @@
 #include <filesystem>
 #include <ostream>
 
-#include "app/screenshots.hpp"
+#include "app/session/screenshots.hpp"
 #include "render/image_compare.hpp"
 
 namespace gf::app {

@@ -7,7 +7,8 @@
 #include <string>
 #include <vector>
 
-#include "app/scene_file.hpp"
+#include "app/scene/scene_file.hpp"
+#include "app/scene/data_folder.hpp"
 #include "sim/haptic_loop.hpp"
 #include "sim/world.hpp"
 

@@ -1,0 +1,159 @@
+#include "app/commands/check.hpp"
+
+#include <nlohmann/json.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include "app/runs/jobs.hpp"
+#include "app/scene/scene_file.hpp"
+#include "app/scene/data_folder.hpp"
+
+namespace gf::app {
+namespace {
+
+namespace fs = std::filesystem;
+
+std::string lastLine(const fs::path& path) {
+  std::ifstream in(path);
+  std::string line, last;
+  while (std::getline(in, line)) {
+    // Progress lines end in carriage returns: keep the text after the last one.
+    const std::size_t cr = line.find_last_of('\r');
+    const std::string text = cr == std::string::npos ? line : line.substr(cr + 1);
+    if (!text.empty()) last = text;
+  }
+  return last;
+}
+
+// How close the run came to each limit: the check nearest to failing, as "name worst (limit)".
+std::string closest(const nlohmann::json& checks) {
+  std::string out;
+  double nearest = -HUGE_VAL;
+  for (const nlohmann::json& c : checks) {
+    if (!c.value("checked", false) || c["worst"].is_null() || c["name"] == "finite") continue;
+    const double worst = c["worst"].get<double>(), limit = c["limit"].get<double>();
+    // How much of the limit is used: worst / limit for "at most" checks, limit / worst for
+    // "at least" ones (1: at the limit).
+    const bool at_least = c.value("kind", "at_most") == "at_least";
+    const double share = at_least ? (worst > 0.0 ? limit / worst : HUGE_VAL) : (limit != 0.0 ? worst / limit : worst);
+    if (share > nearest) {
+      nearest = share;
+      char b[160];
+      std::snprintf(b, sizeof b, "%s %.4g (limit %.4g)", c["name"].get<std::string>().c_str(), worst, limit);
+      out = b;
+    }
+  }
+  return out;
+}
+
+}  // namespace
+
+std::vector<std::string> checkedScenes(const std::vector<std::string>& paths) {
+  std::vector<std::string> out;
+  for (const std::string& p : paths) {
+    if (fs::is_directory(p)) {
+      std::vector<std::string> found;
+      for (const auto& e : fs::recursive_directory_iterator(p)) {
+        if (e.is_regular_file() && e.path().extension() == ".toml") found.push_back(e.path().string());
+      }
+      if (found.empty()) throw InputError(p, 0, 0, "", "no scene file (*.toml) in this folder");
+      std::sort(found.begin(), found.end());
+      out.insert(out.end(), found.begin(), found.end());
+    } else {
+      out.push_back(resolveScenePath(p));
+    }
+  }
+  return out;
+}
+
+int runCheck(const CheckOptions& options) {
+  std::vector<std::string> scenes;
+  int live = 0;  // scenes a live device drives: they cannot run offline
+  for (const std::string& s : checkedScenes(options.paths)) {
+    bool udp = false;
+    try {
+      udp = !loadSceneFile(s, options.overrides).udp_devices.empty();
+    } catch (const std::exception&) {
+      // the run reports why it does not load
+    }
+    if (!udp) {
+      scenes.push_back(s);
+      continue;
+    }
+    std::printf("%-5s %-40s a live UDP device drives it: run it with --realtime and a device program\n", "SKIP",
+                fs::path(s).stem().string().c_str());
+    ++live;
+  }
+  std::vector<std::string> names, lines;
+  for (const std::string& s : scenes) {
+    std::string name = fs::path(s).stem().string();
+    for (const std::string& other : names) {
+      if (other == name) name = fs::path(s).parent_path().filename().string() + "-" + name;
+    }
+    names.push_back(name);
+    std::vector<std::string> arguments;
+    for (const std::string& o : options.overrides) arguments.insert(arguments.end(), {"--set", o});
+    lines.push_back(godfingerRunLine(options.godfinger, s, (fs::path(options.out) / name).string(), arguments));
+  }
+  int failed = 0, passed = 0;
+  const bool interrupted = runJobs(lines, options.jobs, [&](std::size_t i, int code) {
+    const fs::path dir = fs::absolute(options.out) / names[i];
+    nlohmann::json summary;
+    std::ifstream in(dir / "summary.json");
+    bool have = false;
+    if (in) {
+      try {
+        summary = nlohmann::json::parse(in);
+        have = summary.contains("expectations");
+      } catch (const nlohmann::json::exception&) {
+      }
+    }
+    char head[96];
+    std::string detail;
+    if ((code == 0 || code == 3) && have) {
+      const nlohmann::json& checks = summary["expectations"]["checks"];
+      std::vector<std::string> failures;
+      for (const nlohmann::json& c : checks) {
+        if (c.value("passed", true)) continue;
+        char b[200];
+        if (c["worst"].is_null()) std::snprintf(b, sizeof b, "%s not finite", c["name"].get<std::string>().c_str());
+        else std::snprintf(b, sizeof b, "%s %.4g (limit %.4g) at t = %.4f s", c["name"].get<std::string>().c_str(),
+                           c["worst"].get<double>(), c["limit"].get<double>(), c["time_s"].get<double>());
+        failures.push_back(b);
+      }
+      const long recoveries = summary["counters"].value("nan_recoveries", 0L);
+      std::snprintf(head, sizeof head, "%-5s %-40s ", failures.empty() ? "PASS" : "FAIL", names[i].c_str());
+      if (failures.empty()) {
+        detail = std::to_string(checks.size()) + " checks";
+        const std::string c = closest(checks);
+        if (!c.empty()) detail += "; closest: " + c;
+      } else {
+        detail = failures.front();
+        if (failures.size() > 1) detail += " (+" + std::to_string(failures.size() - 1) + " more)";
+        ++failed;
+      }
+      if (failures.empty()) ++passed;
+      if (recoveries > 0) detail += "; " + std::to_string(recoveries) + " steps rolled back";
+    } else {
+      std::snprintf(head, sizeof head, "%-5s %-40s ", "ERROR", names[i].c_str());
+      detail = "exit " + std::to_string(code) + ": " + lastLine(dir / "run.log");
+      ++failed;
+    }
+    std::printf("%s%s\n", head, detail.c_str());
+    std::fflush(stdout);
+  });
+  const std::size_t skipped = scenes.size() - static_cast<std::size_t>(passed + failed);
+  std::printf("%zu scenes: %d passed, %d failed, %zu not run%s", scenes.size() + static_cast<std::size_t>(live), passed,
+              failed, skipped + static_cast<std::size_t>(live), interrupted ? " (interrupted)" : "");
+  if (live > 0) std::printf(" (%d with a live device)", live);
+  std::printf("; runs in %s/\n", options.out.c_str());
+  if (interrupted) return 130;
+  return failed == 0 ? 0 : 1;
+}
+
+}  // namespace gf::app

@@ -1,0 +1,189 @@
+// [bodies.NAME]: shapes, meshes, masses and the mass ratios a pinch can hold.
+#include "app/scene/sections.hpp"
+
+#include <Eigen/Geometry>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <memory>
+#include <numbers>
+
+#include "sim/settings.hpp"
+
+namespace gf::app {
+namespace {
+
+constexpr double kDegToRad = std::numbers::pi / 180.0;
+
+Eigen::Quaterniond readOrientation(Reader& r) {
+  if (r.has("orientation") && r.has("rotation")) {
+    r.fail(r.find("rotation"), "rotation", "give either orientation or rotation, not both");
+  }
+  if (r.has("rotation")) {
+    const Vec3 deg = r.vec3("rotation", Vec3::Zero());
+    return Eigen::AngleAxisd(deg.x() * kDegToRad, Vec3::UnitX()) *
+           Eigen::AngleAxisd(deg.y() * kDegToRad, Vec3::UnitY()) *
+           Eigen::AngleAxisd(deg.z() * kDegToRad, Vec3::UnitZ());
+  }
+  const toml::node* n = r.find("orientation");
+  if (!n) return Eigen::Quaterniond::Identity();
+  const toml::array* a = n->as_array();
+  if (!a || a->size() != 4 || !std::all_of(a->begin(), a->end(), [](const toml::node& e) {
+        return e.is_number() && std::isfinite(e.value<double>().value_or(NAN));
+      })) {
+    r.fail(n, "orientation", "expected a quaternion [x, y, z, w] of finite numbers");
+  }
+  Eigen::Quaterniond q(a->get(3)->value<double>().value(), a->get(0)->value<double>().value(),
+                       a->get(1)->value<double>().value(), a->get(2)->value<double>().value());
+  if (q.norm() < 1e-9) r.fail(n, "orientation", "quaternion has zero length");
+  return q.normalized();
+}
+
+// `shape` (and `collision` for meshes): the row of sim::shapeInfos() it names.
+const sim::ShapeInfo& readShape(Reader& r) {
+  std::vector<std::string_view> shapes, collisions;
+  for (const sim::ShapeInfo& s : sim::shapeInfos()) {
+    if (std::find(shapes.begin(), shapes.end(), s.shape) == shapes.end()) shapes.push_back(s.shape);
+    if (!s.collision.empty()) collisions.push_back(s.collision);
+  }
+  const std::string_view shape = shapes[static_cast<std::size_t>(r.choice("shape", shapes, -1))];
+  const std::string_view collision =
+      shape == "mesh" ? collisions[static_cast<std::size_t>(r.choice("collision", collisions, 0))] : "";
+  for (const sim::ShapeInfo& s : sim::shapeInfos()) {
+    if (s.shape == shape && s.collision == collision) return s;
+  }
+  r.fail(r.find("shape"), "shape", "no such shape");
+}
+
+// `mesh` and `scale`: the mesh file, loaded once per (path, scale) into `meshes`.
+void readMesh(Reader& r, const std::string& base_dir, sim::MeshCache& meshes, sim::BodyDesc& b) {
+  const toml::node* n = r.find("mesh");
+  if (!n || !n->is_string()) r.fail(n, "mesh", "expected the mesh file's path (a string)");
+  b.mesh_path = resolvePath(base_dir, n->as_string()->get());
+  r.setting(*sim::findSetting(sim::bodySettings(), "scale"), b, "scale");
+  try {
+    b.mesh = meshes.load(b.mesh_path, b.mesh_scale);
+  } catch (const sim::MeshLoadError& e) {
+    r.fail(n, "mesh", e.what());
+  }
+  // The file's up axis when it is not the scene's +y (CAD and 3D-printing files are mostly +z
+  // up): the mesh turned so that axis points up. Files that declare theirs (Collada) are turned
+  // on reading already; "y" keeps the mesh as read.
+  const int up = r.choice("up_axis", kUpAxes, 0);
+  if (up != 0) {
+    // Rotations taking the named axis onto +y (right-handed, proper).
+    static const Eigen::Matrix3d kTurns[] = {
+        Eigen::Matrix3d::Identity(),
+        (Eigen::Matrix3d() << 1, 0, 0, 0, 0, 1, 0, -1, 0).finished(),   // +z up: (x, y, z) -> (x, z, -y)
+        (Eigen::Matrix3d() << 1, 0, 0, 0, 0, -1, 0, 1, 0).finished(),   // -z up: (x, y, z) -> (x, -z, y)
+        (Eigen::Matrix3d() << 0, -1, 0, 1, 0, 0, 0, 0, 1).finished(),   // +x up: (x, y, z) -> (-y, x, z)
+        (Eigen::Matrix3d() << 0, 1, 0, -1, 0, 0, 0, 0, 1).finished(),   // -x up: (x, y, z) -> (y, -x, z)
+        (Eigen::Matrix3d() << 1, 0, 0, 0, -1, 0, 0, 0, -1).finished()}; // -y up: (x, y, z) -> (x, -y, -z)
+    std::vector<sim::Vec3> turned;
+    turned.reserve(b.mesh->vertices().size());
+    for (const sim::Vec3& p : b.mesh->vertices()) turned.push_back(kTurns[up] * p);
+    b.mesh = std::make_shared<const sim::Mesh>(sim::buildMesh(turned, b.mesh->triangles()));
+  }
+}
+
+// The volume of a body's shape (m^3): analytic for primitives, the enclosed volume for meshes
+// (<= 0 for an open or inside-out mesh).
+double bodyVolume(const sim::BodyDesc& b) {
+  constexpr double pi = 3.14159265358979323846;
+  switch (b.shape) {
+    case sim::ShapeKind::kSphere: return 4.0 / 3.0 * pi * b.radius * b.radius * b.radius;
+    case sim::ShapeKind::kBox: return 8.0 * b.half_extents.prod();
+    case sim::ShapeKind::kCylinder: return pi * b.radius * b.radius * 2.0 * b.half_height;
+    case sim::ShapeKind::kCapsule:
+      return pi * b.radius * b.radius * 2.0 * b.half_height + 4.0 / 3.0 * pi * b.radius * b.radius * b.radius;
+    case sim::ShapeKind::kPlane: return 0.0;
+    case sim::ShapeKind::kConvexHull:
+    case sim::ShapeKind::kConvexDecomposition:
+    case sim::ShapeKind::kConcaveMesh: return b.mesh ? sim::massProperties(*b.mesh).volume : 0.0;
+  }
+  return 0.0;
+}
+
+// Body settings every shape has (dimensions, scale and mass are read where they apply).
+bool commonBodySetting(const sim::Setting<sim::BodyDesc>& s) {
+  for (const sim::ShapeInfo& shape : sim::shapeInfos()) {
+    for (std::string_view d : shape.dimensions) {
+      if (d == s.name) return false;
+    }
+  }
+  return s.name != "scale" && s.name != "mass";
+}
+
+}  // namespace
+
+sim::BodyDesc readBody(const std::string& name, const toml::table& t, const Reader& parent,
+                       const std::string& base_dir, sim::MeshCache& meshes) {
+  Reader r(t, parent.field("bodies." + name), parent.file());
+  sim::BodyDesc b;
+  b.name = name;
+  const sim::ShapeInfo& shape = readShape(r);
+  b.shape = shape.kind;
+  for (std::string_view d : shape.dimensions) {
+    if (!d.empty()) r.setting(*sim::findSetting(sim::bodySettings(), d), b, std::string(d), true);
+  }
+  if (sim::isMeshShape(b.shape)) readMesh(r, base_dir, meshes, b);
+  const bool is_plane = b.shape == sim::ShapeKind::kPlane;
+  const bool is_static = r.boolean("static", is_plane);
+  if (is_plane && !is_static) r.fail(r.find("static"), "static", "a plane is always static");
+  if (is_static) {
+    for (const char* field : {"mass", "density"}) {
+      if (r.has(field)) r.fail(r.find(field), field, "a static body has no mass; remove the field");
+    }
+    b.mass = 0.0;
+  } else if (r.has("density")) {  // the mass from the shape's volume
+    if (r.has("mass")) r.fail(r.find("density"), "density", "give mass or density, not both");
+    const double density = r.requiredNumber("density", kMinDensity, kMaxDensity);
+    const double volume = bodyVolume(b);
+    if (!(volume > 0.0)) {
+      r.fail(r.find("density"), "density", "the mesh encloses no volume (open or inside-out): give a mass instead");
+    }
+    b.mass = density * volume;
+    const sim::Setting<sim::BodyDesc>& mass = *sim::findSetting(sim::bodySettings(), "mass");
+    if (const std::optional<std::string> why = sim::checkGiven(mass, b.mass)) {
+      char text[160];
+      std::snprintf(text, sizeof text, "gives a mass of %g kg (volume %g m^3): ", b.mass, volume);
+      r.fail(r.find("density"), "density", text + *why);
+    }
+  } else {
+    r.setting(*sim::findSetting(sim::bodySettings(), "mass"), b, "mass", true);
+  }
+  for (const sim::Setting<sim::BodyDesc>& s : sim::bodySettings()) {
+    if (commonBodySetting(s)) r.setting(s, b, std::string(s.name));
+  }
+  b.orientation = readOrientation(r);
+  r.failOn(sim::validateBody(b));
+  r.finish();
+  return b;
+}
+
+// The solver holds a pinched body down to 1/100 of a proxy's mass (hard case pinch-mass-1g, with
+// the 100 iterations it needs to lift it; fewer leave it calm on the ground); at 1/1000 the body
+// tumbles over whatever the iterations, so lighter bodies are rejected.
+void checkMassRatios(Reader& r, const sim::SceneDesc& scene) {
+  const sim::FingerDesc* heaviest = nullptr;
+  for (const sim::FingerDesc& f : scene.fingers) {
+    if (!heaviest || f.proxy.mass > heaviest->proxy.mass) heaviest = &f;
+  }
+  if (!heaviest) return;
+  const double lightest = heaviest->proxy.mass * sim::kMinBodyToProxyMass;
+  for (const auto& [name, t] : r.namedTables("bodies")) {
+    const auto body = std::find_if(scene.bodies.begin(), scene.bodies.end(), [&name = name](const sim::BodyDesc& b) { return b.name == name; });
+    if (body == scene.bodies.end() || body->mass <= 0.0 || body->mass >= lightest * (1 - 1e-9)) continue;
+    Reader br(*t, r.field("bodies." + name), r.file());
+    char why[240];
+    std::snprintf(why, sizeof why,
+                  "must be at least 1/100 of the heaviest proxy, %g kg here (fingers.%s.proxy_mass %g kg): the solver "
+                  "cannot hold a lighter body in a pinch, got %g",
+                  lightest, heaviest->name.c_str(), heaviest->proxy.mass, body->mass);
+    const char* field = br.has("density") ? "density" : "mass";  // the field the user wrote
+    br.fail(br.find(field), field, why);
+  }
+}
+
+}  // namespace gf::app

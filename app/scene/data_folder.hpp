@@ -1,0 +1,26 @@
+// Where the bundled data is (scenes, studies, meshes, hard cases), and scene names on the
+// command line.
+#pragma once
+
+#include <string>
+#include <vector>
+
+namespace gf::app {
+
+/// The folder of bundled data (scenes/, studies/, meshes/, hard-cases/): $GODFINGER_DATA if
+/// set; else beside the executable, installed (<prefix>/share/godfinger) or in a build tree
+/// (<build>/share/godfinger, copied there by every build); else the install prefix's data (an
+/// application embedding the installed library); else the source tree's assets/.
+std::string dataDir();
+
+/// The folder of bundled scene files: $GODFINGER_SCENES if set, else dataDir()/scenes.
+std::string bundledSceneDir();
+
+/// A scene argument as given on the command line: a path to a file, or the name of a bundled
+/// scene (without ".toml"). Throws InputError when neither exists.
+std::string resolveScenePath(const std::string& scene);
+
+/// The bundled scene files, sorted by name.
+std::vector<std::string> bundledScenePaths();
+
+}  // namespace gf::app

@@ -1,0 +1,63 @@
+// [expect]: what a run must show, read into app::ExpectDesc.
+#include "app/scene/sections.hpp"
+
+#include <algorithm>
+#include <optional>
+
+#include "sim/settings.hpp"
+
+namespace gf::app {
+// [expect]: invariants of the run (app/expectations.hpp).
+void readExpect(Reader& parent, SessionDesc& s) {
+  const toml::node* n = parent.find("expect");
+  if (!n) return;
+  if (!n->is_table()) parent.fail(n, "expect", "expected a table");
+  Reader r(*n->as_table(), "expect", parent.file());
+  ExpectDesc& e = s.expect;
+  const auto optional = [](Reader& at, const std::string& key, double lo, double hi) -> std::optional<double> {
+    if (!at.has(key)) return std::nullopt;
+    return at.number(key, 0.0, lo, hi);
+  };
+  e.finite = r.boolean("finite", true);
+  e.max_speed = optional(r, "max_speed", 0.0, 1e6);
+  e.max_angular_speed = optional(r, "max_angular_speed", 0.0, 1e6);
+  e.energy_growth = optional(r, "energy_growth", 0.0, 1e9);
+  e.max_penetration = optional(r, "max_penetration", 0.0, 1e6);
+  e.no_tunnelling = r.boolean("no_tunnelling", false);
+  for (const auto& [name, t] : r.namedTables("bodies")) {
+    const auto body = std::find_if(s.scene.bodies.begin(), s.scene.bodies.end(),
+                                   [&wanted = name](const sim::BodyDesc& b) { return b.name == wanted; });
+    if (body == s.scene.bodies.end() || body->mass <= 0.0) {
+      r.fail(t, "bodies." + name, "no dynamic body called '" + name + "'");
+    }
+    Reader br(*t, "expect.bodies." + name, parent.file());
+    BodyExpect& b = e.bodies[name];
+    b.max_speed = optional(br, "max_speed", 0.0, 1e6);
+    b.max_angular_speed = optional(br, "max_angular_speed", 0.0, 1e6);
+    b.stays_above = optional(br, "stays_above", -1e6, 1e6);
+    b.ends_above = optional(br, "ends_above", -1e6, 1e6);
+    b.max_rotation_deg = optional(br, "max_rotation_deg", 0.0, 180.0);
+    b.after = br.number("after", 0.0, 0.0, 1e6);
+    br.finish();
+  }
+  for (const auto& [name, t] : r.namedTables("fingers")) {
+    const bool known = std::any_of(s.scene.fingers.begin(), s.scene.fingers.end(),
+                                   [&wanted = name](const sim::FingerDesc& f) { return f.name == wanted; });
+    if (!known) r.fail(t, "fingers." + name, "no finger called '" + name + "'");
+    Reader fr(*t, "expect.fingers." + name, parent.file());
+    FingerExpect& f = e.fingers[name];
+    if (fr.has("min_sgo")) f.min_sgo = fr.integer("min_sgo", 0, 0, sim::kMaxSgo * sim::kMaxRings);
+    if (const toml::node* w = fr.find("window")) {
+      const std::vector<double> v = fr.numbers("window");
+      if (v.size() != 2 || !(v[1] > v[0])) fr.fail(w, "window", "expected [from, to] in seconds, from < to");
+      f.from = v[0];
+      f.to = v[1];
+    }
+    f.max_force = optional(fr, "max_force", 0.0, 1e9);
+    f.max_penetration = optional(fr, "max_penetration", 0.0, 1e6);
+    fr.finish();
+  }
+  r.finish();
+}
+
+}  // namespace gf::app

@@ -1,0 +1,51 @@
+// What a scene file's [expect] table asks of a run: limits the session checks after every step
+// and at its end (app/session/expectations.hpp). Read-only data, filled by the scene reader.
+#pragma once
+
+#include <map>
+#include <optional>
+#include <string>
+
+namespace gf::app {
+
+/// [expect.bodies.NAME]: limits on one dynamic body.
+struct BodyExpect {
+  std::optional<double> max_speed;          ///< m/s
+  std::optional<double> max_angular_speed;  ///< rad/s
+  std::optional<double> stays_above;        ///< m: the body's centre y never below this
+  std::optional<double> ends_above;         ///< m: the body's centre y at the end at least this
+  std::optional<double> max_rotation_deg;   ///< deg: rotation from its pose at `after`
+  double after = 0.0;                       ///< s: when max_rotation_deg starts counting
+};
+
+/// [expect.fingers.NAME]: limits on one finger.
+struct FingerExpect {
+  std::optional<int> min_sgo;       ///< fewest SGOs (all its contacts) at any step of the window
+  double from = 0.0, to = 1e300;    ///< s: the window of min_sgo
+  std::optional<double> max_force;  ///< N: largest coupling force
+  std::optional<double> max_penetration;  ///< m: deepest the proxy goes into a body (else [expect]'s)
+};
+
+/// [expect]: every field optional except `finite` (default true).
+struct ExpectDesc {
+  bool finite = true;                   ///< no NaN or inf in any state, no step rolled back
+  std::optional<double> max_speed;      ///< m/s: any dynamic body
+  std::optional<double> max_angular_speed;  ///< rad/s: any dynamic body
+  /// J: the largest rise of mechanical energy over any 1 s window in which no device moved and
+  /// no load acted
+  std::optional<double> energy_growth;
+  /// m: deepest any proxy goes into a body (the contact's separation)
+  std::optional<double> max_penetration;
+  /// No proxy ends on the far side of a body it was pressing: its centre never behind the plane
+  /// of its last contact (when the contact ends, when its normal turns over, while it presses)
+  bool no_tunnelling = false;
+  std::map<std::string, BodyExpect> bodies;
+  std::map<std::string, FingerExpect> fingers;
+  /// True when nothing is checked.
+  bool empty() const {
+    return !finite && !max_speed && !max_angular_speed && !energy_growth && !max_penetration && !no_tunnelling &&
+           bodies.empty() && fingers.empty();
+  }
+};
+
+}  // namespace gf::app

@@ -1,0 +1,137 @@
+// [fingers.NAME]: a finger's settings and its device (keyframes, a recorded CSV or a live UDP device).
+#include "app/scene/sections.hpp"
+
+#include <arpa/inet.h>
+
+#include <charconv>
+#include <optional>
+
+#include "app/scene/scene_file.hpp"
+#include "sim/settings.hpp"
+
+namespace gf::app {
+namespace {
+
+// The keyframes of a device table: each {t, p}, then the track's own rules (times increasing).
+void readKeyframes(Reader& r, sim::DeviceTrack& d) {
+  const toml::node* k = r.find("keyframes");
+  const toml::array* a = k->as_array();
+  if (!a || a->empty()) r.fail(k, "keyframes", "expected a non-empty array of {t = s, p = [x, y, z]}");
+  std::vector<const toml::table*> tables;
+  for (const toml::node& e : *a) {
+    if (!e.is_table()) r.fail(&e, "keyframes", "expected {t = s, p = [x, y, z]}");
+    Reader kr(*e.as_table(), r.field("keyframes"), r.file());
+    sim::DeviceTrack::Keyframe kf{kr.requiredNumber("t"), Vec3::Zero()};
+    const toml::node* p = kr.find("p");
+    if (!p) kr.fail(&e, "p", "missing (device position [x, y, z] in m)");
+    kf.position = kr.checkedVec3(*p, "p");
+    kr.finish();
+    d.keyframes.push_back(kf);
+    tables.push_back(e.as_table());
+  }
+  if (const std::optional<sim::FieldError> e = sim::validateTrack(d)) {
+    const std::string key = e->field.substr(e->field.find('.') + 1);  // "keyframes.t" -> "t"
+    Reader kr(*tables[static_cast<std::size_t>(e->index)], r.field("keyframes"), r.file());
+    kr.fail(kr.nodeOf(key), key, e->reason);
+  }
+}
+
+// `udp = PORT` or `udp = "HOST:PORT"` (an IPv4 address, or "localhost"; a bare port listens on
+// loopback), with the UDP device's own fields.
+UdpDeviceDesc readUdpDevice(Reader& r) {
+  UdpDeviceDesc u;
+  const toml::node* n = r.find("udp");
+  u.file = sourceOf(*n, r.file());
+  u.line = static_cast<int>(n->source().begin.line);
+  u.column = static_cast<int>(n->source().begin.column);
+  constexpr const char* kForm = "expected a port (listening on 127.0.0.1) or \"HOST:PORT\" with HOST an IPv4 address";
+  std::string port_text;
+  if (n->is_integer()) {
+    port_text = std::to_string(n->as_integer()->get());
+  } else if (n->is_string()) {
+    const std::string text = n->as_string()->get();
+    const std::size_t colon = text.rfind(':');
+    if (colon == std::string::npos || colon == 0) r.fail(n, "udp", std::string(kForm) + ", got '" + text + "'");
+    u.host = text.substr(0, colon);
+    if (u.host == "localhost") u.host = "127.0.0.1";
+    in_addr address{};
+    if (inet_pton(AF_INET, u.host.c_str(), &address) != 1) {
+      r.fail(n, "udp", "'" + u.host + "' is not an IPv4 address (such as 127.0.0.1, or 0.0.0.0 for every interface)");
+    }
+    port_text = text.substr(colon + 1);
+  } else {
+    r.fail(n, "udp", kForm);
+  }
+  int port = -1;
+  const auto [end, error] = std::from_chars(port_text.data(), port_text.data() + port_text.size(), port);
+  if (error != std::errc() || end != port_text.data() + port_text.size() || port < 0 || port > 65535) {
+    r.fail(n, "udp", "the port must be a whole number in 0..65535 (0: any free port), got '" + port_text + "'");
+  }
+  u.port = port;
+  u.channel = r.integer("channel", 0, 0, 255);
+  u.workspace_scale = r.number("workspace_scale", u.workspace_scale, 0.01, 100.0);
+  u.workspace_offset = r.vec3("workspace_offset", u.workspace_offset);
+  if (u.workspace_offset.cwiseAbs().maxCoeff() > sim::kMaxSceneCoordinate) {
+    r.fail(r.nodeOf("workspace_offset"), "workspace_offset", "each coordinate must be in [-1000, 1000] m");
+  }
+  u.start = r.vec3("start", u.workspace_offset);
+  if (u.start.cwiseAbs().maxCoeff() > sim::kMaxSceneCoordinate) {
+    r.fail(r.nodeOf("start"), "start", "each coordinate must be in [-1000, 1000] m");
+  }
+  u.force_scale = r.number("force_scale", u.force_scale, 0.0, 100.0);
+  u.stale_after = r.number("stale_after", u.stale_after, 0.005, 1.0);
+  u.force_ramp = r.number("force_ramp", u.force_ramp, 0.005, 10.0);
+  u.velocity_smoothing = r.number("velocity_smoothing", u.velocity_smoothing, 0.0, 0.1);
+  return u;
+}
+
+// A finger's device: keyframes, a recorded CSV, or a live UDP device (then `udp` is set and
+// the track holds the device at its start, where the proxy starts).
+sim::DeviceTrack readDevice(Reader& parent, const std::string& base_dir, std::optional<UdpDeviceDesc>& udp) {
+  const toml::node* n = parent.find("device");
+  if (!n) parent.fail(nullptr, "device", "missing: the finger needs a device (keyframes, csv or udp)");
+  if (!n->is_table()) parent.fail(n, "device", "expected a table");
+  Reader r(*n->as_table(), parent.field("device"), parent.file());
+  sim::DeviceTrack d;
+  if (static_cast<int>(r.has("csv")) + static_cast<int>(r.has("keyframes")) + static_cast<int>(r.has("udp")) != 1) {
+    r.fail(nullptr, "keyframes", "give exactly one of keyframes, csv and udp");
+  }
+  if (!r.has("udp")) {
+    for (const char* key : kUdpFields) {
+      if (r.has(key)) r.fail(r.nodeOf(key), key, "belongs to a UDP device (udp = ...)");
+    }
+  }
+  d.interpolation = r.choice("interpolation", kInterpolations, 1) == 0 ? sim::Interpolation::kLinear
+                                                                       : sim::Interpolation::kSmooth;
+  if (r.has("csv")) {
+    const toml::node* c = r.find("csv");
+    if (!c->is_string()) r.fail(c, "csv", "expected the CSV file's path (a string)");
+    if (r.has("interpolation")) r.fail(r.find("interpolation"), "interpolation", "a recorded CSV is always linear");
+    d = readDeviceCsv(resolvePath(base_dir, c->as_string()->get()));
+  } else if (r.has("udp")) {
+    if (r.has("interpolation")) r.fail(r.find("interpolation"), "interpolation", "a live device is not interpolated");
+    udp = readUdpDevice(r);
+    d.keyframes.push_back({0.0, udp->start});
+  } else {
+    readKeyframes(r, d);
+  }
+  r.finish();
+  return d;
+}
+
+}  // namespace
+
+sim::FingerDesc readFinger(const std::string& name, const toml::table& t, const Reader& parent,
+                           const std::string& base_dir, double haptic_rate_hz, std::optional<UdpDeviceDesc>& udp) {
+  Reader r(t, parent.field("fingers." + name), parent.file());
+  sim::FingerDesc f;
+  f.name = name;
+  for (const sim::Setting<sim::FingerDesc>& s : sim::fingerSettings()) r.setting(s, f, std::string(s.name));
+  f.device = readDevice(r, base_dir, udp);
+  r.failOn(sim::validateFinger(f));
+  r.failOn(sim::validateCouplingStability(f, haptic_rate_hz));
+  r.finish();
+  return f;
+}
+
+}  // namespace gf::app

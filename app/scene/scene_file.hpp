@@ -1,0 +1,28 @@
+// Scene files (TOML) into descriptions, with command-line overrides (--set), and recorded device
+// paths. The format is documented field by field in assets/scenes/README.md.
+#pragma once
+
+#include <span>
+#include <string>
+#include <vector>
+
+#include "app/scene/input_error.hpp"
+#include "app/scene/session_desc.hpp"
+
+namespace gf::app {
+
+/// Loads a scene file and applies `overrides` ("fields.path=VALUE", VALUE in TOML syntax or a
+/// bare string) before validation. Mesh and device CSV paths are relative to the file. Loads
+/// every mesh once to check it. Throws InputError.
+SessionDesc loadSceneFile(const std::string& path, std::span<const std::string> overrides = {});
+
+/// Same as loadSceneFile, from text; `source_name` names it in errors and `base_dir` resolves
+/// relative paths.
+SessionDesc parseSceneText(const std::string& text, const std::string& source_name,
+                           const std::string& base_dir, std::span<const std::string> overrides = {});
+
+/// Reads a recorded device path: CSV with a header row "t,x,y,z" (s, m), strictly increasing
+/// times; played back with linear interpolation. Throws InputError naming file and line.
+sim::DeviceTrack readDeviceCsv(const std::string& path);
+
+}  // namespace gf::app

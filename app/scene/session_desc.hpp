@@ -1,0 +1,71 @@
+// What a scene file describes beyond the physics: recordings and cameras. Read-only once loaded.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "app/scene/expect_desc.hpp"
+#include "sim/view_desc.hpp"
+#include "sim/scene_desc.hpp"
+
+namespace gf::app {
+
+/// What a session writes besides summary.json.
+struct RecordSettings {
+  bool trace = true;                         ///< trace.csv, one row per haptic step
+  std::vector<double> contact_times;         ///< s: contacts/t<time>.json at these times
+  std::vector<std::string> force_bodies;     ///< forces.csv: non-gravity force on these bodies
+  /// forces.png: the y force on the first force body against time, this scene with god-fingers
+  /// and again with every finger a god-object (the paper's Fig. 8)
+  bool force_chart = false;
+  /// The chart's title; empty: "<scene name>: y force on <body> (N, gravity removed)".
+  std::string force_chart_title;
+};
+
+/// How the scene is drawn: the render effects and the [render] table.
+struct ViewSettings {
+  bool patch_highlight = false;  ///< effect: contact patches, SGOs, normals, force arrows
+  bool shadows = false;          ///< effect: soft shadows from the key light
+  bool patch_insets = false;     ///< effect: a close-up of each finger's patch in a corner of each frame
+  bool overlay = false;          ///< effect: the ImGui overlay
+  int width = 1280;              ///< frame size (pixels, up to 1920 x 1080)
+  int height = 720;
+  sim::Antialiasing antialiasing = sim::Antialiasing::kFxaa;
+  int msaa_samples = 4;          ///< samples with antialiasing = "msaa" (2..8)
+  std::vector<sim::WidgetAction> actions;  ///< scripted overlay input, by time
+};
+
+/// A finger driven by a live device over UDP (docs/device-protocol.md); its sim track holds
+/// the device at `start`, where the proxy starts and stays until the first packet.
+struct UdpDeviceDesc {
+  int finger = 0;                      ///< index into scene.fingers
+  std::string host = "127.0.0.1";      ///< IPv4 address bound (loopback unless the scene says)
+  int port = 0;                        ///< UDP port (0: any free port, printed at the start)
+  int channel = 0;                     ///< packets' channel field for this finger (0..255)
+  double workspace_scale = 1.0;        ///< scene m per device m
+  sim::Vec3 workspace_offset = sim::Vec3::Zero();  ///< m: scene position of the device's origin
+  sim::Vec3 start = sim::Vec3::Zero();  ///< m: scene position held until the first packet
+  double force_scale = 1.0;            ///< device N per scene N of the force sent back
+  double stale_after = 0.05;           ///< s without a packet before the device is stale
+  double force_ramp = 0.1;             ///< s for the force sent back to ramp from 0 to full (or back)
+  /// s: time constant of the low-pass filter on the velocity from successive packets (0: raw
+  /// differences); the coupling damps on it.
+  double velocity_smoothing = 0.005;
+  std::string file;                    ///< where `udp` was given (the scene file, or a --set), for errors
+  int line = 0, column = 0;
+};
+
+/// A loaded scene file: the physics description plus what to record and how to look at it.
+struct SessionDesc {
+  sim::SceneDesc scene;
+  std::string summary;       ///< one line for `godfinger list`
+  std::string source;        ///< the file it came from ("" for scenes made in code)
+  std::vector<std::string> overrides;  ///< the --set FIELD=VALUE applied, in order
+  RecordSettings record;
+  ExpectDesc expect;  ///< [expect]: what the run must show
+  ViewSettings view;
+  std::vector<sim::Camera> cameras;  ///< [cameras.NAME]: one is rendered per output stream
+  std::vector<UdpDeviceDesc> udp_devices;  ///< fingers with a live UDP device
+};
+
+}  // namespace gf::app

@@ -1,0 +1,158 @@
+#include "app/session/device_protocol.hpp"
+
+#include <algorithm>
+#include <bit>
+#include <cmath>
+
+namespace gf::app {
+namespace {
+
+// Little-endian fields at fixed offsets, whatever the host's byte order.
+std::uint32_t readU32(std::span<const std::uint8_t> b, std::size_t at) {
+  return static_cast<std::uint32_t>(b[at]) | static_cast<std::uint32_t>(b[at + 1]) << 8 |
+         static_cast<std::uint32_t>(b[at + 2]) << 16 | static_cast<std::uint32_t>(b[at + 3]) << 24;
+}
+
+double readF64(std::span<const std::uint8_t> b, std::size_t at) {
+  std::uint64_t v = 0;
+  for (std::size_t i = 0; i < 8; ++i) v |= static_cast<std::uint64_t>(b[at + i]) << (8 * i);
+  return std::bit_cast<double>(v);
+}
+
+void writeU32(std::span<std::uint8_t> b, std::size_t at, std::uint32_t v) {
+  for (std::size_t i = 0; i < 4; ++i) b[at + i] = static_cast<std::uint8_t>(v >> (8 * i));
+}
+
+void writeF64(std::span<std::uint8_t> b, std::size_t at, double d) {
+  const auto v = std::bit_cast<std::uint64_t>(d);
+  for (std::size_t i = 0; i < 8; ++i) b[at + i] = static_cast<std::uint8_t>(v >> (8 * i));
+}
+
+}  // namespace
+
+PacketError parseDevicePacket(std::span<const std::uint8_t> b, DevicePacket& out) {
+  if (b.size() != DevicePacket::kSize) return PacketError::kSize;
+  if (readU32(b, 0) != DevicePacket::kMagic) return PacketError::kMagic;
+  DevicePacket p;
+  p.seq = readU32(b, 4);
+  p.channel = readU32(b, 8);
+  p.buttons = readU32(b, 12);
+  p.time = readF64(b, 16);
+  p.position = sim::Vec3(readF64(b, 24), readF64(b, 32), readF64(b, 40));
+  if (!std::isfinite(p.time) || !p.position.allFinite() || p.position.cwiseAbs().maxCoeff() > kMaxDeviceCoordinate) {
+    return PacketError::kBadValue;
+  }
+  out = p;
+  return PacketError::kNone;
+}
+
+void encodeDevicePacket(const DevicePacket& p, std::span<std::uint8_t, DevicePacket::kSize> out) {
+  writeU32(out, 0, DevicePacket::kMagic);
+  writeU32(out, 4, p.seq);
+  writeU32(out, 8, p.channel);
+  writeU32(out, 12, p.buttons);
+  writeF64(out, 16, p.time);
+  for (int i = 0; i < 3; ++i) writeF64(out, 24 + 8 * static_cast<std::size_t>(i), p.position[i]);
+}
+
+bool parseDeviceReply(std::span<const std::uint8_t> b, DeviceReply& out) {
+  if (b.size() != DeviceReply::kSize || readU32(b, 0) != DeviceReply::kMagic) return false;
+  out.seq = readU32(b, 4);
+  out.channel = readU32(b, 8);
+  out.flags = readU32(b, 12);
+  out.time = readF64(b, 16);
+  out.force = sim::Vec3(readF64(b, 24), readF64(b, 32), readF64(b, 40));
+  out.radius = readF64(b, 48);
+  out.sgo_count = readU32(b, 56);
+  out.gain = std::bit_cast<float>(readU32(b, 60));
+  return true;
+}
+
+void encodeDeviceReply(const DeviceReply& r, std::span<std::uint8_t, DeviceReply::kSize> out) {
+  writeU32(out, 0, DeviceReply::kMagic);
+  writeU32(out, 4, r.seq);
+  writeU32(out, 8, r.channel);
+  writeU32(out, 12, r.flags);
+  writeF64(out, 16, r.time);
+  for (int i = 0; i < 3; ++i) writeF64(out, 24 + 8 * static_cast<std::size_t>(i), r.force[i]);
+  writeF64(out, 48, r.radius);
+  writeU32(out, 56, r.sgo_count);
+  writeU32(out, 60, std::bit_cast<std::uint32_t>(r.gain));
+}
+
+DeviceLink::DeviceLink(const UdpDeviceDesc& desc, double max_force)
+    : desc_(desc), max_force_(max_force), position_(desc.start) {}
+
+bool DeviceLink::take(const DevicePacket& p, double t) {
+  const auto ahead = static_cast<std::int32_t>(p.seq - seq_);  // serial-number order
+  if (heard_ && !resync_ && ahead <= 0) {
+    ++counters_.out_of_order;
+    return false;
+  }
+  const sim::Vec3 position = desc_.workspace_offset + desc_.workspace_scale * p.position;
+  if (position.cwiseAbs().maxCoeff() > sim::kMaxSceneCoordinate) {
+    ++counters_.out_of_range;
+    return false;
+  }
+  const double gap = p.time - device_time_;
+  if (heard_ && gap >= kMinVelocityInterval && gap <= desc_.stale_after) {
+    const sim::Vec3 raw = (position - position_) / gap;
+    const double a = desc_.velocity_smoothing > 0.0 ? 1.0 - std::exp(-gap / desc_.velocity_smoothing) : 1.0;
+    velocity_ += a * (raw - velocity_);
+  } else if (!heard_ || gap < 0.0 || gap > desc_.stale_after) {
+    velocity_.setZero();  // a new stream: no estimate yet
+  }
+  if (heard_ && received_at_ == t) ++counters_.superseded;  // the previous one was never used
+  if (heard_ && !resync_) counters_.lost += ahead - 1;
+  if (!heard_) first_packet_at_ = t;
+  resync_ = false;
+  position_ = position;
+  device_time_ = p.time;
+  seq_ = p.seq;
+  buttons_ = p.buttons;
+  received_at_ = t;
+  heard_ = true;
+  ++counters_.taken;
+  return true;
+}
+
+sim::DeviceSample DeviceLink::sample(double t) {
+  sample_time_ = t;
+  const bool stale = !heard_ || t - received_at_ > desc_.stale_after;
+  if (stale && !stale_ && heard_) ++counters_.stale_periods;
+  stale_ = stale;
+  if (stale_) resync_ = ramping_ = true;
+  if (stale_) ++counters_.stale_steps;
+  return {position_, stale_ ? sim::Vec3::Zero() : velocity_};
+}
+
+DeviceReply DeviceLink::reply(double t, const sim::DeviceFeedback& f) {
+  const double step = (t - sample_time_) / desc_.force_ramp;  // of the gain's 0..1
+  gain_ = stale_ ? gain_ - step : gain_ + step;
+  // Whole steps of the ramp add up to 1 only within rounding: the ends are exact.
+  if (gain_ < kGainRounding) gain_ = 0.0;
+  if (gain_ > 1.0 - kGainRounding) gain_ = 1.0;
+  const sim::Vec3 target = (gain_ * desc_.force_scale) * f.force;
+  if (ramping_) {
+    const double limit = max_force_ * desc_.force_scale * step;
+    const sim::Vec3 change = target - sent_;
+    const double size = change.norm();
+    sent_ = size > limit ? sim::Vec3(sent_ + (limit / size) * change) : target;
+    ramping_ = !(gain_ == 1.0 && size <= limit);  // caught up: the force follows the coupling again
+  } else {
+    sent_ = target;
+  }
+  DeviceReply r;
+  r.seq = seq_;
+  r.channel = static_cast<std::uint32_t>(desc_.channel);
+  r.flags = (stale_ ? DeviceReply::kStale : 0u) | (f.touching ? DeviceReply::kTouching : 0u) |
+            (ramping_ ? DeviceReply::kRamping : 0u);
+  r.time = t;
+  r.force = sent_;
+  r.radius = f.radius;
+  r.sgo_count = static_cast<std::uint32_t>(std::max(0, f.sgo_count));
+  r.gain = static_cast<float>(gain_);
+  return r;
+}
+
+}  // namespace gf::app

@@ -1,0 +1,39 @@
+// `godfinger live`: an interactive session driven by one command a line, answered line by line.
+#pragma once
+
+#include <iosfwd>
+#include <string>
+#include <vector>
+
+#include "app/scene/session_desc.hpp"
+
+namespace gf::app {
+
+/// Where a live session comes from and where its snapshots go.
+struct LiveOptions {
+  std::string scene_path;              ///< scene file
+  std::vector<std::string> overrides;  ///< --set given on the command line
+  std::string out_dir = "out";         ///< snapshots go to out_dir/contacts/
+  std::string input_name = "<stdin>";  ///< names the input in error messages
+  /// Ctrl-C or SIGTERM end the session: a running `step N` stops at the next step boundary and
+  /// answers, then the session ends with status 130 (143 for SIGTERM). The command line sets
+  /// it; tests and embedding keep their own signal handling.
+  bool stop_on_interrupt = false;
+};
+
+/// Runs commands from `in` until `quit` or end of input, answering each on `out`:
+///   move FINGER X Y Z [SECONDS]   device to (X, Y, Z) m, straight, over SECONDS (default 0)
+///   set fingers.NAME.FIELD=VALUE  a live finger setting of sim/settings.hpp (n_sgo, r_max, d0,
+///                                 alpha, stretch_length, max_stretch, tau_a in
+///                                 degrees, friction), checked by its validator
+///   step [N]                      N haptic steps (default 1), then the state
+///   state                         the state: time, per finger proxy, force, SGOs, and per
+///                                 dynamic body position, orientation (x y z w), velocity and
+///                                 angular velocity (world frame)
+///   snapshot [NAME]               contacts JSON to out_dir/contacts/NAME.json
+///   help, quit
+/// Answers start with "ok" or "error: INPUT:LINE: ...". Returns 0 when every command
+/// succeeded, 1 otherwise, 130 / 143 when interrupted (see stop_on_interrupt). Throws InputError when the scene itself cannot be loaded.
+int runLive(const LiveOptions& options, std::istream& in, std::ostream& out);
+
+}  // namespace gf::app

@@ -1,0 +1,80 @@
+// A recorded session: run a scene through the haptic loop and write what it asks to record.
+#pragma once
+
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "app/scene/session_desc.hpp"
+#include "app/session/expectations.hpp"
+#include "render/render_thread.hpp"
+#include "sim/haptic_loop.hpp"
+
+namespace gf::app {
+
+/// What a session run writes and how it is clocked.
+struct SessionOptions {
+  std::string out_dir = "out";  ///< created if missing
+  bool realtime = false;        ///< realtime clock (absolute deadlines) instead of offline
+  bool progress = true;         ///< progress lines (sim time, steps, ETA) on stderr
+  bool frames = false;          ///< PNG sequence out_dir/frames/000000.png ...
+  std::string video_path;       ///< MP4 of the frames (ffmpeg); empty: none
+  std::string camera;           ///< camera of the frame stream; empty: the scene's first
+  bool close_ups = true;        ///< close-up PNG beside each contact snapshot
+  /// When set, receives the scene's expectations that failed (also printed and in summary.json)
+  std::vector<ExpectFailure>* expect_failures = nullptr;
+  /// Ctrl-C or SIGTERM stop the run and it writes what it reached (the command line; off in
+  /// tests and embedding, which keep their own signal handling).
+  bool stop_on_interrupt = false;
+  /// Realtime: ask for SCHED_FIFO for the haptic loop (root or CAP_SYS_NICE); false runs as a
+  /// user without either does (`run --no-fifo`).
+  bool fifo = true;
+  /// Realtime: the haptic loop sleeps until this long before each deadline, then spins (us).
+  double spin_us = 0.0;
+  /// Realtime: the render thread, its encoders and llvmpipe's workers run at SCHED_IDLE so the
+  /// haptic loop preempts them even at normal priority (`run --no-yield` turns it off).
+  bool yield_render = true;
+  /// The command line that started the run, recorded in summary.json (empty: not recorded).
+  std::vector<std::string> command_line{};
+};
+
+/// The version and commit of this build ("0.1.0", "1a2b3c4d5e6f" or "...+dirty" or "unknown").
+std::string versionString();
+std::string commitString();
+
+/// Checks the run's output paths before any step (folders created, files writable there) and
+/// removes what an earlier run left in out_dir of the kinds of output a run writes (frames,
+/// contact snapshots and close-ups, trace.csv, forces.csv, forces.png, summary.json and their
+/// temporary names), nothing else. Throws std::runtime_error naming the path. runSession calls it.
+void prepareOutputs(const SessionOptions& options);
+
+/// Creates `folder` (and its parents) and checks that a file can be written in it. Throws
+/// std::runtime_error naming the folder and `what` it is for.
+void requireWritableFolder(const std::filesystem::path& folder, const std::string& what);
+
+/// Removes a frame sequence an earlier run left in `folder` (000000.png ... and their
+/// temporary names), nothing else. Throws std::runtime_error naming a file it cannot remove.
+void clearFrames(const std::filesystem::path& folder);
+
+/// Checks a video path before any work: not a folder, ends in .mp4, .mkv or .mov, its folder
+/// created and writable. Throws std::runtime_error naming the path.
+void requireVideoPath(const std::string& path);
+
+/// The camera called `name` in the session (the first when empty; a default view of the scene
+/// when it has none). Throws InputError naming the camera when there is no such camera.
+sim::Camera sessionCamera(const SessionDesc& session, const std::string& name);
+
+/// The render thread's settings for this session and these options.
+render::FrameOutputSettings frameSettings(const SessionDesc& session, const SessionOptions& options);
+
+/// Runs the session for scene.duration and writes into out_dir: summary.json, trace.csv (when
+/// recorded), contacts/t<time>.json at the recorded times, forces.csv (when bodies are listed).
+/// Every file is written whole through a rename, so an earlier run's file is replaced only by a
+/// complete one. Returns the loop statistics. Throws std::runtime_error (naming the path) on
+/// I/O failure. Frames (options.frames, options.video_path) are drawn by a render thread, at
+/// every 1/60 s of simulated time; summary.json then holds the render timings. When an output
+/// fails during the run (a full disk, a dead ffmpeg) the loop stops, every other output is
+/// written for the time reached, summary.json records the error, and the error is thrown.
+sim::LoopStats runSession(const SessionDesc& session, const SessionOptions& options);
+
+}  // namespace gf::app

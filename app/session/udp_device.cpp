@@ -1,0 +1,226 @@
+#include "app/session/udp_device.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cerrno>
+#include <cmath>
+#include <cstring>
+#include <limits>
+
+#include <arpa/inet.h>
+#include <netinet/in.h>
+#include <sys/socket.h>
+#include <unistd.h>
+
+#include <nlohmann/json.hpp>
+
+#include "app/session/device_protocol.hpp"
+#include "app/scene/scene_file.hpp"
+
+namespace gf::app {
+
+struct UdpDeviceBridge::Socket {
+  int fd = -1;
+  std::string host;
+  int requested_port = 0;                      // as the scene gives it (0: any)
+  std::string field;                           // the first finger's udp field, for errors
+  int port = 0;                                // bound
+  std::array<Device*, 256> by_channel{};       // the finger reading each channel
+  double polled_at = std::numeric_limits<double>::quiet_NaN();
+  long datagrams = 0, kernel_drops = 0, wrong_size = 0, bad_magic = 0, bad_value = 0, unknown_channel = 0, receive_errors = 0;
+
+  ~Socket() {
+    if (fd >= 0) close(fd);
+  }
+  // Reads what has arrived (at most kMaxDatagramsPerStep datagrams), once per step time t.
+  void poll(double t);
+};
+
+class UdpDeviceBridge::Device final : public sim::DeviceSource {
+ public:
+  Device(const UdpDeviceDesc& desc, std::string finger, double max_force, Socket& socket)
+      : link_(desc, max_force), channel_(desc.channel), finger_(std::move(finger)), socket_(socket) {}
+
+  sim::DeviceSample sample(double t) override {
+    socket_.poll(t);
+    return link_.sample(t);
+  }
+
+  void feedback(double t, const sim::DeviceFeedback& f) override {
+    const DeviceReply r = link_.reply(t, f);
+    if (!link_.heard()) return;  // no one to answer yet
+    std::array<std::uint8_t, DeviceReply::kSize> bytes;
+    encodeDeviceReply(r, bytes);
+    const ssize_t sent = sendto(socket_.fd, bytes.data(), bytes.size(), MSG_DONTWAIT,
+                                reinterpret_cast<const sockaddr*>(&peer_), sizeof peer_);
+    if (sent == static_cast<ssize_t>(bytes.size())) ++replies_;
+    else ++send_errors_;
+  }
+
+  // A valid packet of this device's channel, read at step time t from `from`: the replies go
+  // to the sender of the newest packet taken.
+  void take(const DevicePacket& p, double t, const sockaddr_in& from) {
+    if (link_.take(p, t)) peer_ = from;
+  }
+
+  const Socket& socket() const { return socket_; }
+
+  nlohmann::json json(const std::string& address, double dt) const {
+    const DeviceLink::Counters& c = link_.counters();
+    return {{"finger", finger_},
+            {"address", address},
+            {"channel", channel_},
+            {"packets_taken", c.taken},
+            {"out_of_order", c.out_of_order},
+            {"lost", c.lost},
+            {"out_of_range", c.out_of_range},
+            {"superseded", c.superseded},
+            {"first_packet_s", link_.heard() ? nlohmann::json(std::round(link_.firstPacketTime() * 1e9) / 1e9)
+                                             : nlohmann::json(nullptr)},
+            {"last_seq", link_.lastSeq()},
+            {"buttons", link_.buttons()},
+            {"stale_periods", c.stale_periods},
+            {"stale_s", static_cast<double>(c.stale_steps) * dt},
+            {"replies_sent", replies_},
+            {"send_errors", send_errors_}};
+  }
+
+ private:
+  DeviceLink link_;
+  const int channel_;
+  const std::string finger_;
+  Socket& socket_;
+  sockaddr_in peer_{};
+  long replies_ = 0, send_errors_ = 0;
+};
+
+void UdpDeviceBridge::Socket::poll(double t) {
+  if (polled_at == t) return;
+  polled_at = t;
+  // One byte more than a packet, so a longer datagram shows as one (MSG_TRUNC gives its length);
+  // the control message carries the kernel's count of datagrams dropped on a full buffer.
+  std::array<std::uint8_t, DevicePacket::kSize + 1> buffer;
+  alignas(cmsghdr) std::array<char, CMSG_SPACE(sizeof(std::uint32_t))> control;
+  for (int n = 0; n < kMaxDatagramsPerStep; ++n) {
+    sockaddr_in from{};
+    iovec io{buffer.data(), buffer.size()};
+    msghdr message{};
+    message.msg_name = &from;
+    message.msg_namelen = sizeof from;
+    message.msg_iov = &io;
+    message.msg_iovlen = 1;
+    message.msg_control = control.data();
+    message.msg_controllen = control.size();
+    const ssize_t size = recvmsg(fd, &message, MSG_DONTWAIT | MSG_TRUNC);
+    if (size < 0) {
+      if (errno == EINTR) continue;
+      if (errno != EAGAIN && errno != EWOULDBLOCK) ++receive_errors;
+      return;
+    }
+    for (cmsghdr* c = CMSG_FIRSTHDR(&message); c; c = CMSG_NXTHDR(&message, c)) {
+      if (c->cmsg_level == SOL_SOCKET && c->cmsg_type == SO_RXQ_OVFL) {
+        std::uint32_t dropped = 0;
+        std::memcpy(&dropped, CMSG_DATA(c), sizeof dropped);
+        kernel_drops = std::max<long>(kernel_drops, dropped);
+      }
+    }
+    ++datagrams;
+    DevicePacket p;
+    const auto length = std::min(static_cast<std::size_t>(size), buffer.size());
+    switch (parseDevicePacket(std::span<const std::uint8_t>(buffer.data(), length), p)) {
+      case PacketError::kSize: ++wrong_size; continue;
+      case PacketError::kMagic: ++bad_magic; continue;
+      case PacketError::kBadValue: ++bad_value; continue;
+      case PacketError::kNone: break;
+    }
+    Device* d = p.channel < by_channel.size() ? by_channel[p.channel] : nullptr;
+    if (!d) {
+      ++unknown_channel;
+      continue;
+    }
+    d->take(p, t, from);
+  }
+}
+
+UdpDeviceBridge::UdpDeviceBridge(const SessionDesc& session)
+    : sources_(session.scene.fingers.size(), nullptr), dt_(1.0 / session.scene.world.haptic_rate_hz) {
+  for (const UdpDeviceDesc& d : session.udp_devices) {
+    const sim::FingerDesc& finger = session.scene.fingers[static_cast<std::size_t>(d.finger)];
+    const std::string field = "fingers." + finger.name + ".device.udp";
+    const auto fail = [&](const std::string& at, const std::string& why) {
+      throw InputError(d.file, d.line, d.column, at, why);
+    };
+    Socket* socket = nullptr;
+    for (const std::unique_ptr<Socket>& s : sockets_) {
+      if (s->requested_port != d.port) continue;
+      if (s->host == d.host) {
+        socket = s.get();  // fingers giving one address share its socket (port 0: one free port)
+      } else if (d.port != 0) {
+        fail(field, d.host + ":" + std::to_string(d.port) + " and " + s->field + " (" + s->host + ":" +
+                        std::to_string(d.port) + ") cannot both listen on port " + std::to_string(d.port) +
+                        ": give both the same address, and each finger its own channel");
+      }
+    }
+    if (!socket) {
+      auto s = std::make_unique<Socket>();
+      s->host = d.host;
+      s->requested_port = d.port;
+      s->field = field;
+      sockaddr_in address{};
+      address.sin_family = AF_INET;
+      address.sin_port = htons(static_cast<std::uint16_t>(d.port));
+      if (inet_pton(AF_INET, d.host.c_str(), &address.sin_addr) != 1) fail(field, "'" + d.host + "' is not an IPv4 address");
+      s->fd = ::socket(AF_INET, SOCK_DGRAM | SOCK_NONBLOCK | SOCK_CLOEXEC, 0);
+      if (s->fd < 0 || bind(s->fd, reinterpret_cast<const sockaddr*>(&address), sizeof address) != 0) {
+        fail(field, "cannot listen on " + d.host + ":" + std::to_string(d.port) + ": " + std::strerror(errno));
+      }
+      // Room for bursts (the kernel caps it at net.core.rmem_max), and the kernel's count of
+      // datagrams dropped when the buffer is full anyway.
+      const int buffer = kReceiveBufferBytes, on = 1;
+      setsockopt(s->fd, SOL_SOCKET, SO_RCVBUF, &buffer, sizeof buffer);
+      setsockopt(s->fd, SOL_SOCKET, SO_RXQ_OVFL, &on, sizeof on);
+      socklen_t size = sizeof address;
+      getsockname(s->fd, reinterpret_cast<sockaddr*>(&address), &size);
+      s->port = ntohs(address.sin_port);
+      socket = sockets_.emplace_back(std::move(s)).get();
+    }
+    if (socket->by_channel[static_cast<std::size_t>(d.channel)]) {
+      fail("fingers." + finger.name + ".device.channel",
+           "channel " + std::to_string(d.channel) + " of " + d.host + ":" + std::to_string(socket->port) +
+               " already drives another finger; give each finger on one port its own channel");
+    }
+    auto device = std::make_unique<Device>(d, finger.name, finger.coupling.max_force, *socket);
+    socket->by_channel[static_cast<std::size_t>(d.channel)] = device.get();
+    sources_[static_cast<std::size_t>(d.finger)] = device.get();
+    devices_.push_back(std::move(device));
+  }
+}
+
+UdpDeviceBridge::~UdpDeviceBridge() = default;
+
+std::string UdpDeviceBridge::address(int finger) const {
+  for (const std::unique_ptr<Device>& d : devices_) {
+    if (d.get() == sources_[static_cast<std::size_t>(finger)]) return d->socket().host + ":" + std::to_string(d->socket().port);
+  }
+  return "";
+}
+
+nlohmann::json UdpDeviceBridge::json() const {
+  nlohmann::json sockets = nlohmann::json::array(), fingers = nlohmann::json::array();
+  for (const std::unique_ptr<Socket>& s : sockets_) {
+    sockets.push_back({{"address", s->host + ":" + std::to_string(s->port)},
+                       {"datagrams", s->datagrams},
+                       {"kernel_drops", s->kernel_drops},
+                       {"wrong_size", s->wrong_size},
+                       {"bad_magic", s->bad_magic},
+                       {"bad_value", s->bad_value},
+                       {"unknown_channel", s->unknown_channel},
+                       {"receive_errors", s->receive_errors}});
+  }
+  for (const std::unique_ptr<Device>& d : devices_) {
+    fingers.push_back(d->json(d->socket().host + ":" + std::to_string(d->socket().port), dt_));
+  }
+  return {{"sockets", sockets}, {"fingers", fingers}};
+}
+
+}  // namespace gf::app

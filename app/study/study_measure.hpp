@@ -1,0 +1,43 @@
+// A study's measures, taken from one run folder (trace.csv, summary.json, contacts/) and the
+// run's scene, and their references.
+#pragma once
+
+#include <nlohmann/json.hpp>
+
+#include <string>
+#include <vector>
+
+#include "app/scene/session_desc.hpp"
+#include "app/study/study.hpp"
+
+namespace gf::app {
+
+/// What one run wrote, with the scene it ran (loaded again with the run's overrides).
+struct RunOutputs {
+  std::string dir;
+  SessionDesc session;
+  nlohmann::json summary;
+  std::vector<std::string> columns;        ///< trace.csv header
+  std::vector<std::vector<double>> trace;  ///< one vector per column
+
+  /// The trace column `name`; throws std::runtime_error naming the run when it is missing.
+  const std::vector<double>& column(const std::string& name) const;
+};
+
+/// Reads `dir`'s trace.csv and summary.json; throws std::runtime_error naming the file when one
+/// is missing or malformed.
+RunOutputs readRunOutputs(const std::string& dir, const SessionDesc& session);
+
+struct MeasureResult {
+  double measure = NAN, reference = NAN, error = NAN;
+};
+
+/// Measure `m` of `run` against its reference: the analytic formula of the run's own measured
+/// quantities, or the same measure of `reference_run` (required for ReferenceKind::kRun).
+/// Throws std::runtime_error when the outputs cannot give it.
+MeasureResult evaluateMeasure(const StudyMeasure& m, const RunOutputs& run, const RunOutputs* reference_run);
+
+/// The error of `measure` against `reference` as `kind` forms it.
+double measureError(ErrorKind kind, double measure, double reference);
+
+}  // namespace gf::app

@@ -1,0 +1,469 @@
+// Running a study's configurations as `godfinger run` processes, and collecting their folders
+// into results.csv, work-precision.png and report.md.
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <optional>
+#include <set>
+
+#include "app/runs/jobs.hpp"
+#include "app/scene/scene_file.hpp"
+#include "app/study/study.hpp"
+#include "app/study/study_measure.hpp"
+#include "app/runs/trace.hpp"
+#include "render/render_thread.hpp"
+#include "sim/settings.hpp"
+
+namespace gf::app {
+namespace {
+
+namespace fs = std::filesystem;
+
+// One row of results.csv.
+struct Row {
+  const StudyRun* run = nullptr;
+  std::string series, model, patch, solver = "points";
+  int n_sgo = 0, rings = 0, iterations = 0, walk_resolution = 0;
+  double rate = 0.0;
+  std::vector<MeasureResult> measures;
+  double step_median = NAN, step_p99 = NAN, patch_mean = NAN;
+  std::string status = "ok";
+  double cost(CostKind k) const { return k == CostKind::kStep ? step_median : patch_mean; }
+  double error() const { return measures.empty() ? NAN : measures.front().error; }
+};
+
+std::string number(double x) {
+  if (!std::isfinite(x)) return "nan";
+  std::string s;
+  appendNumber(s, x);
+  return s;
+}
+
+std::string csvCell(const std::string& s) {
+  if (s.find_first_of(",\"\n") == std::string::npos) return s;
+  std::string out = "\"";
+  for (char c : s) out += c == '"' ? std::string("\"\"") : std::string(1, c);
+  return out + "\"";
+}
+
+const sim::Setting<sim::FingerDesc>& fingerSetting(std::string_view name) {
+  return *sim::findSetting(sim::fingerSettings(), name);
+}
+
+// The configuration's columns from its scene, as it ran.
+void describe(const StudyPlan& plan, const StudyRun& run, const SessionDesc& s, Row& row) {
+  const StudyMeasure& m = plan.study.series[static_cast<std::size_t>(run.measured_as)].measures.front();
+  const sim::SceneDesc& scene = s.scene;
+  row.run = &run;
+  row.series = run.series < 0 ? "reference" : plan.study.series[static_cast<std::size_t>(run.series)].name;
+  if (run.series < 0) {  // whose reference: one series', or the n-th of several shared ones
+    int references = 0, index = 0;
+    for (const StudyRun& other : plan.runs) {
+      if (other.series < 0) ++references;
+      if (&other == &run) index = references;
+    }
+    const std::set<int> series_using = [&] {
+      std::set<int> out;
+      for (const StudyRun& other : plan.runs) {
+        if (other.series >= 0 && other.reference >= 0 && plan.runs[static_cast<std::size_t>(other.reference)].id == run.id) {
+          out.insert(other.series);
+        }
+      }
+      return out;
+    }();
+    if (series_using.size() == 1) {
+      row.series.append(" (").append(plan.study.series[static_cast<std::size_t>(*series_using.begin())].name).append(")");
+    } else if (references > 1) {
+      row.series.append(" ").append(std::to_string(index));
+    }
+  }
+  const sim::FingerDesc* f = nullptr;
+  for (const sim::FingerDesc& x : scene.fingers) {
+    if (!f && (m.finger.empty() || x.name == m.finger)) f = &x;
+  }
+  if (f) {
+    const bool god_object = !scene.effects.god_finger || sim::effectiveModel(f->patch) == sim::ContactModel::kGodObject;
+    row.model = god_object ? "god_object" : std::string(sim::choiceName(fingerSetting("contact_model"), *f));
+    row.patch = row.model == "god_finger" ? std::string(sim::choiceName(fingerSetting("patch"), *f)) : "";
+    row.n_sgo = row.model == "god_finger" ? f->patch.n_sgo : 0;
+    row.rings = row.patch == "filled" ? f->patch.rings : 0;
+    // A god-object or soft finger is one point whatever the solver setting.
+    if (row.model == "god_finger" &&
+        sim::resolveSolver(f->patch.contact_solver, scene.world.contact_solver) == sim::ContactSolver::kAggregate) {
+      row.solver = "aggregate";
+    }
+  }
+  row.iterations = scene.world.solver_iterations;
+  row.rate = scene.world.haptic_rate_hz;
+  for (const sim::BodyDesc& b : scene.bodies) {
+    if (b.name != m.body) continue;
+    row.walk_resolution = b.walk_resolution > 0 ? b.walk_resolution : sim::shapeInfo(b.shape).default_resolution;
+  }
+}
+
+std::vector<std::string> axisFields(const StudyPlan& plan) {
+  std::vector<std::string> out;
+  for (const StudyRun& r : plan.runs) {
+    for (const auto& [field, value] : r.axis_values) {
+      if (std::find(out.begin(), out.end(), field) == out.end()) out.push_back(field);
+    }
+  }
+  return out;
+}
+
+std::string axisValue(const StudyRun& run, const std::string& field) {
+  for (const auto& [f, v] : run.axis_values) {
+    if (f == field) return v;
+  }
+  return "";
+}
+
+const std::vector<StudyMeasure>& measuresOf(const StudyPlan& plan, const StudyRun& run) {
+  return plan.study.series[static_cast<std::size_t>(run.measured_as)].measures;
+}
+
+std::string resultsCsv(const StudyPlan& plan, const std::vector<Row>& rows) {
+  const std::vector<std::string> axes = axisFields(plan);
+  const std::vector<StudyMeasure>& first = plan.study.series.front().measures;
+  std::string out = "study,series,model,patch,n_sgo,rings,contact_solver,solver_iterations,haptic_rate_hz,walk_resolution";
+  for (const std::string& a : axes) out += "," + csvCell(a);
+  out += ",measure,reference,error";
+  for (std::size_t k = 1; k < first.size(); ++k) {
+    out += "," + first[k].name + "," + first[k].name + "_reference," + first[k].name + "_error";
+  }
+  out += ",step_us_median,step_us_p99,patch_us_mean,status,run\n";
+  for (const Row& r : rows) {
+    out += csvCell(plan.study.name) + "," + csvCell(r.series) + "," + r.model + "," + r.patch + "," +
+           std::to_string(r.n_sgo) + "," + std::to_string(r.rings) + "," + r.solver + "," + std::to_string(r.iterations) + "," +
+           number(r.rate) + "," + std::to_string(r.walk_resolution);
+    for (const std::string& a : axes) out.append(1, ',').append(csvCell(axisValue(*r.run, a)));
+    for (std::size_t k = 0; k < std::max<std::size_t>(first.size(), 1); ++k) {
+      const MeasureResult m = k < r.measures.size() ? r.measures[k] : MeasureResult{};
+      for (double x : {m.measure, m.reference, m.error}) out.append(1, ',').append(number(x));
+    }
+    out += "," + number(r.step_median) + "," + number(r.step_p99) + "," + number(r.patch_mean) + "," + r.status + "," +
+           r.run->id + "\n";
+  }
+  return out;
+}
+
+const char* errorUnit(const StudyMeasure& m) {
+  if (m.error != ErrorKind::kAbsolute) return "";
+  switch (m.kind) {
+    case MeasureKind::kSwing: return " deg";
+    case MeasureKind::kForceSd:
+    case MeasureKind::kFrictionForce: return " N";
+    case MeasureKind::kFrictionTorque: return " N m";
+    case MeasureKind::kGeodesicRadius:
+    case MeasureKind::kTrajectory: return " m";
+    case MeasureKind::kRollRatio: return "";
+  }
+  return "";
+}
+
+std::string errorText(const StudyMeasure& m, double e) {
+  char b[48];
+  if (!std::isfinite(e)) return "n/a";
+  if (m.error == ErrorKind::kAbsolute) std::snprintf(b, sizeof b, "%.3g%s", e, errorUnit(m));
+  else std::snprintf(b, sizeof b, "%+.2f %%", 100.0 * e);
+  return b;
+}
+
+std::string configurationText(const Row& r) {
+  std::string s = r.series;
+  for (const auto& [field, value] : r.run->axis_values) s += ", " + field.substr(field.rfind('.') + 1) + " " + value;
+  return s;
+}
+
+// Rows of one series on the chart's cost axis, cheapest first.
+std::vector<const Row*> chartable(const std::vector<Row>& rows, const std::string& series, CostKind cost) {
+  std::vector<const Row*> out;
+  for (const Row& r : rows) {
+    if (r.series == series && r.status == "ok" && r.cost(cost) > 0.0 && std::isfinite(r.error())) out.push_back(&r);
+  }
+  std::sort(out.begin(), out.end(), [&](const Row* a, const Row* b) { return a->cost(cost) < b->cost(cost); });
+  return out;
+}
+
+// A chart point's label: the series' first axis, shortened ("n8" for n_SGO 8, "it10" for 10
+// solver iterations).
+std::string pointLabel(const Row& r) {
+  if (r.run->axis_values.empty()) return "";
+  const auto& [field, value] = r.run->axis_values.front();
+  const std::string name = field.substr(field.rfind('.') + 1);
+  if (name == "n_sgo") return "n" + value;
+  if (name == "solver_iterations") return "it" + value;
+  if (name == "haptic_rate") return value + " Hz";
+  if (name == "walk_resolution") return "res " + value;
+  return value;
+}
+
+std::string costLabel(CostKind k) { return k == CostKind::kStep ? "step time, median (us)" : "patch time per call, mean (us)"; }
+
+render::ChartSpec workPrecisionChart(const StudyPlan& plan, const std::vector<Row>& rows) {
+  const StudyMeasure& m = plan.study.series.front().measures.front();
+  render::ChartSpec chart;
+  chart.title = plan.study.name + ": error against cost (one line per series through its best points)";
+  chart.x_label = costLabel(plan.study.cost);
+  chart.y_label = m.error == ErrorKind::kRelative    ? "|error| = |" + m.name + " / reference - 1|"
+                  : m.error == ErrorKind::kDeviation ? "RMS deviation / RMS displacement of the reference"
+                                                     : "|error| = |" + m.name + " - reference|" + errorUnit(m);
+  for (const StudySeries& s : plan.study.series) {
+    if (s.measures.front().error != m.error || s.measures.front().kind != m.kind) {
+      chart.y_label = "|error| (each series in its own measure's terms: see report.md)";
+    }
+  }
+  chart.log_x = chart.log_y = true;
+  chart.width = 1280;
+  chart.height = 720;
+  static const Eigen::Vector3f kColours[] = {
+      {0.85f, 0.2f, 0.15f}, {0.95f, 0.6f, 0.1f}, {0.15f, 0.45f, 0.85f}, {0.1f, 0.6f, 0.3f},
+      {0.55f, 0.3f, 0.75f}, {0.4f, 0.4f, 0.4f},  {0.0f, 0.7f, 0.75f},   {0.75f, 0.45f, 0.3f},
+      {0.9f, 0.4f, 0.7f},   {0.6f, 0.75f, 0.1f}, {0.1f, 0.2f, 0.5f},    {0.5f, 0.1f, 0.1f}};
+  std::size_t colour = 0;
+  for (const StudySeries& s : plan.study.series) {
+    const std::vector<const Row*> points = chartable(rows, s.name, plan.study.cost);
+    if (points.empty()) continue;
+    const Eigen::Vector3f c = kColours[colour++ % std::size(kColours)];
+    render::ChartSeries markers{s.name, c, {}, {}};
+    markers.style = render::SeriesStyle::kMarkers;
+    render::ChartSeries front{"", c, {}, {}};
+    double best = HUGE_VAL;
+    for (const Row* r : points) {
+      markers.x.push_back(r->cost(plan.study.cost));
+      markers.y.push_back(std::abs(r->error()));
+      markers.point_labels.push_back(pointLabel(*r));
+      if (std::abs(r->error()) < best) {  // the best error at this cost or less
+        best = std::abs(r->error());
+        front.x.push_back(r->cost(plan.study.cost));
+        front.y.push_back(best);
+      }
+    }
+    // |error| 0 has no place on a log axis: say how many points that leaves out.
+    int zeros = 0;
+    for (const Row* r : points) zeros += r->error() == 0.0;
+    if (zeros > 0) markers.label += " (" + std::to_string(zeros) + " at error 0, not drawn)";
+    chart.series.push_back(std::move(front));
+    chart.series.push_back(std::move(markers));
+  }
+  return chart;
+}
+
+std::string reportMd(const StudyPlan& plan, const std::vector<Row>& rows, bool parallel_times) {
+  const StudyDesc& study = plan.study;
+  const std::vector<StudyMeasure>& measures = study.series.front().measures;
+  const StudyMeasure& m = measures.front();
+  std::string out = "# Study `" + study.name + "`\n\n" + study.summary + "\n\n";
+  out += "Study file: `" + study.source + "`. " + std::to_string(rows.size()) + " runs" +
+         (plan.quick ? " (the --quick grid)" : "") + ". ";
+  for (const std::string& e : plan.extra) out += "`--set " + e + "` ";
+  out += parallel_times ? "Step times were taken with several runs at once on one machine (or a run does not say "
+                          "when and where it ran): they include contention for the cores; use `--jobs 1` for "
+                          "published figures.\n\n"
+                        : "Step times were taken one run at a time on each machine.\n\n";
+  out += "Error: ";
+  out += m.error == ErrorKind::kRelative    ? "measure / reference - 1.\n\n"
+         : m.error == ErrorKind::kAbsolute  ? "measure - reference, in the measure's unit.\n\n"
+                                            : "RMS deviation from the reference path / its RMS displacement.\n\n";
+  bool same_measure = true;
+  for (const StudySeries& s : study.series) same_measure = same_measure && s.measures.front().name == m.name;
+  out += "| configuration | " + (same_measure ? m.name : std::string("measure (its series')")) + " | reference | error |";
+  for (std::size_t k = 1; k < measures.size(); ++k) out += " " + measures[k].name + " error |";
+  out += " step us (median) | step us (p99) | patch us |\n|---|---|---|---|";
+  for (std::size_t k = 1; k < measures.size(); ++k) out += "---|";
+  out += "---|---|---|\n";
+  char b[160];
+  for (const Row& r : rows) {
+    const MeasureResult x = r.measures.empty() ? MeasureResult{} : r.measures.front();
+    const std::vector<StudyMeasure>& own = measuresOf(plan, *r.run);  // a series may measure otherwise
+    std::snprintf(b, sizeof b, " | %.5g | %.5g | %s |", x.measure, x.reference, errorText(own.front(), x.error).c_str());
+    out.append("| ").append(configurationText(r));
+    if (r.status != "ok") out.append(" (").append(r.status).append(")");
+    out += b;
+    for (std::size_t k = 1; k < measures.size(); ++k) {
+      const StudyMeasure& mk = k < own.size() ? own[k] : measures[k];
+      out.append(1, ' ').append(errorText(mk, k < r.measures.size() ? r.measures[k].error : NAN)).append(" |");
+    }
+    std::snprintf(b, sizeof b, " %.1f | %.1f | %.2f |\n", r.step_median, r.step_p99, r.patch_mean);
+    out += b;
+  }
+  out += "\n## The most accurate configuration per budget\n\n";
+  out += "Budget on the " + costLabel(study.cost) + "; reference runs left out, and runs measured otherwise than " +
+         "the first series (`" + m.name + "`).\n\n| budget (us) | configuration | error | cost (us) |\n|---|---|---|---|\n";
+  for (double budget : {10.0, 20.0, 50.0, 100.0}) {
+    const Row* best = nullptr;
+    for (const Row& r : rows) {
+      if (r.run->series < 0 || r.status != "ok" || !std::isfinite(r.error()) || !(r.cost(study.cost) <= budget)) continue;
+      const StudyMeasure& own = measuresOf(plan, *r.run).front();
+      if (own.kind != m.kind || own.error != m.error || own.reference != m.reference) continue;  // not comparable
+      if (!best || std::abs(r.error()) < std::abs(best->error())) best = &r;
+    }
+    if (best) {
+      std::snprintf(b, sizeof b, "| %.0f | %s | %s | %.1f |\n", budget, configurationText(*best).c_str(),
+                    errorText(m, best->error()).c_str(), best->cost(study.cost));
+    } else {
+      std::snprintf(b, sizeof b, "| %.0f | none fits | | |\n", budget);
+    }
+    out += b;
+  }
+  return out;
+}
+
+// True when two runs' steps overlapped in time on one host, or when a run does not say when and
+// where it ran (summary.json's finished_unix_s, wall_time_s and host).
+bool ranAtOnce(const std::vector<std::optional<RunOutputs>>& outputs) {
+  std::map<std::string, std::vector<std::pair<double, double>>> spans;  // host -> [start, end]
+  for (const std::optional<RunOutputs>& o : outputs) {
+    if (!o) continue;
+    const nlohmann::json& s = o->summary;
+    if (!s.contains("finished_unix_s") || !s.contains("wall_time_s") || !s.contains("host")) return true;
+    const double end = s["finished_unix_s"].get<double>();
+    spans[s["host"].get<std::string>()].emplace_back(end - s["wall_time_s"].get<double>(), end);
+  }
+  for (auto& [host, list] : spans) {
+    std::sort(list.begin(), list.end());
+    for (std::size_t i = 1; i < list.size(); ++i) {
+      if (list[i].first < list[i - 1].second) return true;
+    }
+  }
+  return false;
+}
+
+}  // namespace
+
+int collectStudy(const StudyPlan& plan, const std::string& runs_dir, const std::string& out, bool parallel_times) {
+  std::vector<Row> rows(plan.runs.size());
+  std::vector<std::optional<RunOutputs>> outputs(plan.runs.size());
+  int missing = 0;
+  for (std::size_t i = 0; i < plan.runs.size(); ++i) {
+    const StudyRun& run = plan.runs[i];
+    std::vector<std::string> texts;
+    for (const StudyOverride& o : run.overrides) texts.push_back(o.text);
+    const SessionDesc session = loadSceneFile(run.scene, texts);
+    describe(plan, run, session, rows[i]);
+    const std::string dir = (fs::path(runs_dir) / "runs" / run.id).string();
+    try {
+      outputs[i] = readRunOutputs(dir, session);
+      const nlohmann::json& summary = outputs[i]->summary;
+      rows[i].step_median = summary.at("step_time_us").at("median").get<double>();
+      rows[i].step_p99 = summary.at("step_time_us").at("p99").get<double>();
+      rows[i].patch_mean = summary.at("patch_time_us").at("mean").get<double>();
+      // A run stopped early (Ctrl-C) wrote valid files for the time it reached: not measured.
+      const sim::SceneDesc& scene = session.scene;
+      const long expected = std::lround(scene.duration * scene.world.haptic_rate_hz);
+      if (summary.at("counters").at("steps").get<long>() < expected) {
+        std::fprintf(stderr, "godfinger study: %s: stopped after %ld of %ld steps\n", dir.c_str(),
+                     summary.at("counters").at("steps").get<long>(), expected);
+        rows[i].status = "incomplete";
+        outputs[i].reset();
+        ++missing;
+      }
+    } catch (const std::exception& e) {
+      std::fprintf(stderr, "godfinger study: %s\n", e.what());
+      rows[i].status = "missing";
+      ++missing;
+    }
+  }
+  for (std::size_t i = 0; i < plan.runs.size(); ++i) {
+    const StudyRun& run = plan.runs[i];
+    if (!outputs[i]) continue;
+    const RunOutputs* ref = run.reference >= 0 && outputs[static_cast<std::size_t>(run.reference)]
+                                ? &*outputs[static_cast<std::size_t>(run.reference)]
+                                : nullptr;
+    if (run.series < 0) ref = &*outputs[i];  // a reference run against itself
+    for (const StudyMeasure& m : measuresOf(plan, run)) {
+      try {
+        rows[i].measures.push_back(evaluateMeasure(m, *outputs[i], ref));
+      } catch (const std::exception& e) {
+        std::fprintf(stderr, "godfinger study: %s\n", e.what());
+        rows[i].measures.push_back({});
+        rows[i].status = "unmeasured";
+      }
+    }
+  }
+  parallel_times = parallel_times || ranAtOnce(outputs);
+  std::error_code ec;
+  fs::create_directories(out, ec);
+  if (ec) throw std::runtime_error(out + ": cannot create folder: " + ec.message());
+  writeFileAtomically((fs::path(out) / "results.csv").string(), resultsCsv(plan, rows));
+  writeFileAtomically((fs::path(out) / "report.md").string(), reportMd(plan, rows, parallel_times));
+  render::writeChartPng(workPrecisionChart(plan, rows), (fs::path(out) / "work-precision.png").string());
+  int unmeasured = 0, incomplete = 0, absent = 0;
+  for (const Row& r : rows) {
+    unmeasured += r.status == "unmeasured";
+    incomplete += r.status == "incomplete";
+    absent += r.status == "missing";
+  }
+  std::printf("%s: %zu runs (%d missing, %d incomplete, %d unmeasured); wrote %s/results.csv, report.md, "
+              "work-precision.png\n",
+              plan.study.name.c_str(), rows.size(), absent, incomplete, unmeasured, out.c_str());
+  return missing + unmeasured == 0 ? 0 : 1;
+}
+
+void writeStudyGrid(const std::string& dir, const StudyGrid& grid) {
+  std::error_code ec;
+  fs::create_directories(dir, ec);
+  if (ec) throw std::runtime_error(dir + ": cannot create folder: " + ec.message());
+  const nlohmann::json j = {{"study", grid.study}, {"quick", grid.quick}, {"set", grid.extra}};
+  writeFileAtomically((fs::path(dir) / "grid.json").string(), j.dump(1) + "\n");
+}
+
+std::optional<StudyGrid> readStudyGrid(const std::string& dir) {
+  const fs::path path = fs::path(dir) / "grid.json";
+  if (!fs::exists(path)) return std::nullopt;
+  std::ifstream in(path);
+  try {
+    const nlohmann::json j = nlohmann::json::parse(in);
+    return StudyGrid{j.at("study").get<std::string>(), j.at("quick").get<bool>(),
+                     j.at("set").get<std::vector<std::string>>()};
+  } catch (const nlohmann::json::exception& e) {
+    throw InputError(path.string(), 0, 0, "", std::string("not a study grid record: ") + e.what());
+  }
+}
+
+void emitStudyJobs(const StudyPlan& plan, const StudyOptions& options, const std::string& jobs_file) {
+  std::string text;
+  for (const StudyRun& r : plan.runs) text += runCommandLine(options.godfinger, options.out, r) + "\n";
+  writeFileAtomically(jobs_file, text);
+  writeStudyGrid(options.out, {plan.study.source, plan.quick, plan.extra});
+  std::printf("%s: %zu command lines in %s; run them (e.g. parallel --will-cite < %s), then: godfinger study %s "
+              "--collect %s (the grid is recorded in %s/grid.json)\n",
+              plan.study.name.c_str(), plan.runs.size(), jobs_file.c_str(), jobs_file.c_str(), plan.study.source.c_str(),
+              options.out.c_str(), options.out.c_str());
+}
+
+int runStudy(const StudyPlan& plan, const StudyOptions& options) {
+  std::error_code ec;
+  fs::create_directories(fs::path(options.out) / "runs", ec);
+  if (ec) throw std::runtime_error(options.out + ": cannot create folder: " + ec.message());
+  writeStudyGrid(options.out, {plan.study.source, plan.quick, plan.extra});
+  std::vector<std::string> lines;
+  for (const StudyRun& r : plan.runs) lines.push_back(runCommandLine(options.godfinger, options.out, r));
+  const auto start = std::chrono::steady_clock::now();
+  std::size_t finished = 0;
+  int failed = 0;
+  const bool interrupted = runJobs(lines, options.jobs, [&](std::size_t i, int code) {
+    ++finished;
+    if (code != 0) {
+      ++failed;
+      std::fprintf(stderr, "godfinger study: run %s failed (exit %d); see %s\n", plan.runs[i].id.c_str(), code,
+                   (fs::path(options.out) / "runs" / plan.runs[i].id / "run.log").c_str());
+    }
+    if (options.progress) {
+      const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+      const double eta = elapsed / static_cast<double>(finished) * static_cast<double>(lines.size() - finished);
+      std::fprintf(stderr, "[study] %s: %zu / %zu runs, %s elapsed, ETA %s\n", plan.study.name.c_str(), finished,
+                   lines.size(), formatDuration(elapsed).c_str(), formatDuration(eta).c_str());
+    }
+  });
+  if (interrupted) std::fprintf(stderr, "godfinger study: interrupted; collecting the runs that finished\n");
+  const int collected = collectStudy(plan, options.out, options.out, false);
+  if (interrupted) return 130;
+  return failed == 0 && collected == 0 ? 0 : 1;
+}
+
+}  // namespace gf::app
