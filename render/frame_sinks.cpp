@@ -1,12 +1,19 @@
 #include "render/frame_sinks.hpp"
 
+#include "render/video_file.hpp"
+
+#include <algorithm>
+#include <cctype>
 #include <cerrno>
 #include <chrono>
 #include <csignal>
 #include <cstring>
 #include <filesystem>
+#include <optional>
+#include <vector>
 
 #include <fcntl.h>
+#include <sys/mman.h>
 #include <spawn.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -97,22 +104,32 @@ SinkStats PngSequenceWriter::finish() {
 }
 
 VideoWriter::VideoWriter(const std::string& path, int width, int height, double fps, int crf)
-    : path_(path), width_(width), height_(height) {
-  // ffmpeg reads the frames from a pipe on its standard input. It is started without a shell
-  // (any path works), in a process group of its own, so a Ctrl-C at the terminal reaches only
-  // godfinger, which then ends the video by closing the pipe; and with no signal blocked.
+    : path_(path), part_(path + "." + std::to_string(getpid()) + ".part"), width_(width), height_(height) {
+  const std::optional<std::string> container = videoContainer(path);
+  if (!container) throw ImageError(path + ": the video's name must end in .mp4, .mkv or .mov");
+  container_ = *container;
+  // ffmpeg reads the frames from a pipe on its standard input and writes the file under a
+  // temporary name (the container given, as the name does not say it); what it says goes to a
+  // memory file read when it ends. It is started without a shell (any path works), in a process
+  // group of its own, so a Ctrl-C at the terminal reaches only godfinger, which then ends the
+  // video by closing the pipe; and with no signal blocked.
   const std::string size = std::to_string(width) + "x" + std::to_string(height);
   char rate[32], quality[16];
   std::snprintf(rate, sizeof rate, "%g", fps);
   std::snprintf(quality, sizeof quality, "%d", crf);
-  const char* argv[] = {"ffmpeg", "-loglevel", "error", "-y", "-f", "rawvideo", "-pix_fmt", "rgb24", "-s",
-                        size.c_str(), "-r", rate, "-i", "-", "-c:v", "libx264", "-preset", "veryfast", "-crf",
-                        quality, "-pix_fmt", "yuv420p", "-movflags", "+faststart", path.c_str(), nullptr};
+  std::vector<const char*> argv = {"ffmpeg", "-loglevel", "error", "-y", "-f", "rawvideo", "-pix_fmt",
+                                   "rgb24", "-s", size.c_str(), "-r", rate, "-i", "-", "-c:v", "libx264", "-preset",
+                                   "veryfast", "-crf", quality, "-pix_fmt", "yuv420p"};
+  if (container_ != "matroska") argv.insert(argv.end(), {"-movflags", "+faststart"});
+  argv.insert(argv.end(), {"-f", container_.c_str(), part_.c_str(), nullptr});
+  messages_ = memfd_create("ffmpeg-stderr", MFD_CLOEXEC);
+  if (messages_ < 0) throw ImageError(path + ": cannot start ffmpeg: no memory file for its messages");
   int fds[2];
   if (pipe2(fds, O_CLOEXEC) != 0) throw ImageError(path + ": cannot start ffmpeg: no pipe");
   posix_spawn_file_actions_t actions;
   posix_spawn_file_actions_init(&actions);
   posix_spawn_file_actions_adddup2(&actions, fds[0], STDIN_FILENO);
+  posix_spawn_file_actions_adddup2(&actions, messages_, STDERR_FILENO);
   posix_spawnattr_t attributes;
   posix_spawnattr_init(&attributes);
   sigset_t none;
@@ -120,7 +137,8 @@ VideoWriter::VideoWriter(const std::string& path, int width, int height, double 
   posix_spawnattr_setsigmask(&attributes, &none);
   posix_spawnattr_setpgroup(&attributes, 0);
   posix_spawnattr_setflags(&attributes, POSIX_SPAWN_SETPGROUP | POSIX_SPAWN_SETSIGMASK);
-  const int failed = posix_spawnp(&child_, "ffmpeg", &actions, &attributes, const_cast<char* const*>(argv), environ);
+  const int failed =
+      posix_spawnp(&child_, "ffmpeg", &actions, &attributes, const_cast<char* const*>(argv.data()), environ);
   posix_spawn_file_actions_destroy(&actions);
   posix_spawnattr_destroy(&attributes);
   close(fds[0]);
@@ -137,9 +155,13 @@ VideoWriter::VideoWriter(const std::string& path, int width, int height, double 
 }
 
 VideoWriter::~VideoWriter() {
-  if (!pipe_) return;
-  std::fclose(pipe_);
-  waitpid(child_, nullptr, 0);
+  if (pipe_) {
+    std::fclose(pipe_);
+    waitpid(child_, nullptr, 0);
+  }
+  if (messages_ >= 0) close(messages_);
+  std::error_code ignored;
+  std::filesystem::remove(part_, ignored);  // a video that was not finished is not kept
 }
 
 void VideoWriter::push(const Image& frame) {
@@ -147,24 +169,41 @@ void VideoWriter::push(const Image& frame) {
   if (frame.width != width_ || frame.height != height_) throw ImageError(path_ + ": frame size changed");
   const auto start = Clock::now();
   if (std::fwrite(frame.rgb.data(), 1, frame.rgb.size(), pipe_) != frame.rgb.size()) {
-    throw ImageError(path_ + ": ffmpeg stopped reading frames");
+    throw ImageError(path_ + ": ffmpeg stopped reading frames" + ffmpegSaid());
   }
   stats_.busy_seconds += secondsSince(start);
   stats_.bytes += static_cast<long>(frame.rgb.size());
   ++stats_.frames;
 }
 
+std::string VideoWriter::ffmpegSaid() const {
+  std::string text(1024, '\0');
+  const ssize_t n = pread(messages_, text.data(), text.size(), 0);
+  text.resize(n > 0 ? static_cast<std::size_t>(n) : 0);
+  while (!text.empty() && std::isspace(static_cast<unsigned char>(text.back()))) text.pop_back();
+  std::replace(text.begin(), text.end(), '\n', ' ');
+  return text.empty() ? "" : " (ffmpeg: " + text + ")";
+}
+
 SinkStats VideoWriter::finish() {
   if (!pipe_) return stats_;
-  std::fclose(pipe_);  // end of input: ffmpeg finishes the file
+  const bool flushed = std::fclose(pipe_) == 0;  // end of input: ffmpeg finishes the file
   pipe_ = nullptr;
   int status = 0;
   while (waitpid(child_, &status, 0) < 0 && errno == EINTR) {
   }
-  if (!WIFEXITED(status) || WEXITSTATUS(status) != 0) {
-    throw ImageError(path_ + ": ffmpeg failed (is the ffmpeg package installed?)");
+  // ffmpeg at loglevel error says only what went wrong; a full disk it reports but exits 0 on.
+  const std::string said = ffmpegSaid();
+  if (!WIFEXITED(status) || WEXITSTATUS(status) != 0 || !said.empty() || !flushed) {
+    throw ImageError(path_ + ": ffmpeg failed" + (said.empty() ? " (is the ffmpeg package installed?)" : said) +
+                     "; no video written");
+  }
+  if (const std::optional<std::string> problem = videoFileProblem(part_, container_)) {
+    throw ImageError(path_ + ": the video ffmpeg wrote is broken: " + *problem + "; no video written");
   }
   std::error_code ec;
+  std::filesystem::rename(part_, path_, ec);
+  if (ec) throw ImageError(path_ + ": cannot put the finished video in place: " + ec.message());
   stats_.bytes = static_cast<long>(std::filesystem::file_size(path_, ec));
   return stats_;
 }

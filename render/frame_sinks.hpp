@@ -54,23 +54,33 @@ class PngSequenceWriter {
   std::thread thread_;
 };
 
-/// An H.264 MP4 written by `ffmpeg` (libx264, yuv420p, CRF `crf`, 60 fps) from raw RGB frames.
+/// An H.264 video (MP4, MOV or MKV by the name's extension) written by `ffmpeg` (libx264,
+/// yuv420p, CRF `crf`, `fps` frames per second) from raw RGB frames. ffmpeg writes under a
+/// temporary name beside `path` (`path.PID.part`); the file gets its name only once ffmpeg exited
+/// 0 without a message and the file holds its whole container (render/video_file.hpp), so a
+/// broken video (a disk that filled, a dead ffmpeg) never sits under `path` and an earlier file
+/// there stays. Render thread (or one owner thread).
 class VideoWriter {
  public:
-  /// Starts ffmpeg writing `path`. Throws ImageError when it cannot be started.
+  /// Starts ffmpeg. Throws ImageError when it cannot be started or the extension is not one of
+  /// .mp4, .mov and .mkv.
   VideoWriter(const std::string& path, int width, int height, double fps, int crf = 26);
+  /// Ends ffmpeg if still running and removes an unfinished temporary file.
   ~VideoWriter();
   VideoWriter(const VideoWriter&) = delete;
   VideoWriter& operator=(const VideoWriter&) = delete;
   /// Writes one frame of the size given at construction. Throws ImageError when ffmpeg failed.
   void push(const Image& frame);
-  /// Closes the pipe and waits for ffmpeg; throws ImageError when it reported failure.
+  /// Closes the pipe, waits for ffmpeg, checks what it said, its exit and the file, and renames
+  /// the file into place. Throws ImageError naming what failed (then no file is put at `path`).
   SinkStats finish();
 
  private:
-  std::string path_;
+  std::string ffmpegSaid() const;  // " (ffmpeg: MESSAGE)", or "" when it said nothing
+  std::string path_, part_, container_;
   int width_, height_;
   std::FILE* pipe_ = nullptr;  // ffmpeg's standard input
+  int messages_ = -1;          // ffmpeg's standard error: a memory file
   pid_t child_ = 0;
   SinkStats stats_;
 };

@@ -6,29 +6,20 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
-#include <fstream>
 #include <sstream>
+#include <thread>
 
+#include "app/commands/commands.hpp"
 #include "app/runs/jobs.hpp"
+#include "app/runs/run_reader.hpp"
 #include "app/scene/scene_file.hpp"
 #include "app/scene/data_folder.hpp"
+#include "app/session/console.hpp"
 
 namespace gf::app {
 namespace {
 
 namespace fs = std::filesystem;
-
-std::string lastLine(const fs::path& path) {
-  std::ifstream in(path);
-  std::string line, last;
-  while (std::getline(in, line)) {
-    // Progress lines end in carriage returns: keep the text after the last one.
-    const std::size_t cr = line.find_last_of('\r');
-    const std::string text = cr == std::string::npos ? line : line.substr(cr + 1);
-    if (!text.empty()) last = text;
-  }
-  return last;
-}
 
 // How close the run came to each limit: the check nearest to failing, as "name worst (limit)".
 std::string closest(const nlohmann::json& checks) {
@@ -103,16 +94,8 @@ int runCheck(const CheckOptions& options) {
   int failed = 0, passed = 0;
   const bool interrupted = runJobs(lines, options.jobs, [&](std::size_t i, int code) {
     const fs::path dir = fs::absolute(options.out) / names[i];
-    nlohmann::json summary;
-    std::ifstream in(dir / "summary.json");
-    bool have = false;
-    if (in) {
-      try {
-        summary = nlohmann::json::parse(in);
-        have = summary.contains("expectations");
-      } catch (const nlohmann::json::exception&) {
-      }
-    }
+    const nlohmann::json summary = readSummary(dir);
+    const bool have = summary.is_object() && summary.contains("expectations");
     char head[96];
     std::string detail;
     if ((code == 0 || code == 3) && have) {
@@ -141,11 +124,11 @@ int runCheck(const CheckOptions& options) {
       if (recoveries > 0) detail += "; " + std::to_string(recoveries) + " steps rolled back";
     } else {
       std::snprintf(head, sizeof head, "%-5s %-40s ", "ERROR", names[i].c_str());
-      detail = "exit " + std::to_string(code) + ": " + lastLine(dir / "run.log");
+      detail = "exit " + std::to_string(code) + ": " + lastLogLine(dir);
       ++failed;
     }
     std::printf("%s%s\n", head, detail.c_str());
-    std::fflush(stdout);
+    flushOutput();
   });
   const std::size_t skipped = scenes.size() - static_cast<std::size_t>(passed + failed);
   std::printf("%zu scenes: %d passed, %d failed, %zu not run%s", scenes.size() + static_cast<std::size_t>(live), passed,
@@ -155,5 +138,34 @@ int runCheck(const CheckOptions& options) {
   if (interrupted) return 130;
   return failed == 0 ? 0 : 1;
 }
+
+namespace {
+
+class CheckCommand final : public Command {
+ public:
+  CLI::App* add(CLI::App& app) override {
+    CheckOptions& o = options_;
+    o.jobs = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+    CLI::App* c = app.add_subcommand("check", "Run scenes offline and check their [expect] tables; one line each, "
+                                              "exit 1 if any fails");
+    c->add_option("paths", o.paths, "Scene files, folders of them, or bundled scene names")->required();
+    c->add_option("--out", o.out, "Folder for the runs (default: check)");
+    c->add_option("--set", o.overrides, "Override a field of every scene, e.g. --set world.contact_solver=aggregate");
+    c->add_option("--jobs", o.jobs, "Scenes at a time (default: the number of cores)")->check(CLI::Range(1, 256));
+    return c;
+  }
+
+  int run() override {
+    options_.godfinger = selfExecutable();
+    return runCheck(options_);
+  }
+
+ private:
+  CheckOptions options_;
+};
+
+}  // namespace
+
+std::unique_ptr<Command> makeCheckCommand(const std::vector<std::string>&) { return std::make_unique<CheckCommand>(); }
 
 }  // namespace gf::app

@@ -4,6 +4,8 @@
 #include <cmath>
 #include <cstdio>
 
+#include "app/commands/commands.hpp"
+#include "app/scene/input_error.hpp"
 #include "sim/mesh.hpp"
 #include "sim/mesh_import.hpp"
 
@@ -138,6 +140,45 @@ std::string meshInfoText(const nlohmann::json& j) {
   }
   if (!j["suggested_scale"].is_null()) line("suggestion: " + j["suggestion"].get<std::string>());
   return t;
+}
+
+namespace {
+
+class MeshInfoCommand final : public Command {
+ public:
+  CLI::App* add(CLI::App& app) override {
+    MeshInfoOptions& o = options_;
+    CLI::App* m = app.add_subcommand("mesh-info", "What a mesh file holds: parts, size, unit and up axis, whether it "
+                                                  "is closed and outward, volume, centre of mass and inertia");
+    m->add_option("file", o.path, "Mesh file (OBJ, PLY, STL, OFF, glTF, Collada, ...)")->required();
+    m->add_option("--scale", o.scale, "File units to metres, as a body's scale (default 1)")
+        ->check(settingCheck(sim::bodySettings(), "scale"));
+    m->add_option("--mass", o.mass, "Mass (kg) for the inertia (default: from --density)")->check(CLI::Range(1e-9, 1e9));
+    m->add_option("--density", o.density, "Density (kg/m^3) when no mass is given (default 1000)")
+        ->check(CLI::Range(1e-6, 1e6));
+    m->add_flag("--json", json_, "Print JSON instead of text");
+    return m;
+  }
+
+  int run() override {
+    try {
+      const nlohmann::json info = meshInfoJson(options_);
+      std::fputs(json_ ? (info.dump(2) + "\n").c_str() : meshInfoText(info).c_str(), stdout);
+    } catch (const sim::MeshLoadError& e) {
+      throw InputError("command line", 0, 0, "file", e.what());
+    }
+    return 0;
+  }
+
+ private:
+  MeshInfoOptions options_;
+  bool json_ = false;
+};
+
+}  // namespace
+
+std::unique_ptr<Command> makeMeshInfoCommand(const std::vector<std::string>&) {
+  return std::make_unique<MeshInfoCommand>();
 }
 
 }  // namespace gf::app

@@ -1,12 +1,15 @@
 #include "app/commands/plot.hpp"
 
+#include <cstdio>
+
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <limits>
 
-#include "app/scene/scene_file.hpp"
+#include "app/commands/commands.hpp"
+#include "app/runs/run_reader.hpp"
 #include "render/chart.hpp"
 #include "render/render_thread.hpp"
 
@@ -19,55 +22,7 @@ const Eigen::Vector3f kCurveColours[] = {{0.00f, 0.45f, 0.70f}, {0.84f, 0.37f, 0
                                          {0.80f, 0.47f, 0.65f}, {0.34f, 0.71f, 0.91f}, {0.90f, 0.62f, 0.00f},
                                          {0.20f, 0.20f, 0.20f}};
 
-std::vector<std::string> splitRow(const std::string& line) {
-  std::vector<std::string> cells;
-  std::size_t a = 0;
-  for (;;) {
-    const std::size_t b = line.find(',', a);
-    cells.push_back(line.substr(a, b == std::string::npos ? std::string::npos : b - a));
-    if (b == std::string::npos) break;
-    a = b + 1;
-  }
-  if (!cells.empty() && !cells.back().empty() && cells.back().back() == '\r') cells.back().pop_back();
-  return cells;
-}
-
 }  // namespace
-
-std::vector<std::vector<double>> readCsvColumns(const std::string& path, const std::vector<std::string>& names) {
-  if (std::filesystem::is_directory(path)) throw InputError(path, 0, 0, "file", "is a folder; give a CSV file");
-  std::ifstream in(path);
-  if (!in) throw InputError(path, 0, 0, "file", "cannot read");
-  std::string line;
-  if (!std::getline(in, line)) throw InputError(path, 1, 0, "header", "empty file: expected a header row");
-  const std::vector<std::string> header = splitRow(line);
-  const auto column = [&](const std::string& name) {
-    for (std::size_t i = 0; i < header.size(); ++i) {
-      if (header[i] == name) return i;
-    }
-    std::string known;
-    for (const std::string& h : header) known.append(known.empty() ? "" : ", ").append(h);
-    throw InputError(path, 1, 0, name, "no such column (the file has: " + known + ")");
-  };
-  std::vector<std::size_t> columns;
-  for (const std::string& n : names) columns.push_back(column(n));
-  std::vector<std::vector<double>> out(columns.size());
-  const auto number = [&](const std::vector<std::string>& cells, std::size_t c, int row) {
-    if (c >= cells.size() || cells[c].empty()) return std::numeric_limits<double>::quiet_NaN();  // a gap
-    char* end = nullptr;
-    const double v = std::strtod(cells[c].c_str(), &end);
-    if (end == cells[c].c_str() || *end != '\0') {
-      throw InputError(path, row, static_cast<int>(c) + 1, header[c], "expected a number, got '" + cells[c] + "'");
-    }
-    return v;
-  };
-  for (int row = 2; std::getline(in, line); ++row) {
-    if (line.empty()) continue;
-    const std::vector<std::string> cells = splitRow(line);
-    for (std::size_t k = 0; k < columns.size(); ++k) out[k].push_back(number(cells, columns[k], row));
-  }
-  return out;
-}
 
 std::string writePlot(const PlotOptions& o) {
   std::vector<std::string> names = {o.x};
@@ -95,5 +50,35 @@ std::string writePlot(const PlotOptions& o) {
   render::writeChartPng(chart, out);
   return out;
 }
+
+namespace {
+
+class PlotCommand final : public Command {
+ public:
+  CLI::App* add(CLI::App& app) override {
+    PlotOptions& o = options_;
+    CLI::App* p = app.add_subcommand("plot", "Draw columns of a CSV (trace.csv, forces.csv) against time as a PNG");
+    p->add_option("csv", o.csv, "The CSV file (a header row, then numbers)")->required();
+    p->add_option("--y", o.y, "A column to draw (repeat for more curves)")->required();
+    p->add_option("--x", o.x, "The column along the x axis (default: t)");
+    p->add_option("--out", o.out, "PNG file (default: plot.png beside the CSV)");
+    p->add_option("--title", o.title, "Chart title (default: the file and the columns)");
+    p->add_option("--width", o.width, "Pixels (default 1200)")->check(CLI::Range(200, 4000));
+    p->add_option("--height", o.height, "Pixels (default 600)")->check(CLI::Range(150, 4000));
+    return p;
+  }
+
+  int run() override {
+    std::printf("wrote %s\n", writePlot(options_).c_str());
+    return 0;
+  }
+
+ private:
+  PlotOptions options_;
+};
+
+}  // namespace
+
+std::unique_ptr<Command> makePlotCommand(const std::vector<std::string>&) { return std::make_unique<PlotCommand>(); }
 
 }  // namespace gf::app

@@ -15,10 +15,6 @@ struct PlotOptions {
   int width = 1200, height = 600;
 };
 
-/// The columns `names` of a CSV with a header row (an empty cell is NaN). Throws InputError
-/// naming the file, line and column for a missing column or a cell that is not a number.
-std::vector<std::vector<double>> readCsvColumns(const std::string& path, const std::vector<std::string>& names);
-
 /// Reads the columns from the CSV and writes the chart. Throws InputError naming the file, line
 /// and column for a missing column or a cell that is not a number (empty cells are gaps), and
 /// std::runtime_error when the PNG cannot be written. Returns the PNG's path.

@@ -13,11 +13,14 @@
 
 #include "app/session/interrupt.hpp"
 #include "app/runs/jobs.hpp"
-#include "app/commands/plot.hpp"
+#include "app/runs/run_reader.hpp"
+#include "app/session/console.hpp"
 #include "app/scene/scene_file.hpp"
 #include "app/session/session.hpp"
 #include "app/runs/trace.hpp"
 #include "app/scene/data_folder.hpp"
+#include "app/runs/run_folder.hpp"
+#include "app/runs/run_reader.hpp"
 #include "render/context.hpp"
 #include "render/frame_sinks.hpp"
 #include "render/render_thread.hpp"
@@ -224,25 +227,6 @@ render::ChartSpec chartFor(const Quantity& q) {
   return chart;
 }
 
-std::string lastLine(const fs::path& path) {
-  std::ifstream in(path);
-  std::string line, last;
-  while (std::getline(in, line)) {
-    if (!line.empty()) last = line;
-  }
-  return last;
-}
-
-nlohmann::json readJson(const fs::path& path) {
-  std::ifstream in(path);
-  if (!in) return nullptr;
-  try {
-    return nlohmann::json::parse(in);
-  } catch (const nlohmann::json::exception&) {
-    return nullptr;
-  }
-}
-
 // Headline numbers of a series: last, largest magnitude, mean magnitude.
 nlohmann::json seriesMeasures(const render::ChartSeries& s) {
   double largest = 0.0, sum = 0.0, last = std::numeric_limits<double>::quiet_NaN();
@@ -368,13 +352,13 @@ int runCompare(const CompareOptions& o) {
     std::printf("compare %s: %zu model%s, %g s each, %d run%s at a time, into %s/\n", base.scene.name.c_str(),
                 o.models.size(), o.models.size() == 1 ? "" : "s", duration, jobs, jobs == 1 ? "" : "s",
                 out.string().c_str());
-    std::fflush(stdout);
+    flushOutput();
   }
   std::vector<int> codes(o.models.size(), -1);
   std::vector<nlohmann::json> summaries(o.models.size());
   const bool interrupted = runJobs(lines, jobs, [&](std::size_t i, int code) {
     codes[i] = code;
-    summaries[i] = readJson(out / o.models[i] / "summary.json");
+    summaries[i] = readSummary(out / o.models[i]);
     const bool ok = (code == 0 || code == 3) && summaries[i].is_object();
     if (ok && !o.quiet) {
       const nlohmann::json step = summaries[i].value("step_time_us", nlohmann::json::object());
@@ -383,9 +367,9 @@ int runCompare(const CompareOptions& o) {
     } else if (!ok && jobsSignal() != 0) {
       std::printf("%-12s interrupted\n", o.models[i].c_str());
     } else if (!ok) {
-      std::printf("%-12s ERROR exit %d: %s\n", o.models[i].c_str(), code, lastLine(out / o.models[i] / "run.log").c_str());
+      std::printf("%-12s ERROR exit %d: %s\n", o.models[i].c_str(), code, lastLogLine(out / o.models[i]).c_str());
     }
-    std::fflush(stdout);
+    flushOutput();
   });
   if (interrupted) return 128 + jobsSignal();
   for (std::size_t i = 0; i < codes.size(); ++i) {

@@ -16,6 +16,7 @@
 #include "app/runs/contacts.hpp"
 #include "app/scene/scene_file.hpp"
 #include "app/runs/trace.hpp"
+#include "app/runs/files.hpp"
 #include "sim/settings.hpp"
 #include "sim/world.hpp"
 

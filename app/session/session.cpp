@@ -5,13 +5,10 @@
 #include <algorithm>
 #include <atomic>
 #include <chrono>
-#include <csignal>
-#include <cctype>
-#include <cerrno>
 #include <cmath>
-#include <cstdio>
+#include <csignal>
 #include <cstdint>
-#include <cstring>
+#include <cstdio>
 #include <filesystem>
 #include <memory>
 #include <optional>
@@ -19,16 +16,16 @@
 #include <pthread.h>
 #include <unistd.h>
 
+#include "app/runs/contacts.hpp"
+#include "app/runs/forces.hpp"
+#include "app/runs/run_folder.hpp"
+#include "app/runs/summary.hpp"
+#include "app/runs/trace.hpp"
+#include "app/scene/input_error.hpp"
 #include "app/session/frame_driver.hpp"
 #include "app/session/interrupt.hpp"
-#include "godfinger_commit.hpp"
-#include "app/runs/contacts.hpp"
-#include "app/scene/scene_file.hpp"
-#include "app/runs/trace.hpp"
 #include "app/session/udp_device.hpp"
-#include "app/session/expectations.hpp"
-#include "sim/about.hpp"
-#include "sim/mesh_import.hpp"
+#include "app/runs/files.hpp"
 #include "sim/settings.hpp"
 #include "sim/world.hpp"
 
@@ -37,317 +34,15 @@ namespace {
 
 namespace fs = std::filesystem;
 
-nlohmann::json fingerJson(const sim::FingerDesc& f) {
-  nlohmann::json j = fingerSettingsJson(f, false);
-  j["name"] = f.name;
-  return j;
-}
-
-nlohmann::json effectsJson(const sim::EffectSet& e) {
-  nlohmann::json out = nlohmann::json::object();
-  for (const sim::EffectSwitch& s : sim::effectSwitches()) out[std::string(s.name)] = e.*s.on;
-  return out;
-}
-
-// 64-bit FNV-1a of a file's bytes as 16 hex digits; empty when it cannot be read.
-std::string fileHash(const std::string& path) {
-  std::FILE* f = std::fopen(path.c_str(), "rb");
-  if (!f) return {};
-  std::uint64_t h = 0xcbf29ce484222325ull;
-  unsigned char buffer[65536];
-  for (std::size_t n; (n = std::fread(buffer, 1, sizeof buffer, f)) > 0;) {
-    for (std::size_t i = 0; i < n; ++i) h = (h ^ buffer[i]) * 0x100000001b3ull;
-  }
-  std::fclose(f);
-  char text[17];
-  std::snprintf(text, sizeof text, "%016llx", static_cast<unsigned long long>(h));
-  return text;
-}
-
-std::string hostName() {
-  char name[256] = {};
-  return gethostname(name, sizeof name - 1) == 0 ? std::string(name) : std::string();
-}
-
-nlohmann::json summaryJson(const SessionDesc& session, const sim::World& world,
-                           const sim::LoopStats& stats, bool realtime) {
-  const sim::SceneDesc& scene = session.scene;
-  nlohmann::json fingers = nlohmann::json::array();
-  for (const sim::FingerDesc& f : scene.fingers) fingers.push_back(fingerJson(f));
-  const sim::WorldCounters& c = world.counters();
-  nlohmann::json bodies = nlohmann::json::array();
-  for (std::size_t b = 0; b < scene.bodies.size(); ++b) {
-    if (scene.bodies[b].mass <= 0.0) continue;
-    const sim::Vec3 inertia = world.bodyInertia(static_cast<int>(b));
-    bodies.push_back({{"name", scene.bodies[b].name}, {"mass_kg", scene.bodies[b].mass},
-                      {"inertia_kg_m2", {inertia.x(), inertia.y(), inertia.z()}}});
-  }
-  // Mesh bodies: the file's parts joined into the body (each node's mesh, its transform applied)
-  // and what welding left.
-  nlohmann::json meshes = nlohmann::json::array();
-  for (const sim::BodyDesc& b : scene.bodies) {
-    if (b.mesh_path.empty()) continue;
-    nlohmann::json m = {{"body", b.name}, {"file", b.mesh_path}, {"scale", b.mesh_scale}};
-    try {
-      m["parts"] = sim::describeMeshFile(b.mesh_path).parts.size();
-    } catch (const sim::MeshLoadError& e) {
-      m["parts"] = nullptr;  // read when the scene loaded; gone or changed since
-    }
-    if (b.mesh) {
-      m["vertices"] = b.mesh->vertexCount();
-      m["faces"] = b.mesh->faceCount();
-    }
-    meshes.push_back(m);
-  }
-  return {{"scene", scene.name},
-          {"source", session.source},
-          {"overrides", session.overrides},
-          {"clock", realtime ? "realtime" : "offline"},
-          {"settings", sceneSettingsJson(scene)},
-          {"effects", effectsJson(scene.effects)},
-          {"fingers", fingers},
-          {"bodies", bodies},
-          {"meshes", meshes},
-          {"step_time_us", {{"median", stats.step_median_us}, {"p99", stats.step_p99_us},
-                            {"max", stats.step_max_us}}},
-          {"interrupted", stats.stopped},
-          {"counters", {{"steps", stats.steps}, {"deadline_misses", stats.late_steps},
-                        {"max_lateness_us", stats.max_lateness_us},
-                        {"fifo_priority", stats.fifo_priority},
-                        {"nan_recoveries", c.nan_recoveries},
-                        {"invalid_patches", c.invalid_patches}, {"sgos_injected", c.sgos_injected},
-                        {"crossing_limit_stops", c.crossing_limit_stops},
-                        {"tunnelling_stops", c.tunnelling_stops}}},
-          {"patch_time_us", {{"calls", c.patch_calls},
-                             {"mean", c.patch_calls > 0 ? 1e6 * c.patch_seconds / c.patch_calls : 0.0}}},
-          {"wall_time_s", stats.wall_seconds},
-          // When and where the steps ran, so a study can tell runs that shared a machine.
-          {"finished_unix_s", std::chrono::duration<double>(std::chrono::system_clock::now().time_since_epoch()).count()},
-          {"host", hostName()}};
-}
-
-// forces.csv: the force on each listed body other than gravity (N), from its change of velocity
-// over the step: m (dv/dt - g). This is the paper's Fig. 8 curve for the pinched cylinder. The
-// file is streamed while the run goes when `path` is given; the first body's y force is kept
-// for the chart.
-class ForceWriter {
- public:
-  ForceWriter(const sim::World& world, const std::vector<std::string>& names, long rows, const std::string& path) {
-    const sim::SceneDesc& d = world.desc();
-    for (const std::string& n : names) {
-      for (std::size_t b = 0; b < d.bodies.size(); ++b) {
-        if (d.bodies[b].name != n) continue;
-        bodies_.push_back(static_cast<int>(b));
-        previous_.push_back(world.bodyLinearVelocity(static_cast<int>(b)));
-      }
-    }
-    if (!path.empty() && !bodies_.empty()) {
-      file_ = std::make_unique<StreamedFile>(path);
-      std::string& text = file_->block();
-      text.push_back('t');
-      for (int b : bodies_) {
-        for (const char* c : {".fx", ".fy", ".fz"}) text.append(1, ',').append(d.bodies[static_cast<std::size_t>(b)].name).append(c);
-      }
-      text += '\n';
-      file_->rowDone();
-    }
-    gravity_ = d.effects.gravity ? d.world.gravity : sim::Vec3::Zero();
-    times_.reserve(static_cast<std::size_t>(std::max(0L, rows)));
-    fy_.reserve(static_cast<std::size_t>(std::max(0L, rows)));
-  }
-  bool empty() const { return bodies_.empty(); }
-  void record(const sim::World& world, double dt) {
-    times_.push_back(world.time());
-    std::string* text = file_ ? &file_->block() : nullptr;
-    if (text) appendNumber(*text, world.time());
-    for (std::size_t i = 0; i < bodies_.size(); ++i) {
-      const sim::Vec3 v = world.bodyLinearVelocity(bodies_[i]);
-      const sim::Vec3 f = world.desc().bodies[bodies_[i]].mass * ((v - previous_[i]) / dt - gravity_);
-      previous_[i] = v;
-      if (i == 0) fy_.push_back(f.y());
-      if (!text) continue;
-      for (double x : {f.x(), f.y(), f.z()}) {
-        *text += ',';
-        appendNumber(*text, x);
-      }
-    }
-    if (!text) return;
-    *text += '\n';
-    file_->rowDone();
-  }
-  /// Writes the last rows and puts forces.csv in place.
-  void close() {
-    if (file_) file_->close();
-  }
-  /// The y force on the first body against time, as a chart curve.
-  render::ChartSeries series(const std::string& label, const Eigen::Vector3f& colour) const {
-    return {label, colour, times_, fy_};
-  }
-
- private:
-  std::unique_ptr<StreamedFile> file_;
-  std::vector<int> bodies_;
-  std::vector<sim::Vec3> previous_;
-  std::vector<double> times_, fy_;
-  sim::Vec3 gravity_ = sim::Vec3::Zero();
-};
-
-std::string contactFileName(double t) {
-  char name[48];
-  std::snprintf(name, sizeof name, "t%.3f", t);
-  return name;
-}
-
-}  // namespace
-
-std::string versionString() { return sim::libraryVersion(); }
-std::string commitString() { return GF_GIT_COMMIT; }
-
-sim::Camera sessionCamera(const SessionDesc& session, const std::string& name) {
-  if (name.empty() && !session.cameras.empty()) return session.cameras.front();
-  for (const sim::Camera& c : session.cameras) {
-    if (c.name == name) return c;
-  }
-  if (!name.empty()) {
-    std::string known;
-    for (const sim::Camera& c : session.cameras) known.append(known.empty() ? "" : ", ").append(c.name);
-    throw InputError(session.source, 0, 0, "cameras." + name,
-                     "no such camera (the scene has: " + (known.empty() ? "none" : known) + ")");
-  }
-  sim::Camera c;  // no camera in the scene: look at the origin from the front and above
-  c.name = "default";
-  return c;
-}
-
-render::FrameOutputSettings frameSettings(const SessionDesc& session, const SessionOptions& options) {
-  const ViewSettings& v = session.view;
-  render::FrameOutputSettings f;
-  f.width = v.width;
-  f.height = v.height;
-  f.antialiasing = v.antialiasing;
-  f.msaa_samples = v.msaa_samples;
-  f.camera = sessionCamera(session, options.camera);
-  if (options.frames) f.frames_dir = (fs::path(options.out_dir) / "frames").string();
-  f.video_path = options.video_path;
-  f.scene.shadows = v.shadows;
-  f.scene.patch_highlight = v.patch_highlight;
-  f.patch_insets = v.patch_insets;
-  f.overlay = v.overlay;
-  f.overlay_settings.actions = v.actions;
-  f.realtime = options.realtime;
-  f.background_priority = options.realtime && options.yield_render;
-  return f;
-}
-
-namespace {
-
-// The y force on the first force body with every finger a god-object, for the Fig. 8 chart.
-render::ChartSeries godObjectForces(const SessionDesc& session) {
-  sim::SceneDesc scene = session.scene;
-  for (sim::FingerDesc& f : scene.fingers) f.patch.n_sgo = 0;
-  sim::World world(scene);
-  const std::vector<sim::DeviceTrack> devices = sim::deviceTracks(scene);
-  const double dt = 1.0 / scene.world.haptic_rate_hz;
-  ForceWriter forces(world, {session.record.force_bodies.front()}, 0, "");
-  sim::runHapticLoop(world, devices, {scene.world.haptic_rate_hz, scene.duration},
-                     [&](const sim::World& w) { forces.record(w, dt); });
-  return forces.series("god-object (n_SGO = 0)", {0.85f, 0.2f, 0.15f});
-}
-
-void writeForceChart(const SessionDesc& session, const ForceWriter& forces, render::RenderThread& renderer,
-                     const fs::path& path) {
-  render::ChartSpec chart;
-  chart.title = !session.record.force_chart_title.empty()
-                    ? session.record.force_chart_title
-                    : session.scene.name + ": y force on " + session.record.force_bodies.front() + " (N, gravity removed)";
-  chart.x_label = "time (s)";
-  chart.y_label = "F_y (N)";
-  chart.series.push_back(godObjectForces(session));
-  int n = 0;
-  for (const sim::FingerDesc& f : session.scene.fingers) n = std::max(n, f.patch.n_sgo);
-  chart.series.push_back(forces.series("god-finger (n_SGO = " + std::to_string(n) + ")", {0.1f, 0.3f, 0.9f}));
-  renderer.submitChart(chart, path.string());
-}
-
-// frames: drawn by the render thread; published: handed over by the haptic thread (realtime
-// draws only the newest of those, so it can draw fewer).
-nlohmann::json renderJson(render::RenderStats r, long published) {
-  const auto fps = [](const render::SinkStats& s) { return s.busy_seconds > 0 ? s.frames / s.busy_seconds : 0.0; };
-  const long frames = static_cast<long>(r.frame_ms.size());
-  return {{"frames", frames},
-          {"published", published},
-          {"render_ms", {{"median", sim::percentile(r.frame_ms, 0.5)}, {"p99", sim::percentile(r.frame_ms, 0.99)}}},
-          {"png", {{"frames", r.png.frames}, {"encode_fps", fps(r.png)}}},
-          {"video", {{"frames", r.video.frames}, {"bytes", r.video.bytes}}},
-          {"priority", r.background_priority ? "SCHED_IDLE" : "normal"},
-          {"gl", r.gl}};
-}
-
-nlohmann::json changesJson(const std::vector<AppliedChange>& changes, const sim::SceneDesc& scene) {
-  nlohmann::json out = nlohmann::json::array();
-  for (const AppliedChange& c : changes) {
-    sim::FingerDesc finger = scene.fingers[static_cast<std::size_t>(c.command.finger)];
-    finger.patch = c.command.patch;
-    nlohmann::json j = fingerSettingsJson(finger, true);
-    j["t"] = c.time;
-    j["finger"] = finger.name;
-    out.push_back(std::move(j));
-  }
-  return out;
-}
-
-}  // namespace
-
-
-
-namespace {
-
-// True for the names of what a run writes into a folder of its own output kinds: the frame
-// sequence (000000.png ...), contact snapshots and close-ups (t0.500.json, t0.500-left.png),
-// and the temporary names they are written under.
-std::string withoutTemporarySuffix(std::string name) {
-  for (const char* suffix : {".part", ".tmp"}) {
-    if (name.ends_with(suffix)) name.resize(name.size() - std::strlen(suffix));
-  }
-  return name;
-}
-
-bool isFrameName(const std::string& name) {
-  const std::string stem = withoutTemporarySuffix(name);
-  return stem.size() == 10 && stem.ends_with(".png") &&
-         std::all_of(stem.begin(), stem.begin() + 6, [](char c) { return c >= '0' && c <= '9'; });
-}
-
-bool isContactName(const std::string& name) {
-  const std::string stem = withoutTemporarySuffix(name);
-  return stem.size() > 2 && stem[0] == 't' && stem[1] >= '0' && stem[1] <= '9' &&
-         (stem.ends_with(".json") || stem.ends_with(".png"));
-}
-
-// Removes the files of `folder` whose names are `ours`, nothing else. Throws std::runtime_error
-// naming a file it cannot remove.
-void sweep(const fs::path& folder, bool (*ours)(const std::string&)) {
-  std::error_code ec;
-  if (!fs::is_directory(folder, ec)) return;
-  std::vector<fs::path> doomed;
-  for (const fs::directory_entry& e : fs::directory_iterator(folder, ec)) {
-    if (e.is_regular_file(ec) && ours(e.path().filename().string())) doomed.push_back(e.path());
-  }
-  for (const fs::path& p : doomed) {
-    if (!fs::remove(p, ec) && ec) throw std::runtime_error(p.string() + ": cannot remove an earlier run's file: " + ec.message());
-  }
-}
-
-// A run owns its output folder: what an earlier run left of this run's kinds of output goes
-// before anything is written, so the folder shows one run. Nothing else is touched.
-void clearEarlierOutputs(const fs::path& dir) {
-  std::error_code ec;
-  for (const char* name : {"trace.csv", "forces.csv", "forces.png", "summary.json"}) {
-    for (const char* suffix : {"", ".tmp", ".part"}) fs::remove(dir / (std::string(name) + suffix), ec);
-  }
-  sweep(dir / "frames", isFrameName);
-  sweep(dir / "contacts", isContactName);
-}
+// Bodies overlapping by more than this at the start (m) are reported.
+constexpr double kStartOverlap = 1e-3;
+// What a run's outputs take, about, for the room they need (measured on the bundled scenes):
+// bytes per trace.csv or forces.csv number with its comma (14.8 to 17), per pixel of a PNG frame
+// (0.36 for a 1280 x 720 scene), per contact snapshot with its close-up, and for summary.json.
+constexpr double kBytesPerNumber = 16.0;
+constexpr double kPngBytesPerPixel = 0.3;
+constexpr double kContactSnapshotBytes = 400e3;
+constexpr double kSummaryBytes = 64e3;
 
 // While alive, SIGINT and SIGTERM are blocked on this thread, so the threads it starts meanwhile
 // never take them (they stay with the haptic loop's thread, which waits for them).
@@ -367,9 +62,6 @@ class SignalsBlocked {
  private:
   sigset_t old_{};
 };
-
-// Bodies overlapping by more than this at the start (m) are reported.
-constexpr double kStartOverlap = 1e-3;
 
 // Progress on stderr: on a terminal one line rewritten in place once per simulated second;
 // otherwise (a log file, a pipe) a plain line at every tenth of the run, so logs stay readable.
@@ -401,73 +93,67 @@ class Progress {
   std::chrono::steady_clock::time_point start_;
 };
 
-}  // namespace
+// The y force on the first force body with every finger a god-object, for the Fig. 8 chart.
+render::ChartSeries godObjectForces(const SessionDesc& session) {
+  sim::SceneDesc scene = session.scene;
+  for (sim::FingerDesc& f : scene.fingers) f.patch.n_sgo = 0;
+  sim::World world(scene);
+  const std::vector<sim::DeviceTrack> devices = sim::deviceTracks(scene);
+  const double dt = 1.0 / scene.world.haptic_rate_hz;
+  ForceWriter forces(world, {session.record.force_bodies.front()}, 0, "");
+  sim::runHapticLoop(world, devices, {scene.world.haptic_rate_hz, scene.duration},
+                     [&](const sim::World& w) { forces.record(w, dt); });
+  return forces.series("god-object (n_SGO = 0)", {0.85f, 0.2f, 0.15f});
+}
 
-void requireWritableFolder(const fs::path& folder, const std::string& what) {
-  std::error_code ec;
-  fs::create_directories(folder, ec);
-  if (ec || !fs::is_directory(folder)) {
-    throw std::runtime_error(folder.string() + ": cannot create the folder for " + what +
-                             (ec ? ": " + ec.message() : ": a file is in the way"));
+void writeForceChart(const SessionDesc& session, const ForceWriter& forces, render::RenderThread& renderer,
+                     const fs::path& path) {
+  render::ChartSpec chart;
+  chart.title = !session.record.force_chart_title.empty()
+                    ? session.record.force_chart_title
+                    : session.scene.name + ": y force on " + session.record.force_bodies.front() + " (N, gravity removed)";
+  chart.x_label = "time (s)";
+  chart.y_label = "F_y (N)";
+  chart.series.push_back(godObjectForces(session));
+  int n = 0;
+  for (const sim::FingerDesc& f : session.scene.fingers) n = std::max(n, f.patch.n_sgo);
+  chart.series.push_back(forces.series("god-finger (n_SGO = " + std::to_string(n) + ")", {0.1f, 0.3f, 0.9f}));
+  renderer.submitChart(chart, path.string());
+}
+
+nlohmann::json changesJson(const std::vector<AppliedChange>& changes, const sim::SceneDesc& scene) {
+  nlohmann::json out = nlohmann::json::array();
+  for (const AppliedChange& c : changes) {
+    sim::FingerDesc finger = scene.fingers[static_cast<std::size_t>(c.command.finger)];
+    finger.patch = c.command.patch;
+    nlohmann::json j = fingerSettingsJson(finger, true);
+    j["t"] = c.time;
+    j["finger"] = finger.name;
+    out.push_back(std::move(j));
   }
-  const fs::path probe = folder / (".godfinger-probe-" + std::to_string(getpid()));
-  std::FILE* f = std::fopen(probe.c_str(), "wb");
-  if (!f) throw std::runtime_error(folder.string() + ": cannot write " + what + " there: " + std::strerror(errno));
-  std::fclose(f);
-  fs::remove(probe, ec);
+  return out;
 }
 
-void prepareOutputs(const SessionOptions& options) {
-  const fs::path dir(options.out_dir);
-  requireWritableFolder(dir, "the run's outputs");
-  requireWritableFolder(dir / "contacts", "contact snapshots");
-  if (options.frames) requireWritableFolder(dir / "frames", "frames");
-  if (!options.video_path.empty()) requireVideoPath(options.video_path);
-}
-
-void clearFrames(const fs::path& folder) { sweep(folder, isFrameName); }
-
-void requireVideoPath(const std::string& path) {
-  const fs::path video(path);
-  std::error_code ec;
-  if (fs::is_directory(video, ec)) throw std::runtime_error(path + " is a folder; give a file such as out.mp4");
-  std::string ext = video.extension().string();
-  for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-  if (ext != ".mp4" && ext != ".mkv" && ext != ".mov") {
-    throw std::runtime_error(path + ": the video's name must end in .mp4, .mkv or .mov");
-  }
-  requireWritableFolder(video.parent_path().empty() ? fs::path(".") : video.parent_path(), "the video");
-}
-
-sim::LoopStats runSession(const SessionDesc& session, const SessionOptions& options) {
+// The bytes a run of `session` with `options` writes into its folder, about: trace.csv,
+// forces.csv, frames, contact snapshots and summary.json. (The video's size depends too much on
+// what is seen to be estimated: its folder is proven writable, and a video that does not fit is
+// reported and never put in place.)
+std::uintmax_t estimatedOutputBytes(const SessionDesc& session, const SessionOptions& options) {
   const sim::SceneDesc& scene = session.scene;
-  const fs::path dir(options.out_dir);
-  // A live device's packets arrive in wall-clock time: it needs the realtime clock.
-  if (!session.udp_devices.empty() && !options.realtime) {
-    const UdpDeviceDesc& d = session.udp_devices.front();
-    throw InputError(d.file, d.line, d.column,
-                     "fingers." + scene.fingers[static_cast<std::size_t>(d.finger)].name + ".device.udp",
-                     "a UDP device drives the session in real time: run it with --realtime");
+  const double rows = static_cast<double>(sim::stepCount(scene.duration, scene.world.haptic_rate_hz) + 1);
+  double bytes = kSummaryBytes + kContactSnapshotBytes * static_cast<double>(session.record.contact_times.size());
+  if (session.record.trace) bytes += rows * static_cast<double>(traceColumns(scene).size()) * kBytesPerNumber;
+  bytes += rows * static_cast<double>(1 + 3 * session.record.force_bodies.size()) * kBytesPerNumber;
+  if (options.frames) {
+    const double frames = std::floor(scene.duration * render::FrameOutputSettings{}.fps) + 1.0;
+    bytes += frames * session.view.width * session.view.height * kPngBytesPerPixel;
   }
-  // Live devices: their sockets are bound before anything else (a port in use fails the run
-  // here, with nothing written).
-  std::optional<UdpDeviceBridge> udp;
-  if (!session.udp_devices.empty()) {
-    udp.emplace(session);
-    for (const UdpDeviceDesc& d : session.udp_devices) {
-      const std::string& name = scene.fingers[static_cast<std::size_t>(d.finger)].name;
-      std::fprintf(stderr, "%s: fingers.%s.device: listening on %s, channel %d\n", scene.name.c_str(), name.c_str(),
-                   udp->address(d.finger).c_str(), d.channel);
-    }
-  }
-  // Ctrl-C and SIGTERM are recorded from here on (the outputs are finished when one comes); the
-  // threads started below (writers, the render thread, its encoders) do not take them.
-  std::optional<InterruptScope> interrupt;
-  if (options.stop_on_interrupt) interrupt.emplace();
-  std::optional<SignalsBlocked> quiet_threads(std::in_place);
-  prepareOutputs(options);
-  // Requests this run cannot carry out but that do not make it useless: said on stderr now and
-  // listed in summary.json.
+  return static_cast<std::uintmax_t>(bytes);
+}
+
+// Requests a run cannot carry out but that do not make it useless, known before the world is built.
+std::vector<std::string> requestWarnings(const SessionDesc& session, const SessionOptions& options) {
+  const sim::SceneDesc& scene = session.scene;
   std::vector<std::string> warnings;
   for (double t : session.record.contact_times) {
     if (t > scene.duration + 0.5 / scene.world.haptic_rate_hz) {
@@ -480,168 +166,328 @@ sim::LoopStats runSession(const SessionDesc& session, const SessionOptions& opti
   if (!options.camera.empty() && !options.frames && options.video_path.empty()) {
     warnings.push_back("--camera " + options.camera + ": no --frames or --video, so nothing is drawn with it");
   }
-  sim::World world(scene);
+  return warnings;
+}
+
+// Bodies that start inside each other, as warnings.
+void addOverlapWarnings(const sim::World& world, std::vector<std::string>& warnings) {
+  const std::vector<sim::BodyDesc>& bodies = world.desc().bodies;
   for (const sim::World::Overlap& o : world.bodyOverlaps(kStartOverlap)) {
     char text[256];
     std::snprintf(text, sizeof text, "bodies.%s and bodies.%s start %.1f mm inside each other: the solver will push them apart",
-                  scene.bodies[static_cast<std::size_t>(o.body_a)].name.c_str(),
-                  scene.bodies[static_cast<std::size_t>(o.body_b)].name.c_str(), 1e3 * o.depth);
+                  bodies[static_cast<std::size_t>(o.body_a)].name.c_str(),
+                  bodies[static_cast<std::size_t>(o.body_b)].name.c_str(), 1e3 * o.depth);
     warnings.emplace_back(text);
   }
-  for (const std::string& w : warnings) std::fprintf(stderr, "%s: warning: %s\n", scene.name.c_str(), w.c_str());
-  const std::vector<sim::DeviceTrack> devices = sim::deviceTracks(scene);
-  const double rate = scene.world.haptic_rate_hz, dt = 1.0 / rate;
-  const long steps = sim::stepCount(scene.duration, rate);
-  std::vector<double> pending = session.record.contact_times;
-  std::sort(pending.begin(), pending.end(), std::greater<>());  // next time at the back
-  std::vector<std::pair<double, sim::Snapshot>> contact_snaps;  // serialised after the run
-  // The render thread: frames, close-ups and charts.
-  const bool stream = options.frames || !options.video_path.empty();
-  const bool closeups = options.close_ups && !pending.empty();
-  std::unique_ptr<render::RenderThread> renderer;
-  if (stream || closeups || session.record.force_chart) {
-    render::FrameOutputSettings fo = frameSettings(session, options);
-    if (!stream) fo.overlay = fo.patch_insets = false;
-    renderer = std::make_unique<render::RenderThread>(scene, fo);
+}
+
+// A live device's packets arrive in wall-clock time: it needs the realtime clock.
+void requireRealtimeForLiveDevices(const SessionDesc& session, const SessionOptions& options) {
+  if (session.udp_devices.empty() || options.realtime) return;
+  const UdpDeviceDesc& d = session.udp_devices.front();
+  throw InputError(d.file, d.line, d.column,
+                   "fingers." + session.scene.fingers[static_cast<std::size_t>(d.finger)].name + ".device.udp",
+                   "a UDP device drives the session in real time: run it with --realtime");
+}
+
+// One run of a session, stage by stage (runSession). Haptic thread: the thread that calls it.
+class SessionRun {
+ public:
+  SessionRun(const SessionDesc& session, const SessionOptions& options)
+      : session_(session), scene_(session.scene), options_(options), dir_(options.out_dir),
+        dt_(1.0 / scene_.world.haptic_rate_hz), steps_(sim::stepCount(scene_.duration, scene_.world.haptic_rate_hz)) {}
+
+  void bindDevices();
+  void prepareOutputs();
+  void startThreads();
+  sim::LoopStats loop();
+  void finishOutputs(const sim::LoopStats& stats);
+
+ private:
+  void afterStep(const sim::World& w);
+  void takeContactSnapshots(const sim::World& w);
+  void failedOutput(const std::exception& e);
+  template <class Write>
+  void finish(Write&& write);
+  void finishFiles(const sim::LoopStats& stats);
+  nlohmann::json summary(const sim::LoopStats& stats);
+  void addRenderSummary(nlohmann::json& summary);
+
+  const SessionDesc& session_;
+  const sim::SceneDesc& scene_;
+  const SessionOptions& options_;
+  const fs::path dir_;
+  const double dt_;
+  const long steps_;
+  std::optional<UdpDeviceBridge> udp_;
+  std::optional<InterruptScope> interrupt_;
+  std::optional<SignalsBlocked> quiet_threads_;
+  std::optional<RunFolder> folder_;
+  std::vector<std::string> warnings_;
+  std::optional<sim::World> world_;
+  std::vector<double> pending_;  // contact snapshot times still to take, the next at the back
+  std::vector<std::pair<double, sim::Snapshot>> contact_snaps_;  // serialised after the run
+  bool closeups_ = false;
+  std::unique_ptr<render::RenderThread> renderer_;
+  std::optional<TraceWriter> trace_;
+  std::optional<ForceWriter> forces_;
+  sim::LiveTimings live_;
+  std::unique_ptr<FrameDriver> frames_;
+  std::optional<ExpectChecker> expect_;
+  std::vector<ExpectFailure> failed_;
+  std::atomic<bool> halt_{false};
+  std::string failure_;  // the first output failure, which stopped the loop
+  bool interrupted_ = false;
+  bool summary_written_ = false;
+  long done_ = 0;
+};
+
+// Live devices: their sockets are bound before anything else (a port in use fails the run here,
+// with nothing written).
+void SessionRun::bindDevices() {
+  requireRealtimeForLiveDevices(session_, options_);
+  if (session_.udp_devices.empty()) return;
+  udp_.emplace(session_);
+  for (const UdpDeviceDesc& d : session_.udp_devices) {
+    const std::string& name = scene_.fingers[static_cast<std::size_t>(d.finger)].name;
+    std::fprintf(stderr, "%s: fingers.%s.device: listening on %s, channel %d\n", scene_.name.c_str(), name.c_str(),
+                 udp_->address(d.finger).c_str(), d.channel);
   }
-  // Everything that can fail before the first step has: what an earlier run left of this run's
-  // outputs goes now, then the files are opened.
-  clearEarlierOutputs(dir);
-  std::optional<TraceWriter> trace;
-  if (session.record.trace) trace.emplace(world, (dir / "trace.csv").string());
-  ForceWriter forces(world, session.record.force_bodies, steps, (dir / "forces.csv").string());
-  sim::LiveTimings live;
-  std::unique_ptr<FrameDriver> frames;
-  if (stream) frames = std::make_unique<FrameDriver>(*renderer, 60.0, options.realtime, session.view.actions, &live);
-  long done = 0;
-  sim::LoopSettings loop{rate, scene.duration,
-                         options.realtime ? sim::ClockMode::kRealtime : sim::ClockMode::kOffline};
-  loop.live = &live;
-  loop.fifo = options.fifo;
-  loop.spin_us = options.spin_us;
-  if (udp) loop.sources = udp->sources();
-  if (frames) frames->start(world);
-  ExpectChecker expect(session.expect, world);
-  quiet_threads.reset();  // this thread takes the signals again
-  // The loop stops before its next step on a signal or when an output fails (a full disk, a
-  // dead ffmpeg): the run then writes what it reached and reports the failure.
-  std::atomic<bool> halt{false};
-  loop.stop = &halt;
-  std::string failure;
-  const auto failed_output = [&](const std::exception& e) {
-    if (failure.empty()) failure = e.what();
-    halt.store(true, std::memory_order_relaxed);
-  };
-  Progress progress(scene.name, scene.duration, steps, options.progress);
-  const sim::LoopStats stats = sim::runHapticLoop(world, devices, loop, [&](const sim::World& w) {
-    if (interrupt && interruptSignal() != 0) halt.store(true, std::memory_order_relaxed);
-    expect.afterStep(w);
-    try {  // each output on its own: one failing does not skip the others' row of this step
-      if (trace) trace->record(w);
-      if (!forces.empty()) forces.record(w, dt);
-    } catch (const std::exception& e) {
-      failed_output(e);
-    }
-    while (!pending.empty() && pending.back() <= w.time() + 0.5 * dt) {
-      w.snapshot(contact_snaps.emplace_back(pending.back(), sim::Snapshot{}).second);
-      try {
-        if (closeups) renderer->submitCloseUps(contact_snaps.back().second,
-                                               (dir / "contacts" / contactFileName(pending.back())).string());
-      } catch (const std::exception& e) {
-        failed_output(e);
-      }
-      pending.pop_back();
-    }
-    try {
-      if (frames) frames->afterStep(world, dt);
-    } catch (const std::exception& e) {
-      failed_output(e);
-    }
-    progress.step(w.time(), ++done);
+}
+
+// The folder is this run's before anything in it is touched; room and writability are proven
+// before an earlier run's outputs go; then the world is built and the files opened.
+void SessionRun::prepareOutputs() {
+  // Ctrl-C and SIGTERM are recorded from here on (the outputs are finished when one comes); the
+  // threads started until the loop (writers, the render thread, its encoders) do not take them.
+  if (options_.stop_on_interrupt) interrupt_.emplace();
+  quiet_threads_.emplace();
+  folder_.emplace(dir_);
+  requireRoom(dir_, estimatedOutputBytes(session_, options_), "the run's outputs");
+  requireWritableFolder(dir_, "the run's outputs");
+  requireWritableFolder(dir_ / kContactsFolder, "contact snapshots");
+  if (options_.frames) requireWritableFolder(dir_ / kFramesFolder, "frames");
+  if (!options_.video_path.empty()) requireVideoPath(options_.video_path);
+  warnings_ = requestWarnings(session_, options_);
+  world_.emplace(scene_);
+  addOverlapWarnings(*world_, warnings_);
+  for (const std::string& w : warnings_) std::fprintf(stderr, "%s: warning: %s\n", scene_.name.c_str(), w.c_str());
+  pending_ = session_.record.contact_times;
+  std::sort(pending_.begin(), pending_.end(), std::greater<>());
+}
+
+// The render thread (frames, close-ups, charts), then the files: what an earlier run left of
+// this run's outputs goes only now, when everything that can fail before the first step has.
+void SessionRun::startThreads() {
+  const bool stream = options_.frames || !options_.video_path.empty();
+  closeups_ = options_.close_ups && !pending_.empty();
+  if (stream || closeups_ || session_.record.force_chart) {
+    render::FrameOutputSettings fo = frameSettings(session_, options_);
+    if (!stream) fo.overlay = fo.patch_insets = false;
+    renderer_ = std::make_unique<render::RenderThread>(scene_, fo);
+  }
+  clearRunOutputs(dir_);
+  if (session_.record.trace) trace_.emplace(*world_, (dir_ / kTraceFile).string());
+  forces_.emplace(*world_, session_.record.force_bodies, steps_, (dir_ / kForcesFile).string());
+  if (stream) frames_ = std::make_unique<FrameDriver>(*renderer_, 60.0, options_.realtime, session_.view.actions, &live_);
+  if (frames_) frames_->start(*world_);
+  expect_.emplace(session_.expect, *world_);
+  quiet_threads_.reset();  // this thread takes the signals again
+}
+
+// The loop stops before its next step on a signal or when an output fails (a full disk, a dead
+// ffmpeg): the run then writes what it reached and reports the failure.
+sim::LoopStats SessionRun::loop() {
+  sim::LoopSettings loop{scene_.world.haptic_rate_hz, scene_.duration,
+                         options_.realtime ? sim::ClockMode::kRealtime : sim::ClockMode::kOffline};
+  loop.live = &live_;
+  loop.fifo = options_.fifo;
+  loop.spin_us = options_.spin_us;
+  loop.stop = &halt_;
+  if (udp_) loop.sources = udp_->sources();
+  Progress progress(scene_.name, scene_.duration, steps_, options_.progress);
+  const sim::LoopStats stats = sim::runHapticLoop(*world_, sim::deviceTracks(scene_), loop, [&](const sim::World& w) {
+    afterStep(w);
+    progress.step(w.time(), ++done_);
   });
   progress.finish();
-  const bool interrupted = stats.stopped && failure.empty();
-  if (interrupted) {
+  interrupted_ = stats.stopped && failure_.empty();
+  if (interrupted_) {
     std::fprintf(stderr, "%s: interrupted at t = %.3f s; writing the outputs of the time reached\n",
-                 scene.name.c_str(), world.time());
-  } else if (!failure.empty()) {
+                 scene_.name.c_str(), world_->time());
+  } else if (!failure_.empty()) {
     std::fprintf(stderr, "%s: stopped at t = %.3f s: %s; writing the outputs of the time reached\n",
-                 scene.name.c_str(), world.time(), failure.c_str());
+                 scene_.name.c_str(), world_->time(), failure_.c_str());
   }
-  // Each output is finished on its own: one that fails does not cost the others.
-  const auto finish = [&](auto&& write) {
+  return stats;
+}
+
+void SessionRun::failedOutput(const std::exception& e) {
+  if (failure_.empty()) failure_ = e.what();
+  halt_.store(true, std::memory_order_relaxed);
+}
+
+// Each output on its own: one failing does not skip the others' row of this step.
+void SessionRun::afterStep(const sim::World& w) {
+  if (interrupt_ && interruptSignal() != 0) halt_.store(true, std::memory_order_relaxed);
+  expect_->afterStep(w);
+  try {
+    if (trace_) trace_->record(w);
+    if (!forces_->empty()) forces_->record(w, dt_);
+  } catch (const std::exception& e) {
+    failedOutput(e);
+  }
+  takeContactSnapshots(w);
+  try {
+    if (frames_) frames_->afterStep(*world_, dt_);
+  } catch (const std::exception& e) {
+    failedOutput(e);
+  }
+}
+
+void SessionRun::takeContactSnapshots(const sim::World& w) {
+  while (!pending_.empty() && pending_.back() <= w.time() + 0.5 * dt_) {
+    w.snapshot(contact_snaps_.emplace_back(pending_.back(), sim::Snapshot{}).second);
     try {
-      write();
+      if (closeups_) {
+        renderer_->submitCloseUps(contact_snaps_.back().second,
+                                  (dir_ / kContactsFolder / contactStem(pending_.back())).string());
+      }
     } catch (const std::exception& e) {
-      if (failure == e.what()) return;  // the failure that stopped the run, reported above
-      if (failure.empty()) failure = e.what();
-      std::fprintf(stderr, "%s: %s\n", scene.name.c_str(), e.what());
+      failedOutput(e);
     }
-  };
-  if (trace) finish([&] { trace->close(); });
-  finish([&] { forces.close(); });
-  for (const std::pair<double, sim::Snapshot>& snap : contact_snaps) {  // (no structured binding: clang 14 lambdas)
+    pending_.pop_back();
+  }
+}
+
+// Runs one output's finishing step; a failure is reported and kept, and the others go on.
+template <class Write>
+void SessionRun::finish(Write&& write) {
+  try {
+    write();
+  } catch (const std::exception& e) {
+    if (failure_ == e.what()) return;  // the failure that stopped the run, reported already
+    if (failure_.empty()) failure_ = e.what();
+    std::fprintf(stderr, "%s: %s\n", scene_.name.c_str(), e.what());
+  }
+}
+
+// Each output is finished on its own: one that fails does not cost the others. summary.json is
+// last, so it can say what failed.
+void SessionRun::finishOutputs(const sim::LoopStats& stats) {
+  finishFiles(stats);
+  nlohmann::json out = summary(stats);
+  addRenderSummary(out);
+  if (udp_) out["udp_devices"] = udp_->json();
+  if (!failure_.empty()) out["error"] = failure_;
+  out["warnings"] = warnings_;
+  finish([&] {
+    writeFileAtomically((dir_ / kSummaryFile).string(), out.dump(2) + "\n");
+    summary_written_ = true;
+  });
+  interrupt_.reset();
+  if (failure_.empty()) return;
+  char reached[160];
+  std::snprintf(reached, sizeof reached, summary_written_ ? " (the outputs hold t = %.3f s)"
+                                                          : " (summary.json could not be written either: t = %.3f s)",
+                world_->time());
+  throw std::runtime_error(failure_ + reached);
+}
+
+void SessionRun::finishFiles(const sim::LoopStats& stats) {
+  if (trace_) finish([&] { trace_->close(); });
+  finish([&] { forces_->close(); });
+  for (const std::pair<double, sim::Snapshot>& snap : contact_snaps_) {  // (no structured binding: clang 14 lambdas)
     finish([&] {
-      writeFileAtomically((dir / "contacts" / (contactFileName(snap.first) + ".json")).string(),
-                          contactsJson(snap.second, scene).dump(1) + "\n");
+      writeFileAtomically((dir_ / kContactsFolder / (contactStem(snap.first) + ".json")).string(),
+                          contactsJson(snap.second, scene_).dump(1) + "\n");
     });
   }
   // The chart reruns the whole session with god-objects: not after a Ctrl-C or a failure.
-  if (session.record.force_chart && !stats.stopped) {
-    finish([&] { writeForceChart(session, forces, *renderer, dir / "forces.png"); });
+  if (session_.record.force_chart && !stats.stopped) {
+    finish([&] { writeForceChart(session_, *forces_, *renderer_, dir_ / kForceChartFile); });
   }
-  nlohmann::json summary = summaryJson(session, world, stats, options.realtime);
-  summary["interrupted"] = interrupted;
-  summary["time_reached_s"] = world.time();
-  if (interrupted) summary["signal"] = interruptSignal() == SIGTERM ? "SIGTERM" : "SIGINT";
-  const std::vector<ExpectFailure> failed = expect.finish(world);
-  for (const ExpectFailure& f : failed) std::fprintf(stderr, "%s: %s\n", scene.name.c_str(), f.text().c_str());
-  const nlohmann::json checks = expect.json();
-  summary["expectations"] = {{"checks", checks}, {"failed", failed.size()}};
-  // What made this result: the build, the command, the scene file's bytes, and the scene's
-  // headline measures (its checks' measured values) at the top for a quick look.
-  summary["godfinger"] = {{"version", versionString()}, {"commit", commitString()}};
-  summary["command_line"] = options.command_line;
-  summary["scene_file_fnv1a64"] = fileHash(session.source);
-  nlohmann::json measures = nlohmann::json::object();
-  for (const nlohmann::json& c : checks) {
-    if (c["checked"].get<bool>()) measures[c["name"].get<std::string>()] = c["worst"];
+}
+
+nlohmann::json SessionRun::summary(const sim::LoopStats& stats) {
+  nlohmann::json out = summaryJson(session_, *world_, stats, options_.realtime);
+  out["interrupted"] = interrupted_;
+  out["time_reached_s"] = world_->time();
+  if (interrupted_) out["signal"] = interruptSignal() == SIGTERM ? "SIGTERM" : "SIGINT";
+  failed_ = expect_->finish(*world_);
+  for (const ExpectFailure& f : failed_) std::fprintf(stderr, "%s: %s\n", scene_.name.c_str(), f.text().c_str());
+  addExpectations(out, expect_->json(), failed_.size());
+  out.update(provenanceJson(session_, options_.command_line));
+  if (world_->counters().nan_recoveries > 0) {  // loud, whatever the scene expects
+    std::fprintf(stderr, "%s: warning: %ld steps were not finite and were rolled back\n", scene_.name.c_str(),
+                 world_->counters().nan_recoveries);
   }
-  summary["measures"] = measures;
-  if (world.counters().nan_recoveries > 0) {  // loud, whatever the scene expects
-    std::fprintf(stderr, "%s: warning: %ld steps were not finite and were rolled back\n", scene.name.c_str(),
-                 world.counters().nan_recoveries);
+  if (options_.expect_failures) *options_.expect_failures = failed_;
+  if (options_.realtime) out["realtime"] = realtimeJson(stats, options_.fifo);
+  return out;
+}
+
+void SessionRun::addRenderSummary(nlohmann::json& out) {
+  if (!renderer_) return;
+  const long published = frames_ ? frames_->frames() : 0;
+  finish([&] {
+    render::RenderStats r;
+    try {
+      r = renderer_->finish();
+    } catch (...) {
+      out["render"] = {{"frames_published", published}};
+      throw;
+    }
+    out["render"] = renderJson(std::move(r), published);
+  });
+  if (frames_) out["overlay_changes"] = changesJson(frames_->changes(), scene_);
+}
+
+}  // namespace
+
+sim::Camera sessionCamera(const SessionDesc& session, const std::string& name) {
+  if (name.empty() && !session.cameras.empty()) return session.cameras.front();
+  for (const sim::Camera& c : session.cameras) {
+    if (c.name == name) return c;
   }
-  if (options.expect_failures) *options.expect_failures = failed;
-  if (options.realtime) {
-    // How the deadlines were kept: the haptic thread's policy, the wake-up, the share late.
-    summary["realtime"] = {{"haptic_priority", stats.fifo_priority ? "SCHED_FIFO" : "normal"},
-                           {"fifo_requested", options.fifo},
-                           {"spin_us", stats.spin_us},
-                           {"late_steps", stats.late_steps},
-                           {"late_percent", stats.steps > 0 ? 100.0 * stats.late_steps / stats.steps : 0.0},
-                           {"max_lateness_us", stats.max_lateness_us},
-                           {"late_per_second", stats.late_per_second}};
+  if (!name.empty()) {
+    std::string known;
+    for (const sim::Camera& c : session.cameras) known.append(known.empty() ? "" : ", ").append(c.name);
+    throw InputError(session.source, 0, 0, "cameras." + name,
+                     "no such camera (the scene has: " + (known.empty() ? "none" : known) + ")");
   }
-  if (renderer) {
-    finish([&] {
-      render::RenderStats r;
-      try {
-        r = renderer->finish();
-      } catch (...) {
-        summary["render"] = {{"frames_published", frames ? frames->frames() : 0}};
-        throw;
-      }
-      summary["render"] = renderJson(std::move(r), frames ? frames->frames() : 0);
-    });
-    if (frames) summary["overlay_changes"] = changesJson(frames->changes(), scene);
-  }
-  if (udp) summary["udp_devices"] = udp->json();
-  if (!failure.empty()) summary["error"] = failure;
-  summary["warnings"] = warnings;
-  finish([&] { writeFileAtomically((dir / "summary.json").string(), summary.dump(2) + "\n"); });
-  interrupt.reset();
-  if (!failure.empty()) throw std::runtime_error(failure + " (the outputs hold t = " + std::to_string(world.time()) + " s)");
+  sim::Camera c;  // no camera in the scene: look at the origin from the front and above
+  c.name = "default";
+  return c;
+}
+
+render::FrameOutputSettings frameSettings(const SessionDesc& session, const SessionOptions& options) {
+  const ViewSettings& v = session.view;
+  render::FrameOutputSettings f;
+  f.width = v.width;
+  f.height = v.height;
+  f.antialiasing = v.antialiasing;
+  f.msaa_samples = v.msaa_samples;
+  f.camera = sessionCamera(session, options.camera);
+  if (options.frames) f.frames_dir = (fs::path(options.out_dir) / kFramesFolder).string();
+  f.video_path = options.video_path;
+  f.scene.shadows = v.shadows;
+  f.scene.patch_highlight = v.patch_highlight;
+  f.patch_insets = v.patch_insets;
+  f.overlay = v.overlay;
+  f.overlay_settings.actions = v.actions;
+  f.realtime = options.realtime;
+  f.background_priority = options.realtime && options.yield_render;
+  return f;
+}
+
+sim::LoopStats runSession(const SessionDesc& session, const SessionOptions& options) {
+  SessionRun run(session, options);
+  run.bindDevices();
+  run.prepareOutputs();
+  run.startThreads();
+  const sim::LoopStats stats = run.loop();
+  run.finishOutputs(stats);
   return stats;
 }
 

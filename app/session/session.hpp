@@ -1,7 +1,6 @@
 // A recorded session: run a scene through the haptic loop and write what it asks to record.
 #pragma once
 
-#include <filesystem>
 #include <string>
 #include <vector>
 
@@ -38,28 +37,6 @@ struct SessionOptions {
   std::vector<std::string> command_line{};
 };
 
-/// The version and commit of this build ("0.1.0", "1a2b3c4d5e6f" or "...+dirty" or "unknown").
-std::string versionString();
-std::string commitString();
-
-/// Checks the run's output paths before any step (folders created, files writable there) and
-/// removes what an earlier run left in out_dir of the kinds of output a run writes (frames,
-/// contact snapshots and close-ups, trace.csv, forces.csv, forces.png, summary.json and their
-/// temporary names), nothing else. Throws std::runtime_error naming the path. runSession calls it.
-void prepareOutputs(const SessionOptions& options);
-
-/// Creates `folder` (and its parents) and checks that a file can be written in it. Throws
-/// std::runtime_error naming the folder and `what` it is for.
-void requireWritableFolder(const std::filesystem::path& folder, const std::string& what);
-
-/// Removes a frame sequence an earlier run left in `folder` (000000.png ... and their
-/// temporary names), nothing else. Throws std::runtime_error naming a file it cannot remove.
-void clearFrames(const std::filesystem::path& folder);
-
-/// Checks a video path before any work: not a folder, ends in .mp4, .mkv or .mov, its folder
-/// created and writable. Throws std::runtime_error naming the path.
-void requireVideoPath(const std::string& path);
-
 /// The camera called `name` in the session (the first when empty; a default view of the scene
 /// when it has none). Throws InputError naming the camera when there is no such camera.
 sim::Camera sessionCamera(const SessionDesc& session, const std::string& name);
@@ -69,12 +46,16 @@ render::FrameOutputSettings frameSettings(const SessionDesc& session, const Sess
 
 /// Runs the session for scene.duration and writes into out_dir: summary.json, trace.csv (when
 /// recorded), contacts/t<time>.json at the recorded times, forces.csv (when bodies are listed).
-/// Every file is written whole through a rename, so an earlier run's file is replaced only by a
-/// complete one. Returns the loop statistics. Throws std::runtime_error (naming the path) on
-/// I/O failure. Frames (options.frames, options.video_path) are drawn by a render thread, at
-/// every 1/60 s of simulated time; summary.json then holds the render timings. When an output
-/// fails during the run (a full disk, a dead ffmpeg) the loop stops, every other output is
-/// written for the time reached, summary.json records the error, and the error is thrown.
+/// In stages: the outputs are prepared (the folder locked for the run: a second run into it is
+/// refused naming this one's pid; room for the outputs checked and the folders proven writable;
+/// only then what an earlier run left of a run's kinds of output removed), the threads started
+/// (writers, the render thread), the loop run, and every output finished on its own. Every file
+/// is written whole through a rename, so an earlier run's file is replaced only by a complete
+/// one. Returns the loop statistics. Throws std::runtime_error (naming the path) on I/O failure.
+/// Frames (options.frames, options.video_path) are drawn by a render thread, at every 1/60 s of
+/// simulated time; summary.json then holds the render timings. When an output fails during the
+/// run (a full disk, a dead ffmpeg) the loop stops, every other output is written for the time
+/// reached, summary.json records the error, and the error is thrown.
 sim::LoopStats runSession(const SessionDesc& session, const SessionOptions& options);
 
 }  // namespace gf::app

@@ -1,18 +1,16 @@
 #include "app/study/study_measure.hpp"
-#include "app/scene/scene_file.hpp"
 
 #include <Eigen/Geometry>
 
 #include <algorithm>
-#include <charconv>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
-#include <fstream>
 #include <numbers>
-#include <sstream>
 #include <stdexcept>
 
+#include "app/runs/run_folder.hpp"
+#include "app/runs/run_reader.hpp"
 #include "sim/god_finger.hpp"
 
 namespace gf::app {
@@ -22,14 +20,6 @@ namespace fs = std::filesystem;
 using sim::Vec3;
 
 constexpr double kRadToDeg = 180.0 / std::numbers::pi;
-
-std::string readText(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw std::runtime_error(path + ": missing (did the run finish?)");
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
 
 // Least-squares slope of y over x.
 double slope(const std::vector<double>& x, const std::vector<double>& y) {
@@ -227,10 +217,8 @@ double forceSd(const StudyMeasure& m, const View& v, const RunOutputs& run) {
 
 // The contacts snapshot at the measure's time: the finger's first contact.
 nlohmann::json contactAt(const StudyMeasure& m, const RunOutputs& run, const View& v) {
-  char name[48];
-  std::snprintf(name, sizeof name, "t%.3f.json", m.at);
-  const std::string path = (fs::path(run.dir) / "contacts" / name).string();
-  const nlohmann::json j = nlohmann::json::parse(readText(path));
+  const std::string path = (fs::path(run.dir) / kContactsFolder / (contactStem(m.at) + ".json")).string();
+  const nlohmann::json j = readContacts(run.dir, m.at);
   for (const nlohmann::json& f : j.at("fingers")) {
     if (f.at("name") != v.finger().name) continue;
     if (f.at("contacts").empty()) v.fail(path + ": the finger has no contact");
@@ -296,45 +284,10 @@ double measureOnly(const StudyMeasure& m, const RunOutputs& run, const View& v) 
 
 }  // namespace
 
-const std::vector<double>& RunOutputs::column(const std::string& name) const {
-  for (std::size_t i = 0; i < columns.size(); ++i) {
-    if (columns[i] == name) return trace[i];
-  }
-  throw std::runtime_error(dir + "/trace.csv: no column '" + name + "'");
-}
+const std::vector<double>& RunOutputs::column(const std::string& name) const { return trace.column(name); }
 
 RunOutputs readRunOutputs(const std::string& dir, const SessionDesc& session) {
-  RunOutputs out;
-  out.dir = dir;
-  out.session = session;
-  const std::string summary_path = (fs::path(dir) / "summary.json").string();
-  try {
-    out.summary = nlohmann::json::parse(readText(summary_path));
-  } catch (const nlohmann::json::exception& e) {
-    throw std::runtime_error(summary_path + ": " + e.what());
-  }
-  const std::string trace_path = (fs::path(dir) / "trace.csv").string();
-  const std::string text = readText(trace_path);
-  std::size_t pos = text.find('\n');
-  if (pos == std::string::npos) throw std::runtime_error(trace_path + ": no header row");
-  std::stringstream header(text.substr(0, pos));
-  for (std::string c; std::getline(header, c, ',');) out.columns.push_back(c);
-  out.trace.resize(out.columns.size());
-  long line = 1;
-  for (++pos; pos < text.size();) {
-    ++line;
-    const std::size_t end = std::min(text.find('\n', pos), text.size());
-    const char* p = text.data() + pos;
-    for (std::size_t c = 0; c < out.columns.size(); ++c) {
-      double x = 0.0;
-      const auto [next, ec] = std::from_chars(p, text.data() + end, x);
-      if (ec != std::errc()) throw std::runtime_error(trace_path + ":" + std::to_string(line) + ": not a number");
-      out.trace[c].push_back(x);
-      p = next + 1;
-    }
-    pos = end + 1;
-  }
-  return out;
+  return {dir, session, requireSummary(dir), readTrace(dir)};
 }
 
 double measureError(ErrorKind kind, double measure, double reference) {

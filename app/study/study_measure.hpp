@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "app/runs/run_reader.hpp"
 #include "app/scene/session_desc.hpp"
 #include "app/study/study.hpp"
 
@@ -17,15 +18,14 @@ struct RunOutputs {
   std::string dir;
   SessionDesc session;
   nlohmann::json summary;
-  std::vector<std::string> columns;        ///< trace.csv header
-  std::vector<std::vector<double>> trace;  ///< one vector per column
+  CsvTable trace;  ///< trace.csv
 
-  /// The trace column `name`; throws std::runtime_error naming the run when it is missing.
+  /// The trace column `name`; throws InputError naming the file when it is missing.
   const std::vector<double>& column(const std::string& name) const;
 };
 
-/// Reads `dir`'s trace.csv and summary.json; throws std::runtime_error naming the file when one
-/// is missing or malformed.
+/// Reads `dir`'s trace.csv and summary.json (app/runs/run_reader.hpp); throws
+/// std::runtime_error naming the file when one is missing or malformed.
 RunOutputs readRunOutputs(const std::string& dir, const SessionDesc& session);
 
 struct MeasureResult {

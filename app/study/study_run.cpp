@@ -15,6 +15,7 @@
 #include "app/study/study.hpp"
 #include "app/study/study_measure.hpp"
 #include "app/runs/trace.hpp"
+#include "app/runs/files.hpp"
 #include "render/render_thread.hpp"
 #include "sim/settings.hpp"
 

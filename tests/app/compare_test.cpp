@@ -12,6 +12,7 @@
 
 #include "app/commands/plot.hpp"
 #include "app/scene/scene_file.hpp"
+#include "app/runs/run_reader.hpp"
 #include "render/image.hpp"
 #include "tests/app/run_helpers.hpp"
 

@@ -16,6 +16,7 @@
 #include "app/runs/trace.hpp"
 #include "app/scene/data_folder.hpp"
 #include "app/session/expectations.hpp"
+#include "app/runs/files.hpp"
 #include "render/image.hpp"
 #include "tests/scratch.hpp"
 

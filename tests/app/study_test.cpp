@@ -12,6 +12,7 @@
 #include "app/scene/scene_file.hpp"
 #include "app/study/study.hpp"
 #include "app/study/study_measure.hpp"
+#include "app/runs/run_reader.hpp"
 #include "sim/god_finger.hpp"
 #include "tests/scratch.hpp"
 

@@ -1,0 +1,163 @@
+#include "app/runs/run_folder.hpp"
+
+#include <algorithm>
+#include <cctype>
+#include <cerrno>
+#include <cstdio>
+#include <cstring>
+#include <stdexcept>
+#include <vector>
+
+#include <fcntl.h>
+#include <sys/file.h>
+#include <sys/statvfs.h>
+#include <unistd.h>
+
+#include "render/video_file.hpp"
+
+namespace gf::app {
+namespace {
+
+namespace fs = std::filesystem;
+
+// The size of the probe that proves a folder writable (one file system block).
+constexpr std::size_t kProbeBytes = 4096;
+
+std::string withoutTemporarySuffix(std::string name) {
+  for (const char* suffix : {".part", ".tmp"}) {
+    if (name.ends_with(suffix)) name.resize(name.size() - std::strlen(suffix));
+  }
+  return name;
+}
+
+// The frame sequence (000000.png ...) and its temporary names.
+bool isFrameName(const std::string& name) {
+  const std::string stem = withoutTemporarySuffix(name);
+  return stem.size() == 10 && stem.ends_with(".png") &&
+         std::all_of(stem.begin(), stem.begin() + 6, [](char c) { return c >= '0' && c <= '9'; });
+}
+
+// Contact snapshots and close-ups (t0.500.json, t0.500-left.png) and their temporary names.
+bool isContactName(const std::string& name) {
+  const std::string stem = withoutTemporarySuffix(name);
+  return stem.size() > 2 && stem[0] == 't' && stem[1] >= '0' && stem[1] <= '9' &&
+         (stem.ends_with(".json") || stem.ends_with(".png"));
+}
+
+// Removes the files of `folder` whose names are `ours`, nothing else. Throws std::runtime_error
+// naming a file it cannot remove.
+void sweep(const fs::path& folder, bool (*ours)(const std::string&)) {
+  std::error_code ec;
+  if (!fs::is_directory(folder, ec)) return;
+  std::vector<fs::path> doomed;
+  for (const fs::directory_entry& e : fs::directory_iterator(folder, ec)) {
+    if (e.is_regular_file(ec) && ours(e.path().filename().string())) doomed.push_back(e.path());
+  }
+  for (const fs::path& p : doomed) {
+    if (!fs::remove(p, ec) && ec) throw std::runtime_error(p.string() + ": cannot remove an earlier run's file: " + ec.message());
+  }
+}
+
+// The pid written into a held lock file, or "" when it cannot be read.
+std::string lockHolder(int fd) {
+  char text[32] = {};
+  const ssize_t n = pread(fd, text, sizeof text - 1, 0);
+  std::string pid(text, n > 0 ? static_cast<std::size_t>(n) : 0);
+  while (!pid.empty() && !std::isdigit(static_cast<unsigned char>(pid.back()))) pid.pop_back();
+  return pid;
+}
+
+std::string megabytes(std::uintmax_t bytes) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.1f MB", static_cast<double>(bytes) / 1e6);
+  return text;
+}
+
+}  // namespace
+
+std::string contactStem(double t) {
+  char name[48];
+  std::snprintf(name, sizeof name, "t%.3f", t);
+  return name;
+}
+
+RunFolder::RunFolder(fs::path dir) : dir_(std::move(dir)) {
+  std::error_code ec;
+  fs::create_directories(dir_, ec);
+  if (ec || !fs::is_directory(dir_)) {
+    throw std::runtime_error(dir_.string() + ": cannot create the output folder" +
+                             (ec ? ": " + ec.message() : ": a file is in the way"));
+  }
+  const fs::path lock = dir_ / kLockFile;
+  fd_ = open(lock.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0644);
+  if (fd_ < 0) throw std::runtime_error(dir_.string() + ": cannot lock the output folder: " + std::strerror(errno));
+  if (flock(fd_, LOCK_EX | LOCK_NB) != 0) {
+    const int error = errno;
+    const std::string pid = lockHolder(fd_);
+    close(fd_);
+    fd_ = -1;
+    if (error != EWOULDBLOCK) throw std::runtime_error(dir_.string() + ": cannot lock the output folder: " + std::strerror(error));
+    throw std::runtime_error(dir_.string() + ": another godfinger" + (pid.empty() ? "" : " (pid " + pid + ")") +
+                             " is writing into this folder; wait for it to end or give another --out");
+  }
+  // The holder's pid, for the message a second run gives (failing to write it costs only that).
+  const std::string pid = std::to_string(getpid()) + "\n";
+  if (ftruncate(fd_, 0) == 0 && pwrite(fd_, pid.data(), pid.size(), 0) < 0) {
+    // the lock holds all the same
+  }
+}
+
+RunFolder::~RunFolder() {
+  if (fd_ >= 0) close(fd_);  // closing the last descriptor releases the lock
+}
+
+void requireWritableFolder(const fs::path& folder, const std::string& what) {
+  std::error_code ec;
+  fs::create_directories(folder, ec);
+  if (ec || !fs::is_directory(folder)) {
+    throw std::runtime_error(folder.string() + ": cannot create the folder for " + what +
+                             (ec ? ": " + ec.message() : ": a file is in the way"));
+  }
+  const fs::path probe = folder / (".godfinger-probe-" + std::to_string(getpid()));
+  std::FILE* f = std::fopen(probe.c_str(), "wb");
+  if (!f) throw std::runtime_error(folder.string() + ": cannot write " + what + " there: " + std::strerror(errno));
+  const std::vector<char> block(kProbeBytes, '\0');
+  const bool written = std::fwrite(block.data(), 1, block.size(), f) == block.size();
+  const bool closed = std::fclose(f) == 0;
+  const int error = errno;
+  fs::remove(probe, ec);
+  if (!written || !closed) {
+    throw std::runtime_error(folder.string() + ": cannot write " + what + " there: " +
+                             std::strerror(error != 0 ? error : ENOSPC));
+  }
+}
+
+void requireRoom(const fs::path& folder, std::uintmax_t bytes, const std::string& what) {
+  struct statvfs s {};
+  if (statvfs(folder.c_str(), &s) != 0) return;  // no figure to check against: the probe decides
+  const std::uintmax_t free_bytes = static_cast<std::uintmax_t>(s.f_bavail) * s.f_frsize;
+  if (free_bytes >= bytes) return;
+  throw std::runtime_error(folder.string() + ": too little room for " + what + ": about " + megabytes(bytes) +
+                           " needed, " + megabytes(free_bytes) + " free; nothing was changed");
+}
+
+void clearRunOutputs(const fs::path& dir) {
+  std::error_code ec;
+  for (const char* name : {kTraceFile, kForcesFile, kForceChartFile, kSummaryFile}) {
+    for (const char* suffix : {"", ".tmp", ".part"}) fs::remove(dir / (std::string(name) + suffix), ec);
+  }
+  sweep(dir / kFramesFolder, isFrameName);
+  sweep(dir / kContactsFolder, isContactName);
+}
+
+void clearFrames(const fs::path& folder) { sweep(folder, isFrameName); }
+
+void requireVideoPath(const std::string& path) {
+  const fs::path video(path);
+  std::error_code ec;
+  if (fs::is_directory(video, ec)) throw std::runtime_error(path + " is a folder; give a file such as out.mp4");
+  if (!render::videoContainer(path)) throw std::runtime_error(path + ": the video's name must end in .mp4, .mkv or .mov");
+  requireWritableFolder(video.parent_path().empty() ? fs::path(".") : video.parent_path(), "the video");
+}
+
+}  // namespace gf::app

@@ -1,0 +1,52 @@
+// Reading a run folder back (app/runs/run_folder.hpp names its files): the one reader of
+// trace.csv (and any CSV of numbers with a header row), summary.json, contact snapshots and a
+// child run's log, for plot, check, compare and the studies.
+#pragma once
+
+#include <nlohmann/json.hpp>
+
+#include <filesystem>
+#include <string>
+#include <vector>
+
+namespace gf::app {
+
+/// A CSV file of numbers under a header row (trace.csv, forces.csv): every column.
+struct CsvTable {
+  std::string path;
+  std::vector<std::string> names;            ///< the header row
+  std::vector<std::vector<double>> columns;  ///< one per name, a value per row (an empty cell: NaN)
+
+  /// The column `name`. Throws InputError naming the file and the columns it has.
+  const std::vector<double>& column(const std::string& name) const;
+};
+
+/// Reads `path`: the columns `only` (in the file's order), or every column when `only` is empty;
+/// other columns may hold anything. Throws InputError naming the file (and the line, column and
+/// field of a cell that is not a number): a folder, an unreadable or empty file, a column of
+/// `only` the header lacks.
+CsvTable readCsv(const std::string& path, const std::vector<std::string>& only = {});
+
+/// The columns `names` of the CSV at `path`, in that order. Throws as readCsv and CsvTable::column.
+std::vector<std::vector<double>> readCsvColumns(const std::string& path, const std::vector<std::string>& names);
+
+/// The trace.csv of the run in `dir`. Throws InputError as readCsv.
+CsvTable readTrace(const std::filesystem::path& dir);
+
+/// The summary.json of the run in `dir`, or null when it is missing or not JSON (a run that
+/// failed before writing it).
+nlohmann::json readSummary(const std::filesystem::path& dir);
+
+/// The summary.json of the run in `dir`. Throws std::runtime_error naming the file when it is
+/// missing ("did the run finish?") or not JSON.
+nlohmann::json requireSummary(const std::filesystem::path& dir);
+
+/// The contact snapshot the run in `dir` took at `t` seconds (contacts/t0.500.json). Throws
+/// std::runtime_error naming the file when it is missing or not JSON.
+nlohmann::json readContacts(const std::filesystem::path& dir, double t);
+
+/// The last line a child run wrote into dir/run.log (a progress line's carriage returns
+/// dropped), "" when there is none: what to show for a run that failed.
+std::string lastLogLine(const std::filesystem::path& dir);
+
+}  // namespace gf::app

@@ -1,0 +1,151 @@
+#include "app/runs/summary.hpp"
+
+#include <chrono>
+#include <cstdint>
+#include <cstdio>
+
+#include <unistd.h>
+
+#include "app/runs/contacts.hpp"
+#include "godfinger_commit.hpp"
+#include "sim/about.hpp"
+#include "sim/mesh_import.hpp"
+#include "sim/settings.hpp"
+
+namespace gf::app {
+namespace {
+
+nlohmann::json fingerJson(const sim::FingerDesc& f) {
+  nlohmann::json j = fingerSettingsJson(f, false);
+  j["name"] = f.name;
+  return j;
+}
+
+nlohmann::json effectsJson(const sim::EffectSet& e) {
+  nlohmann::json out = nlohmann::json::object();
+  for (const sim::EffectSwitch& s : sim::effectSwitches()) out[std::string(s.name)] = e.*s.on;
+  return out;
+}
+
+// 64-bit FNV-1a of a file's bytes as 16 hex digits; empty when it cannot be read.
+std::string fileHash(const std::string& path) {
+  std::FILE* f = std::fopen(path.c_str(), "rb");
+  if (!f) return {};
+  std::uint64_t h = 0xcbf29ce484222325ull;
+  unsigned char buffer[65536];
+  for (std::size_t n; (n = std::fread(buffer, 1, sizeof buffer, f)) > 0;) {
+    for (std::size_t i = 0; i < n; ++i) h = (h ^ buffer[i]) * 0x100000001b3ull;
+  }
+  std::fclose(f);
+  char text[17];
+  std::snprintf(text, sizeof text, "%016llx", static_cast<unsigned long long>(h));
+  return text;
+}
+
+std::string hostName() {
+  char name[256] = {};
+  return gethostname(name, sizeof name - 1) == 0 ? std::string(name) : std::string();
+}
+
+}  // namespace
+
+nlohmann::json summaryJson(const SessionDesc& session, const sim::World& world, const sim::LoopStats& stats,
+                           bool realtime) {
+  const sim::SceneDesc& scene = session.scene;
+  nlohmann::json fingers = nlohmann::json::array();
+  for (const sim::FingerDesc& f : scene.fingers) fingers.push_back(fingerJson(f));
+  const sim::WorldCounters& c = world.counters();
+  nlohmann::json bodies = nlohmann::json::array();
+  for (std::size_t b = 0; b < scene.bodies.size(); ++b) {
+    if (scene.bodies[b].mass <= 0.0) continue;
+    const sim::Vec3 inertia = world.bodyInertia(static_cast<int>(b));
+    bodies.push_back({{"name", scene.bodies[b].name}, {"mass_kg", scene.bodies[b].mass},
+                      {"inertia_kg_m2", {inertia.x(), inertia.y(), inertia.z()}}});
+  }
+  // Mesh bodies: the file's parts joined into the body (each node's mesh, its transform applied)
+  // and what welding left.
+  nlohmann::json meshes = nlohmann::json::array();
+  for (const sim::BodyDesc& b : scene.bodies) {
+    if (b.mesh_path.empty()) continue;
+    nlohmann::json m = {{"body", b.name}, {"file", b.mesh_path}, {"scale", b.mesh_scale}};
+    try {
+      m["parts"] = sim::describeMeshFile(b.mesh_path).parts.size();
+    } catch (const sim::MeshLoadError& e) {
+      m["parts"] = nullptr;  // read when the scene loaded; gone or changed since
+    }
+    if (b.mesh) {
+      m["vertices"] = b.mesh->vertexCount();
+      m["faces"] = b.mesh->faceCount();
+    }
+    meshes.push_back(m);
+  }
+  return {{"scene", scene.name},
+          {"source", session.source},
+          {"overrides", session.overrides},
+          {"clock", realtime ? "realtime" : "offline"},
+          {"settings", sceneSettingsJson(scene)},
+          {"effects", effectsJson(scene.effects)},
+          {"fingers", fingers},
+          {"bodies", bodies},
+          {"meshes", meshes},
+          {"step_time_us", {{"median", stats.step_median_us}, {"p99", stats.step_p99_us},
+                            {"max", stats.step_max_us}}},
+          {"interrupted", stats.stopped},
+          {"counters", {{"steps", stats.steps}, {"deadline_misses", stats.late_steps},
+                        {"max_lateness_us", stats.max_lateness_us},
+                        {"fifo_priority", stats.fifo_priority},
+                        {"nan_recoveries", c.nan_recoveries},
+                        {"invalid_patches", c.invalid_patches}, {"sgos_injected", c.sgos_injected},
+                        {"crossing_limit_stops", c.crossing_limit_stops},
+                        {"tunnelling_stops", c.tunnelling_stops}}},
+          {"patch_time_us", {{"calls", c.patch_calls},
+                             {"mean", c.patch_calls > 0 ? 1e6 * c.patch_seconds / c.patch_calls : 0.0}}},
+          {"wall_time_s", stats.wall_seconds},
+          // When and where the steps ran, so a study can tell runs that shared a machine.
+          {"finished_unix_s", std::chrono::duration<double>(std::chrono::system_clock::now().time_since_epoch()).count()},
+          {"host", hostName()}};
+}
+
+// frames: drawn by the render thread; published: handed over by the haptic thread (realtime
+// draws only the newest of those, so it can draw fewer).
+nlohmann::json renderJson(render::RenderStats r, long published) {
+  const auto fps = [](const render::SinkStats& s) { return s.busy_seconds > 0 ? s.frames / s.busy_seconds : 0.0; };
+  const long frames = static_cast<long>(r.frame_ms.size());
+  return {{"frames", frames},
+          {"published", published},
+          {"render_ms", {{"median", sim::percentile(r.frame_ms, 0.5)}, {"p99", sim::percentile(r.frame_ms, 0.99)}}},
+          {"png", {{"frames", r.png.frames}, {"encode_fps", fps(r.png)}}},
+          {"video", {{"frames", r.video.frames}, {"bytes", r.video.bytes}}},
+          {"priority", r.background_priority ? "SCHED_IDLE" : "normal"},
+          {"gl", r.gl}};
+}
+
+std::string versionString() { return sim::libraryVersion(); }
+std::string commitString() { return GF_GIT_COMMIT; }
+
+nlohmann::json realtimeJson(const sim::LoopStats& stats, bool fifo_requested) {
+  return {{"haptic_priority", stats.fifo_priority ? "SCHED_FIFO" : "normal"},
+          {"fifo_requested", fifo_requested},
+          {"spin_us", stats.spin_us},
+          {"late_steps", stats.late_steps},
+          {"late_percent", stats.steps > 0 ? 100.0 * stats.late_steps / stats.steps : 0.0},
+          {"max_lateness_us", stats.max_lateness_us},
+          {"late_per_second", stats.late_per_second}};
+}
+
+nlohmann::json provenanceJson(const SessionDesc& session, const std::vector<std::string>& command_line) {
+  return {{"godfinger", {{"version", versionString()}, {"commit", commitString()}}},
+          {"command_line", command_line},
+          {"scene_file_fnv1a64", fileHash(session.source)}};
+}
+
+void addExpectations(nlohmann::json& summary, const nlohmann::json& checks, std::size_t failed) {
+  summary["expectations"] = {{"checks", checks}, {"failed", failed}};
+  nlohmann::json measures = nlohmann::json::object();
+  for (const nlohmann::json& c : checks) {
+    if (c["checked"].get<bool>()) measures[c["name"].get<std::string>()] = c["worst"];
+  }
+  summary["measures"] = measures;
+}
+
+}  // namespace gf::app
