@@ -62,9 +62,12 @@ std::vector<std::string> checkedScenes(const std::vector<std::string>& paths) {
   return out;
 }
 
-int runCheck(const CheckOptions& options) {
+namespace {
+
+// The scenes to run; the ones a live device drives are listed as skipped (they cannot run
+// offline) and counted in `live`.
+std::vector<std::string> offlineScenes(const CheckOptions& options, int& live) {
   std::vector<std::string> scenes;
-  int live = 0;  // scenes a live device drives: they cannot run offline
   for (const std::string& s : checkedScenes(options.paths)) {
     bool udp = false;
     try {
@@ -80,6 +83,55 @@ int runCheck(const CheckOptions& options) {
                 fs::path(s).stem().string().c_str());
     ++live;
   }
+  return scenes;
+}
+
+// The failed checks of a run, each as "name worst (limit) at t".
+std::vector<std::string> failedChecks(const nlohmann::json& checks) {
+  std::vector<std::string> failures;
+  for (const nlohmann::json& c : checks) {
+    if (c.value("passed", true)) continue;
+    char b[200];
+    if (c["worst"].is_null()) std::snprintf(b, sizeof b, "%s not finite", c["name"].get<std::string>().c_str());
+    else std::snprintf(b, sizeof b, "%s %.4g (limit %.4g) at t = %.4f s", c["name"].get<std::string>().c_str(),
+                       c["worst"].get<double>(), c["limit"].get<double>(), c["time_s"].get<double>());
+    failures.push_back(b);
+  }
+  return failures;
+}
+
+// One scene's line (PASS, FAIL or ERROR with its worst figure) from its exit code and run folder.
+std::string resultLine(const std::string& name, int code, const fs::path& dir, bool& passed) {
+  const nlohmann::json summary = readSummary(dir);
+  char head[96];
+  passed = false;
+  if ((code != 0 && code != 3) || !summary.is_object() || !summary.contains("expectations")) {
+    std::snprintf(head, sizeof head, "%-5s %-40s ", "ERROR", name.c_str());
+    return head + ("exit " + std::to_string(code) + ": " + lastLogLine(dir));
+  }
+  const nlohmann::json& checks = summary.at("expectations").at("checks");
+  const std::vector<std::string> failures = failedChecks(checks);
+  passed = failures.empty();
+  std::snprintf(head, sizeof head, "%-5s %-40s ", passed ? "PASS" : "FAIL", name.c_str());
+  std::string detail;
+  if (passed) {
+    detail = std::to_string(checks.size()) + " checks";
+    const std::string c = closest(checks);
+    if (!c.empty()) detail += "; closest: " + c;
+  } else {
+    detail = failures.front();
+    if (failures.size() > 1) detail += " (+" + std::to_string(failures.size() - 1) + " more)";
+  }
+  const long recoveries = summary.value("counters", nlohmann::json::object()).value("nan_recoveries", 0L);
+  if (recoveries > 0) detail += "; " + std::to_string(recoveries) + " steps rolled back";
+  return head + detail;
+}
+
+}  // namespace
+
+int runCheck(const CheckOptions& options) {
+  int live = 0;  // scenes a live device drives: they cannot run offline
+  const std::vector<std::string> scenes = offlineScenes(options, live);
   std::vector<std::string> names, lines;
   for (const std::string& s : scenes) {
     std::string name = fs::path(s).stem().string();
@@ -93,41 +145,9 @@ int runCheck(const CheckOptions& options) {
   }
   int failed = 0, passed = 0;
   const bool interrupted = runJobs(lines, options.jobs, [&](std::size_t i, int code) {
-    const fs::path dir = fs::absolute(options.out) / names[i];
-    const nlohmann::json summary = readSummary(dir);
-    const bool have = summary.is_object() && summary.contains("expectations");
-    char head[96];
-    std::string detail;
-    if ((code == 0 || code == 3) && have) {
-      const nlohmann::json& checks = summary["expectations"]["checks"];
-      std::vector<std::string> failures;
-      for (const nlohmann::json& c : checks) {
-        if (c.value("passed", true)) continue;
-        char b[200];
-        if (c["worst"].is_null()) std::snprintf(b, sizeof b, "%s not finite", c["name"].get<std::string>().c_str());
-        else std::snprintf(b, sizeof b, "%s %.4g (limit %.4g) at t = %.4f s", c["name"].get<std::string>().c_str(),
-                           c["worst"].get<double>(), c["limit"].get<double>(), c["time_s"].get<double>());
-        failures.push_back(b);
-      }
-      const long recoveries = summary["counters"].value("nan_recoveries", 0L);
-      std::snprintf(head, sizeof head, "%-5s %-40s ", failures.empty() ? "PASS" : "FAIL", names[i].c_str());
-      if (failures.empty()) {
-        detail = std::to_string(checks.size()) + " checks";
-        const std::string c = closest(checks);
-        if (!c.empty()) detail += "; closest: " + c;
-      } else {
-        detail = failures.front();
-        if (failures.size() > 1) detail += " (+" + std::to_string(failures.size() - 1) + " more)";
-        ++failed;
-      }
-      if (failures.empty()) ++passed;
-      if (recoveries > 0) detail += "; " + std::to_string(recoveries) + " steps rolled back";
-    } else {
-      std::snprintf(head, sizeof head, "%-5s %-40s ", "ERROR", names[i].c_str());
-      detail = "exit " + std::to_string(code) + ": " + lastLogLine(dir);
-      ++failed;
-    }
-    std::printf("%s%s\n", head, detail.c_str());
+    bool ok = false;
+    std::printf("%s\n", resultLine(names[i], code, fs::absolute(options.out) / names[i], ok).c_str());
+    ++(ok ? passed : failed);
     flushOutput();
   });
   const std::size_t skipped = scenes.size() - static_cast<std::size_t>(passed + failed);

@@ -5,6 +5,7 @@
 #include <thread>
 
 #include "app/commands/commands.hpp"
+#include "app/runs/run_folder.hpp"
 #include "app/scene/input_error.hpp"
 #include "app/study/study.hpp"
 
@@ -64,6 +65,7 @@ class StudyCommand final : public Command {
     options.out = a.out.empty() ? (a.collect.empty() ? "study-" + study.name : a.collect) : a.out;
     options.jobs = a.jobs;
     options.godfinger = selfExecutable();
+    const RunFolder folder(options.out);  // the study's folder is this command's while it writes
     if (!a.emit_jobs.empty()) {
       emitStudyJobs(plan, options, a.emit_jobs);
       return 0;

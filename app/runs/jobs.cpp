@@ -6,6 +6,7 @@
 #include <atomic>
 #include <cerrno>
 #include <csignal>
+#include <exception>
 #include <cstdio>
 #include <filesystem>
 #include <map>
@@ -62,16 +63,25 @@ bool runJobs(const std::vector<std::string>& lines, int jobs, const std::functio
   std::map<pid_t, std::size_t> running;
   std::size_t next = 0;
   bool forwarded = false;
+  std::exception_ptr failed;  // `done` threw (its output closed): no more lines; the running ones end
+  const auto report = [&](std::size_t index, int code) {
+    if (failed) return;
+    try {
+      done(index, code);
+    } catch (...) {
+      failed = std::current_exception();
+    }
+  };
   while (true) {
-    while (g_signal == 0 && next < lines.size() && running.size() < static_cast<std::size_t>(std::max(1, jobs))) {
+    while (g_signal == 0 && !failed && next < lines.size() && running.size() < static_cast<std::size_t>(std::max(1, jobs))) {
       const pid_t pid = spawnShell(lines[next]);
-      if (pid < 0) done(next, -1);
+      if (pid < 0) report(next, -1);
       else running[pid] = next;
       ++next;
     }
     if (running.empty()) break;
-    if (g_signal != 0 && !forwarded) {  // a signal sent to us alone reaches the running lines too
-      for (const auto& [child, index] : running) kill(child, SIGINT);
+    if ((g_signal != 0 || failed) && !forwarded) {  // a signal sent to us alone reaches the running lines too
+      for (const auto& [child, index] : running) kill(child, g_signal != 0 ? SIGINT : SIGTERM);
       forwarded = true;
     }
     int status = 0;
@@ -84,10 +94,11 @@ bool runJobs(const std::vector<std::string>& lines, int jobs, const std::functio
     if (it == running.end()) continue;
     const std::size_t index = it->second;
     running.erase(it);
-    done(index, WIFEXITED(status) ? WEXITSTATUS(status) : 128 + (WIFSIGNALED(status) ? WTERMSIG(status) : 0));
+    report(index, WIFEXITED(status) ? WEXITSTATUS(status) : 128 + (WIFSIGNALED(status) ? WTERMSIG(status) : 0));
   }
   sigaction(SIGINT, &old_int, nullptr);
   sigaction(SIGTERM, &old_term, nullptr);
+  if (failed) std::rethrow_exception(failed);
   return g_signal != 0;
 }
 

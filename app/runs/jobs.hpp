@@ -11,7 +11,9 @@ namespace gf::app {
 
 /// Runs `lines` under /bin/sh, `jobs` at a time, in order of start. After each ends, `done(i,
 /// exit_code)` is called (exit_code -1: could not start; 128 + signal: killed by a signal).
-/// Returns true when it was interrupted (the lines not started were skipped).
+/// Returns true when it was interrupted (the lines not started were skipped). When `done` throws,
+/// no further line starts, the running ones get SIGTERM and are waited for, and the exception is
+/// rethrown.
 bool runJobs(const std::vector<std::string>& lines, int jobs, const std::function<void(std::size_t, int)>& done);
 
 /// The signal (SIGINT or SIGTERM) that interrupted the last runJobs, 0 if none.
