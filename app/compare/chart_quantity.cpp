@@ -141,7 +141,7 @@ void thin(std::vector<double>& x, std::vector<double>& y) {
   y.resize(out);
 }
 
-render::ChartSeries traceSeries(const Quantity& q, const sim::SceneDesc& scene, const fs::path& trace) {
+render::ChartSeries traceSeries(const Quantity& q, const sim::SceneDesc& scene, const std::filesystem::path& trace) {
   render::ChartSeries s;
   if (q.kind == Quantity::kColumn) {
     std::vector<std::vector<double>> c = readCsvColumns(trace.string(), {"t", q.column});
