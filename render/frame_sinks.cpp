@@ -2,7 +2,6 @@
 
 #include "render/video_file.hpp"
 
-#include <algorithm>
 #include <cctype>
 #include <cerrno>
 #include <chrono>
@@ -181,7 +180,7 @@ std::string VideoWriter::ffmpegSaid() const {
   const ssize_t n = pread(messages_, text.data(), text.size(), 0);
   text.resize(n > 0 ? static_cast<std::size_t>(n) : 0);
   while (!text.empty() && std::isspace(static_cast<unsigned char>(text.back()))) text.pop_back();
-  std::replace(text.begin(), text.end(), '\n', ' ');
+  for (std::size_t at = text.find('\n'); at != std::string::npos; at = text.find('\n', at)) text.replace(at, 1, "; ");
   return text.empty() ? "" : " (ffmpeg: " + text + ")";
 }
 

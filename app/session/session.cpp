@@ -38,10 +38,11 @@ namespace fs = std::filesystem;
 constexpr double kStartOverlap = 1e-3;
 // What a run's outputs take, about, for the room they need (measured on the bundled scenes):
 // bytes per trace.csv or forces.csv number with its comma (14.8 to 17), per pixel of a PNG frame
-// (0.36 for a 1280 x 720 scene), per contact snapshot with its close-up, and for summary.json.
+// (0.36 for a 1280 x 720 scene), per contact snapshot with its close-ups (JSON up to 37 kB, a
+// close-up up to 73 kB per finger), and for summary.json (5 kB).
 constexpr double kBytesPerNumber = 16.0;
 constexpr double kPngBytesPerPixel = 0.3;
-constexpr double kContactSnapshotBytes = 400e3;
+constexpr double kContactSnapshotBytes = 150e3;
 constexpr double kSummaryBytes = 64e3;
 
 // While alive, SIGINT and SIGTERM are blocked on this thread, so the threads it starts meanwhile
