@@ -42,7 +42,7 @@ bool onGlThread();
 
 /// Every GL object and drawing call starts with this (debug and sanitizer builds).
 #define GF_ASSERT_GL_THREAD() \
-  GF_ASSERT(::gf::render::onGlThread() && "GL is used on the render thread only, while its GlContext exists (README, Threading model)")
+  GF_ASSERT(::gf::render::onGlThread() && "GL is used on the render thread only, while its GlContext exists (docs/threads.md)")
 
 /// Throws GlError naming `what` when glGetError reports an error (clears all pending errors).
 void checkGl(const char* what);

@@ -13,6 +13,7 @@ GF_PACKAGES=(
   ffmpeg
   parallel
   python3 python3-jsonschema  # examples/device-udp/client.py, the scene schema's test
+  mkdocs                      # the manual (docs/), built with --strict by ctest Docs.*
 )
 
 gf_log() { printf '[godfinger] %s\n' "$*" >&2; }
