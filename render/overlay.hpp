@@ -9,10 +9,10 @@
 #include <vector>
 
 #include "render/imgui_layer.hpp"
-#include "sim/view_desc.hpp"
 #include "sim/scene_desc.hpp"
 #include "sim/settings.hpp"
 #include "sim/snapshot.hpp"
+#include "sim/view_desc.hpp"
 
 namespace gf::render {
 

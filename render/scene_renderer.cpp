@@ -7,9 +7,9 @@
 #include <optional>
 
 #include "render/context.hpp"
+#include "render/draw_list.hpp"
 #include "render/geometry.hpp"
 #include "render/gl.hpp"
-#include "render/draw_list.hpp"
 #include "render/shaders.hpp"
 
 namespace gf::render {

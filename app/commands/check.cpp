@@ -12,8 +12,8 @@
 #include "app/commands/commands.hpp"
 #include "app/runs/jobs.hpp"
 #include "app/runs/run_reader.hpp"
-#include "app/scene/scene_file.hpp"
 #include "app/scene/data_folder.hpp"
+#include "app/scene/scene_file.hpp"
 #include "app/session/console.hpp"
 
 namespace gf::app {

@@ -1,5 +1,7 @@
 #include "app/runs/jobs.hpp"
 
+#include "app/runs/run_folder.hpp"
+
 #include <spawn.h>
 #include <sys/wait.h>
 
@@ -44,7 +46,7 @@ std::string godfingerRunLine(const std::string& godfinger, const std::string& sc
   std::string line = "mkdir -p " + shellQuote(out) + " && exec " + shellQuote(godfinger) + " run " +
                      shellQuote(std::filesystem::absolute(scene).string()) + " --out " + shellQuote(out);
   for (const std::string& a : arguments) line.append(1, ' ').append(shellQuote(a));
-  return line + " > " + shellQuote(out + "/run.log") + " 2>&1";
+  return line + " > " + shellQuote(out + "/" + kRunLogFile) + " 2>&1";
 }
 
 std::string formatDuration(double s) {

@@ -5,8 +5,8 @@
 #include <vector>
 
 #include "app/scene/expect_desc.hpp"
-#include "sim/view_desc.hpp"
 #include "sim/scene_desc.hpp"
+#include "sim/view_desc.hpp"
 
 namespace gf::app {
 

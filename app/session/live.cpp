@@ -1,3 +1,4 @@
+#include "app/runs/run_folder.hpp"
 #include "app/session/live.hpp"
 
 #include <nlohmann/json.hpp>
@@ -12,11 +13,11 @@
 #include <sstream>
 #include <vector>
 
-#include "app/session/interrupt.hpp"
 #include "app/runs/contacts.hpp"
-#include "app/scene/scene_file.hpp"
-#include "app/runs/trace.hpp"
 #include "app/runs/files.hpp"
+#include "app/runs/trace.hpp"
+#include "app/scene/scene_file.hpp"
+#include "app/session/interrupt.hpp"
 #include "sim/settings.hpp"
 #include "sim/world.hpp"
 
@@ -171,7 +172,7 @@ class Live {
   void snapshot(const std::string& name) {
     sim::Snapshot snap;
     world_.snapshot(snap);
-    const fs::path dir = fs::path(options_.out_dir) / "contacts";
+    const fs::path dir = fs::path(options_.out_dir) / kContactsFolder;
     std::error_code ec;
     fs::create_directories(dir, ec);
     if (ec) throw std::runtime_error(dir.string() + ": cannot create folder: " + ec.message());

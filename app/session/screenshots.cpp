@@ -1,9 +1,9 @@
 #include "app/session/screenshots.hpp"
 
 #include "app/compare/compare.hpp"
+#include "app/scene/data_folder.hpp"
 #include "app/scene/scene_file.hpp"
 #include "app/session/session.hpp"
-#include "app/scene/data_folder.hpp"
 #include "render/render_thread.hpp"
 #include "sim/haptic_loop.hpp"
 #include "sim/world.hpp"

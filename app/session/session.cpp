@@ -17,6 +17,7 @@
 #include <unistd.h>
 
 #include "app/runs/contacts.hpp"
+#include "app/runs/files.hpp"
 #include "app/runs/forces.hpp"
 #include "app/runs/run_folder.hpp"
 #include "app/runs/summary.hpp"
@@ -25,7 +26,6 @@
 #include "app/session/frame_driver.hpp"
 #include "app/session/interrupt.hpp"
 #include "app/session/udp_device.hpp"
-#include "app/runs/files.hpp"
 #include "sim/settings.hpp"
 #include "sim/world.hpp"
 

@@ -14,8 +14,8 @@
 
 #include <nlohmann/json.hpp>
 
-#include "app/session/device_protocol.hpp"
 #include "app/scene/scene_file.hpp"
+#include "app/session/device_protocol.hpp"
 
 namespace gf::app {
 

@@ -8,10 +8,10 @@
 #include <sstream>
 
 #include "app/runs/jobs.hpp"
-#include "app/study/study.hpp"
-#include "app/scene/toml_reader.hpp"
 #include "app/scene/data_folder.hpp"
 #include "app/scene/scene_file.hpp"
+#include "app/scene/toml_reader.hpp"
+#include "app/study/study.hpp"
 
 namespace gf::app {
 namespace {

@@ -10,12 +10,13 @@
 #include <optional>
 #include <set>
 
+#include "app/runs/files.hpp"
 #include "app/runs/jobs.hpp"
+#include "app/runs/run_folder.hpp"
+#include "app/runs/trace.hpp"
 #include "app/scene/scene_file.hpp"
 #include "app/study/study.hpp"
 #include "app/study/study_measure.hpp"
-#include "app/runs/trace.hpp"
-#include "app/runs/files.hpp"
 #include "render/render_thread.hpp"
 #include "sim/settings.hpp"
 
@@ -452,7 +453,7 @@ int runStudy(const StudyPlan& plan, const StudyOptions& options) {
     if (code != 0) {
       ++failed;
       std::fprintf(stderr, "godfinger study: run %s failed (exit %d); see %s\n", plan.runs[i].id.c_str(), code,
-                   (fs::path(options.out) / "runs" / plan.runs[i].id / "run.log").c_str());
+                   (fs::path(options.out) / "runs" / plan.runs[i].id / kRunLogFile).c_str());
     }
     if (options.progress) {
       const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

@@ -11,8 +11,8 @@
 #include <tuple>
 
 #include "app/commands/plot.hpp"
-#include "app/scene/scene_file.hpp"
 #include "app/runs/run_reader.hpp"
+#include "app/scene/scene_file.hpp"
 #include "render/image.hpp"
 #include "tests/app/run_helpers.hpp"
 

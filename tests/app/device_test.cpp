@@ -15,9 +15,9 @@
 #include <sstream>
 #include <vector>
 
+#include "app/scene/scene_file.hpp"
 #include "app/session/device_protocol.hpp"
 #include "app/session/live.hpp"
-#include "app/scene/scene_file.hpp"
 #include "app/session/session.hpp"
 #include "app/session/udp_device.hpp"
 #include "sim/world.hpp"

@@ -12,11 +12,11 @@
 #include <sstream>
 #include <vector>
 
-#include "app/scene/scene_file.hpp"
+#include "app/runs/files.hpp"
 #include "app/runs/trace.hpp"
 #include "app/scene/data_folder.hpp"
+#include "app/scene/scene_file.hpp"
 #include "app/session/expectations.hpp"
-#include "app/runs/files.hpp"
 #include "render/image.hpp"
 #include "tests/scratch.hpp"
 

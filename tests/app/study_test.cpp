@@ -9,10 +9,10 @@
 #include <numbers>
 #include <sstream>
 
+#include "app/runs/run_reader.hpp"
 #include "app/scene/scene_file.hpp"
 #include "app/study/study.hpp"
 #include "app/study/study_measure.hpp"
-#include "app/runs/run_reader.hpp"
 #include "sim/god_finger.hpp"
 #include "tests/scratch.hpp"
 

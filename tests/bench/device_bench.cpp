@@ -9,8 +9,8 @@
 #include <sys/socket.h>
 #include <unistd.h>
 
-#include "app/session/device_protocol.hpp"
 #include "app/scene/scene_file.hpp"
+#include "app/session/device_protocol.hpp"
 #include "app/session/udp_device.hpp"
 #include "tests/app/loopback.hpp"
 

@@ -12,9 +12,9 @@
 #include <filesystem>
 #include <fstream>
 
+#include "app/scene/data_folder.hpp"
 #include "app/scene/scene_file.hpp"
 #include "app/session/session.hpp"
-#include "app/scene/data_folder.hpp"
 
 namespace {
 

@@ -4,10 +4,10 @@
 
 #include <optional>
 
+#include "app/scene/data_folder.hpp"
 #include "app/scene/scene_file.hpp"
 #include "app/session/screenshots.hpp"
 #include "app/session/session.hpp"
-#include "app/scene/data_folder.hpp"
 #include "render/context.hpp"
 #include "render/gpu.hpp"
 #include "render/scene_renderer.hpp"

@@ -9,8 +9,8 @@
 #include <cmath>
 #include <vector>
 
-#include "app/scene/scene_file.hpp"
 #include "app/scene/data_folder.hpp"
+#include "app/scene/scene_file.hpp"
 #include "render/geometry.hpp"
 #include "sim/world.hpp"
 

@@ -7,8 +7,8 @@
 #include <cmath>
 #include <tuple>
 
-#include "app/scene/scene_file.hpp"
 #include "app/scene/data_folder.hpp"
+#include "app/scene/scene_file.hpp"
 #include "sim/world.hpp"
 
 namespace gf::render {

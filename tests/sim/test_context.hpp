@@ -7,8 +7,8 @@
 #include <string>
 #include <vector>
 
-#include "app/scene/scene_file.hpp"
 #include "app/scene/data_folder.hpp"
+#include "app/scene/scene_file.hpp"
 #include "sim/haptic_loop.hpp"
 #include "sim/world.hpp"
 
