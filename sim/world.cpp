@@ -13,6 +13,7 @@
 #include "sim/detail/contact_injection.hpp"
 #include "sim/contact_record.hpp"
 #include "sim/detail/patch_friction.hpp"
+#include "sim/effective_settings.hpp"
 #include "sim/settings.hpp"
 
 namespace gf::sim {
@@ -86,7 +87,7 @@ struct ContactMemory {
 struct Finger {
   std::unique_ptr<btSphereShape> shape;
   std::unique_ptr<btRigidBody> proxy;
-  PatchSettings patch;  // as set, before the effect switches
+  EffectiveSettings settings;  // after the scene's effect switches (applySettings)
   DeviceSample device;
   Vec3 force = Vec3::Zero();
   std::array<FingerContact, kMaxContactsPerFinger> contacts;
@@ -125,7 +126,7 @@ struct World::Impl final : SolveHooks {
   Pose bodyFrame(int body) const;
   bool ownedHere() const { return std::this_thread::get_id() == owner; }
   void rememberImpulses(Finger& f);
-  PatchSettings effectivePatch(const Finger& f) const;
+  void applySettings(Finger& f, const PatchSettings& patch) const;
   void applyLoads();
   void saveStates();
   void stopTunnelling();
@@ -204,7 +205,7 @@ void World::Impl::addBody(int index, const BodyDesc& d) {
 
 void World::Impl::addFinger(int index, const FingerDesc& d) {
   Finger& f = fingers[index];
-  f.patch = d.patch;
+  applySettings(f, d.patch);
   f.device = d.device.sample(0.0);
   f.shape = std::make_unique<btSphereShape>(d.proxy.radius);
   btVector3 inertia(0, 0, 0);
@@ -221,13 +222,9 @@ void World::Impl::addFinger(int index, const FingerDesc& d) {
   f.proxy->setGravity(btVector3(0, 0, 0));  // gravity compensated
 }
 
-PatchSettings World::Impl::effectivePatch(const Finger& f) const {
-  PatchSettings s = f.patch;
-  s.tangential_stretch &= desc.effects.tangential_stretch;
-  s.angular_threshold &= desc.effects.angular_threshold;
-  s.friction_cone &= desc.effects.friction_cone;
-  if (!desc.effects.friction) s.friction = 0.0;
-  return s;
+// The finger's settings from now on, with the scene's effects applied once.
+void World::Impl::applySettings(Finger& f, const PatchSettings& patch) const {
+  f.settings = effectiveSettings(patch, desc.effects, desc.world.contact_solver);
 }
 
 void World::Impl::beforeSolve() {
@@ -269,7 +266,7 @@ void World::Impl::gatherProxyManifold(btPersistentManifold& m, const btCollision
   if (f.contact_count == kMaxContactsPerFinger) {  // beyond the tracked contacts: a god-object
     const FingerDesc& fd = desc.fingers[finger];
     keepOnlyPoint(m, truth.index, {fd.proxy.contact_stiffness, fd.proxy.contact_damping,
-                                   desc.effects.friction ? f.patch.friction : 0.0}, {});
+                                   f.settings.patch.friction}, {});
     return;
   }
   FingerContact& c = f.contacts[f.contact_count++];
@@ -291,8 +288,7 @@ void World::Impl::handleContact(Finger& f, FingerContact& c) {
   const ContactMemory* mem = f.memoryOf(c.truth.object->getUserIndex());
   c.sgo_count = 0;
   recordContact(f, mem, c);
-  ContactModel model = effectiveModel(f.patch);
-  if (model == ContactModel::kGodFinger && !desc.effects.god_finger) model = ContactModel::kGodObject;
+  const ContactModel model = f.settings.patch.model;
   // A patch starts on touching and survives a small gap (kPatchReleaseGap).
   const bool touching = c.truth.separation <= 0.0 ||
                         (mem && mem->had_patch && c.truth.separation <= kPatchReleaseGap);
@@ -302,12 +298,12 @@ void World::Impl::handleContact(Finger& f, FingerContact& c) {
   const Patch& patch = c.record.patch;
   const double k = fd.proxy.contact_stiffness, d = fd.proxy.contact_damping;
   const double truth_share = c.sgo_count > 0 ? patch.centre_share : 1.0;
-  c.aggregate = c.sgo_count > 0 && resolveSolver(f.patch.contact_solver, desc.world.contact_solver) == ContactSolver::kAggregate;
+  c.aggregate = c.sgo_count > 0 && f.settings.solver == ContactSolver::kAggregate;
   FrictionBlock block;
   block.proxy = f.proxy.get();
   block.object = c.truth.object;
   block.normal = c.truth.outward_normal_world;
-  block.friction = desc.effects.friction ? f.patch.friction : 0.0;
+  block.friction = f.settings.patch.friction;
   if (mem) {
     block.warm_force = mem->friction_force;
     block.warm_torque = mem->friction_torque;
@@ -350,7 +346,7 @@ void World::Impl::handleContact(Finger& f, FingerContact& c) {
     return;
   }
   keepOnlyPoint(*c.manifold, c.truth.index, {k * truth_share, d * truth_share, 0.0}, mem ? mem->truth : WarmStart{});
-  const int n = f.patch.n_sgo;
+  const int n = f.settings.patch.n_sgo;
   btVector3 centre = truth_share * c.truth.point_world;
   for (int i = 0; i < c.sgo_count; ++i) {
     const Sgo& p = injectedPoint(patch, i);
@@ -373,8 +369,8 @@ void World::Impl::handleContact(Finger& f, FingerContact& c) {
   // centroid lies inside it, and friction acts on the surface.
   const btVector3 off = centre - c.truth.point_world;
   block.centre = c.truth.point_world + off - off.dot(c.truth.outward_normal_world) * c.truth.outward_normal_world;
-  block.torsion = !desc.effects.friction                   ? 0.0
-                  : model == ContactModel::kSoftFinger     ? f.patch.torsional_friction
+  block.torsion = !f.settings.friction_effect             ? 0.0
+                  : model == ContactModel::kSoftFinger     ? f.settings.patch.torsional_friction
                   : model == ContactModel::kGodFinger      ? -1.0
                                                            : 0.0;
   c.block = solver.addBlock(block);
@@ -401,11 +397,11 @@ void World::Impl::rememberImpulses(Finger& f) {
     mem.body = c.record.body;
     mem.truth = c.aggregate ? WarmStart{} : solvedImpulses(c.manifold->getContactPoint(0));
     mem.had_patch = c.sgo_count > 0;
-    mem.n_sgo = c.sgo_count > 0 && !c.aggregate ? f.patch.n_sgo : 0;
+    mem.n_sgo = c.sgo_count > 0 && !c.aggregate ? f.settings.patch.n_sgo : 0;
     mem.ring_tangent_local = patch.ring_tangent;
     mem.pad_normal = c.pad_normal;
     // Only the radials of the layers this patch has are read back (warmStartByAngle).
-    mem.layer_count = mem.n_sgo > 0 ? (f.patch.fill == PatchFill::kFilled ? f.patch.rings : 1) : 0;
+    mem.layer_count = mem.n_sgo > 0 ? (f.settings.patch.fill == PatchFill::kFilled ? f.settings.patch.rings : 1) : 0;
     for (int l = 0; l < mem.layer_count; ++l) std::fill_n(mem.layers[l].begin(), mem.n_sgo, WarmStart{});
     for (int i = 0; i < c.sgo_count && !c.aggregate; ++i) {
       const Sgo& p = injectedPoint(patch, i);
@@ -447,7 +443,7 @@ void World::Impl::computeContactPatch(Finger& f, FingerContact& c, const Contact
   ContactRecord& r = c.record;
   const Mesh& mesh = *bodies[r.body].shapes.walk_mesh;
   const auto start = std::chrono::steady_clock::now();
-  computePatch(mesh, r.contact, c.v_local, effectivePatch(f), r.patch);
+  computePatch(mesh, r.contact, c.v_local, f.settings.patch, r.patch);
   counters.patch_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   ++counters.patch_calls;
   if (!r.patch.valid) {
@@ -582,7 +578,7 @@ void World::step(double dt, std::span<const DeviceSample> devices) {
   // k whatever the rounding of the accumulated time); checked by requireValid.
   while (w.next_change < w.desc.changes.size() && w.desc.changes[w.next_change].time <= w.time + 0.5 * dt) {
     const PatchChange& c = w.desc.changes[w.next_change++];
-    w.fingers[static_cast<std::size_t>(c.finger)].patch = c.patch;
+    w.applySettings(w.fingers[static_cast<std::size_t>(c.finger)], c.patch);
   }
   for (std::size_t i = 0; i < w.fingers.size(); ++i) {
     Finger& f = w.fingers[i];
@@ -762,7 +758,7 @@ void World::setPatchSettings(int finger, const PatchSettings& settings) {
   if (std::optional<FieldError> e = validatePatch(settings)) {
     throw DescriptionError("finger '" + impl_->desc.fingers[finger].name + "'", *e);
   }
-  impl_->fingers[finger].patch = settings;
+  impl_->applySettings(impl_->fingers[finger], settings);
 }
 
 void World::snapshot(Snapshot& out) const {
