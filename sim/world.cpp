@@ -11,6 +11,7 @@
 #include "sim/assert.hpp"
 #include "sim/detail/body_factory.hpp"
 #include "sim/detail/contact_injection.hpp"
+#include "sim/detail/contact_models.hpp"
 #include "sim/contact_record.hpp"
 #include "sim/detail/patch_friction.hpp"
 #include "sim/effective_settings.hpp"
@@ -28,8 +29,6 @@ constexpr int kProxyTag = -1;
 // A patch starts when the proxy touches (separation <= 0) and lasts while the separation stays
 // below this (m): a few micrometres of gap in one step do not drop the contact area.
 constexpr double kPatchReleaseGap = 1e-4;
-// Points a patch injects besides the true contact: the SGOs and a filled patch's inner points.
-constexpr int kMaxPatchPoints = kMaxSgo * kMaxRings;
 // The pad plane keeps the orientation the finger met the body with (the proxy does not turn)
 // while the contact normal stays within this angle of it (rad), and follows beyond: a tilt of
 // the body loads one side of the pad, a finger moved around a curved body keeps its pad on it.
@@ -45,49 +44,11 @@ struct Body {
   std::unique_ptr<btRigidBody> rigid;
 };
 
-// One finger's contact with one body during the current step: the deepest point over every
-// manifold between the proxy and the body (one per child hull of a compound).
-struct FingerContact {
-  ContactRecord record;  // body frame: what snapshots show, kept until the next step
-  // Bullet's side, valid during the solve only (manifolds are Bullet's and change every step).
-  TrueContact truth;
-  Vec3 v_local = Vec3::Zero();               // p_I - p_GO in the body frame (Eq. 1, Eq. 2)
-  btPersistentManifold* manifold = nullptr;  // holds the true point; null outside the solve
-  // The injected points: the patch's SGOs, then a filled patch's inner points.
-  std::array<btVector3, kMaxPatchPoints> sgo_world;  // where the solver sees them this step
-  std::array<double, kMaxPatchPoints> sgo_separation;  // their depth below the pad plane (m)
-  std::array<WarmStart, kMaxPatchPoints> sgo_warm;
-  std::array<PointMaterial, kMaxPatchPoints> sgo_material;
-  int sgo_count = 0;
-  int first_injected = 0;  // index of its first manifold in World::Impl::injected
-  int block = -1;          // its friction block this step
-  bool aggregate = false;  // solved as one aggregate block (no injected points, no Bullet row)
-  Vec3 pad_normal = Vec3::UnitY();  // world
-};
-
-// What a finger's contact with one body leaves for the next step: the solved impulses (to warm
-// -start the solver), the ring's frame and whether it had a patch.
-struct ContactMemory {
-  int body = -1;
-  WarmStart truth;
-  int n_sgo = 0;  // radial vectors of the patch the impulses belong to
-  int layer_count = 0;  // layers of `layers` holding them (the rest is stale)
-  // By ring (a filled patch's point k of its path in layer k - 1; a ring's SGOs in layer 0)
-  // and radial index: radial i at angle 2 pi i / n_sgo.
-  std::array<std::array<WarmStart, kMaxSgo>, kMaxRings> layers;
-  Vec3 ring_tangent_local = Vec3::Zero();  // radial 0's direction, body frame
-  bool had_patch = false;
-  Vec3 pad_normal = Vec3::UnitY();    // the pad plane's normal (world)
-  btVector3 friction_force{0, 0, 0};  // the friction block's impulses (warm start)
-  double friction_torque = 0.0;
-  double normal_impulse = 0.0;        // the contact's total normal impulse (N s)
-  btVector3 tilt_impulse{0, 0, 0};    // an aggregate block's tilt impulse (N m s)
-};
-
 struct Finger {
   std::unique_ptr<btSphereShape> shape;
   std::unique_ptr<btRigidBody> proxy;
   EffectiveSettings settings;  // after the scene's effect switches (applySettings)
+  const FingerModel* model = nullptr;  // the model of settings.patch.model
   DeviceSample device;
   Vec3 force = Vec3::Zero();
   std::array<FingerContact, kMaxContactsPerFinger> contacts;
@@ -146,9 +107,8 @@ struct World::Impl final : SolveHooks {
   std::vector<Body> bodies;
   std::vector<Finger> fingers;
   std::vector<btPersistentManifold*> injected;
-  // An aggregate contact's points, their shares and depths (the true contact first), reused.
-  std::array<btVector3, kMaxPatchPoints + 1> agg_points;
-  std::array<double, kMaxPatchPoints + 1> agg_shares, agg_separations;
+  AggregateScratch aggregate_scratch;
+  SolveRows rows{solver, dispatcher, injected, aggregate_scratch};  // where the models add rows
   std::vector<SavedState> saved;
   double time = 0.0;
   // Time is counted in steps of one dt from the last change of dt, so k steps of 1 ms read
@@ -225,6 +185,7 @@ void World::Impl::addFinger(int index, const FingerDesc& d) {
 // The finger's settings from now on, with the scene's effects applied once.
 void World::Impl::applySettings(Finger& f, const PatchSettings& patch) const {
   f.settings = effectiveSettings(patch, desc.effects, desc.world.contact_solver);
+  f.model = &fingerModel(f.settings.patch.model);
 }
 
 void World::Impl::beforeSolve() {
@@ -274,117 +235,19 @@ void World::Impl::gatherProxyManifold(btPersistentManifold& m, const btCollision
   c.manifold = &m;
 }
 
-// Injected point i of a patch: its SGOs, then a filled patch's inner points.
-const Sgo& injectedPoint(const Patch& patch, int i) {
-  const auto k = static_cast<std::size_t>(i);
-  return k < patch.sgos.size() ? patch.sgos[k] : patch.inner[k - patch.sgos.size()];
-}
-
-// Where layer and radial of a patch point keep its impulses in ContactMemory::layers.
-int layerOf(const Sgo& p) { return p.ring > 0 ? p.ring - 1 : 0; }
-
 void World::Impl::handleContact(Finger& f, FingerContact& c) {
   const FingerDesc& fd = desc.fingers[&f - fingers.data()];
   const ContactMemory* mem = f.memoryOf(c.truth.object->getUserIndex());
   c.sgo_count = 0;
   recordContact(f, mem, c);
-  const ContactModel model = f.settings.patch.model;
   // A patch starts on touching and survives a small gap (kPatchReleaseGap).
   const bool touching = c.truth.separation <= 0.0 ||
                         (mem && mem->had_patch && c.truth.separation <= kPatchReleaseGap);
-  if (model == ContactModel::kGodFinger && touching) computeContactPatch(f, c, mem);
-  // The total contact stiffness and damping are shared by the true contact and the patch's
-  // points by their load shares; friction is the contact's block (below), not the points'.
-  const Patch& patch = c.record.patch;
-  const double k = fd.proxy.contact_stiffness, d = fd.proxy.contact_damping;
-  const double truth_share = c.sgo_count > 0 ? patch.centre_share : 1.0;
-  c.aggregate = c.sgo_count > 0 && f.settings.solver == ContactSolver::kAggregate;
-  FrictionBlock block;
-  block.proxy = f.proxy.get();
-  block.object = c.truth.object;
-  block.normal = c.truth.outward_normal_world;
-  block.friction = f.settings.patch.friction;
-  if (mem) {
-    block.warm_force = mem->friction_force;
-    block.warm_torque = mem->friction_torque;
-  }
-  if (c.aggregate) {
-    // One block: the true contact and the patch's points become its normal and tilt rows; the
-    // manifold keeps no point for Bullet's own rows. As in the points model only the points that
-    // press (depth <= 0) push: they make the block, with their share of the stiffness, damping
-    // and load; while none presses (within the release gap) all of them do, speculatively.
-    int count = 0;
-    double pressing = 0.0;
-    const auto add = [&](const btVector3& point, double share, double separation) {
-      agg_points[static_cast<std::size_t>(count)] = point;
-      agg_shares[static_cast<std::size_t>(count)] = share;
-      agg_separations[static_cast<std::size_t>(count)] = separation;
-      ++count;
-      pressing += share;
-    };
-    for (int pass = 0; pass < 2 && !(pressing > 0.0); ++pass) {
-      const bool all = pass == 1;
-      count = 0;
-      pressing = 0.0;
-      if (all || c.truth.separation <= 0.0) add(c.truth.point_world, truth_share, c.truth.separation);
-      for (int i = 0; i < c.sgo_count; ++i) {
-        if (all || c.sgo_separation[i] <= 0.0) add(c.sgo_world[i], injectedPoint(patch, i).load_share, c.sgo_separation[i]);
-      }
-    }
-    for (int i = 0; i < count; ++i) agg_shares[static_cast<std::size_t>(i)] /= pressing;
-    c.manifold->clearManifold();
-    block.aggregate = true;
-    aggregatePatch(agg_points.data(), agg_shares.data(), agg_separations.data(), count, block.normal,
-                   c.truth.point_world, k * pressing, d * pressing, block.centre, block.press);
-    block.torsion = block.friction * block.press.mean_lever;
-    if (mem) {
-      block.press.warm_normal = mem->normal_impulse;
-      block.press.warm_tilt = mem->tilt_impulse;
-    }
-    counters.sgos_injected += c.sgo_count;
-    c.block = solver.addBlock(block);
-    return;
-  }
-  keepOnlyPoint(*c.manifold, c.truth.index, {k * truth_share, d * truth_share, 0.0}, mem ? mem->truth : WarmStart{});
-  const int n = f.settings.patch.n_sgo;
-  btVector3 centre = truth_share * c.truth.point_world;
-  for (int i = 0; i < c.sgo_count; ++i) {
-    const Sgo& p = injectedPoint(patch, i);
-    c.sgo_material[i] = {k * p.load_share, d * p.load_share, 0.0};
-    c.sgo_warm[i] = mem && layerOf(p) < mem->layer_count
-                        ? warmStartByAngle(mem->layers[layerOf(p)].data(), mem->n_sgo, p.radial, n)
-                        : WarmStart{};
-    centre += p.load_share * c.sgo_world[i];
-  }
-  if (c.sgo_count > 0) {
-    c.first_injected = static_cast<int>(injected.size());
-    injectPoints(dispatcher, f.proxy.get(), c.truth.object, c.sgo_world.data(), c.sgo_count,
-                 c.truth.outward_normal_world, c.sgo_separation.data(), c.sgo_material.data(), c.sgo_warm.data(),
-                 injected);
-    counters.sgos_injected += c.sgo_count;
-  }
-  // The friction block: sliding limit mu N at the load's centre, and the torsion limit of the
-  // model: none (god-object), mu_t N (soft finger), or the points' own (god-finger).
-  // The load's centre moved onto the contact's tangent plane: on a curved body the points'
-  // centroid lies inside it, and friction acts on the surface.
-  const btVector3 off = centre - c.truth.point_world;
-  block.centre = c.truth.point_world + off - off.dot(c.truth.outward_normal_world) * c.truth.outward_normal_world;
-  block.torsion = !f.settings.friction_effect             ? 0.0
-                  : model == ContactModel::kSoftFinger     ? f.settings.patch.torsional_friction
-                  : model == ContactModel::kGodFinger      ? -1.0
-                                                           : 0.0;
-  c.block = solver.addBlock(block);
-  const btVector3& nw = block.normal;
-  const auto lever = [&](const btVector3& p) {
-    const btVector3 r = p - block.centre;
-    return (r - r.dot(nw) * nw).length();
-  };
-  const bool proxy_is_a = c.manifold->getBody0() == f.proxy.get();
-  solver.addPoint({&c.manifold->getContactPoint(0), lever(c.truth.point_world), proxy_is_a});
-  for (int i = 0; i < c.sgo_count; ++i) {
-    const btPersistentManifold& m = *injected[static_cast<std::size_t>(c.first_injected + i / MANIFOLD_CACHE_SIZE)];
-    solver.addPoint({&m.getContactPoint(i % MANIFOLD_CACHE_SIZE), lever(c.sgo_world[i]), true});
-  }
+  if (f.model->wantsPatch() && touching) computeContactPatch(f, c, mem);
+  // The finger's model turns the contact (and its patch's points) into the solver's rows.
+  f.model->addRows({c, mem, f.settings, f.proxy.get(), fd.proxy.contact_stiffness, fd.proxy.contact_damping},
+                   rows);
+  counters.sgos_injected += c.sgo_count;
 }
 
 void World::Impl::rememberImpulses(Finger& f) {

@@ -61,6 +61,9 @@ void aggregatePatch(const btVector3* points, const double* shares, const double*
                     const btVector3& normal, const btVector3& on_plane, double stiffness, double damping,
                     btVector3& centre, PressRows& out);
 
+/// FrictionBlock::torsion of a block whose torsion limit comes from its points.
+inline constexpr double kTorsionFromPoints = -1.0;
+
 /// One finger's contact with one body, as the solver sees it. Filled before the solve (World's
 /// beforeSolve), read after it.
 struct FrictionBlock {
@@ -69,8 +72,9 @@ struct FrictionBlock {
   btVector3 centre{0, 0, 0};  ///< where the tangential (and aggregate normal) rows act (world, m)
   btVector3 normal{0, 1, 0};  ///< outward contact normal of the object (unit, world)
   double friction = 0.0;      ///< Coulomb coefficient against sliding
-  /// Torsion limit per unit normal impulse (m): < 0 for "from the points" (mu times the sum of
-  /// each point's normal impulse times its lever, FrictionPoint::lever); 0 for none.
+  /// Torsion limit per unit normal impulse (m): kTorsionFromPoints (< 0) for "from the points"
+  /// (mu times the sum of each point's normal impulse times its lever, FrictionPoint::lever);
+  /// 0 for none.
   double torsion = 0.0;
   /// Warm start: last step's friction impulse on the proxy (world, N s) and torsional impulse
   /// about the normal (N m s).
