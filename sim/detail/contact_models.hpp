@@ -29,8 +29,8 @@ struct ContactToSolve {
 /// An aggregate block's points, load shares and depths (the true contact first): storage the
 /// World keeps so that building a block does not allocate.
 struct AggregateScratch {
-  std::array<btVector3, kMaxPatchPoints + 1> points;
-  std::array<double, kMaxPatchPoints + 1> shares;
+  std::array<btVector3, kMaxPatchPoints + 1> points;    ///< world (m)
+  std::array<double, kMaxPatchPoints + 1> shares;       ///< of the load; sum to 1 once scaled
   std::array<double, kMaxPatchPoints + 1> separations;  ///< m, negative when pressing
 };
 

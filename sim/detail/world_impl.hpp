@@ -57,37 +57,42 @@ struct World::Impl final : SolveHooks {
     btVector3 linear, angular;
   };
 
-  // The Bullet world (world_bullet.cpp).
+  // The Bullet world (world_bullet.cpp). Construction allocates; the rest does not.
+  /// Checks the description (requireValid), builds bodies, proxies and the solver's settings.
   explicit Impl(const SceneDesc& d);
+  /// Removes every body from the Bullet world before Bullet's parts are destroyed.
   ~Impl() override;
-  void configureSolver();
+  void configureSolver();  ///< iterations, warm starting and the randomized row order
   void addBody(int index, const BodyDesc& d);
   void addFinger(int index, const FingerDesc& d);
+  /// The finger's settings from now on: effectiveSettings and its model, once per change.
   void applySettings(Finger& f, const PatchSettings& patch) const;
-  void applyChangesDue(double dt);
-  void applyCouplings(std::span<const DeviceSample> devices);
-  void applyLoads();
-  void countStep(double dt);
-  Pose bodyFrame(int body) const;
-  std::vector<btRigidBody*> allRigidBodies() const;
+  void applyChangesDue(double dt);  ///< scripted changes due at this step's start
+  void applyCouplings(std::span<const DeviceSample> devices);  ///< device samples, coupling forces
+  void applyLoads();                ///< the scene's loads at time (N, N m)
+  void countStep(double dt);        ///< time after a step of dt seconds, and the step counter
+  Pose bodyFrame(int body) const;   ///< body i's frame: that of its walk mesh (world)
+  std::vector<btRigidBody*> allRigidBodies() const;  ///< bodies, then proxies (allocates)
   bool ownedHere() const { return std::this_thread::get_id() == owner; }
 
-  // The contact pipeline (world_contacts.cpp).
-  void beforeSolve() override;
-  void afterSolve() override;
+  // The contact pipeline (world_contacts.cpp): between collision detection and the solve.
+  void beforeSolve() override;  ///< gathers each proxy's contacts, adds their rows
+  void afterSolve() override;   ///< remembers the impulses, releases injected manifolds
+  /// Keeps the deepest point of a proxy's manifold as its finger's contact with that body.
   void gatherProxyManifold(btPersistentManifold& m, const btCollisionObject* proxy);
+  /// One contact: its record, its patch if the finger's model wants one, the model's rows.
   void handleContact(Finger& f, FingerContact& c);
   void recordContact(const Finger& f, const ContactMemory* mem, FingerContact& c) const;
   void computeContactPatch(const Finger& f, FingerContact& c, const ContactMemory* mem);
-  void placePatchPoints(FingerContact& c, const ContactMemory* mem);
-  void rememberImpulses(Finger& f);
+  void placePatchPoints(FingerContact& c, const ContactMemory* mem);  ///< world points, depths
+  void rememberImpulses(Finger& f);  ///< each contact's ContactMemory for the next step
 
   // Step safety (world_safety.cpp).
-  void saveStates();
-  void checkStep();
+  void saveStates();   ///< every body's and proxy's state before the step
+  void checkStep();    ///< rolls a step that is not finite back, else stops tunnelling proxies
   bool statesFinite() const;
-  void restoreStates();
-  void stopTunnelling();
+  void restoreStates();  ///< the saved states, at rest
+  void stopTunnelling();  ///< puts a proxy whose step's path entered a body back on its surface
 
   SceneDesc desc;
   std::thread::id owner = std::this_thread::get_id();
