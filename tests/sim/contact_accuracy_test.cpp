@@ -12,7 +12,6 @@
 #include "sim/snapshot.hpp"
 #include "sim/world.hpp"
 #include "tests/sim/pressed_box.hpp"
-#include "tests/sim/printers.hpp"
 
 namespace gf::sim {
 namespace {

@@ -1,10 +1,11 @@
-// Parameterised tests print their parameters by name: the sim/ enums through
-// tests/sim/printers.hpp, and no test of this executable lists a byte dump as its parameter.
-#include "tests/sim/printers.hpp"
-
+// Parameterised tests print their parameters by name: the sim/ enums by their scene-file names
+// (their operator<<, sim/patch_settings.hpp, which every file printing them sees), and no test of
+// this executable lists a byte dump as its parameter.
 #include <gtest/gtest.h>
 
 #include <string>
+
+#include "sim/patch_settings.hpp"
 
 namespace gf::sim {
 namespace {
@@ -15,6 +16,7 @@ TEST(Printers, SimEnumsPrintTheirSceneFileNames) {
   EXPECT_EQ(testing::PrintToString(ContactSolver::kPoints), "points");
   EXPECT_EQ(testing::PrintToString(ContactModel::kSoftFinger), "soft_finger");
   EXPECT_EQ(testing::PrintToString(PatchFill::kFilled), "filled");
+  EXPECT_EQ(testing::PrintToString(static_cast<ContactModel>(7)), "?");
 }
 
 TEST(Printers, NoTestParameterPrintsAsBytes) {
