@@ -124,77 +124,94 @@ double Mesh::signedVolume() const {
   return six_v / 6.0;
 }
 
-Mesh buildMesh(const std::vector<Vec3>& positions,
-               const std::vector<std::array<std::int32_t, 3>>& triangles,
-               const MeshBuildSettings& settings) {
-  checkInput(positions, triangles);
-  Mesh m;
-  MeshBuildReport& rep = m.report_;
-  rep.input_vertices = static_cast<int>(positions.size());
-  rep.input_triangles = static_cast<int>(triangles.size());
+// The steps of buildMesh, with access to the Mesh they fill.
+struct MeshBuilder {
+  struct Welded {
+    std::vector<std::int32_t> remap;  // input vertex to welded vertex
+    double diagonal = 0.0;            // of the input's bounding box (m)
+  };
 
   // Step 1: weld vertices with a tolerance relative to the bounding box.
-  Vec3 lo = Vec3::Constant(0.0), hi = Vec3::Constant(0.0);
-  if (!positions.empty()) {
-    lo = hi = positions[0];
-    for (const Vec3& p : positions) {
-      lo = lo.cwiseMin(p);
-      hi = hi.cwiseMax(p);
+  static Welded weldVertices(Mesh& m, const std::vector<Vec3>& positions, const MeshBuildSettings& settings) {
+    Vec3 lo = Vec3::Constant(0.0), hi = Vec3::Constant(0.0);
+    if (!positions.empty()) {
+      lo = hi = positions[0];
+      for (const Vec3& p : positions) {
+        lo = lo.cwiseMin(p);
+        hi = hi.cwiseMax(p);
+      }
     }
-  }
-  const double diag = (hi - lo).norm();
-  const double tol = std::max(settings.weld_tolerance_rel * diag, kMinWeldTolerance);
-  const std::vector<std::int32_t> remap = weld(positions, lo, tol, m.vertices_);
-  rep.welded_vertices = rep.input_vertices - static_cast<int>(m.vertices_.size());
-
-  // Step 2: drop degenerate and duplicate triangles.
-  const double min_area2 = settings.min_area_rel * diag * diag;
-  std::unordered_map<std::uint64_t, std::vector<std::array<std::int32_t, 3>>> seen;
-  for (const auto& t : triangles) {
-    const std::array<std::int32_t, 3> w = {remap[t[0]], remap[t[1]], remap[t[2]]};
-    const Vec3 n = (m.vertices_[w[1]] - m.vertices_[w[0]]).cross(m.vertices_[w[2]] - m.vertices_[w[0]]);
-    if (w[0] == w[1] || w[1] == w[2] || w[0] == w[2] || !(n.norm() > min_area2)) {
-      ++rep.dropped_degenerate;
-      continue;
-    }
-    const auto s = sortedCorners(w);
-    auto& bucket = seen[edgeKey(s[0], s[1]) ^ (static_cast<std::uint64_t>(s[2]) * 0x9E3779B97F4A7C15ull)];
-    if (std::find(bucket.begin(), bucket.end(), s) != bucket.end()) {
-      ++rep.dropped_duplicates;
-      continue;
-    }
-    bucket.push_back(s);
-    m.triangles_.push_back(w);
-    m.normals_.push_back(n.normalized());
+    Welded out;
+    out.diagonal = (hi - lo).norm();
+    const double tol = std::max(settings.weld_tolerance_rel * out.diagonal, kMinWeldTolerance);
+    out.remap = weld(positions, lo, tol, m.vertices_);
+    m.report_.welded_vertices = m.report_.input_vertices - static_cast<int>(m.vertices_.size());
+    return out;
   }
 
-  // Step 3: per-face inward edge normals (in the face plane, pointing into the face).
-  const int nf = m.faceCount();
-  m.inward_.resize(nf);
-  m.edge_dir_.resize(nf);
-  m.mean_edge_.resize(nf);
-  for (int f = 0; f < nf; ++f) {
-    for (int k = 0; k < 3; ++k) {
-      const Vec3 e = m.corner(f, (k + 1) % 3) - m.corner(f, k);
-      m.inward_[f][k] = m.normals_[f].cross(e).normalized();
-      m.edge_dir_[f][k] = e.normalized();
+  // Step 2: drop degenerate and duplicate triangles; the kept ones get their unit normals.
+  static void keepTriangles(Mesh& m, const std::vector<std::array<std::int32_t, 3>>& triangles,
+                            const std::vector<std::int32_t>& remap, double min_area2) {
+    MeshBuildReport& rep = m.report_;
+    std::unordered_map<std::uint64_t, std::vector<std::array<std::int32_t, 3>>> seen;
+    for (const auto& t : triangles) {
+      const std::array<std::int32_t, 3> w = {remap[t[0]], remap[t[1]], remap[t[2]]};
+      const Vec3 n = (m.vertices_[w[1]] - m.vertices_[w[0]]).cross(m.vertices_[w[2]] - m.vertices_[w[0]]);
+      if (w[0] == w[1] || w[1] == w[2] || w[0] == w[2] || !(n.norm() > min_area2)) {
+        ++rep.dropped_degenerate;
+        continue;
+      }
+      const auto s = sortedCorners(w);
+      auto& bucket = seen[edgeKey(s[0], s[1]) ^ (static_cast<std::uint64_t>(s[2]) * 0x9E3779B97F4A7C15ull)];
+      if (std::find(bucket.begin(), bucket.end(), s) != bucket.end()) {
+        ++rep.dropped_duplicates;
+        continue;
+      }
+      bucket.push_back(s);
+      m.triangles_.push_back(w);
+      m.normals_.push_back(n.normalized());
     }
-    m.mean_edge_[f] = ((m.corner(f, 1) - m.corner(f, 0)).norm() + (m.corner(f, 2) - m.corner(f, 1)).norm() +
-                       (m.corner(f, 0) - m.corner(f, 2)).norm()) / 3.0;
   }
 
-  // Step 4: edge adjacency.
-  std::unordered_map<std::uint64_t, std::vector<EdgeUse>> edges;
-  edges.reserve(static_cast<std::size_t>(nf) * 2);
-  for (int f = 0; f < nf; ++f) {
-    for (int k = 0; k < 3; ++k) {
-      const auto& t = m.triangles_[f];
-      edges[edgeKey(t[k], t[(k + 1) % 3])].push_back({f, static_cast<std::int8_t>(k)});
+  // Step 3: per-face inward edge normals (in the face plane, pointing into the face), edge
+  // directions and mean edge length.
+  static void buildFaceFrames(Mesh& m) {
+    const int nf = m.faceCount();
+    m.inward_.resize(nf);
+    m.edge_dir_.resize(nf);
+    m.mean_edge_.resize(nf);
+    for (int f = 0; f < nf; ++f) {
+      for (int k = 0; k < 3; ++k) {
+        const Vec3 e = m.corner(f, (k + 1) % 3) - m.corner(f, k);
+        m.inward_[f][k] = m.normals_[f].cross(e).normalized();
+        m.edge_dir_[f][k] = e.normalized();
+      }
+      m.mean_edge_[f] = ((m.corner(f, 1) - m.corner(f, 0)).norm() + (m.corner(f, 2) - m.corner(f, 1)).norm() +
+                         (m.corner(f, 0) - m.corner(f, 2)).norm()) / 3.0;
     }
   }
-  m.links_.assign(nf, {});
-  for (const auto& [key, uses] : edges) {
-    (void)key;
+
+  // Step 4: edge adjacency, from the faces using each edge.
+  static void linkEdges(Mesh& m) {
+    const int nf = m.faceCount();
+    std::unordered_map<std::uint64_t, std::vector<EdgeUse>> edges;
+    edges.reserve(static_cast<std::size_t>(nf) * 2);
+    for (int f = 0; f < nf; ++f) {
+      for (int k = 0; k < 3; ++k) {
+        const auto& t = m.triangles_[f];
+        edges[edgeKey(t[k], t[(k + 1) % 3])].push_back({f, static_cast<std::int8_t>(k)});
+      }
+    }
+    m.links_.assign(nf, {});
+    for (const auto& [key, uses] : edges) {
+      (void)key;
+      linkEdge(m, uses);
+    }
+  }
+
+  // The links of one edge's faces: its kind, and for each face the neighbour across it.
+  static void linkEdge(Mesh& m, const std::vector<EdgeUse>& uses) {
+    MeshBuildReport& rep = m.report_;
     const EdgeKind kind = uses.size() == 1   ? EdgeKind::kBoundary
                           : uses.size() == 2 ? EdgeKind::kInterior
                                              : EdgeKind::kNonManifold;
@@ -226,27 +243,52 @@ Mesh buildMesh(const std::vector<Vec3>& positions,
   }
 
   // Step 5: vertex-to-face lists (compressed rows, faces in increasing order).
-  m.vf_offsets_.assign(m.vertices_.size() + 1, 0);
-  for (const auto& t : m.triangles_) {
-    for (std::int32_t v : t) ++m.vf_offsets_[v + 1];
-  }
-  for (std::size_t v = 0; v < m.vertices_.size(); ++v) m.vf_offsets_[v + 1] += m.vf_offsets_[v];
-  m.vf_faces_.resize(m.vf_offsets_.back());
-  std::vector<std::int32_t> fill(m.vf_offsets_.begin(), m.vf_offsets_.end() - 1);
-  for (int f = 0; f < nf; ++f) {
-    for (std::int32_t v : m.triangles_[f]) m.vf_faces_[fill[v]++] = f;
+  static void buildVertexFaces(Mesh& m) {
+    m.vf_offsets_.assign(m.vertices_.size() + 1, 0);
+    for (const auto& t : m.triangles_) {
+      for (std::int32_t v : t) ++m.vf_offsets_[v + 1];
+    }
+    for (std::size_t v = 0; v < m.vertices_.size(); ++v) m.vf_offsets_[v + 1] += m.vf_offsets_[v];
+    m.vf_faces_.resize(m.vf_offsets_.back());
+    std::vector<std::int32_t> fill(m.vf_offsets_.begin(), m.vf_offsets_.end() - 1);
+    for (int f = 0; f < m.faceCount(); ++f) {
+      for (std::int32_t v : m.triangles_[f]) m.vf_faces_[fill[v]++] = f;
+    }
   }
 
   // Step 6: bounds of the welded vertices.
-  if (!m.vertices_.empty()) {
+  static void computeBounds(Mesh& m) {
+    if (m.vertices_.empty()) return;
     m.bounds_min_ = m.bounds_max_ = m.vertices_[0];
     for (const Vec3& p : m.vertices_) {
       m.bounds_min_ = m.bounds_min_.cwiseMin(p);
       m.bounds_max_ = m.bounds_max_.cwiseMax(p);
     }
   }
-  m.buildBvh();
-  return m;
+
+  // The steps in order: each reads what the ones before it filled.
+  static Mesh build(const std::vector<Vec3>& positions, const std::vector<std::array<std::int32_t, 3>>& triangles,
+                    const MeshBuildSettings& settings) {
+    Mesh m;
+    m.report_.input_vertices = static_cast<int>(positions.size());
+    m.report_.input_triangles = static_cast<int>(triangles.size());
+    const Welded welded = weldVertices(m, positions, settings);
+    const double diag = welded.diagonal;
+    keepTriangles(m, triangles, welded.remap, settings.min_area_rel * diag * diag);
+    buildFaceFrames(m);
+    linkEdges(m);
+    buildVertexFaces(m);
+    computeBounds(m);
+    m.buildBvh();
+    return m;
+  }
+};
+
+Mesh buildMesh(const std::vector<Vec3>& positions,
+               const std::vector<std::array<std::int32_t, 3>>& triangles,
+               const MeshBuildSettings& settings) {
+  checkInput(positions, triangles);
+  return MeshBuilder::build(positions, triangles, settings);
 }
 
 MassProperties massProperties(const Mesh& m) {

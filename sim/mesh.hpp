@@ -109,9 +109,7 @@ class Mesh {
   /// Signed volume enclosed (positive for closed, outward-wound meshes; m^3).
   double signedVolume() const;
 
-  friend Mesh buildMesh(const std::vector<Vec3>& positions,
-                        const std::vector<std::array<std::int32_t, 3>>& triangles,
-                        const MeshBuildSettings& settings);
+  friend struct MeshBuilder;  // buildMesh's steps (mesh.cpp)
 
  private:
   std::vector<Vec3> vertices_;
@@ -136,10 +134,6 @@ class Mesh {
   MeshBuildReport report_;
 };
 
-/// Builds a mesh: welds vertices by position, drops degenerate and duplicate triangles, links
-/// neighbours through every edge and marks boundary and non-manifold edges. Deterministic.
-/// Throws std::invalid_argument for non-finite positions, positions beyond 1e150 m of the origin
-/// or out-of-range indices. Allocates.
 /// Volume, centroid and inertia of the solid a closed, outward-wound mesh encloses, per unit
 /// density (signed tetrahedra from the origin; an open or inside-out mesh gives a volume <= 0
 /// and the rest unset).
@@ -150,6 +144,10 @@ struct MassProperties {
 };
 MassProperties massProperties(const Mesh& mesh);
 
+/// Builds a mesh: welds vertices by position, drops degenerate and duplicate triangles, links
+/// neighbours through every edge and marks boundary and non-manifold edges. Deterministic.
+/// Throws std::invalid_argument for non-finite positions, positions beyond 1e150 m of the origin
+/// or out-of-range indices. Allocates.
 Mesh buildMesh(const std::vector<Vec3>& positions,
                const std::vector<std::array<std::int32_t, 3>>& triangles,
                const MeshBuildSettings& settings = {});

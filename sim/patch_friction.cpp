@@ -10,9 +10,6 @@ namespace {
 
 constexpr int kFrictionRows = 3;  // tangential t1, tangential t2, torsional about n
 constexpr int kNormalRow = 3;     // aggregate: the normal row, then the two tilt rows
-// A tilt axis whose second moment is below this fraction of the patch's (its trace) has no
-// row: the points lie on a line across it and cannot hold a moment about it.
-constexpr double kFlatMoment = 1e-9;
 // A row whose effective inverse mass is below this fraction of the largest one moves nothing
 // (a static body and a proxy that cannot turn have no torsion row).
 constexpr double kInactiveRow = 1e-12;
@@ -26,33 +23,13 @@ btVector3 spinOf(const btSolverBody& b) {
                           : btVector3(0, 0, 0);
 }
 
-// cos and sin of the tilt limit's directions, 2 pi j / kTiltDirections.
-struct Directions {
-  std::array<double, kTiltDirections> c{}, s{};
-  Directions() {
-    for (int j = 0; j < kTiltDirections; ++j) {
-      const double a = 2.0 * 3.14159265358979323846 * j / kTiltDirections;
-      c[static_cast<std::size_t>(j)] = std::cos(a);
-      s[static_cast<std::size_t>(j)] = std::sin(a);
-    }
-    // Quarter turns exact: cos(pi / 2) would be 6e-17, and on a flat patch a ratio of two such
-    // rounding residues could cap a tilt that has no extent there.
-    for (int q = 0; q < 4; ++q) {
-      const auto j = static_cast<std::size_t>(q * kTiltDirections / 4);
-      c[j] = q == 0 ? 1.0 : q == 2 ? -1.0 : 0.0;
-      s[j] = q == 1 ? 1.0 : q == 3 ? -1.0 : 0.0;
-    }
-  }
-};
-const Directions kDirections;
-
 // The largest ratio (x, y) . d_j / (normal h_j) over the tilt limit's directions: the tilt
 // impulse (x, y) (tilt-axis coordinates) is within the hull of the points while it is <= 1.
 // Infinite when (x, y) leans towards a direction the hull has no extent in.
 double tiltGauge(const PressRows& p, double x, double y, double normal) {
   double gauge = 0.0;
-  for (std::size_t j = 0; j < kDirections.c.size(); ++j) {
-    const double along = x * kDirections.c[j] + y * kDirections.s[j];
+  for (std::size_t j = 0; j < kTiltDirectionTable.c.size(); ++j) {
+    const double along = x * kTiltDirectionTable.c[j] + y * kTiltDirectionTable.s[j];
     if (!(along > 0.0)) continue;
     const double room = normal * p.support[j];
     gauge = room > 0.0 ? std::max(gauge, along / room) : std::numeric_limits<double>::infinity();
@@ -69,11 +46,11 @@ void projectTilt(const PressRows& p, double normal, bool both, double& x, double
   constexpr int kSweeps = 8;
   for (int sweep = 0; both && sweep < kSweeps; ++sweep) {
     bool moved = false;
-    for (std::size_t j = 0; j < kDirections.c.size(); ++j) {
-      const double excess = x * kDirections.c[j] + y * kDirections.s[j] - normal * std::max(0.0, p.support[j]);
+    for (std::size_t j = 0; j < kTiltDirectionTable.c.size(); ++j) {
+      const double excess = x * kTiltDirectionTable.c[j] + y * kTiltDirectionTable.s[j] - normal * std::max(0.0, p.support[j]);
       if (!(excess > 0.0)) continue;
-      x -= excess * kDirections.c[j];
-      y -= excess * kDirections.s[j];
+      x -= excess * kTiltDirectionTable.c[j];
+      y -= excess * kTiltDirectionTable.s[j];
       moved = true;
     }
     if (!moved) break;
@@ -86,59 +63,6 @@ void projectTilt(const PressRows& p, double normal, bool both, double& x, double
 }
 
 }  // namespace
-
-void aggregatePatch(const btVector3* points, const double* shares, const double* separations, int count,
-                    const btVector3& n, const btVector3& on_plane, double stiffness, double damping,
-                    btVector3& centre, PressRows& out) {
-  btVector3 c(0, 0, 0);
-  double depth = 0.0;
-  for (int i = 0; i < count; ++i) {
-    c += shares[i] * points[i];
-    depth += shares[i] * separations[i];
-  }
-  const btVector3 off = c - on_plane;
-  centre = on_plane + off - off.dot(n) * n;
-  out.stiffness = stiffness;
-  out.damping = damping;
-  out.separation = depth;
-  // The second moment of u_i = rho_i x n in a basis of the tangent plane, then its axes.
-  btVector3 t1, t2;
-  btPlaneSpace1(n, t1, t2);
-  double sxx = 0.0, sxy = 0.0, syy = 0.0, lever = 0.0;
-  for (int i = 0; i < count; ++i) {
-    btVector3 rho = points[i] - centre;
-    rho -= rho.dot(n) * n;
-    const btVector3 u = rho.cross(n);
-    const double x = u.dot(t1), y = u.dot(t2), w = shares[i];
-    sxx += w * x * x, sxy += w * x * y, syy += w * y * y;
-    lever += w * rho.length();
-  }
-  const double phi = 0.5 * std::atan2(2.0 * sxy, sxx - syy);
-  const double cp = std::cos(phi), sp = std::sin(phi);
-  out.tilt_axis = {cp * t1 + sp * t2, -sp * t1 + cp * t2};
-  const double m0 = sxx * cp * cp + 2.0 * sxy * cp * sp + syy * sp * sp;
-  const double m1 = sxx * sp * sp - 2.0 * sxy * cp * sp + syy * cp * cp;
-  const double flat = kFlatMoment * (sxx + syy);
-  out.tilt_moment = {m0 > flat ? m0 : 0.0, m1 > flat ? m1 : 0.0};
-  out.mean_lever = lever;
-  double g0 = 0.0, g1 = 0.0;
-  out.support.fill(0.0);
-  for (int i = 0; i < count; ++i) {
-    btVector3 rho = points[i] - centre;
-    rho -= rho.dot(n) * n;
-    const btVector3 u = rho.cross(n);
-    // An axis without a moment has no row: its coordinate (rounding residue) is left out.
-    const double x = out.tilt_moment[0] > 0.0 ? u.dot(out.tilt_axis[0]) : 0.0;
-    const double y = out.tilt_moment[1] > 0.0 ? u.dot(out.tilt_axis[1]) : 0.0;
-    g0 += shares[i] * x * separations[i];
-    g1 += shares[i] * y * separations[i];
-    for (std::size_t j = 0; j < out.support.size(); ++j) {
-      out.support[j] = std::max(out.support[j], x * kDirections.c[j] + y * kDirections.s[j]);
-    }
-  }
-  out.tilt_error = {out.tilt_moment[0] > 0.0 ? g0 / out.tilt_moment[0] : 0.0,
-                    out.tilt_moment[1] > 0.0 ? g1 / out.tilt_moment[1] : 0.0};
-}
 
 PatchFrictionSolver::PatchFrictionSolver() {
   constexpr std::size_t kBlocks = 64, kPoints = 4096;

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <cstdint>
+#include <iosfwd>
 
 namespace gf::sim {
 
@@ -32,6 +33,13 @@ enum class SolverChoice : std::uint8_t {
   kPoints,     ///< "points"
   kAggregate,  ///< "aggregate"
 };
+
+/// Write the scene-file name of a value ("god_finger", "filled", "aggregate", "world"), as the
+/// settings tables spell it (sim/settings.hpp): for messages and test names. Any thread.
+std::ostream& operator<<(std::ostream& os, ContactModel model);
+std::ostream& operator<<(std::ostream& os, PatchFill fill);
+std::ostream& operator<<(std::ostream& os, ContactSolver solver);
+std::ostream& operator<<(std::ostream& os, SolverChoice choice);
 
 /// The solver a finger's choice gives under the world's.
 inline ContactSolver resolveSolver(SolverChoice finger, ContactSolver world) {

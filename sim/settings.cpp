@@ -454,4 +454,20 @@ void requireValid(const SceneDesc& scene) {
   }
 }
 
+namespace {
+
+// The name of `value` in its choice table; "?" for a value outside it.
+template <class Enum, std::size_t N>
+std::ostream& writeName(std::ostream& os, Enum value, const std::string_view (&names)[N]) {
+  const auto i = static_cast<std::size_t>(value);
+  return os << (i < N ? names[i] : std::string_view("?"));
+}
+
+}  // namespace
+
+std::ostream& operator<<(std::ostream& os, ContactModel model) { return writeName(os, model, kContactModelNames); }
+std::ostream& operator<<(std::ostream& os, PatchFill fill) { return writeName(os, fill, kPatchFillNames); }
+std::ostream& operator<<(std::ostream& os, ContactSolver solver) { return writeName(os, solver, kContactSolverNames); }
+std::ostream& operator<<(std::ostream& os, SolverChoice choice) { return writeName(os, choice, kSolverChoiceNames); }
+
 }  // namespace gf::sim

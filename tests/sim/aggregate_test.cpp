@@ -10,7 +10,7 @@
 #include <numbers>
 #include <vector>
 
-#include "sim/detail/patch_friction.hpp"
+#include "sim/detail/aggregate_patch.hpp"
 
 namespace gf::sim {
 namespace {

@@ -1,0 +1,64 @@
+// One finger's contact with one body during a step, and what it leaves for the next step: the
+// state the World's contact pipeline and the contact models share. Haptic thread only; plain
+// storage sized at compile time (nothing allocates per step). Internal to sim/.
+#pragma once
+
+#include <array>
+
+#include "sim/contact_record.hpp"
+#include "sim/detail/contact_injection.hpp"
+
+namespace gf::sim {
+
+/// Points a patch injects besides the true contact: the SGOs and a filled patch's inner points.
+inline constexpr int kMaxPatchPoints = kMaxSgo * kMaxRings;
+
+/// A finger's contact with one body this step: the deepest point over every manifold between
+/// the proxy and the body (one per child hull of a compound).
+struct FingerContact {
+  ContactRecord record;  ///< body frame: what snapshots show, kept until the next step
+  // Bullet's side, valid during the solve only (manifolds are Bullet's and change every step).
+  TrueContact truth;
+  Vec3 v_local = Vec3::Zero();               ///< p_I - p_GO in the body frame (Eq. 1, Eq. 2)
+  btPersistentManifold* manifold = nullptr;  ///< holds the true point; null outside the solve
+  // The patch's points: its SGOs, then a filled patch's inner points.
+  std::array<btVector3, kMaxPatchPoints> sgo_world;    ///< where the solver sees them (world)
+  std::array<double, kMaxPatchPoints> sgo_separation;  ///< their depth below the pad plane (m)
+  std::array<WarmStart, kMaxPatchPoints> sgo_warm;     ///< points solver: their warm starts
+  std::array<PointMaterial, kMaxPatchPoints> sgo_material;  ///< points solver: their materials
+  int sgo_count = 0;
+  int first_injected = 0;  ///< index of its first injected manifold (points solver)
+  int block = -1;          ///< its friction block this step (PatchFrictionSolver::block)
+  bool aggregate = false;  ///< solved as one aggregate block (no injected points, no Bullet row)
+  Vec3 pad_normal = Vec3::UnitY();  ///< the pad plane's normal (world)
+};
+
+/// What a finger's contact with one body leaves for the next step: the solved impulses (to
+/// warm-start the solver), the ring's frame and whether it had a patch.
+struct ContactMemory {
+  int body = -1;
+  WarmStart truth;  ///< the true contact's point (points solver)
+  int n_sgo = 0;        ///< radial vectors of the patch the impulses belong to
+  int layer_count = 0;  ///< layers of `layers` holding them (the rest is stale)
+  /// By ring (a filled patch's point k of its path in layer k - 1; a ring's SGOs in layer 0)
+  /// and radial index: radial i at angle 2 pi i / n_sgo.
+  std::array<std::array<WarmStart, kMaxSgo>, kMaxRings> layers;
+  Vec3 ring_tangent_local = Vec3::Zero();  ///< radial 0's direction, body frame
+  bool had_patch = false;
+  Vec3 pad_normal = Vec3::UnitY();    ///< the pad plane's normal (world)
+  btVector3 friction_force{0, 0, 0};  ///< the friction block's impulses (warm start, N s)
+  double friction_torque = 0.0;       ///< N m s
+  double normal_impulse = 0.0;        ///< the contact's total normal impulse (N s)
+  btVector3 tilt_impulse{0, 0, 0};    ///< an aggregate block's tilt impulse (N m s)
+};
+
+/// Injected point i of a patch: its SGOs, then a filled patch's inner points.
+inline const Sgo& injectedPoint(const Patch& patch, int i) {
+  const auto k = static_cast<std::size_t>(i);
+  return k < patch.sgos.size() ? patch.sgos[k] : patch.inner[k - patch.sgos.size()];
+}
+
+/// The layer of ContactMemory::layers that keeps a patch point's impulses.
+inline int layerOf(const Sgo& p) { return p.ring > 0 ? p.ring - 1 : 0; }
+
+}  // namespace gf::sim

@@ -1,0 +1,121 @@
+// World's private state, and its jobs each in a source of its own: world_bullet.cpp (the Bullet
+// world: construction, bodies, proxies, a finger's settings, couplings, loads and time),
+// world_contacts.cpp (the contact pipeline between collision detection and the solve: proxy
+// manifolds gathered, contact records, patches, each contact's rows by its finger's model,
+// impulses remembered) and world_safety.cpp (a step that is not finite rolled back, tunnelling
+// proxies stopped); world.cpp keeps the public API. Haptic thread only. Internal to sim/.
+#pragma once
+
+#include <btBulletDynamicsCommon.h>
+
+#include <array>
+#include <memory>
+#include <span>
+#include <thread>
+#include <vector>
+
+#include "sim/detail/body_factory.hpp"
+#include "sim/detail/contact_models.hpp"
+#include "sim/world.hpp"
+
+namespace gf::sim {
+
+/// A finger handles at most this many touched bodies per step; further ones stay god-objects.
+inline constexpr int kMaxContactsPerFinger = 4;
+/// Collision group of proxies: they touch bodies, never each other.
+inline constexpr int kFingerGroup = 1 << 6;
+/// Bullet user index marking a proxy (bodies carry their index, >= 0).
+inline constexpr int kProxyTag = -1;
+
+struct World::Impl final : SolveHooks {
+  struct Body {
+    BodyShapes shapes;
+    std::unique_ptr<btRigidBody> rigid;
+  };
+  struct Finger {
+    std::unique_ptr<btSphereShape> shape;
+    std::unique_ptr<btRigidBody> proxy;
+    EffectiveSettings settings;          // after the scene's effect switches (applySettings)
+    const FingerModel* model = nullptr;  // the model of settings.patch.model
+    DeviceSample device;
+    Vec3 force = Vec3::Zero();  // coupling force on the proxy (N)
+    std::array<FingerContact, kMaxContactsPerFinger> contacts;
+    int contact_count = 0;
+    std::array<ContactMemory, kMaxContactsPerFinger> memory;
+    int memory_count = 0;
+
+    const ContactMemory* memoryOf(int body) const {
+      for (int k = 0; k < memory_count; ++k) {
+        if (memory[k].body == body) return &memory[k];
+      }
+      return nullptr;
+    }
+  };
+  // Last finite state of a rigid body, for rolling back a step that produced NaN.
+  struct SavedState {
+    btTransform transform;
+    btVector3 linear, angular;
+  };
+
+  // The Bullet world (world_bullet.cpp). Construction allocates; the rest does not.
+  /// Checks the description (requireValid), builds bodies, proxies and the solver's settings.
+  explicit Impl(const SceneDesc& d);
+  /// Removes every body from the Bullet world before Bullet's parts are destroyed.
+  ~Impl() override;
+  void configureSolver();  ///< iterations, warm starting and the randomized row order
+  void addBody(int index, const BodyDesc& d);
+  void addFinger(int index, const FingerDesc& d);
+  /// The finger's settings from now on: effectiveSettings and its model, once per change.
+  void applySettings(Finger& f, const PatchSettings& patch) const;
+  void applyChangesDue(double dt);  ///< scripted changes due at this step's start
+  void applyCouplings(std::span<const DeviceSample> devices);  ///< device samples, coupling forces
+  void applyLoads();                ///< the scene's loads at time (N, N m)
+  void countStep(double dt);        ///< time after a step of dt seconds, and the step counter
+  Pose bodyFrame(int body) const;   ///< body i's frame: that of its walk mesh (world)
+  std::vector<btRigidBody*> allRigidBodies() const;  ///< bodies, then proxies (allocates)
+  bool ownedHere() const { return std::this_thread::get_id() == owner; }
+
+  // The contact pipeline (world_contacts.cpp): between collision detection and the solve.
+  void beforeSolve() override;  ///< gathers each proxy's contacts, adds their rows
+  void afterSolve() override;   ///< remembers the impulses, releases injected manifolds
+  /// Keeps the deepest point of a proxy's manifold as its finger's contact with that body.
+  void gatherProxyManifold(btPersistentManifold& m, const btCollisionObject* proxy);
+  /// One contact: its record, its patch if the finger's model wants one, the model's rows.
+  void handleContact(Finger& f, FingerContact& c);
+  void recordContact(const Finger& f, const ContactMemory* mem, FingerContact& c) const;
+  void computeContactPatch(const Finger& f, FingerContact& c, const ContactMemory* mem);
+  void placePatchPoints(FingerContact& c, const ContactMemory* mem);  ///< world points, depths
+  void rememberImpulses(Finger& f);  ///< each contact's ContactMemory for the next step
+
+  // Step safety (world_safety.cpp).
+  void saveStates();   ///< every body's and proxy's state before the step
+  void checkStep();    ///< rolls a step that is not finite back, else stops tunnelling proxies
+  bool statesFinite() const;
+  void restoreStates();  ///< the saved states, at rest
+  void stopTunnelling();  ///< puts a proxy whose step's path entered a body back on its surface
+
+  SceneDesc desc;
+  std::thread::id owner = std::this_thread::get_id();
+  // Bullet's parts, each declared after what it points to: the world is destroyed first, and
+  // ~Impl removes every body from it before that.
+  btDefaultCollisionConfiguration config;
+  btCollisionDispatcher dispatcher{&config};
+  btDbvtBroadphase broadphase;
+  PatchFrictionSolver solver;
+  GodFingerDynamicsWorld world{&dispatcher, &broadphase, &solver, &config, this};
+  std::vector<Body> bodies;
+  std::vector<Finger> fingers;
+  std::vector<btPersistentManifold*> injected;
+  AggregateScratch aggregate_scratch;
+  SolveRows rows{solver, dispatcher, injected, aggregate_scratch};  // where the models add rows
+  std::vector<SavedState> saved;
+  double time = 0.0;
+  // Time is counted in steps of one dt from the last change of dt, so k steps of 1 ms read
+  // exactly k / 1000 s instead of a running sum's rounding.
+  double time_base = 0.0, steps_dt = 0.0;
+  long steps_since_base = 0;
+  std::size_t next_change = 0;  // desc.changes[next_change] is the first not yet applied
+  WorldCounters counters;
+};
+
+}  // namespace gf::sim
