@@ -18,6 +18,7 @@
 #include "app/study/study.hpp"
 #include "app/study/study_measure.hpp"
 #include "render/render_thread.hpp"
+#include "sim/effective_settings.hpp"
 #include "sim/settings.hpp"
 
 namespace gf::app {
@@ -88,16 +89,17 @@ void describe(const StudyPlan& plan, const StudyRun& run, const SessionDesc& s, 
     if (!f && (m.finger.empty() || x.name == m.finger)) f = &x;
   }
   if (f) {
-    const bool god_object = !scene.effects.god_finger || sim::effectiveModel(f->patch) == sim::ContactModel::kGodObject;
-    row.model = god_object ? "god_object" : std::string(sim::choiceName(fingerSetting("contact_model"), *f));
+    // The model the World runs (sim::effectiveSettings: n_sgo 0 or the god_finger effect off make
+    // a god-finger a god-object) and its solver.
+    const sim::EffectiveSettings e = sim::effectiveSettings(f->patch, scene.effects, scene.world.contact_solver);
+    sim::FingerDesc effective = *f;
+    effective.patch = e.patch;
+    row.model = sim::choiceName(fingerSetting("contact_model"), effective);
     row.patch = row.model == "god_finger" ? std::string(sim::choiceName(fingerSetting("patch"), *f)) : "";
     row.n_sgo = row.model == "god_finger" ? f->patch.n_sgo : 0;
     row.rings = row.patch == "filled" ? f->patch.rings : 0;
     // A god-object or soft finger is one point whatever the solver setting.
-    if (row.model == "god_finger" &&
-        sim::resolveSolver(f->patch.contact_solver, scene.world.contact_solver) == sim::ContactSolver::kAggregate) {
-      row.solver = "aggregate";
-    }
+    if (row.model == "god_finger" && e.solver == sim::ContactSolver::kAggregate) row.solver = "aggregate";
   }
   row.iterations = scene.world.solver_iterations;
   row.rate = scene.world.haptic_rate_hz;
