@@ -17,8 +17,8 @@ int main(int argc, char** argv) {
                        "Print the version, the git commit and the libraries' versions");
   const std::vector<std::string> command_line(argv, argv + argc);
   std::vector<std::pair<CLI::App*, std::unique_ptr<gf::app::Command>>> commands;
-  for (const gf::app::CommandEntry& entry : gf::app::commandTable()) {
-    std::unique_ptr<gf::app::Command> command = entry.make(command_line);
+  for (const gf::app::CommandFactory make : gf::app::commandTable()) {
+    std::unique_ptr<gf::app::Command> command = make(command_line);
     CLI::App* sub = command->add(app);
     commands.emplace_back(sub, std::move(command));
   }

@@ -124,7 +124,10 @@ VideoWriter::VideoWriter(const std::string& path, int width, int height, double 
   messages_ = memfd_create("ffmpeg-stderr", MFD_CLOEXEC);
   if (messages_ < 0) throw ImageError(path + ": cannot start ffmpeg: no memory file for its messages");
   int fds[2];
-  if (pipe2(fds, O_CLOEXEC) != 0) throw ImageError(path + ": cannot start ffmpeg: no pipe");
+  if (pipe2(fds, O_CLOEXEC) != 0) {
+    closeMessages();
+    throw ImageError(path + ": cannot start ffmpeg: no pipe");
+  }
   posix_spawn_file_actions_t actions;
   posix_spawn_file_actions_init(&actions);
   posix_spawn_file_actions_adddup2(&actions, fds[0], STDIN_FILENO);
@@ -143,24 +146,38 @@ VideoWriter::VideoWriter(const std::string& path, int width, int height, double 
   close(fds[0]);
   if (failed != 0) {
     close(fds[1]);
+    closeMessages();
     throw ImageError(path + ": cannot start ffmpeg (is the ffmpeg package installed?): " + std::strerror(failed));
   }
   pipe_ = fdopen(fds[1], "w");
   if (!pipe_) {
     close(fds[1]);
-    waitpid(child_, nullptr, 0);
+    abandon();
     throw ImageError(path + ": cannot start ffmpeg: no stream");
   }
 }
 
-VideoWriter::~VideoWriter() {
-  if (pipe_) {
-    std::fclose(pipe_);
-    waitpid(child_, nullptr, 0);
-  }
+void VideoWriter::closeMessages() {
   if (messages_ >= 0) close(messages_);
+  messages_ = -1;
+}
+
+void VideoWriter::abandon() {
+  if (pipe_) std::fclose(pipe_);
+  pipe_ = nullptr;
+  if (child_ > 0) {
+    kill(child_, SIGKILL);  // its video is not kept: no need to let it finish encoding
+    while (waitpid(child_, nullptr, 0) < 0 && errno == EINTR) {
+    }
+    child_ = 0;
+  }
+  closeMessages();
   std::error_code ignored;
-  std::filesystem::remove(part_, ignored);  // a video that was not finished is not kept
+  std::filesystem::remove(part_, ignored);
+}
+
+VideoWriter::~VideoWriter() {
+  abandon();  // a video that was not finished is not kept (after finish(), only the fds are left)
 }
 
 void VideoWriter::push(const Image& frame) {
@@ -191,6 +208,7 @@ SinkStats VideoWriter::finish() {
   int status = 0;
   while (waitpid(child_, &status, 0) < 0 && errno == EINTR) {
   }
+  child_ = 0;
   // ffmpeg at loglevel error says only what went wrong; a full disk it reports but exits 0 on.
   const std::string said = ffmpegSaid();
   if (!WIFEXITED(status) || WEXITSTATUS(status) != 0 || !said.empty() || !flushed) {

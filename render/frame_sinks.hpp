@@ -65,7 +65,7 @@ class VideoWriter {
   /// Starts ffmpeg. Throws ImageError when it cannot be started or the extension is not one of
   /// .mp4, .mov and .mkv.
   VideoWriter(const std::string& path, int width, int height, double fps, int crf = 26);
-  /// Ends ffmpeg if still running and removes an unfinished temporary file.
+  /// Ends ffmpeg at once if still running and removes an unfinished temporary file.
   ~VideoWriter();
   VideoWriter(const VideoWriter&) = delete;
   VideoWriter& operator=(const VideoWriter&) = delete;
@@ -77,6 +77,8 @@ class VideoWriter {
 
  private:
   std::string ffmpegSaid() const;  // " (ffmpeg: MESSAGE)", or "" when it said nothing
+  void closeMessages();
+  void abandon();  // ends ffmpeg at once (if running) and removes the temporary file
   std::string path_, part_, container_;
   int width_, height_;
   std::FILE* pipe_ = nullptr;  // ffmpeg's standard input

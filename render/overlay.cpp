@@ -59,7 +59,7 @@ struct Overlay::Impl {
       const sim::Setting<sim::FingerDesc>* s = sim::findSetting(sim::fingerSettings(), w.field);
       GF_ASSERT(s != nullptr && s->live && "an overlay slider shows a live finger setting of sim/settings.cpp");
       GF_ASSERT(!sim::checkGiven(*s, w.lo / w.shown_per_unit) && !sim::checkGiven(*s, w.hi / w.shown_per_unit) &&
-                "an overlay slider spans legal values only: narrow it in render/view_desc.hpp");
+                "an overlay slider spans legal values only: narrow it in sim/view_desc.hpp");
     }
   }
 

@@ -367,12 +367,17 @@ RenderStats RenderThread::finish() {
   stats.gl = r.gl_description;
   stats.frame_ms = r.frame_ms;
   stats.background_priority = r.background_priority;
-  try {
-    if (r.png) stats.png = r.png->finish();
-    if (r.video) stats.video = r.video->finish();
-  } catch (const ImageError& e) {
-    if (r.error.empty()) r.error = e.what();
-  }
+  // Each sink is finished on its own: a PNG folder that fails does not cost the video.
+  const auto finishSink = [&](auto& sink, SinkStats& out) {
+    if (!sink) return;
+    try {
+      out = sink->finish();
+    } catch (const ImageError& e) {
+      if (r.error.empty()) r.error = e.what();
+    }
+  };
+  finishSink(r.png, stats.png);
+  finishSink(r.video, stats.video);
   stats.wall_seconds = std::chrono::duration<double>(Clock::now() - r.start).count();
   if (!r.error.empty()) throw GlError(r.error);
   return stats;

@@ -8,10 +8,15 @@
 #include <filesystem>
 #include <memory>
 
+#include <sys/types.h>
+
 namespace gf::render {
 namespace {
 
-using File = std::unique_ptr<std::FILE, int (*)(std::FILE*)>;
+struct CloseFile {
+  void operator()(std::FILE* f) const { std::fclose(f); }
+};
+using File = std::unique_ptr<std::FILE, CloseFile>;
 
 std::string lowerExtension(const std::string& path) {
   std::string ext = std::filesystem::path(path).extension().string();
@@ -31,17 +36,18 @@ std::optional<std::string> isoMediaProblem(std::FILE* f, std::uint64_t length) {
   bool moov = false;
   for (std::uint64_t at = 0; at < length;) {
     unsigned char head[16];
-    if (length - at < 8 || std::fseek(f, static_cast<long>(at), SEEK_SET) != 0 || std::fread(head, 1, 8, f) != 8) {
+    if (length - at < 8 || fseeko(f, static_cast<off_t>(at), SEEK_SET) != 0 || std::fread(head, 1, 8, f) != 8) {
       return "a box header is cut off at byte " + std::to_string(at) + " (the file is truncated)";
     }
-    std::uint64_t size = bigEndian(head, 4);
-    if (size == 1) {
+    std::uint64_t size = bigEndian(head, 4), header = 8;
+    if (size == 1) {  // a 64-bit size after the type: the header is 16 bytes
+      header = 16;
       if (std::fread(head + 8, 1, 8, f) != 8) return "a box header is cut off at byte " + std::to_string(at);
       size = bigEndian(head + 8, 8);
     } else if (size == 0) {
       size = length - at;
     }
-    if (size < 8 || size > length - at) {
+    if (size < header || size > length - at) {
       return "the box at byte " + std::to_string(at) + " runs past the end of the file (the file is truncated)";
     }
     moov = moov || std::string(reinterpret_cast<const char*>(head + 4), 4) == "moov";
@@ -70,7 +76,7 @@ std::optional<std::string> matroskaProblem(std::FILE* f, std::uint64_t length) {
   if (got < 16 || bigEndian(b.data(), 4) != 0x1A45DFA3) return "no EBML header";
   const auto [head_len, head_size] = ebmlNumber(b.data() + 4);
   const std::uint64_t segment = 4 + static_cast<std::uint64_t>(head_len) + head_size;
-  if (head_len == 0 || segment + 12 > length || std::fseek(f, static_cast<long>(segment), SEEK_SET) != 0 ||
+  if (head_len == 0 || segment + 12 > length || fseeko(f, static_cast<off_t>(segment), SEEK_SET) != 0 ||
       std::fread(b.data(), 1, 12, f) != 12 || bigEndian(b.data(), 4) != 0x18538067) {
     return "no segment after the EBML header (the file is truncated)";
   }
@@ -99,7 +105,7 @@ std::optional<std::string> videoFileProblem(const std::string& path, const std::
   const std::uintmax_t length = std::filesystem::file_size(path, ec);
   if (ec) return "cannot be read: " + ec.message();
   if (length == 0) return "is empty";
-  const File f(std::fopen(path.c_str(), "rb"), &std::fclose);
+  const File f(std::fopen(path.c_str(), "rb"));
   if (!f) return "cannot be opened";
   return container == "matroska" ? matroskaProblem(f.get(), length) : isoMediaProblem(f.get(), length);
 }

@@ -38,7 +38,7 @@ enum class WalkStop : std::uint8_t {
   kFacingAway,        ///< next face turned 90 degrees or more from the contact normal: an SGO
                       ///< there could not push along it, whatever the thresholds
   kDropped,           ///< radial vector dropped at an edge or vertex contact (paper Fig. 3b);
-                      ///< keep it last: app/patch_json.cpp names every value up to it
+                      ///< keep it last: app/runs/contacts.cpp names every value up to it
 };
 
 /// One sub-god-object.

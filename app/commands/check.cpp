@@ -7,10 +7,10 @@
 #include <cstdio>
 #include <filesystem>
 #include <sstream>
-#include <thread>
 
 #include "app/commands/commands.hpp"
 #include "app/runs/jobs.hpp"
+#include "app/runs/run_folder.hpp"
 #include "app/runs/run_reader.hpp"
 #include "app/scene/data_folder.hpp"
 #include "app/scene/scene_file.hpp"
@@ -130,6 +130,7 @@ std::string resultLine(const std::string& name, int code, const fs::path& dir, b
 }  // namespace
 
 int runCheck(const CheckOptions& options) {
+  const RunFolder folder(options.out);  // the scenes' runs go under it: one check at a time
   int live = 0;  // scenes a live device drives: they cannot run offline
   const std::vector<std::string> scenes = offlineScenes(options, live);
   std::vector<std::string> names, lines;
@@ -165,7 +166,7 @@ class CheckCommand final : public Command {
  public:
   CLI::App* add(CLI::App& app) override {
     CheckOptions& o = options_;
-    o.jobs = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+    o.jobs = defaultJobs();
     CLI::App* c = app.add_subcommand("check", "Run scenes offline and check their [expect] tables; one line each, "
                                               "exit 1 if any fails");
     c->add_option("paths", o.paths, "Scene files, folders of them, or bundled scene names")->required();

@@ -1,6 +1,8 @@
 #include "app/commands/commands.hpp"
 
+#include <algorithm>
 #include <filesystem>
+#include <thread>
 
 #include "app/runs/summary.hpp"
 #include "render/context.hpp"
@@ -9,17 +11,18 @@
 namespace gf::app {
 namespace {
 
-// The order of `godfinger --help`.
-constexpr CommandEntry kCommands[] = {
-    {"run", makeRunCommand},         {"patch", makePatchCommand},   {"study", makeStudyCommand},
-    {"check", makeCheckCommand},     {"compare", makeCompareCommand}, {"list", makeListCommand},
-    {"live", makeLiveCommand},       {"mesh-info", makeMeshInfoCommand}, {"plot", makePlotCommand},
-    {"schema", makeSchemaCommand},   {"screenshots", makeScreenshotsCommand},
-};
+// run, patch, study, check, compare, list, live, mesh-info, plot, schema, screenshots: the
+// order of `godfinger --help`.
+constexpr CommandFactory kCommands[] = {makeRunCommand,      makePatchCommand,    makeStudyCommand,
+                                        makeCheckCommand,    makeCompareCommand,  makeListCommand,
+                                        makeLiveCommand,     makeMeshInfoCommand, makePlotCommand,
+                                        makeSchemaCommand,   makeScreenshotsCommand};
 
 }  // namespace
 
-std::span<const CommandEntry> commandTable() { return kCommands; }
+std::span<const CommandFactory> commandTable() { return kCommands; }
+
+int defaultJobs() { return static_cast<int>(std::max(1u, std::thread::hardware_concurrency())); }
 
 std::string versionText() {
   std::string text = "godfinger " + versionString() + " (commit " + commitString() + ")\n";

@@ -28,14 +28,8 @@ class Command {
 /// Makes one subcommand; `argv` is the whole command line (a run records it in summary.json).
 using CommandFactory = std::unique_ptr<Command> (*)(const std::vector<std::string>& argv);
 
-/// A subcommand's name and its factory.
-struct CommandEntry {
-  std::string_view name;
-  CommandFactory make;
-};
-
-/// Every subcommand, in the order `godfinger --help` lists them.
-std::span<const CommandEntry> commandTable();
+/// Every subcommand's factory, in the order `godfinger --help` lists them.
+std::span<const CommandFactory> commandTable();
 
 /// `godfinger --version`: this build, its libraries and the OpenGL it would render with.
 std::string versionText();
@@ -53,6 +47,9 @@ CLI::Validator settingCheck(std::span<const sim::Setting<Desc>> table, std::stri
       },
       std::string(s->unit.empty() ? "" : "(" + std::string(s->unit) + ")"));
 }
+
+/// The default of --jobs: the machine's cores (at least 1).
+int defaultJobs();
 
 /// The path of the running godfinger executable (the runs of check, compare and study start it).
 std::string selfExecutable();

@@ -1,6 +1,5 @@
 // `godfinger compare SCENE`: the scene once per contact model, side by side (app/compare).
 #include <algorithm>
-#include <thread>
 
 #include "app/commands/commands.hpp"
 #include "app/compare/compare.hpp"
@@ -12,7 +11,7 @@ class CompareCommand final : public Command {
  public:
   CLI::App* add(CLI::App& app) override {
     CompareOptions& o = options_;
-    o.jobs = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+    o.jobs = defaultJobs();
     CLI::App* c = app.add_subcommand(
         "compare", "Run a scene once per contact model (offline, in parallel) and draw one video of the runs side "
                    "by side over a chart of a trace quantity; compare.json holds their measures");

@@ -2,7 +2,6 @@
 // lines for GNU parallel or a Slurm array, collected afterwards).
 #include <algorithm>
 #include <filesystem>
-#include <thread>
 
 #include "app/commands/commands.hpp"
 #include "app/runs/run_folder.hpp"
@@ -15,7 +14,7 @@ namespace {
 struct StudyArgs {
   std::string study, out, emit_jobs, collect;
   std::vector<std::string> overrides;
-  int jobs = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+  int jobs = defaultJobs();
   bool quick = false;
 };
 

@@ -3,6 +3,7 @@
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
+#include <exception>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -74,11 +75,8 @@ std::vector<SessionDesc> modelSessions(const std::string& scene_path, const std:
 
 int framesIn(const fs::path& folder) {
   int n = 0;
-  char name[32];
-  for (;; ++n) {
-    std::snprintf(name, sizeof name, "%06d.png", n);
-    if (!fs::exists(folder / name)) return n;
-  }
+  while (fs::exists(folder / frameFileName(n))) ++n;
+  return n;
 }
 
 
@@ -113,6 +111,23 @@ std::vector<std::string> runOverrides(const SessionDesc& base, const std::string
   }
   overrides.push_back("effects=[" + effects + "]");
   return overrides;
+}
+
+// Finishes both sinks, each on its own (a PNG folder that fails does not cost the video), then
+// throws the first failure.
+void finishSinks(render::PngSequenceWriter* png, render::VideoWriter* video) {
+  std::exception_ptr failed;
+  try {
+    if (png) png->finish();
+  } catch (...) {
+    failed = std::current_exception();
+  }
+  try {
+    if (video) video->finish();
+  } catch (...) {
+    if (!failed) failed = std::current_exception();
+  }
+  if (failed) std::rethrow_exception(failed);
 }
 
 // One comparison, stage by stage (runCompare).
@@ -310,9 +325,9 @@ void CompareRun::compose() {
   for (const render::Image& image : images) pointers.push_back(&image);
   for (int k = 0; k < count; ++k) {
     if ((stopped_by_ = interruptSignal()) != 0) break;
-    char name[32];
-    std::snprintf(name, sizeof name, "%06d.png", k);
-    for (std::size_t i = 0; i < o_.models.size(); ++i) images[i] = render::readPng((out_ / o_.models[i] / kFramesFolder / name).string());
+    for (std::size_t i = 0; i < o_.models.size(); ++i) {
+      images[i] = render::readPng((out_ / o_.models[i] / kFramesFolder / frameFileName(k)).string());
+    }
     render::Image frame = png ? png->spare() : render::Image{};
     compositor.compose(pointers, k / fps, frame);
     if (video) video->push(frame);
@@ -320,8 +335,7 @@ void CompareRun::compose() {
     ++written_;
     progress(k, count);
   }
-  if (png) png->finish();
-  if (video) video->finish();
+  finishSinks(png.get(), video.get());
 }
 
 // The runs' own frames go (unless kept or interrupted), then compare.json.

@@ -67,6 +67,33 @@ std::string lockHolder(int fd) {
   return pid;
 }
 
+// Creates `folder` and its parents. Throws std::runtime_error naming it and `what` it is for.
+void createFolder(const fs::path& folder, const std::string& what) {
+  std::error_code ec;
+  fs::create_directories(folder, ec);
+  if (ec || !fs::is_directory(folder)) {
+    throw std::runtime_error(folder.string() + ": cannot create the folder for " + what +
+                             (ec ? ": " + ec.message() : ": a file is in the way"));
+  }
+}
+
+// The bytes of the files `ours` names in `folder`.
+std::uintmax_t bytesOf(const fs::path& folder, bool (*ours)(const std::string&)) {
+  std::error_code ec;
+  std::uintmax_t bytes = 0;
+  if (!fs::is_directory(folder, ec)) return 0;
+  for (const fs::directory_entry& e : fs::directory_iterator(folder, ec)) {
+    if (e.is_regular_file(ec) && ours(e.path().filename().string())) bytes += e.file_size(ec);
+  }
+  return bytes;
+}
+
+// A run's own files at the top of its folder (trace.csv, summary.json, ... and their temporary names).
+bool isRunFileName(const std::string& name) {
+  const std::string stem = withoutTemporarySuffix(name);
+  return stem == kTraceFile || stem == kForcesFile || stem == kForceChartFile || stem == kSummaryFile;
+}
+
 std::string megabytes(std::uintmax_t bytes) {
   char text[32];
   std::snprintf(text, sizeof text, "%.1f MB", static_cast<double>(bytes) / 1e6);
@@ -81,23 +108,23 @@ std::string contactStem(double t) {
   return name;
 }
 
-RunFolder::RunFolder(fs::path dir) : dir_(std::move(dir)) {
-  std::error_code ec;
-  fs::create_directories(dir_, ec);
-  if (ec || !fs::is_directory(dir_)) {
-    throw std::runtime_error(dir_.string() + ": cannot create the output folder" +
-                             (ec ? ": " + ec.message() : ": a file is in the way"));
-  }
-  const fs::path lock = dir_ / kLockFile;
+RunFolder::RunFolder(const fs::path& dir) {
+  createFolder(dir, "the outputs");
+  const fs::path lock = dir / kLockFile;
   fd_ = open(lock.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0644);
-  if (fd_ < 0) throw std::runtime_error(dir_.string() + ": cannot lock the output folder: " + std::strerror(errno));
+  if (fd_ < 0) throw std::runtime_error(dir.string() + ": cannot lock the output folder: " + std::strerror(errno));
   if (flock(fd_, LOCK_EX | LOCK_NB) != 0) {
     const int error = errno;
     const std::string pid = lockHolder(fd_);
     close(fd_);
     fd_ = -1;
-    if (error != EWOULDBLOCK) throw std::runtime_error(dir_.string() + ": cannot lock the output folder: " + std::strerror(error));
-    throw std::runtime_error(dir_.string() + ": another godfinger" + (pid.empty() ? "" : " (pid " + pid + ")") +
+    if (error == ENOSYS || error == ENOLCK || error == EOPNOTSUPP) {  // a file system without locks
+      std::fprintf(stderr, "[godfinger] %s: the file system does not lock files (%s): a second run into this "
+                   "folder at the same time would not be refused\n", dir.c_str(), std::strerror(error));
+      return;
+    }
+    if (error != EWOULDBLOCK) throw std::runtime_error(dir.string() + ": cannot lock the output folder: " + std::strerror(error));
+    throw std::runtime_error(dir.string() + ": another godfinger" + (pid.empty() ? "" : " (pid " + pid + ")") +
                              " is writing into this folder; wait for it to end or give another --out");
   }
   // The holder's pid, for the message a second run gives (failing to write it costs only that).
@@ -112,12 +139,8 @@ RunFolder::~RunFolder() {
 }
 
 void requireWritableFolder(const fs::path& folder, const std::string& what) {
+  createFolder(folder, what);
   std::error_code ec;
-  fs::create_directories(folder, ec);
-  if (ec || !fs::is_directory(folder)) {
-    throw std::runtime_error(folder.string() + ": cannot create the folder for " + what +
-                             (ec ? ": " + ec.message() : ": a file is in the way"));
-  }
   const fs::path probe = folder / (".godfinger-probe-" + std::to_string(getpid()));
   std::FILE* f = std::fopen(probe.c_str(), "wb");
   if (!f) throw std::runtime_error(folder.string() + ": cannot write " + what + " there: " + std::strerror(errno));
@@ -134,7 +157,9 @@ void requireWritableFolder(const fs::path& folder, const std::string& what) {
 
 void requireRoom(const fs::path& folder, std::uintmax_t bytes, const std::string& what) {
   struct statvfs s {};
-  if (statvfs(folder.c_str(), &s) != 0) return;  // no figure to check against: the probe decides
+  // No figure to check against (or a file system that reports none, as some FUSE and virtual
+  // ones do): the probe decides.
+  if (statvfs(folder.c_str(), &s) != 0 || s.f_blocks == 0) return;
   const std::uintmax_t free_bytes = static_cast<std::uintmax_t>(s.f_bavail) * s.f_frsize;
   if (free_bytes >= bytes) return;
   throw std::runtime_error(folder.string() + ": too little room for " + what + ": about " + megabytes(bytes) +
@@ -142,15 +167,23 @@ void requireRoom(const fs::path& folder, std::uintmax_t bytes, const std::string
 }
 
 void clearRunOutputs(const fs::path& dir) {
-  std::error_code ec;
-  for (const char* name : {kTraceFile, kForcesFile, kForceChartFile, kSummaryFile}) {
-    for (const char* suffix : {"", ".tmp", ".part"}) fs::remove(dir / (std::string(name) + suffix), ec);
-  }
+  sweep(dir, isRunFileName);
   sweep(dir / kFramesFolder, isFrameName);
   sweep(dir / kContactsFolder, isContactName);
 }
 
 void clearFrames(const fs::path& folder) { sweep(folder, isFrameName); }
+
+std::uintmax_t runOutputBytes(const fs::path& dir) {
+  return bytesOf(dir, isRunFileName) + bytesOf(dir / kFramesFolder, isFrameName) +
+         bytesOf(dir / kContactsFolder, isContactName);
+}
+
+std::string frameFileName(long k) {
+  char name[32];
+  std::snprintf(name, sizeof name, "%06ld.png", k);
+  return name;
+}
 
 void requireVideoPath(const std::string& path) {
   const fs::path video(path);

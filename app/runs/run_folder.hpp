@@ -28,15 +28,14 @@ std::string contactStem(double t);
 class RunFolder {
  public:
   /// Creates `dir` (and its parents) and takes the lock. Throws std::runtime_error naming the
-  /// folder and, when another process holds it, that process's pid.
-  explicit RunFolder(std::filesystem::path dir);
+  /// folder and, when another process holds it, that process's pid. On a file system that
+  /// cannot lock files (ENOSYS, ENOLCK, EOPNOTSUPP: some network and FUSE file systems) it says
+  /// so on stderr and goes on without the lock.
+  explicit RunFolder(const std::filesystem::path& dir);
   ~RunFolder();
   RunFolder(const RunFolder&) = delete;
   RunFolder& operator=(const RunFolder&) = delete;
-  const std::filesystem::path& path() const { return dir_; }
-
  private:
-  std::filesystem::path dir_;
   int fd_ = -1;
 };
 
@@ -45,7 +44,8 @@ class RunFolder {
 void requireWritableFolder(const std::filesystem::path& folder, const std::string& what);
 
 /// Throws std::runtime_error naming `folder`, `what` and both sizes when its file system has
-/// fewer than `bytes` free for this user (statvfs).
+/// fewer than `bytes` free for this user (statvfs; not checked where the file system gives no
+/// figures).
 void requireRoom(const std::filesystem::path& folder, std::uintmax_t bytes, const std::string& what);
 
 /// Removes what an earlier run left in `dir` of the kinds of output a run writes (trace.csv,
@@ -57,6 +57,12 @@ void clearRunOutputs(const std::filesystem::path& dir);
 /// Removes a frame sequence an earlier run left in `folder` (000000.png ... and their temporary
 /// names), nothing else. Throws std::runtime_error naming a file it cannot remove.
 void clearFrames(const std::filesystem::path& folder);
+
+/// The bytes of what clearRunOutputs(dir) would remove: room a rerun gets back.
+std::uintmax_t runOutputBytes(const std::filesystem::path& dir);
+
+/// The name of frame `k` of a frame sequence: "000042.png".
+std::string frameFileName(long k);
 
 /// Checks a video path before any work: not a folder, ends in .mp4, .mkv or .mov, its folder
 /// created and writable. Throws std::runtime_error naming the path.

@@ -111,11 +111,9 @@ std::vector<std::vector<double>> readCsvColumns(const std::string& path, const s
 CsvTable readTrace(const fs::path& dir) { return readCsv((dir / kTraceFile).string()); }
 
 nlohmann::json readSummary(const fs::path& dir) {
-  std::ifstream in(dir / kSummaryFile);
-  if (!in) return nullptr;
   try {
-    return nlohmann::json::parse(in);
-  } catch (const nlohmann::json::exception&) {
+    return requireSummary(dir);
+  } catch (const std::runtime_error&) {
     return nullptr;
   }
 }

@@ -7,7 +7,7 @@
 #include "sim/settings.hpp"
 
 namespace gf::app {
-// [expect]: invariants of the run (app/expectations.hpp).
+// [expect]: invariants of the run (app/scene/expect_desc.hpp).
 void readExpect(Reader& parent, SessionDesc& s) {
   const toml::node* n = parent.find("expect");
   if (!n) return;

@@ -21,8 +21,9 @@ bool readerGone() {
   return poll(&p, 1, 0) == 1 && (p.revents & (POLLERR | POLLHUP)) != 0;
 }
 
-// errno values a failed write leaves.
-bool writeError(int e) { return e == ENOSPC || e == EPIPE || e == EIO || e == EFBIG || e == EDQUOT || e == EBADF; }
+// errno values a write that failed on a file or device leaves (EPIPE is told by readerGone: an
+// EPIPE left by another pipe, ffmpeg's, must not end the command quietly).
+bool writeError(int e) { return e == ENOSPC || e == EIO || e == EFBIG || e == EDQUOT; }
 
 }  // namespace
 

@@ -264,7 +264,9 @@ void SessionRun::prepareOutputs() {
   if (options_.stop_on_interrupt) interrupt_.emplace();
   quiet_threads_.emplace();
   folder_.emplace(dir_);
-  requireRoom(dir_, estimatedOutputBytes(session_, options_), "the run's outputs");
+  // The room the outputs need, less what an earlier run's outputs there give back when cleared.
+  const std::uintmax_t needed = estimatedOutputBytes(session_, options_), freed = runOutputBytes(dir_);
+  requireRoom(dir_, needed > freed ? needed - freed : 0, "the run's outputs");
   requireWritableFolder(dir_, "the run's outputs");
   requireWritableFolder(dir_ / kContactsFolder, "contact snapshots");
   if (options_.frames) requireWritableFolder(dir_ / kFramesFolder, "frames");
