@@ -39,10 +39,11 @@ constexpr double kStartOverlap = 1e-3;
 // What a run's outputs take, about, for the room they need (measured on the bundled scenes):
 // bytes per trace.csv or forces.csv number with its comma (14.8 to 17), per pixel of a PNG frame
 // (0.36 for a 1280 x 720 scene), per contact snapshot with its close-ups (JSON up to 37 kB, a
-// close-up up to 73 kB per finger), and for summary.json (5 kB).
+// close-up up to 73 kB per finger), for forces.png (36 kB) and for summary.json (5 kB).
 constexpr double kBytesPerNumber = 16.0;
 constexpr double kPngBytesPerPixel = 0.3;
 constexpr double kContactSnapshotBytes = 150e3;
+constexpr double kForceChartBytes = 64e3;
 constexpr double kSummaryBytes = 64e3;
 
 // While alive, SIGINT and SIGTERM are blocked on this thread, so the threads it starts meanwhile
@@ -142,7 +143,10 @@ nlohmann::json changesJson(const std::vector<AppliedChange>& changes, const sim:
 std::uintmax_t estimatedOutputBytes(const SessionDesc& session, const SessionOptions& options) {
   const sim::SceneDesc& scene = session.scene;
   const double rows = static_cast<double>(sim::stepCount(scene.duration, scene.world.haptic_rate_hz) + 1);
-  double bytes = kSummaryBytes + kContactSnapshotBytes * static_cast<double>(session.record.contact_times.size());
+  const auto snapshots = std::count_if(session.record.contact_times.begin(), session.record.contact_times.end(),
+                                       [&](double t) { return t <= scene.duration; });
+  double bytes = kSummaryBytes + kContactSnapshotBytes * static_cast<double>(snapshots);
+  if (session.record.force_chart) bytes += kForceChartBytes;
   if (session.record.trace) bytes += rows * static_cast<double>(traceColumns(scene).size()) * kBytesPerNumber;
   bytes += rows * static_cast<double>(1 + 3 * session.record.force_bodies.size()) * kBytesPerNumber;
   if (options.frames) {

@@ -102,7 +102,8 @@ TEST(RunFolder, ASecondRunIntoABusyFolderExits1AndRemovesNothing) {
 }
 
 // A disk without room for the run's outputs: the run exits 1 before removing anything, saying
-// how much it needs and how much is free; the earlier run's outputs are as they were.
+// how much it needs and how much is free; the earlier run's outputs are as they were. A rerun of
+// the earlier run fits: the room its earlier outputs give back counts.
 TEST(RunFolder, ADiskTooFullForTheRunKeepsTheEarlierOutputs) {
   const fs::path dir = freshFolder("gf_folder_full_disk");
   const Tmpfs disk(dir / "disk", "1m");
@@ -125,6 +126,12 @@ TEST(RunFolder, ADiskTooFullForTheRunKeepsTheEarlierOutputs) {
   EXPECT_NE(said.find("too little room"), std::string::npos) << said;
   EXPECT_NE(said.find(out.string()), std::string::npos) << said;
   EXPECT_EQ(contentsOf(out), earlier);
+  EXPECT_EQ(exitStatus(kBin + " run " + kFig8 + " --quiet --duration 0.2 --out " + out.string() + " > /dev/null 2> " +
+                       log.string()),
+            0)
+      << readFile(log);
+  EXPECT_EQ(contentsOf(out).at("trace.csv"), earlier.at("trace.csv")) << "the same run again: the same trace";
+  EXPECT_DOUBLE_EQ(summaryOf(out)["time_reached_s"].get<double>(), 0.2);
 }
 
 // A disk that fills while the MP4 is written (60 kB for the video): ffmpeg reports "No space left
