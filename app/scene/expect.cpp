@@ -38,6 +38,9 @@ void readExpect(Reader& parent, SessionDesc& s) {
     b.ends_above = optional(br, "ends_above", -1e6, 1e6);
     b.max_rotation_deg = optional(br, "max_rotation_deg", 0.0, 180.0);
     b.after = br.number("after", 0.0, 0.0, 1e6);
+    b.rests_after = optional(br, "rests_after", 0.0, 1e6);
+    b.rest_speed = br.number("rest_speed", b.rest_speed, 0.0, 1e6);
+    b.rest_tilt_rate = br.number("rest_tilt_rate", b.rest_tilt_rate, 0.0, 1e6);
     br.finish();
   }
   for (const auto& [name, t] : r.namedTables("fingers")) {

@@ -16,6 +16,11 @@ struct BodyExpect {
   std::optional<double> ends_above;         ///< m: the body's centre y at the end at least this
   std::optional<double> max_rotation_deg;   ///< deg: rotation from its pose at `after`
   double after = 0.0;                       ///< s: when max_rotation_deg starts counting
+  /// s: the body rests from then on: no later step with a speed above rest_speed or a tilt rate
+  /// (angular speed about a horizontal axis) above rest_tilt_rate
+  std::optional<double> rests_after;
+  double rest_speed = 1e-3;      ///< m/s
+  double rest_tilt_rate = 0.05;  ///< rad/s
 };
 
 /// [expect.fingers.NAME]: limits on one finger.

@@ -127,7 +127,10 @@ json expectSchema() {
                       {"stays_above", numberSchema(-1e6, 1e6, "m: the centre's height never below")},
                       {"ends_above", numberSchema(-1e6, 1e6, "m: the centre's height at the end")},
                       {"max_rotation_deg", at_most(180.0, "deg from the pose at `after`")},
-                      {"after", at_most(1e6, "s: checks start then")}},
+                      {"after", at_most(1e6, "s: checks start then")},
+                      {"rests_after", at_most(1e6, "s: no later step faster than rest_speed or tilting faster than rest_tilt_rate")},
+                      {"rest_speed", at_most(1e6, "m/s (default 0.001)")},
+                      {"rest_tilt_rate", at_most(1e6, "rad/s about a horizontal axis (default 0.05)")}},
                      "what a dynamic body must do");
   json finger = object({{"min_sgo", {{"type", "integer"}, {"minimum", 0}, {"maximum", sim::kMaxSgo * sim::kMaxRings}}},
                         {"window", {{"type", "array"}, {"items", {{"type", "number"}}}, {"minItems", 2}, {"maxItems", 2},

@@ -47,6 +47,11 @@ ExpectChecker::ExpectChecker(const ExpectDesc& expect, const sim::World& world) 
     if (e.stays_above) s.above = add(p + "stays_above", *e.stays_above, false);
     if (e.max_rotation_deg) s.rotation = add(p + "max_rotation_deg", *e.max_rotation_deg, true);
     if (e.ends_above) s.ends = add(p + "ends_above", *e.ends_above, false);
+    if (e.rests_after) {
+      s.rest_speed = add(p + "rests_after.speed", e.rest_speed, true);
+      s.rest_tilt = add(p + "rests_after.tilt_rate", e.rest_tilt_rate, true);
+      s.rests_after = *e.rests_after;
+    }
     s.after = e.after;
     bodies_.push_back(s);
   }
@@ -104,18 +109,7 @@ void ExpectChecker::afterStep(const sim::World& world) {
     observe(checks_[static_cast<std::size_t>(finite_)], finite && !rolled_back ? 0.0 : 1.0, t);
   }
   for (BodyState& s : bodies_) {
-    if (s.body < 0) continue;
-    const sim::Pose p = world.bodyPose(s.body);
-    if (s.speed >= 0) observe(checks_[static_cast<std::size_t>(s.speed)], world.bodyLinearVelocity(s.body).norm(), t);
-    if (s.angular >= 0) {
-      observe(checks_[static_cast<std::size_t>(s.angular)], world.bodyAngularVelocity(s.body).norm(), t);
-    }
-    if (s.above >= 0) observe(checks_[static_cast<std::size_t>(s.above)], p.position.y(), t);
-    if (s.rotation >= 0 && t >= s.after - 1e-12) {
-      if (!s.have_start) s.start = p.orientation, s.have_start = true;
-      const double angle = Eigen::AngleAxisd(p.orientation * s.start.inverse()).angle() * kRadToDeg;
-      observe(checks_[static_cast<std::size_t>(s.rotation)], angle, t);
-    }
+    if (s.body >= 0) checkBody(world, s, t);
   }
   for (const FingerState& s : fingers_) {
     if (s.finger < 0) continue;
@@ -158,6 +152,25 @@ void ExpectChecker::afterStep(const sim::World& world) {
       }
       quiet_.emplace_back(t, e);
     }
+  }
+}
+
+// [expect.bodies.NAME]'s limits at this step.
+void ExpectChecker::checkBody(const sim::World& world, BodyState& s, double t) {
+  const sim::Pose p = world.bodyPose(s.body);
+  const sim::Vec3 v = world.bodyLinearVelocity(s.body), w = world.bodyAngularVelocity(s.body);
+  if (s.speed >= 0) observe(checks_[static_cast<std::size_t>(s.speed)], v.norm(), t);
+  if (s.angular >= 0) observe(checks_[static_cast<std::size_t>(s.angular)], w.norm(), t);
+  if (s.above >= 0) observe(checks_[static_cast<std::size_t>(s.above)], p.position.y(), t);
+  if (s.rotation >= 0 && t >= s.after - 1e-12) {
+    if (!s.have_start) s.start = p.orientation, s.have_start = true;
+    const double angle = Eigen::AngleAxisd(p.orientation * s.start.inverse()).angle() * kRadToDeg;
+    observe(checks_[static_cast<std::size_t>(s.rotation)], angle, t);
+  }
+  if (s.rest_speed >= 0 && t > s.rests_after + 1e-12) {
+    observe(checks_[static_cast<std::size_t>(s.rest_speed)], v.norm(), t);
+    // Tilt: turning about a horizontal axis (y is up); a spin about the vertical is not a tilt.
+    observe(checks_[static_cast<std::size_t>(s.rest_tilt)], std::hypot(w.x(), w.z()), t);
   }
 }
 

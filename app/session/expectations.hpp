@@ -55,7 +55,8 @@ class ExpectChecker {
   struct BodyState {
     int body = -1;
     int speed = -1, angular = -1, above = -1, rotation = -1, ends = -1;
-    double after = 0.0;
+    int rest_speed = -1, rest_tilt = -1;  // rests_after: speed and tilt rate after rests_after
+    double after = 0.0, rests_after = 0.0;
     bool have_start = false;
     Eigen::Quaterniond start = Eigen::Quaterniond::Identity();
   };
@@ -68,6 +69,7 @@ class ExpectChecker {
     sim::Vec3 plane_point = sim::Vec3::Zero(), plane_normal = sim::Vec3::UnitY();
   };
   void checkTunnelling(const sim::World& world, FingerState& s, double t);
+  void checkBody(const sim::World& world, BodyState& s, double t);
   std::vector<BodyState> bodies_;
   std::vector<FingerState> fingers_;
   int finite_ = -1, any_speed_ = -1, any_angular_ = -1, energy_ = -1;

@@ -475,6 +475,8 @@ energy_growth = 0.01
 stays_above = 0.01
 max_rotation_deg = 5.0
 after = 0.1
+rests_after = 0.5
+rest_tilt_rate = 0.01
 [expect.fingers.left]
 min_sgo = 3
 window = [0.1, 0.2]
@@ -485,6 +487,9 @@ window = [0.1, 0.2]
   EXPECT_EQ(*s.expect.bodies.at("ball").stays_above, 0.01);
   EXPECT_EQ(*s.expect.bodies.at("ball").max_rotation_deg, 5.0);
   EXPECT_EQ(s.expect.bodies.at("ball").after, 0.1);
+  EXPECT_EQ(*s.expect.bodies.at("ball").rests_after, 0.5);
+  EXPECT_EQ(s.expect.bodies.at("ball").rest_speed, 1e-3);  // the default
+  EXPECT_EQ(s.expect.bodies.at("ball").rest_tilt_rate, 0.01);
   EXPECT_EQ(*s.expect.fingers.at("left").min_sgo, 3);
   EXPECT_EQ(s.expect.fingers.at("left").from, 0.1);
   EXPECT_STREQ(errorOf(kMinimal + "[expect.bodies.ground]\nstays_above = 0.0\n").what(),

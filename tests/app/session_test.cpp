@@ -283,5 +283,29 @@ TEST(Session, ExpectationsPassOnTheHoldAndFailWithGodObjects) {
   EXPECT_EQ(summary["expectations"]["failed"], failed.size());
 }
 
+// rests_after: the pressed puck spun about the vertical by its torque still rests (a spin is not
+// a tilt, and its centre stays put); pushed sideways instead, its speed fails the check.
+TEST(Session, ARestingBodyMaySpinButNotTiltOrMove) {
+  SessionDesc s = loadSceneFile(resolveScenePath("pressed-puck"));
+  s.expect.bodies["puck"].rests_after = 0.5;
+  std::vector<ExpectFailure> failed{{"placeholder", 0, 0, 0}};
+  SessionOptions options = freshOutput("gf_session_rests");
+  options.expect_failures = &failed;
+  runSession(s, options);
+  EXPECT_TRUE(failed.empty()) << failed.front().text();
+  const nlohmann::json measures = readJson(fs::path(options.out_dir) / "summary.json")["measures"];
+  EXPECT_LT(measures["bodies.puck.rests_after.tilt_rate"].get<double>(), 0.05);
+
+  ASSERT_EQ(s.scene.loads.size(), 1u);
+  s.scene.loads[0].torque = sim::Vec3::Zero();
+  s.scene.loads[0].force = sim::Vec3(0.5, 0.0, 0.0);
+  runSession(s, options);
+  std::map<std::string, ExpectFailure> by_name;
+  for (const ExpectFailure& f : failed) by_name[f.name] = f;
+  ASSERT_TRUE(by_name.contains("bodies.puck.rests_after.speed"));
+  EXPECT_GT(by_name["bodies.puck.rests_after.speed"].value, 1e-3);
+  EXPECT_GT(by_name["bodies.puck.rests_after.speed"].time, 0.6);
+}
+
 }  // namespace
 }  // namespace gf::app

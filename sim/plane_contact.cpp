@@ -1,0 +1,208 @@
+// The plane contact test (sim/detail/plane_contact.hpp): a cylinder's or a convex hull's
+// points near a static plane, chosen by the body's geometry so that a resting body keeps them.
+#include "sim/detail/plane_contact.hpp"
+
+#include <cmath>
+
+namespace gf::sim {
+namespace {
+
+// A point within this distance of the deepest one takes part in the contact (m). Far above
+// the tilt of a body at rest (a 3 cm puck tilted by 1e-7 rad: 6e-9 m), far below what a tilt
+// that lifts one side off the plane shows. A point chosen this far above the plane is a
+// speculative contact: the solver lets it close, it pushes nothing.
+constexpr btScalar kActiveBand = 1e-5;
+// The extremes are taken along two body-fixed directions at this angle (rad) to the body's
+// axes: along an axis itself, a box face's corners or a regular polygon's vertices tie.
+constexpr btScalar kPickAngle = 0.349;  // 20 degrees
+// A cylinder's points on each end's rim, at quarter turns from its first cross axis.
+constexpr int kRimPoints = 4;
+
+// The four extremes, along +u, -u, +w and -w, of the points offered: the first offered wins
+// a tie, so points that belong to the body (offered in a fixed order) win over computed ones.
+struct Extremes {
+  btVector3 u, w;
+  btVector3 point[4];
+  btScalar key[4] = {-BT_LARGE_FLOAT, -BT_LARGE_FLOAT, -BT_LARGE_FLOAT, -BT_LARGE_FLOAT};
+
+  void offer(const btVector3& q) {
+    const btScalar along[4] = {u.dot(q), -u.dot(q), w.dot(q), -w.dot(q)};
+    for (int k = 0; k < 4; ++k) {
+      if (along[k] > key[k]) {
+        key[k] = along[k];
+        point[k] = q;
+      }
+    }
+  }
+};
+
+// The plane in the convex body's frame: its outward normal and the distance of a point above it.
+struct LocalPlane {
+  btVector3 normal;
+  btScalar offset = 0;
+  btScalar distance(const btVector3& q) const { return normal.dot(q) - offset; }
+};
+
+// Visits the points of `shape` that can touch a plane below `plane.normal`, in the body frame
+// (its rounding margin included): a hull's vertices; a cylinder's rim points at quarter turns on
+// both ends, and the lowest point of an end's rim where that end is tilted more than the active
+// band (on a flat end the rim points stand for the whole face).
+template <class Visit>
+void visitCandidates(const btConvexShape& shape, const LocalPlane& plane, Visit&& visit) {
+  const btScalar margin = shape.getMargin();
+  const btVector3 rounding = -margin * plane.normal;
+  if (shape.getShapeType() == CYLINDER_SHAPE_PROXYTYPE) {
+    const auto& cylinder = static_cast<const btCylinderShape&>(shape);
+    const int up = cylinder.getUpAxis();
+    const btVector3 inner = cylinder.getHalfExtentsWithoutMargin();
+    const int a = (up + 1) % 3, b = (up + 2) % 3;
+    const btScalar radius = inner[a];
+    btVector3 axis(0, 0, 0), e1(0, 0, 0), e2(0, 0, 0);
+    axis[up] = 1;
+    e1[a] = 1;
+    e2[b] = 1;
+    const btVector3 down_in_end = -(plane.normal - plane.normal.dot(axis) * axis);
+    const btScalar tilt = down_in_end.length();
+    for (const btScalar side : {btScalar(-1), btScalar(1)}) {
+      const btVector3 centre = side * inner[up] * axis;
+      for (int k = 0; k < kRimPoints; ++k) {
+        const btScalar angle = SIMD_2_PI * k / kRimPoints;
+        visit(centre + radius * (std::cos(angle) * e1 + std::sin(angle) * e2) + rounding);
+      }
+    }
+    if (2 * radius * tilt > kActiveBand) {
+      for (const btScalar side : {btScalar(-1), btScalar(1)}) {
+        visit(side * inner[up] * axis + (radius / tilt) * down_in_end + rounding);
+      }
+    }
+    return;
+  }
+  const auto& hull = static_cast<const btConvexHullShape&>(shape);
+  const btVector3* points = hull.getUnscaledPoints();
+  const btVector3& scaling = hull.getLocalScaling();
+  for (int i = 0; i < hull.getNumPoints(); ++i) visit(points[i] * scaling + rounding);
+}
+
+class PlaneContactAlgorithm final : public btCollisionAlgorithm {
+ public:
+  PlaneContactAlgorithm(btPersistentManifold* shared, const btCollisionAlgorithmConstructionInfo& ci,
+                        const btCollisionObjectWrapper* body0, const btCollisionObjectWrapper* body1, bool swapped)
+      : btCollisionAlgorithm(ci), manifold_(shared), swapped_(swapped) {
+    const btCollisionObject* convex = (swapped ? body1 : body0)->getCollisionObject();
+    const btCollisionObject* plane = (swapped ? body0 : body1)->getCollisionObject();
+    if (!manifold_ && m_dispatcher->needsCollision(convex, plane)) {
+      manifold_ = m_dispatcher->getNewManifold(convex, plane);
+      own_manifold_ = true;
+    }
+  }
+  ~PlaneContactAlgorithm() override {
+    if (own_manifold_ && manifold_) m_dispatcher->releaseManifold(manifold_);
+  }
+  PlaneContactAlgorithm(const PlaneContactAlgorithm&) = delete;
+  PlaneContactAlgorithm& operator=(const PlaneContactAlgorithm&) = delete;
+
+  void processCollision(const btCollisionObjectWrapper* body0, const btCollisionObjectWrapper* body1,
+                        const btDispatcherInfo&, btManifoldResult* result) override;
+  btScalar calculateTimeOfImpact(btCollisionObject*, btCollisionObject*, const btDispatcherInfo&,
+                                 btManifoldResult*) override {
+    return 1;
+  }
+  void getAllContactManifolds(btManifoldArray& manifolds) override {
+    if (manifold_ && own_manifold_) manifolds.push_back(manifold_);
+  }
+
+ private:
+  // Drops the manifold's points that none of `chosen` (world) continues.
+  void dropOthers(const btVector3* chosen, int count);
+
+  btPersistentManifold* manifold_;
+  bool own_manifold_ = false;
+  bool swapped_;
+};
+
+void PlaneContactAlgorithm::processCollision(const btCollisionObjectWrapper* body0,
+                                             const btCollisionObjectWrapper* body1, const btDispatcherInfo&,
+                                             btManifoldResult* result) {
+  if (!manifold_) return;
+  const btCollisionObjectWrapper* convex_wrap = swapped_ ? body1 : body0;
+  const btCollisionObjectWrapper* plane_wrap = swapped_ ? body0 : body1;
+  const auto& shape = *static_cast<const btConvexShape*>(convex_wrap->getCollisionShape());
+  const auto& plane_shape = *static_cast<const btStaticPlaneShape*>(plane_wrap->getCollisionShape());
+  const btTransform& body = convex_wrap->getWorldTransform();
+  const btTransform& plane_pose = plane_wrap->getWorldTransform();
+  const btVector3 normal = plane_pose.getBasis() * plane_shape.getPlaneNormal();
+  const btVector3 on_plane = plane_pose * (plane_shape.getPlaneNormal() * plane_shape.getPlaneConstant());
+  LocalPlane plane;
+  plane.normal = body.getBasis().transpose() * normal;
+  plane.offset = plane.normal.dot(body.invXform(on_plane));
+  result->setPersistentManifold(manifold_);
+
+  btScalar deepest = BT_LARGE_FLOAT;
+  visitCandidates(shape, plane, [&](const btVector3& q) { deepest = std::min(deepest, plane.distance(q)); });
+  const btScalar breaking = manifold_->getContactBreakingThreshold();
+  if (deepest >= breaking) {
+    if (own_manifold_) manifold_->clearManifold();
+    return;
+  }
+  // Two body-fixed directions across the plane: the body axes least along its normal, turned.
+  int across = 0;
+  for (int i = 1; i < 3; ++i) {
+    if (std::abs(plane.normal[i]) > std::abs(plane.normal[across])) across = i;
+  }
+  btVector3 e1(0, 0, 0), e2(0, 0, 0);
+  e1[(across + 1) % 3] = 1;
+  e2[(across + 2) % 3] = 1;
+  Extremes ex;
+  ex.u = std::cos(kPickAngle) * e1 + std::sin(kPickAngle) * e2;
+  ex.w = -std::sin(kPickAngle) * e1 + std::cos(kPickAngle) * e2;
+  visitCandidates(shape, plane, [&](const btVector3& q) {
+    if (plane.distance(q) < deepest + kActiveBand) ex.offer(q);
+  });
+  btVector3 chosen[4], world[4];
+  int count = 0;
+  for (const btVector3& q : ex.point) {
+    bool seen = false;
+    for (int k = 0; k < count; ++k) seen = seen || chosen[k] == q;
+    if (!seen) {
+      chosen[count] = q;
+      world[count++] = body * q;
+    }
+  }
+  if (own_manifold_) dropOthers(world, count);
+  for (int k = 0; k < count; ++k) {
+    const btScalar d = plane.distance(chosen[k]);
+    result->addContactPoint(normal, world[k] - d * normal, d);
+  }
+  if (own_manifold_ && manifold_->getNumContacts() > 0) result->refreshContactPoints();
+}
+
+void PlaneContactAlgorithm::dropOthers(const btVector3* chosen, int count) {
+  // The manifold's first body is the convex one (getNewManifold(convex, plane)); its points are
+  // kept in that object's frame (a compound's, for a part of one).
+  const btTransform& object = manifold_->getBody0()->getWorldTransform();
+  const btScalar reach2 = manifold_->getContactBreakingThreshold() * manifold_->getContactBreakingThreshold();
+  for (int i = manifold_->getNumContacts() - 1; i >= 0; --i) {
+    const btVector3 on_body = object * manifold_->getContactPoint(i).m_localPointA;
+    bool continued = false;
+    for (int k = 0; k < count; ++k) continued = continued || (chosen[k] - on_body).length2() < reach2;
+    if (!continued) manifold_->removeContactPoint(i);
+  }
+}
+
+}  // namespace
+
+btCollisionAlgorithm* PlaneContactCreateFunc::CreateCollisionAlgorithm(btCollisionAlgorithmConstructionInfo& ci,
+                                                                       const btCollisionObjectWrapper* body0,
+                                                                       const btCollisionObjectWrapper* body1) {
+  void* memory = ci.m_dispatcher1->allocateCollisionAlgorithm(sizeof(PlaneContactAlgorithm));
+  return new (memory) PlaneContactAlgorithm(ci.m_manifold, ci, body0, body1, m_swapped);
+}
+
+void PlaneContacts::registerWith(btCollisionDispatcher& dispatcher) {
+  for (const int convex : {CYLINDER_SHAPE_PROXYTYPE, CONVEX_HULL_SHAPE_PROXYTYPE}) {
+    dispatcher.registerCollisionCreateFunc(convex, STATIC_PLANE_PROXYTYPE, &convex_first);
+    dispatcher.registerCollisionCreateFunc(STATIC_PLANE_PROXYTYPE, convex, &plane_first);
+  }
+}
+
+}  // namespace gf::sim
