@@ -3,6 +3,9 @@
 namespace gf::sim {
 namespace {
 
+// addPointRows' torsion for a god-finger patch: from its points (patchTorsion).
+constexpr double kTorsionFromPoints = -1.0;
+
 // The true contact's share of the contact's load, stiffness and damping: the patch's centre
 // share when the patch has points, else all of it.
 double truthShare(const FingerContact& c) {
@@ -52,46 +55,6 @@ btVector3 onTangentPlane(const btVector3& centre, const TrueContact& truth) {
   return truth.point_world + off - off.dot(n) * n;
 }
 
-// The block's points for its torsion limit: the true contact's kept manifold point, then the
-// injected points, each with its lever about the block's centre across the normal.
-void addBlockPoints(const ContactToSolve& in, const FrictionBlock& block, SolveRows& out) {
-  const FingerContact& c = in.contact;
-  const btVector3& nw = block.normal;
-  const auto lever = [&](const btVector3& p) {
-    const btVector3 r = p - block.centre;
-    return (r - r.dot(nw) * nw).length();
-  };
-  const bool proxy_is_a = c.manifold->getBody0() == in.proxy;
-  out.solver.addPoint({&c.manifold->getContactPoint(0), lever(c.truth.point_world), proxy_is_a});
-  for (int i = 0; i < c.sgo_count; ++i) {
-    const auto m = static_cast<std::size_t>(c.first_injected + i / MANIFOLD_CACHE_SIZE);
-    out.solver.addPoint({&out.injected[m]->getContactPoint(i % MANIFOLD_CACHE_SIZE), lever(c.sgo_world[i]), true});
-  }
-}
-
-// Points solver: the true contact and the patch's points are contact rows of Bullet's solver,
-// each with its share of the stiffness and damping (by load share) and no friction of its own;
-// the contact's friction is one block at the load's centre with the model's `torsion` limit.
-void addPointRows(const ContactToSolve& in, double torsion, SolveRows& out) {
-  FingerContact& c = in.contact;
-  const double share = truthShare(c);
-  FrictionBlock block = frictionBlock(in);
-  c.aggregate = false;
-  keepOnlyPoint(*c.manifold, c.truth.index, {in.stiffness * share, in.damping * share, 0.0},
-                in.memory ? in.memory->truth : WarmStart{});
-  const btVector3 centre = preparePatchPoints(in, share);
-  if (c.sgo_count > 0) {
-    c.first_injected = static_cast<int>(out.injected.size());
-    injectPoints(out.dispatcher, in.proxy, c.truth.object, c.sgo_world.data(), c.sgo_count,
-                 c.truth.outward_normal_world, c.sgo_separation.data(), c.sgo_material.data(),
-                 c.sgo_warm.data(), out.injected);
-  }
-  block.centre = onTangentPlane(centre, c.truth);
-  block.torsion = torsion;
-  c.block = out.solver.addBlock(block);
-  addBlockPoints(in, block, out);
-}
-
 // The points an aggregate block stands for, into `out` (the true contact first): as in the
 // points solver only the points that press (depth <= 0) push; while none presses (within the
 // release gap) all of them do, speculatively. Returns how many and the sum of their shares.
@@ -120,6 +83,56 @@ Pressing pressingPoints(const FingerContact& c, double truth_share, AggregateScr
     }
   }
   return p;
+}
+
+// The block's points, whose normal impulses limit its friction: the true contact's kept manifold
+// point, then the injected points.
+void addBlockPoints(const ContactToSolve& in, SolveRows& out) {
+  const FingerContact& c = in.contact;
+  const bool proxy_is_a = c.manifold->getBody0() == in.proxy;
+  out.solver.addPoint({&c.manifold->getContactPoint(0), proxy_is_a});
+  for (int i = 0; i < c.sgo_count; ++i) {
+    const auto m = static_cast<std::size_t>(c.first_injected + i / MANIFOLD_CACHE_SIZE);
+    out.solver.addPoint({&out.injected[m]->getContactPoint(i % MANIFOLD_CACHE_SIZE), true});
+  }
+}
+
+// A patch's torsion limit per unit normal impulse (m): mu times its pressing points' mean lever
+// about the load's centre, weighted by their load shares, as the aggregate block takes it. Not
+// from the points' solved impulses: damping on their normal rows turns a tilt wobble into push
+// and pull, the clamp at zero keeps only the push, and load moved to the rim raised the limit
+// by up to 13 % while the body spun.
+double patchTorsion(const FingerContact& c, const FrictionBlock& block, AggregateScratch& s) {
+  const Pressing p = pressingPoints(c, truthShare(c), s);
+  double lever = 0.0;
+  for (int i = 0; i < p.count; ++i) {
+    const btVector3 r = s.points[static_cast<std::size_t>(i)] - block.centre;
+    lever += s.shares[static_cast<std::size_t>(i)] * (r - r.dot(block.normal) * block.normal).length();
+  }
+  return p.share > 0.0 ? block.friction * lever / p.share : 0.0;
+}
+
+// Points solver: the true contact and the patch's points are contact rows of Bullet's solver,
+// each with its share of the stiffness and damping (by load share) and no friction of its own;
+// the contact's friction is one block at the load's centre with the model's `torsion` limit.
+void addPointRows(const ContactToSolve& in, double torsion, SolveRows& out) {
+  FingerContact& c = in.contact;
+  const double share = truthShare(c);
+  FrictionBlock block = frictionBlock(in);
+  c.aggregate = false;
+  keepOnlyPoint(*c.manifold, c.truth.index, {in.stiffness * share, in.damping * share, 0.0},
+                in.memory ? in.memory->truth : WarmStart{});
+  const btVector3 centre = preparePatchPoints(in, share);
+  if (c.sgo_count > 0) {
+    c.first_injected = static_cast<int>(out.injected.size());
+    injectPoints(out.dispatcher, in.proxy, c.truth.object, c.sgo_world.data(), c.sgo_count,
+                 c.truth.outward_normal_world, c.sgo_separation.data(), c.sgo_material.data(),
+                 c.sgo_warm.data(), out.injected);
+  }
+  block.centre = onTangentPlane(centre, c.truth);
+  block.torsion = torsion == kTorsionFromPoints ? patchTorsion(c, block, out.scratch) : torsion;
+  c.block = out.solver.addBlock(block);
+  addBlockPoints(in, out);
 }
 
 // Aggregate solver: one block whose normal and tilt rows the pressing points make, with their

@@ -345,10 +345,9 @@ double PatchFrictionSolver::solvePress(Bound& b) {
   return residual;
 }
 
-// The normal impulse a block's friction is limited by, and its sum of impulse times lever.
-double PatchFrictionSolver::blockNormal(const Bound& b, double& levered) const {
+// The normal impulse a block's friction is limited by.
+double PatchFrictionSolver::blockNormal(const Bound& b) const {
   const FrictionBlock& fb = blocks_[static_cast<std::size_t>(b.block)];
-  levered = 0.0;
   if (fb.aggregate) return b.lambda[kNormalRow];
   double normal = 0.0;
   for (int i = fb.first_point; i < fb.first_point + fb.point_count; ++i) {
@@ -356,7 +355,6 @@ double PatchFrictionSolver::blockNormal(const Bound& b, double& levered) const {
     if (j < 0) continue;
     const double lambda_n = std::max(0.0, static_cast<double>(m_tmpSolverContactConstraintPool[j].m_appliedImpulse));
     normal += lambda_n;
-    levered += lambda_n * points_[static_cast<std::size_t>(i)].lever;
   }
   return normal;
 }
@@ -372,10 +370,9 @@ double PatchFrictionSolver::blockNormal(const Bound& b, double& levered) const {
 // whole friction on the torsion row and slid with no friction force at all.
 double PatchFrictionSolver::solveBlock(Bound& b) {
   const FrictionBlock& fb = blocks_[static_cast<std::size_t>(b.block)];
-  double levered = 0.0;
-  const double normal = blockNormal(b, levered);
+  const double normal = blockNormal(b);
   const double slide_limit = fb.friction * normal;
-  const double twist_limit = fb.torsion < 0.0 ? fb.friction * levered : fb.torsion * normal;
+  const double twist_limit = fb.torsion * normal;
   const double limit[kFrictionRows] = {slide_limit, slide_limit, twist_limit};
   double u[kFrictionRows];
   const Motion m = motion(b);
@@ -453,8 +450,7 @@ btScalar PatchFrictionSolver::solveGroupCacheFriendlyFinish(btCollisionObject** 
     FrictionBlock& fb = blocks_[static_cast<std::size_t>(b.block)];
     fb.force = b.lambda[0] * b.t1 + b.lambda[1] * b.t2;
     fb.torque = b.lambda[2];
-    double levered = 0.0;
-    fb.normal_impulse = blockNormal(b, levered);
+    fb.normal_impulse = blockNormal(b);
     if (fb.aggregate) fb.press.tilt = b.lambda[kNormalRow + 1] * fb.press.tilt_axis[0] + b.lambda[kNormalRow + 2] * fb.press.tilt_axis[1];
     fb.solved = true;
   }

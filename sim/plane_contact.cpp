@@ -1,4 +1,4 @@
-// The plane contact test (sim/detail/plane_contact.hpp): a cylinder's or a convex hull's
+// The plane contact test (sim/detail/plane_contact.hpp): a box's, a cylinder's or a hull's
 // points near a static plane, chosen by the body's geometry so that a resting body keeps them.
 #include "sim/detail/plane_contact.hpp"
 
@@ -44,7 +44,7 @@ struct LocalPlane {
 };
 
 // Visits the points of `shape` that can touch a plane below `plane.normal`, in the body frame
-// (its rounding margin included): a hull's vertices; a cylinder's rim points at quarter turns on
+// (its rounding margin included): a box's or a hull's vertices; a cylinder's rim points at quarter turns on
 // both ends, and the lowest point of an end's rim where that end is tilted more than the active
 // band (on a flat end the rim points stand for the whole face).
 template <class Visit>
@@ -77,10 +77,12 @@ void visitCandidates(const btConvexShape& shape, const LocalPlane& plane, Visit&
     }
     return;
   }
-  const auto& hull = static_cast<const btConvexHullShape&>(shape);
-  const btVector3* points = hull.getUnscaledPoints();
-  const btVector3& scaling = hull.getLocalScaling();
-  for (int i = 0; i < hull.getNumPoints(); ++i) visit(points[i] * scaling + rounding);
+  const auto& polyhedron = static_cast<const btPolyhedralConvexShape&>(shape);
+  btVector3 vertex;
+  for (int i = 0; i < polyhedron.getNumVertices(); ++i) {
+    polyhedron.getVertex(i, vertex);
+    visit(vertex + rounding);
+  }
 }
 
 class PlaneContactAlgorithm final : public btCollisionAlgorithm {
@@ -199,7 +201,7 @@ btCollisionAlgorithm* PlaneContactCreateFunc::CreateCollisionAlgorithm(btCollisi
 }
 
 void PlaneContacts::registerWith(btCollisionDispatcher& dispatcher) {
-  for (const int convex : {CYLINDER_SHAPE_PROXYTYPE, CONVEX_HULL_SHAPE_PROXYTYPE}) {
+  for (const int convex : {BOX_SHAPE_PROXYTYPE, CYLINDER_SHAPE_PROXYTYPE, CONVEX_HULL_SHAPE_PROXYTYPE}) {
     dispatcher.registerCollisionCreateFunc(convex, STATIC_PLANE_PROXYTYPE, &convex_first);
     dispatcher.registerCollisionCreateFunc(STATIC_PLANE_PROXYTYPE, convex, &plane_first);
   }

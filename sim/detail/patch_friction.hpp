@@ -3,9 +3,9 @@
 // Friction: two tangential rows at the patch's load centre and a torsional row about its normal,
 // limited together by the contact's total normal impulse. With the "points" solver the patch's
 // points carry only normal rows (their own friction is zero) and the block gives the whole
-// contact one isotropic friction disc instead of a pyramid per point, a torsion limit that is
-// the sum of the points' own (mu N_i times their distance from the centre) for a god-finger
-// patch or mu_t N for a soft finger, and it converges in the iterations Bullet already runs.
+// contact one isotropic friction disc instead of a pyramid per point, a torsion limit of mu N
+// times the points' load-weighted mean lever for a god-finger patch (the aggregate's) or mu_t N
+// for a soft finger, and it converges in the iterations Bullet already runs.
 //
 // Aggregate ("aggregate" solver): the patch's points reach the solver as three more rows of the
 // same block instead of one contact row each: the normal at the load centre and two tilt rows
@@ -28,9 +28,6 @@
 
 namespace gf::sim {
 
-/// FrictionBlock::torsion of a block whose torsion limit comes from its points.
-inline constexpr double kTorsionFromPoints = -1.0;
-
 /// One finger's contact with one body, as the solver sees it. Filled before the solve (World's
 /// beforeSolve), read after it.
 struct FrictionBlock {
@@ -39,9 +36,7 @@ struct FrictionBlock {
   btVector3 centre{0, 0, 0};  ///< where the tangential (and aggregate normal) rows act (world, m)
   btVector3 normal{0, 1, 0};  ///< outward contact normal of the object (unit, world)
   double friction = 0.0;      ///< Coulomb coefficient against sliding
-  /// Torsion limit per unit normal impulse (m): kTorsionFromPoints (< 0) for "from the points"
-  /// (mu times the sum of each point's normal impulse times its lever, FrictionPoint::lever);
-  /// 0 for none.
+  /// Torsion limit per unit normal impulse (m); 0 for none.
   double torsion = 0.0;
   /// Warm start: last step's friction impulse on the proxy (world, N s) and torsional impulse
   /// about the normal (N m s).
@@ -59,10 +54,9 @@ struct FrictionBlock {
   bool solved = false;  ///< false when none of its points (or bodies) reached the solver this step
 };
 
-/// One contact point of a block: which manifold point it is and its lever about the centre.
+/// One contact point of a block: which manifold point it is.
 struct FrictionPoint {
   const btManifoldPoint* point = nullptr;
-  double lever = 0.0;  ///< distance from the block's centre across the normal (m)
   bool proxy_is_a = true;  ///< the proxy is body 0 of the point's manifold
 };
 
@@ -126,7 +120,7 @@ class PatchFrictionSolver final : public btSequentialImpulseConstraintSolver {
   static void invertActive(Eigen::Matrix3d K, const bool active[3], double inv[3][3], double kept[3][3]);
   double solvePress(Bound& b);
   double solveBlock(Bound& b);
-  double blockNormal(const Bound& b, double& levered) const;
+  double blockNormal(const Bound& b) const;
   static Eigen::Vector3d projectOntoLimit(const Eigen::Matrix3d& e, const Eigen::Vector3d& d, const Eigen::Vector3d& y,
                                           double outside);
 

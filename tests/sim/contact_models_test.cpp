@@ -97,11 +97,13 @@ TEST_F(ContactModels, ASoftFingersTorsionLimitIsItsTorsionalFrictionWhileFrictio
   EXPECT_EQ(off.friction, 0.0);
 }
 
-TEST_F(ContactModels, AGodFingerPatchIsItsPointsWithTheirOwnTorsionLimit) {
+// The points solver's torsion limit is the aggregate's (mu times the points' load-weighted mean
+// lever), not one taken from the solved normal impulses.
+TEST_F(ContactModels, AGodFingerPatchIsItsPointsWithTheAggregatesTorsionLimit) {
   ring(8, 0.005);
   const FrictionBlock& b = rowsOf(settings(ContactModel::kGodFinger));
   EXPECT_EQ(b.point_count, 9) << "the true contact and 8 SGOs";
-  EXPECT_EQ(b.torsion, kTorsionFromPoints);
+  EXPECT_NEAR(b.torsion, 8.0 / 9.0 * 0.005, 1e-12) << "mu times the points' mean lever";
   EXPECT_EQ(injected_.size(), 2u) << "4 points per manifold";
   EXPECT_NEAR(b.centre.length(), 0.0, 1e-12) << "a balanced ring: the load's centre at the contact";
   EXPECT_NEAR(c_->sgo_material[0].stiffness, kStiffness / 9.0, 1e-9);
