@@ -19,7 +19,7 @@ btTransform poseOf(const Vec3& p, const Eigen::Quaterniond& q) {
 World::Impl::Impl(const SceneDesc& d) : desc(d) {
   requireValid(desc);
   btGImpactCollisionAlgorithm::registerAlgorithm(&dispatcher);
-  plane_contacts.registerWith(dispatcher);
+  contact_algorithms.registerWith(dispatcher);
   world.setGravity(desc.effects.gravity ? toBt(desc.world.gravity) : btVector3(0, 0, 0));
   configureSolver();
   bodies.resize(desc.bodies.size());

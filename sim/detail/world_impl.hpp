@@ -16,7 +16,7 @@
 
 #include "sim/detail/body_factory.hpp"
 #include "sim/detail/contact_models.hpp"
-#include "sim/detail/plane_contact.hpp"
+#include "sim/detail/contact_algorithms.hpp"
 #include "sim/world.hpp"
 
 namespace gf::sim {
@@ -100,7 +100,7 @@ struct World::Impl final : SolveHooks {
   // Bullet's parts, each declared after what it points to: the world is destroyed first, and
   // ~Impl removes every body from it before that.
   btDefaultCollisionConfiguration config;
-  PlaneContacts plane_contacts;  // cylinders and hulls on planes (registered in the constructor)
+  ContactAlgorithms contact_algorithms;  // our collision tests (registered in the constructor)
   btCollisionDispatcher dispatcher{&config};
   btDbvtBroadphase broadphase;
   PatchFrictionSolver solver;

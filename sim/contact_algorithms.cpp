@@ -1,6 +1,6 @@
-// The plane contact test (sim/detail/plane_contact.hpp): a box's, a cylinder's or a hull's
+// The plane contact test (sim/detail/contact_algorithms.hpp): a box's, a cylinder's or a hull's
 // points near a static plane, chosen by the body's geometry so that a resting body keeps them.
-#include "sim/detail/plane_contact.hpp"
+#include "sim/detail/contact_algorithms.hpp"
 
 #include <cmath>
 
@@ -85,26 +85,24 @@ void visitCandidates(const btConvexShape& shape, const LocalPlane& plane, Visit&
   }
 }
 
-class PlaneContactAlgorithm final : public btCollisionAlgorithm {
+// A test of a pair with one manifold, its own unless it was given one (a compound's parts may
+// share their parent's); the manifold's first body is `first`.
+class ManifoldAlgorithm : public btCollisionAlgorithm {
  public:
-  PlaneContactAlgorithm(btPersistentManifold* shared, const btCollisionAlgorithmConstructionInfo& ci,
-                        const btCollisionObjectWrapper* body0, const btCollisionObjectWrapper* body1, bool swapped)
-      : btCollisionAlgorithm(ci), manifold_(shared), swapped_(swapped) {
-    const btCollisionObject* convex = (swapped ? body1 : body0)->getCollisionObject();
-    const btCollisionObject* plane = (swapped ? body0 : body1)->getCollisionObject();
-    if (!manifold_ && m_dispatcher->needsCollision(convex, plane)) {
-      manifold_ = m_dispatcher->getNewManifold(convex, plane);
+  ManifoldAlgorithm(btPersistentManifold* shared, const btCollisionAlgorithmConstructionInfo& ci,
+                    const btCollisionObject* first, const btCollisionObject* second)
+      : btCollisionAlgorithm(ci), manifold_(shared) {
+    if (!manifold_ && m_dispatcher->needsCollision(first, second)) {
+      manifold_ = m_dispatcher->getNewManifold(first, second);
       own_manifold_ = true;
     }
   }
-  ~PlaneContactAlgorithm() override {
+  ~ManifoldAlgorithm() override {
     if (own_manifold_ && manifold_) m_dispatcher->releaseManifold(manifold_);
   }
-  PlaneContactAlgorithm(const PlaneContactAlgorithm&) = delete;
-  PlaneContactAlgorithm& operator=(const PlaneContactAlgorithm&) = delete;
+  ManifoldAlgorithm(const ManifoldAlgorithm&) = delete;
+  ManifoldAlgorithm& operator=(const ManifoldAlgorithm&) = delete;
 
-  void processCollision(const btCollisionObjectWrapper* body0, const btCollisionObjectWrapper* body1,
-                        const btDispatcherInfo&, btManifoldResult* result) override;
   btScalar calculateTimeOfImpact(btCollisionObject*, btCollisionObject*, const btDispatcherInfo&,
                                  btManifoldResult*) override {
     return 1;
@@ -113,13 +111,38 @@ class PlaneContactAlgorithm final : public btCollisionAlgorithm {
     if (manifold_ && own_manifold_) manifolds.push_back(manifold_);
   }
 
- private:
-  // Drops the manifold's points that none of `chosen` (world) continues.
-  void dropOthers(const btVector3* chosen, int count);
+ protected:
+  // Drops the manifold's points that none of `kept` (world points on its first body, within
+  // the breaking threshold) continues.
+  void dropOthers(const btVector3* kept, int count);
 
   btPersistentManifold* manifold_;
   bool own_manifold_ = false;
+};
+
+class PlaneContactAlgorithm final : public ManifoldAlgorithm {
+ public:
+  PlaneContactAlgorithm(btPersistentManifold* shared, const btCollisionAlgorithmConstructionInfo& ci,
+                        const btCollisionObjectWrapper* body0, const btCollisionObjectWrapper* body1, bool swapped)
+      : ManifoldAlgorithm(shared, ci, (swapped ? body1 : body0)->getCollisionObject(),
+                          (swapped ? body0 : body1)->getCollisionObject()),
+        swapped_(swapped) {}
+
+  void processCollision(const btCollisionObjectWrapper* body0, const btCollisionObjectWrapper* body1,
+                        const btDispatcherInfo&, btManifoldResult* result) override;
+
+ private:
   bool swapped_;
+};
+
+class SphereContactAlgorithm final : public ManifoldAlgorithm {
+ public:
+  SphereContactAlgorithm(const btCollisionAlgorithmConstructionInfo& ci, const btCollisionObjectWrapper* body0,
+                         const btCollisionObjectWrapper* body1)
+      : ManifoldAlgorithm(ci.m_manifold, ci, body0->getCollisionObject(), body1->getCollisionObject()) {}
+
+  void processCollision(const btCollisionObjectWrapper* body0, const btCollisionObjectWrapper* body1,
+                        const btDispatcherInfo&, btManifoldResult* result) override;
 };
 
 void PlaneContactAlgorithm::processCollision(const btCollisionObjectWrapper* body0,
@@ -178,15 +201,37 @@ void PlaneContactAlgorithm::processCollision(const btCollisionObjectWrapper* bod
   if (own_manifold_ && manifold_->getNumContacts() > 0) result->refreshContactPoints();
 }
 
-void PlaneContactAlgorithm::dropOthers(const btVector3* chosen, int count) {
-  // The manifold's first body is the convex one (getNewManifold(convex, plane)); its points are
-  // kept in that object's frame (a compound's, for a part of one).
+// The two spheres' closest points while their gap is within the breaking threshold, one point.
+void SphereContactAlgorithm::processCollision(const btCollisionObjectWrapper* body0,
+                                              const btCollisionObjectWrapper* body1, const btDispatcherInfo&,
+                                              btManifoldResult* result) {
+  if (!manifold_) return;
+  result->setPersistentManifold(manifold_);
+  const btScalar r0 = static_cast<const btSphereShape*>(body0->getCollisionShape())->getRadius();
+  const btScalar r1 = static_cast<const btSphereShape*>(body1->getCollisionShape())->getRadius();
+  const btVector3 c0 = body0->getWorldTransform().getOrigin(), c1 = body1->getWorldTransform().getOrigin();
+  const btVector3 apart = c0 - c1;
+  const btScalar length = apart.length();
+  const btScalar gap = length - r0 - r1;
+  if (gap > manifold_->getContactBreakingThreshold()) {
+    if (own_manifold_) manifold_->clearManifold();
+    return;
+  }
+  const btVector3 normal_on_1 = length > SIMD_EPSILON ? apart / length : btVector3(1, 0, 0);
+  const btVector3 on_0 = c0 - r0 * normal_on_1;
+  // The manifold's first body is the first sphere (getNewManifold(body0, body1)).
+  if (own_manifold_ && manifold_->getBody0() == body0->getCollisionObject()) dropOthers(&on_0, 1);
+  result->addContactPoint(normal_on_1, c1 + r1 * normal_on_1, gap);
+}
+
+void ManifoldAlgorithm::dropOthers(const btVector3* kept, int count) {
+  // The points are kept in the first object's frame (a compound's, for a part of one).
   const btTransform& object = manifold_->getBody0()->getWorldTransform();
   const btScalar reach2 = manifold_->getContactBreakingThreshold() * manifold_->getContactBreakingThreshold();
   for (int i = manifold_->getNumContacts() - 1; i >= 0; --i) {
     const btVector3 on_body = object * manifold_->getContactPoint(i).m_localPointA;
     bool continued = false;
-    for (int k = 0; k < count; ++k) continued = continued || (chosen[k] - on_body).length2() < reach2;
+    for (int k = 0; k < count; ++k) continued = continued || (kept[k] - on_body).length2() < reach2;
     if (!continued) manifold_->removeContactPoint(i);
   }
 }
@@ -200,7 +245,15 @@ btCollisionAlgorithm* PlaneContactCreateFunc::CreateCollisionAlgorithm(btCollisi
   return new (memory) PlaneContactAlgorithm(ci.m_manifold, ci, body0, body1, m_swapped);
 }
 
-void PlaneContacts::registerWith(btCollisionDispatcher& dispatcher) {
+btCollisionAlgorithm* SphereContactCreateFunc::CreateCollisionAlgorithm(btCollisionAlgorithmConstructionInfo& ci,
+                                                                        const btCollisionObjectWrapper* body0,
+                                                                        const btCollisionObjectWrapper* body1) {
+  void* memory = ci.m_dispatcher1->allocateCollisionAlgorithm(sizeof(SphereContactAlgorithm));
+  return new (memory) SphereContactAlgorithm(ci, body0, body1);
+}
+
+void ContactAlgorithms::registerWith(btCollisionDispatcher& dispatcher) {
+  dispatcher.registerCollisionCreateFunc(SPHERE_SHAPE_PROXYTYPE, SPHERE_SHAPE_PROXYTYPE, &spheres);
   for (const int convex : {BOX_SHAPE_PROXYTYPE, CYLINDER_SHAPE_PROXYTYPE, CONVEX_HULL_SHAPE_PROXYTYPE}) {
     dispatcher.registerCollisionCreateFunc(convex, STATIC_PLANE_PROXYTYPE, &convex_first);
     dispatcher.registerCollisionCreateFunc(STATIC_PLANE_PROXYTYPE, convex, &plane_first);
