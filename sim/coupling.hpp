@@ -10,7 +10,18 @@ struct CouplingSettings {
   double stiffness = 800.0;  ///< N/m
   double damping = 10.0;     ///< N s/m, on the device-proxy relative velocity (zeta ~ 0.56)
   double max_force = 40.0;   ///< N: the coupling force is clamped to this magnitude
+  /// N/s: how fast the force sent to the device may change (World::feedbackForce), whatever the
+  /// device or the contact does; 0: max_force / kDefaultForceRamp
+  double max_force_rate = 0.0;
 };
+
+/// s: the default max_force_rate takes this long from zero to max_force.
+inline constexpr double kDefaultForceRamp = 0.1;
+
+/// The force sent to the device may change by at most this much a second (N/s).
+inline double maxForceRate(const CouplingSettings& s) {
+  return s.max_force_rate > 0.0 ? s.max_force_rate : s.max_force / kDefaultForceRamp;
+}
 
 /// The proxy: a small sphere, rotation locked and gravity compensated.
 struct ProxySettings {

@@ -211,6 +211,7 @@ std::span<const Setting<FingerDesc>> fingerSettings() {
       aboveMin(row<F, &F::coupling, &CouplingSettings::stiffness>("coupling_stiffness", "N/m", 0.0, 1e6)),
       row<F, &F::coupling, &CouplingSettings::damping>("coupling_damping", "N s/m", 0.0, 1e5),
       aboveMin(row<F, &F::coupling, &CouplingSettings::max_force>("max_force", "N", 0.0, 1e4)),
+      row<F, &F::coupling, &CouplingSettings::max_force_rate>("max_force_rate", "N/s", 0.0, 1e7),
   };
   return kTable;
 }

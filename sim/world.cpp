@@ -31,6 +31,7 @@ void World::step(double dt, std::span<const DeviceSample> devices) {
   w.world.stepSimulation(dt, 0, dt);
   w.countStep(dt);
   w.checkStep();
+  w.slewSentForces(dt);
 }
 
 double World::time() const {
@@ -63,8 +64,10 @@ Vec3 World::bodyAngularVelocity(int body) const {
   return toEigen(impl_->bodies[body].rigid->getAngularVelocity());
 }
 
-std::vector<World::Overlap> World::bodyOverlaps(double tolerance) const {
-  GF_ASSERT_OWNER();
+namespace {
+
+// How deep two objects overlap (m; 0 when apart), by their own collision test.
+double overlapDepth(btCollisionWorld& world, btCollisionObject& a, btCollisionObject& b) {
   struct Deepest : btCollisionWorld::ContactResultCallback {
     double depth = 0.0;
     btScalar addSingleResult(btManifoldPoint& p, const btCollisionObjectWrapper*, int, int,
@@ -73,6 +76,15 @@ std::vector<World::Overlap> World::bodyOverlaps(double tolerance) const {
       return 0;
     }
   };
+  Deepest deepest;
+  world.contactPairTest(&a, &b, deepest);
+  return deepest.depth;
+}
+
+}  // namespace
+
+std::vector<World::Overlap> World::bodyOverlaps(double tolerance) const {
+  GF_ASSERT_OWNER();
   std::vector<Overlap> out;
   auto& bodies = impl_->bodies;
   for (std::size_t a = 0; a < bodies.size(); ++a) {
@@ -80,9 +92,20 @@ std::vector<World::Overlap> World::bodyOverlaps(double tolerance) const {
       btRigidBody& ra = *bodies[a].rigid;
       btRigidBody& rb = *bodies[b].rigid;
       if (ra.getInvMass() == 0.0 && rb.getInvMass() == 0.0) continue;
-      Deepest deepest;
-      impl_->world.contactPairTest(&ra, &rb, deepest);
-      if (deepest.depth > tolerance) out.push_back({static_cast<int>(a), static_cast<int>(b), deepest.depth});
+      const double depth = overlapDepth(impl_->world, ra, rb);
+      if (depth > tolerance) out.push_back({static_cast<int>(a), static_cast<int>(b), depth});
+    }
+  }
+  return out;
+}
+
+std::vector<World::ProxyOverlap> World::proxyOverlaps(double tolerance) const {
+  GF_ASSERT_OWNER();
+  std::vector<ProxyOverlap> out;
+  for (std::size_t f = 0; f < impl_->fingers.size(); ++f) {
+    for (std::size_t b = 0; b < impl_->bodies.size(); ++b) {
+      const double depth = overlapDepth(impl_->world, *impl_->fingers[f].proxy, *impl_->bodies[b].rigid);
+      if (depth > tolerance) out.push_back({static_cast<int>(f), static_cast<int>(b), depth});
     }
   }
   return out;
@@ -111,7 +134,12 @@ Vec3 World::couplingForce(int finger) const {
 
 Vec3 World::feedbackForce(int finger) const {
   GF_ASSERT_OWNER();
-  return impl_->desc.effects.force_feedback ? Vec3(-impl_->fingers[finger].force) : Vec3::Zero();
+  return impl_->fingers[finger].sent;
+}
+
+double World::portEnergy(int finger) const {
+  GF_ASSERT_OWNER();
+  return impl_->fingers[finger].port_energy;
 }
 
 bool World::touching(int finger) const {

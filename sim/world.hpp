@@ -69,9 +69,15 @@ class World {
   /// The finger's device position of the last step (m).
   Vec3 devicePosition(int finger) const;
   Vec3 couplingForce(int finger) const;
-  /// The force the finger's device is to render (N): the opposite of the coupling force, or
-  /// zero when the scene turns force feedback off.
+  /// The force the finger's device is to render (N): the opposite of the coupling force (zero
+  /// when the scene turns force feedback off), followed at most max_force_rate fast, so that it
+  /// never jumps whatever the device's position or the contact does.
   Vec3 feedbackForce(int finger) const;
+  /// The passivity observer of the finger's device port (Hannaford and Ryu 2002): the work the
+  /// hand has done on the device against the force sent, the sum over steps of
+  /// -feedbackForce . (device displacement) (J). A passive simulation never lets it fall below
+  /// zero: it returns no more energy than it was given.
+  double portEnergy(int finger) const;
   /// Finger i's proxy touched a body in the last step.
   bool touching(int finger) const;
   /// SGOs finger i fed to the solver in the last step, over all its contacts.
@@ -101,6 +107,14 @@ class World {
   /// for scenes that start with bodies inside each other. Runs the collision tests of those
   /// pairs on their own, leaving the world's contact state as it was. Allocates.
   std::vector<Overlap> bodyOverlaps(double tolerance) const;
+  /// A finger's proxy inside a body: `depth` metres into it (> 0).
+  struct ProxyOverlap {
+    int finger = -1, body = -1;
+    double depth = 0.0;
+  };
+  /// The proxies that overlap a body now by more than `tolerance` metres (a scene whose device
+  /// starts inside a body: the contact throws the body out at once). Allocates.
+  std::vector<ProxyOverlap> proxyOverlaps(double tolerance) const;
 
  private:
   struct Impl;

@@ -105,6 +105,7 @@ void World::Impl::applyCouplings(std::span<const DeviceSample> devices) {
   for (std::size_t i = 0; i < fingers.size(); ++i) {
     Finger& f = fingers[i];
     if (i < devices.size() && devices[i].position.allFinite() && devices[i].velocity.allFinite()) {
+      f.port_energy -= f.sent.dot(devices[i].position - f.device.position);
       f.device = devices[i];
     }
     const CouplingSettings& cs = desc.fingers[i].coupling;
@@ -112,6 +113,21 @@ void World::Impl::applyCouplings(std::span<const DeviceSample> devices) {
                                  toEigen(f.proxy->getCenterOfMassPosition()),
                                  toEigen(f.proxy->getLinearVelocity()));
     f.proxy->applyCentralForce(toBt(f.force));
+  }
+}
+
+// The force each finger's device is to render after this step: the coupling force's opposite
+// (none without force feedback), approached by at most max_force_rate dt, so that a device
+// that jumps (a new sender, a tracking glitch, a scripted move) or a contact that snaps never
+// reaches the hand as a step.
+void World::Impl::slewSentForces(double dt) {
+  for (std::size_t i = 0; i < fingers.size(); ++i) {
+    Finger& f = fingers[i];
+    const Vec3 target = desc.effects.force_feedback ? Vec3(-f.force) : Vec3::Zero();
+    const double limit = maxForceRate(desc.fingers[i].coupling) * dt;
+    const Vec3 change = target - f.sent;
+    const double size = change.norm();
+    f.sent = size > limit ? Vec3(f.sent + (limit / size) * change) : target;
   }
 }
 

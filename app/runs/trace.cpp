@@ -15,6 +15,10 @@ std::vector<std::string> traceColumns(const sim::SceneDesc& d) {
     if (b.mass <= 0.0) continue;
     for (const char* c : {".vx", ".vy", ".vz", ".wx", ".wy", ".wz"}) out.push_back(b.name + c);
   }
+  // The force sent to the device (.fx: the force applied to the proxy) and the port's energy.
+  for (const sim::FingerDesc& f : d.fingers) {
+    for (const char* c : {".sent_fx", ".sent_fy", ".sent_fz", ".port_energy"}) out.push_back(f.name + c);
+  }
   return out;
 }
 
@@ -54,6 +58,13 @@ void TraceWriter::record(const sim::World& world) {
   for (int b : dynamic_bodies_) {
     const sim::Vec3 v = world.bodyLinearVelocity(b), w = world.bodyAngularVelocity(b);
     for (double x : {v.x(), v.y(), v.z(), w.x(), w.y(), w.z()}) {
+      text += ',';
+      appendNumber(text, x);
+    }
+  }
+  for (int f = 0; f < static_cast<int>(world.desc().fingers.size()); ++f) {
+    const sim::Vec3 sent = world.feedbackForce(f);
+    for (double x : {sent.x(), sent.y(), sent.z(), world.portEnergy(f)}) {
       text += ',';
       appendNumber(text, x);
     }

@@ -24,6 +24,7 @@ void readExpect(Reader& parent, SessionDesc& s) {
   e.energy_growth = optional(r, "energy_growth", 0.0, 1e9);
   e.max_penetration = optional(r, "max_penetration", 0.0, 1e6);
   e.no_tunnelling = r.boolean("no_tunnelling", false);
+  e.min_port_energy = r.number("min_port_energy", e.min_port_energy, -1e6, 0.0);
   for (const auto& [name, t] : r.namedTables("bodies")) {
     const auto body = std::find_if(s.scene.bodies.begin(), s.scene.bodies.end(),
                                    [&wanted = name](const sim::BodyDesc& b) { return b.name == wanted; });

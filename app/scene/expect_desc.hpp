@@ -44,6 +44,9 @@ struct ExpectDesc {
   /// No proxy ends on the far side of a body it was pressing: its centre never behind the plane
   /// of its last contact (when the contact ends, when its normal turns over, while it presses)
   bool no_tunnelling = false;
+  /// J: the lowest each finger's device port energy (World::portEnergy) may go: a passive
+  /// simulation returns no more energy than it was given
+  double min_port_energy = -1e-3;
   std::map<std::string, BodyExpect> bodies;
   std::map<std::string, FingerExpect> fingers;
   /// True when nothing is checked.

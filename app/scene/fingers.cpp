@@ -128,6 +128,8 @@ sim::FingerDesc readFinger(const std::string& name, const toml::table& t, const 
   f.name = name;
   for (const sim::Setting<sim::FingerDesc>& s : sim::fingerSettings()) r.setting(s, f, std::string(s.name));
   f.device = readDevice(r, base_dir, udp);
+  // A live device's force ramp sets how fast its force may change unless the finger says.
+  if (udp && !r.has("max_force_rate")) f.coupling.max_force_rate = f.coupling.max_force / udp->force_ramp;
   r.failOn(sim::validateFinger(f));
   r.failOn(sim::validateCouplingStability(f, haptic_rate_hz));
   r.finish();

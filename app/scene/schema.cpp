@@ -141,6 +141,7 @@ json expectSchema() {
   return object({{"finite", {{"type", "boolean"}}},
                  {"max_speed", at_most(1e6, "m/s")},
                  {"max_angular_speed", at_most(1e6, "rad/s")},
+                 {"min_port_energy", numberSchema(-1e6, 0.0, "J: the lowest a finger's device port energy may go (default -0.001)")},
                  {"energy_growth", at_most(1e9, "J per quiet second")},
                  {"max_penetration", at_most(1e6, "m")},
                  {"no_tunnelling", {{"type", "boolean"}}},

@@ -83,7 +83,7 @@ void encodeDeviceReply(const DeviceReply& r, std::span<std::uint8_t, DeviceReply
 DeviceLink::DeviceLink(const UdpDeviceDesc& desc, double max_force)
     : desc_(desc), max_force_(max_force), position_(desc.start) {}
 
-bool DeviceLink::take(const DevicePacket& p, double t) {
+bool DeviceLink::take(const DevicePacket& p, double t, std::uint64_t sender) {
   const auto ahead = static_cast<std::int32_t>(p.seq - seq_);  // serial-number order
   if (heard_ && !resync_ && ahead <= 0) {
     ++counters_.out_of_order;
@@ -94,21 +94,29 @@ bool DeviceLink::take(const DevicePacket& p, double t) {
     ++counters_.out_of_range;
     return false;
   }
+  const bool takeover = heard_ && sender != sender_;
+  if (takeover) {  // another hand on this channel: it gets the force faded in from zero
+    ++counters_.takeovers;
+    gain_ = 0.0;
+    sent_.setZero();
+    ramping_ = true;
+  }
   const double gap = p.time - device_time_;
-  if (heard_ && gap >= kMinVelocityInterval && gap <= desc_.stale_after) {
+  if (!heard_ || takeover || gap < 0.0 || gap > desc_.stale_after) {
+    velocity_.setZero();  // a new stream: no estimate yet
+  } else if (gap >= kMinVelocityInterval) {
     const sim::Vec3 raw = (position - position_) / gap;
     const double a = desc_.velocity_smoothing > 0.0 ? 1.0 - std::exp(-gap / desc_.velocity_smoothing) : 1.0;
     velocity_ += a * (raw - velocity_);
-  } else if (!heard_ || gap < 0.0 || gap > desc_.stale_after) {
-    velocity_.setZero();  // a new stream: no estimate yet
   }
   if (heard_ && received_at_ == t) ++counters_.superseded;  // the previous one was never used
-  if (heard_ && !resync_) counters_.lost += ahead - 1;
+  if (heard_ && !resync_ && !takeover) counters_.lost += ahead - 1;
   if (!heard_) first_packet_at_ = t;
   resync_ = false;
   position_ = position;
   device_time_ = p.time;
   seq_ = p.seq;
+  sender_ = sender;
   buttons_ = p.buttons;
   received_at_ = t;
   heard_ = true;

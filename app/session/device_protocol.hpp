@@ -80,6 +80,7 @@ class DeviceLink {
     long superseded = 0;          ///< taken, then replaced by a newer one before a step used it
     long stale_periods = 0;       ///< dropouts: the device went stale after a first packet
     long stale_steps = 0;         ///< steps sampled while stale (before the first packet too)
+    long takeovers = 0;           ///< packets taken from another sender than the last one's
   };
 
   /// `max_force`: the finger's coupling clamp (N), the full scale of the force ramp.
@@ -89,8 +90,11 @@ class DeviceLink {
   /// when its seq is not newer than the last taken, or its position maps outside the scene's
   /// coordinate range (sim::kMaxSceneCoordinate). Seqs compare with wrap-around; the first
   /// packet after a dropout is taken whatever its seq (a restarted device is followed at once),
-  /// the ones after it are ordered again.
-  bool take(const DevicePacket& packet, double t);
+  /// the ones after it are ordered again. `sender` names where it came from (an address and
+  /// port): a packet taken from another sender than the last is a takeover, faded in like a
+  /// device back from a dropout (the gain and the force sent start again from zero, the
+  /// velocity estimate too).
+  bool take(const DevicePacket& packet, double t, std::uint64_t sender = 0);
   /// The device for the step starting at t: the newest packet's position in the scene
   /// (workspace_offset + workspace_scale * position) and a low-pass velocity from successive
   /// packets; while stale (no packet for stale_after) the position held, velocity 0; before the
@@ -119,6 +123,7 @@ class DeviceLink {
   bool heard_ = false, stale_ = true, resync_ = true, ramping_ = true;
   sim::Vec3 sent_ = sim::Vec3::Zero();  // the force of the last reply
   std::uint32_t seq_ = 0, buttons_ = 0;
+  std::uint64_t sender_ = 0;
   double received_at_ = 0.0, device_time_ = 0.0, sample_time_ = 0.0, first_packet_at_ = 0.0, gain_ = 0.0;
   sim::Vec3 position_, velocity_ = sim::Vec3::Zero();  // scene frame
   Counters counters_;

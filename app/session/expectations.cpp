@@ -70,9 +70,10 @@ ExpectChecker::ExpectChecker(const ExpectDesc& expect, const sim::World& world) 
       s.penetration = add(p + "max_penetration", *pen, true);
     }
     if (expect.no_tunnelling) s.tunnel = add(p + "no_tunnelling", 0.0, true);  // value: m behind the plane
+    s.port = add(p + "port_energy", expect.min_port_energy, false);
     s.from = e.from;
     s.to = e.to;
-    if (s.sgo >= 0 || s.force >= 0 || s.penetration >= 0 || s.tunnel >= 0) fingers_.push_back(s);
+    fingers_.push_back(s);
   }
   const std::size_t samples = static_cast<std::size_t>(scene.world.haptic_rate_hz * kEnergyWindow) + 2;
   quiet_.reserve(samples);
@@ -117,6 +118,7 @@ void ExpectChecker::afterStep(const sim::World& world) {
       observe(checks_[static_cast<std::size_t>(s.sgo)], world.sgoCount(s.finger), t);
     }
     if (s.force >= 0) observe(checks_[static_cast<std::size_t>(s.force)], world.couplingForce(s.finger).norm(), t);
+    observe(checks_[static_cast<std::size_t>(s.port)], world.portEnergy(s.finger), t);
     if (s.penetration >= 0) {
       sim::Touch touch;
       const double depth = world.deepestTouch(s.finger, touch) ? std::max(0.0, -touch.separation) : 0.0;

@@ -62,7 +62,7 @@ class ExpectChecker {
   };
   struct FingerState {
     int finger = -1;
-    int sgo = -1, force = -1, penetration = -1, tunnel = -1;
+    int sgo = -1, force = -1, penetration = -1, tunnel = -1, port = -1;
     double from = 0.0, to = 0.0;
     // The plane of the contact it last pressed, in that body's frame (no_tunnelling).
     int pressed_body = -1;

@@ -174,7 +174,7 @@ std::vector<std::string> requestWarnings(const SessionDesc& session, const Sessi
   return warnings;
 }
 
-// Bodies that start inside each other, as warnings.
+// Bodies that start inside each other, and proxies that start inside a body, as warnings.
 void addOverlapWarnings(const sim::World& world, std::vector<std::string>& warnings) {
   const std::vector<sim::BodyDesc>& bodies = world.desc().bodies;
   for (const sim::World::Overlap& o : world.bodyOverlaps(kStartOverlap)) {
@@ -182,6 +182,15 @@ void addOverlapWarnings(const sim::World& world, std::vector<std::string>& warni
     std::snprintf(text, sizeof text, "bodies.%s and bodies.%s start %.1f mm inside each other: the solver will push them apart",
                   bodies[static_cast<std::size_t>(o.body_a)].name.c_str(),
                   bodies[static_cast<std::size_t>(o.body_b)].name.c_str(), 1e3 * o.depth);
+    warnings.emplace_back(text);
+  }
+  for (const sim::World::ProxyOverlap& o : world.proxyOverlaps(kStartOverlap)) {
+    char text[256];
+    std::snprintf(text, sizeof text,
+                  "fingers.%s's proxy starts %.1f mm inside bodies.%s: the contact will throw the body out; "
+                  "start the device outside it",
+                  world.desc().fingers[static_cast<std::size_t>(o.finger)].name.c_str(), 1e3 * o.depth,
+                  bodies[static_cast<std::size_t>(o.body)].name.c_str());
     warnings.emplace_back(text);
   }
 }

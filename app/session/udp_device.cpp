@@ -60,7 +60,8 @@ class UdpDeviceBridge::Device final : public sim::DeviceSource {
   // A valid packet of this device's channel, read at step time t from `from`: the replies go
   // to the sender of the newest packet taken.
   void take(const DevicePacket& p, double t, const sockaddr_in& from) {
-    if (link_.take(p, t)) peer_ = from;
+    const std::uint64_t sender = (std::uint64_t{ntohl(from.sin_addr.s_addr)} << 16) | ntohs(from.sin_port);
+    if (link_.take(p, t, sender)) peer_ = from;
   }
 
   const Socket& socket() const { return socket_; }
@@ -81,6 +82,7 @@ class UdpDeviceBridge::Device final : public sim::DeviceSource {
             {"buttons", link_.buttons()},
             {"stale_periods", c.stale_periods},
             {"stale_s", static_cast<double>(c.stale_steps) * dt},
+            {"takeovers", c.takeovers},
             {"replies_sent", replies_},
             {"send_errors", send_errors_}};
   }

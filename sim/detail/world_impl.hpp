@@ -40,6 +40,8 @@ struct World::Impl final : SolveHooks {
     const FingerModel* model = nullptr;  // the model of settings.patch.model
     DeviceSample device;
     Vec3 force = Vec3::Zero();  // coupling force on the proxy (N)
+    Vec3 sent = Vec3::Zero();   // force the device is to render (N): -force, rate-limited
+    double port_energy = 0.0;   // J: work done on the device port by the hand, sum of -sent . dx
     std::array<FingerContact, kMaxContactsPerFinger> contacts;
     int contact_count = 0;
     std::array<ContactMemory, kMaxContactsPerFinger> memory;
@@ -71,6 +73,7 @@ struct World::Impl final : SolveHooks {
   void applyChangesDue(double dt);  ///< scripted changes due at this step's start
   void applyCouplings(std::span<const DeviceSample> devices);  ///< device samples, coupling forces
   void applyLoads();                ///< the scene's loads at time (N, N m)
+  void slewSentForces(double dt);   ///< the forces sent after the step (max_force_rate)
   void countStep(double dt);        ///< time after a step of dt seconds, and the step counter
   Pose bodyFrame(int body) const;   ///< body i's frame: that of its walk mesh (world)
   std::vector<btRigidBody*> allRigidBodies() const;  ///< bodies, then proxies (allocates)

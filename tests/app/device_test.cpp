@@ -218,6 +218,63 @@ TEST(DeviceLink, ADeviceThatComesBackElsewhereGetsItsForceFadedIn) {
   EXPECT_NEAR(largest_resume_change, limit, 1e-9);  // 4.8 N more, at 0.4 N a step
 }
 
+// A second sender takes the channel over with a newer seq and a position 45 mm deeper in the box
+// (the coupling's 40 N clamp where the first pressed with about 12 N): the new hand gets its
+// force faded in from zero, and no two successive replies to one sender differ by more than
+// max_force force_scale dt / force_ramp (0.4 N), the World's own max_force_rate included.
+TEST(DeviceLink, ASenderThatTakesOverGetsItsForceFadedInFromZero) {
+  const SessionDesc session = parseSceneText(R"(name = "takeover"
+duration = 1.0
+effects = ["gravity", "friction", "god_finger", "force_feedback"]
+[bodies.ground]
+shape = "plane"
+[bodies.box]
+shape = "box"
+half_extents = [0.05, 0.05, 0.05]
+static = true
+position = [0, 0.05, 0]
+[fingers.f]
+n_sgo = 8
+[fingers.f.device]
+udp = 0
+start = [0, 0.2, 0]
+)", "takeover.toml", "");
+  const UdpDeviceDesc& d = session.udp_devices.at(0);
+  DeviceLink link(d, session.scene.fingers[0].coupling.max_force);
+  sim::World world(session.scene);
+  const double limit = 40.0 * d.force_scale * kDt / d.force_ramp;  // 0.4 N a step
+  std::vector<sim::DeviceSample> samples(1);
+  std::uint64_t last_sender = 0;
+  Vec3 previous = Vec3::Zero();
+  double before_takeover = 0.0, first_to_new = -1.0, largest_step = 0.0;
+  for (long k = 0; k < 1000; ++k) {
+    const double t = static_cast<double>(k) * kDt;
+    // The first hand presses 15 mm into the box's top (about 12 N); from 0.5 s another one,
+    // 60 mm in (past the 40 N clamp), with seqs far ahead.
+    const bool second = k >= 500;
+    const Vec3 at = second ? Vec3(0.0, 0.108 - 0.06, 0.0) : Vec3(0.0, 0.108 - 0.015, 0.0);
+    const std::uint64_t sender = second ? 2 : 1;
+    link.take(packet(static_cast<std::uint32_t>(second ? 100000 + k : k + 1), t, at), t, sender);
+    samples[0] = link.sample(t);
+    world.step(kDt, samples);
+    const DeviceReply r = link.reply(world.time(), {world.feedbackForce(0), world.contactRadius(0),
+                                                    world.sgoCount(0), world.touching(0)});
+    if (sender != last_sender) {  // the first reply to a new sender
+      if (second) first_to_new = r.force.norm();
+    } else {
+      largest_step = std::max(largest_step, (r.force - previous).norm());
+    }
+    if (k == 499) before_takeover = r.force.norm();
+    last_sender = sender;
+    previous = r.force;
+  }
+  EXPECT_EQ(link.counters().takeovers, 1);
+  EXPECT_NEAR(before_takeover, 12.0, 0.5) << "the first hand's steady press";
+  EXPECT_LE(first_to_new, limit * 1.05);
+  EXPECT_LE(largest_step, limit * 1.05);
+  EXPECT_NEAR(previous.norm(), 40.0, 1e-6) << "the new hand feels the clamp once faded in";
+}
+
 // After a dropout only the first packet skips the order check: a reordered burst does not move
 // the device back. Seqs skipped between packets taken are counted as lost.
 TEST(DeviceLink, OnlyTheFirstPacketAfterADropoutSkipsTheOrder) {

@@ -268,6 +268,34 @@ TEST(Outputs, PlotDrawsTraceColumnsAndNamesBadOnes) {
   EXPECT_NE(readFile(said).find("bad.csv:3:2: a.x: expected a number, got 'oops'"), std::string::npos) << readFile(said);
 }
 
+// A device that starts inside a body puts the proxy there (a 1 cm proxy centre 2 cm into a
+// 3 cm ball): a warning naming the finger, the body and the depth, on stderr and in
+// summary.json; a proxy starting in the air is not.
+TEST(Outputs, AProxyStartingInsideABodyIsAWarning) {
+  const fs::path dir = freshFolder("gf_out_proxy_inside");
+  const auto scene = [&](double y) {
+    std::ofstream(dir / "scene.toml") << "name = \"inside\"\nduration = 0.01\neffects = [\"gravity\"]\n"
+                                         "[bodies.ball]\nshape = \"sphere\"\nradius = 0.03\nstatic = true\n"
+                                         "[fingers.index]\nproxy_radius = 0.01\n"
+                                         "[fingers.index.device]\nkeyframes = [{ t = 0.0, p = [0, "
+                                      << y << ", 0] }]\n";
+  };
+  const fs::path log = dir / "stderr.txt";
+  scene(0.01);  // 2 cm inside the ball's surface, plus the proxy's 1 cm radius: 30 mm
+  ASSERT_EQ(exitStatus(kBin + " run " + (dir / "scene.toml").string() + " --quiet --expectations report --out " +
+                       (dir / "run").string() + " 2> " + log.string() + " > /dev/null"),
+            0);
+  EXPECT_NE(readFile(log).find("warning: fingers.index's proxy starts 30.0 mm inside bodies.ball"), std::string::npos)
+      << readFile(log);
+  EXPECT_EQ(summaryOf(dir / "run")["warnings"].size(), 1u);
+  scene(0.05);
+  ASSERT_EQ(exitStatus(kBin + " run " + (dir / "scene.toml").string() + " --quiet --out " + (dir / "run").string() +
+                       " 2> " + log.string() + " > /dev/null"),
+            0);
+  EXPECT_EQ(readFile(log).find("inside bodies"), std::string::npos) << readFile(log);
+  EXPECT_TRUE(summaryOf(dir / "run")["warnings"].empty());
+}
+
 // A body that starts inside the ground (a 3 cm ball with its centre 2.5 cm up: 5 mm in) is a
 // warning on stderr and in summary.json; one resting on it (centre 3 cm up) is not.
 TEST(Outputs, ABodyStartingInsideAnotherIsAWarning) {

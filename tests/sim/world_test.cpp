@@ -139,6 +139,52 @@ TEST(WorldDeterminism, TwoOfflineRunsAreBitIdentical) {
   }
 }
 
+// The force sent to the device follows the coupling at most max_force_rate fast: a device that
+// jumps 5 cm into a pressed box (the coupling's force steps to its 40 N clamp) reaches the hand
+// as a ramp of 0.4 N a step (the default 40 N / 0.1 s), which then follows the coupling exactly.
+TEST(WorldFeedback, TheForceSentRampsAtMaxForceRate) {
+  TestContext ctx("press-box", 8);
+  const double limit = maxForceRate(ctx.scene().fingers[0].coupling) * 0.001;
+  ASSERT_NEAR(limit, 0.4, 1e-12);
+  std::vector<DeviceSample> device(1);
+  Vec3 previous = Vec3::Zero();
+  double largest_step = 0.0;
+  int followed = 0;
+  for (int k = 0; k < 1000; ++k) {
+    const double t = k * 0.001;
+    // Down onto the box over 0.5 s, then a jump 5 cm deeper at 0.6 s.
+    const double y = t < 0.5 ? 0.06 - 0.036 * t : (t < 0.6 ? 0.042 : 0.042 - 0.05);
+    device[0] = {Vec3(0.0, y, 0.0), Vec3::Zero()};
+    ctx.world().step(0.001, device);
+    const Vec3 sent = ctx.world().feedbackForce(0);
+    largest_step = std::max(largest_step, (sent - previous).norm());
+    if (t > 0.8 && sent.isApprox(-ctx.world().couplingForce(0), 1e-12)) ++followed;
+    previous = sent;
+  }
+  EXPECT_NEAR(largest_step, limit, 1e-9) << "the jump is felt as the steepest ramp allowed, no steeper";
+  EXPECT_GT(followed, 150) << "caught up, the force sent is the coupling's opposite";
+  EXPECT_NEAR(previous.norm(), 40.0, 1e-6);
+}
+
+// The port energy, the hand's work against the force sent, never falls below zero while a
+// device presses a box, holds and backs out smoothly (the coupling's damping and the contact's
+// take energy, nothing gives it back), and it ends positive.
+TEST(WorldFeedback, ASmoothPressAndReleaseIsPassiveAtTheDevicePort) {
+  TestContext ctx("press-box", 8);
+  std::vector<DeviceSample> device(1);
+  double lowest = 0.0;
+  for (int k = 0; k < 1500; ++k) {
+    const double t = k * 0.001;
+    // Down 18 mm over 0.5 s (onto the box and 6 mm past the proxy's rest), held, up from 1.0 s.
+    const double y = t < 0.5 ? 0.06 - 0.036 * t : (t < 1.0 ? 0.042 : std::min(0.06, 0.042 + 0.036 * (t - 1.0)));
+    device[0] = {Vec3(0.0, y, 0.0), Vec3(0.0, t < 0.5 ? -0.036 : (t < 1.0 ? 0.0 : 0.036), 0.0)};
+    ctx.world().step(0.001, device);
+    lowest = std::min(lowest, ctx.world().portEnergy(0));
+  }
+  EXPECT_GE(lowest, -1e-3);
+  EXPECT_GT(ctx.world().portEnergy(0), 0.0);
+}
+
 // 64-bit FNV-1a of the bytes of `values`.
 std::uint64_t hashOf(const std::vector<double>& values) {
   std::uint64_t h = 0xcbf29ce484222325ull;
