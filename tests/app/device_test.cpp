@@ -268,6 +268,8 @@ start = [0, 0.2, 0]
     last_sender = sender;
     previous = r.force;
   }
+  RecordProperty("largest_step_n", std::to_string(largest_step));
+  RecordProperty("first_reply_to_new_sender_n", std::to_string(first_to_new));
   EXPECT_EQ(link.counters().takeovers, 1);
   EXPECT_NEAR(before_takeover, 12.0, 0.5) << "the first hand's steady press";
   EXPECT_LE(first_to_new, limit * 1.05);
