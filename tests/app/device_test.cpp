@@ -183,6 +183,19 @@ sim::DeviceFeedback spring(const sim::DeviceSample& s) {
   return {f.norm() > 40.0 ? Vec3(40.0 * f.normalized()) : f, 0.004, 8, true};
 }
 
+// A 10 cm box on the ground (`box_field`: static, or its mass) under one finger whose UDP device
+// (port 0, channel 0) starts 20 cm up, with `device_fields` more.
+SessionDesc boxUnderAUdpFinger(const std::string& box_field, const std::string& device_fields) {
+  return parseSceneText("name = \"box\"\nduration = 1.0\n"
+                        "effects = [\"gravity\", \"friction\", \"god_finger\", \"force_feedback\"]\n"
+                        "[bodies.ground]\nshape = \"plane\"\n"
+                        "[bodies.box]\nshape = \"box\"\nhalf_extents = [0.05, 0.05, 0.05]\n" + box_field +
+                            "\nposition = [0, 0.05, 0]\n"
+                            "[fingers.f]\nn_sgo = 8\n[fingers.f.device]\nudp = 0\nstart = [0, 0.2, 0]\n" +
+                            device_fields,
+                        "box.toml", "");
+}
+
 // A device that falls silent a little longer than stale_after and comes back 6 mm away: the
 // gain is still near 1, but the new force is faded in at the ramp's rate (max_force / force_ramp),
 // never stepped; once caught up, the force follows the coupling again exactly.
@@ -223,22 +236,7 @@ TEST(DeviceLink, ADeviceThatComesBackElsewhereGetsItsForceFadedIn) {
 // force faded in from zero, and no two successive replies to one sender differ by more than
 // max_force force_scale dt / force_ramp (0.4 N), the World's own max_force_rate included.
 TEST(DeviceLink, ASenderThatTakesOverGetsItsForceFadedInFromZero) {
-  const SessionDesc session = parseSceneText(R"(name = "takeover"
-duration = 1.0
-effects = ["gravity", "friction", "god_finger", "force_feedback"]
-[bodies.ground]
-shape = "plane"
-[bodies.box]
-shape = "box"
-half_extents = [0.05, 0.05, 0.05]
-static = true
-position = [0, 0.05, 0]
-[fingers.f]
-n_sgo = 8
-[fingers.f.device]
-udp = 0
-start = [0, 0.2, 0]
-)", "takeover.toml", "");
+  const SessionDesc session = boxUnderAUdpFinger("static = true", "");
   const UdpDeviceDesc& d = session.udp_devices.at(0);
   DeviceLink link(d, session.scene.fingers[0].coupling.max_force);
   sim::World world(session.scene);
@@ -352,24 +350,7 @@ TEST(DeviceLink, TheWorkspaceMapsPositionsAndVelocities) {
 // ignored, a device clock that jumps back or repeats does not make a velocity, and a World
 // driven by the wildest packets the link takes (±100 m at 10 us apart) stays finite.
 TEST(DeviceLink, ExtremePacketsKeepTheWorldFinite) {
-  const SessionDesc session = parseSceneText(R"(name = "wild"
-duration = 1.0
-effects = ["gravity", "friction", "god_finger", "force_feedback"]
-[bodies.ground]
-shape = "plane"
-[bodies.box]
-shape = "box"
-half_extents = [0.05, 0.05, 0.05]
-mass = 0.5
-position = [0, 0.05, 0]
-[fingers.f]
-n_sgo = 8
-[fingers.f.device]
-udp = 0
-start = [0, 0.2, 0]
-workspace_scale = 100
-velocity_smoothing = 0
-)", "wild.toml", "");
+  const SessionDesc session = boxUnderAUdpFinger("mass = 0.5", "workspace_scale = 100\nvelocity_smoothing = 0\n");
   DeviceLink link(session.udp_devices.at(0), session.scene.fingers[0].coupling.max_force);  // the largest scale taken
   EXPECT_FALSE(link.take(packet(1, 0.0, Vec3(10.1, 0.0, 0.0)), 0.0));  // 1010 m in the scene
   EXPECT_EQ(link.counters().out_of_range, 1);
