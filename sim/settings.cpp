@@ -246,7 +246,7 @@ std::string jsonKey(const Setting<Desc>& s) {
   static constexpr std::pair<std::string_view, std::string_view> kSuffixes[] = {
       {"", ""},         {"m", "_m"},        {"deg", "_deg"},         {"kg", "_kg"},        {"s", "_s"},
       {"N", "_n"},      {"Hz", "_hz"},      {"N/m", "_n_per_m"},     {"N s/m", "_ns_per_m"},
-      {"1/s", "_per_s"}, {"m/s^2", "_m_per_s2"}, {"N m", "_nm"},
+      {"1/s", "_per_s"}, {"m/s^2", "_m_per_s2"}, {"N m", "_nm"},  {"N/s", "_n_per_s"},
   };
   std::string key(s.name);
   for (char& c : key) c = c == '.' ? '_' : c;
