@@ -42,6 +42,14 @@ struct Tmpfs {
   Tmpfs& operator=(const Tmpfs&) = delete;
 };
 
+// freshFolder(name) for a test that mounts a Tmpfs on its "disk": a mount left by a run of the
+// test that was killed (or aborted) is taken away first, or the folder could not be removed.
+fs::path freshDiskFolder(const std::string& name) {
+  const fs::path stale = fs::path(GF_BINARY_DIR) / "test-outputs" / name / "disk";
+  if (fs::exists(stale)) exitStatus("umount '" + stale.string() + "' 2> /dev/null");
+  return freshFolder(name);
+}
+
 // Every output file under `dir` (the lock file aside) with a hash of its bytes, for "nothing was
 // touched".
 std::map<std::string, std::size_t> contentsOf(const fs::path& dir) {
@@ -105,7 +113,7 @@ TEST(RunFolder, ASecondRunIntoABusyFolderExits1AndRemovesNothing) {
 // how much it needs and how much is free; the earlier run's outputs are as they were. A rerun of
 // the earlier run fits: the room its earlier outputs give back counts.
 TEST(RunFolder, ADiskTooFullForTheRunKeepsTheEarlierOutputs) {
-  const fs::path dir = freshFolder("gf_folder_full_disk");
+  const fs::path dir = freshDiskFolder("gf_folder_full_disk");
   const Tmpfs disk(dir / "disk", "1m");
   if (!disk.mounted) GTEST_SKIP() << "mounting a 1 MB tmpfs needs root (or CAP_SYS_ADMIN): not checked here";
   const fs::path out = disk.dir / "out", log = dir / "stderr.txt";
@@ -139,7 +147,7 @@ TEST(RunFolder, ADiskTooFullForTheRunKeepsTheEarlierOutputs) {
 // no broken MP4 is left under the video's name or a temporary one, and the file that was there
 // before stays. The other outputs hold the whole run.
 TEST(RunFolder, AVideoDiskThatFillsLeavesNoBrokenVideo) {
-  const fs::path dir = freshFolder("gf_folder_video_disk");
+  const fs::path dir = freshDiskFolder("gf_folder_video_disk");
   const Tmpfs disk(dir / "disk", "60k");
   if (!disk.mounted) GTEST_SKIP() << "mounting a 60 kB tmpfs needs root (or CAP_SYS_ADMIN): not checked here";
   const fs::path video = disk.dir / "x.mp4", out = dir / "out", log = dir / "stderr.txt";
