@@ -24,6 +24,7 @@ FrictionBlock frictionBlock(const ContactToSolve& in) {
   if (in.memory) {
     block.warm_force = in.memory->friction_force;
     block.warm_torque = in.memory->friction_torque;
+    block.warm_rolling = in.memory->rolling_impulse;
   }
   return block;
 }
@@ -112,10 +113,30 @@ double patchTorsion(const FingerContact& c, const FrictionBlock& block, Aggregat
   return p.share > 0.0 ? block.friction * lever / p.share : 0.0;
 }
 
+// A patch's rolling limit per unit normal impulse (m): its rim's mean lever about the load's
+// centre, over the rim points that press (all of them while none does). The pressure can move
+// as far as the rim, and no further.
+double patchRolling(const FingerContact& c, const FrictionBlock& block) {
+  const std::size_t rim = c.record.patch.sgos.size();
+  for (int pass = 0; pass < 2; ++pass) {
+    double lever = 0.0;
+    int count = 0;
+    for (std::size_t i = 0; i < rim; ++i) {
+      if (pass == 0 && !(c.sgo_separation[i] <= 0.0)) continue;
+      const btVector3 r = c.sgo_world[i] - block.centre;
+      lever += (r - r.dot(block.normal) * block.normal).length();
+      ++count;
+    }
+    if (count > 0) return lever / count;
+  }
+  return 0.0;
+}
+
 // Points solver: the true contact and the patch's points are contact rows of Bullet's solver,
 // each with its share of the stiffness and damping (by load share) and no friction of its own;
-// the contact's friction is one block at the load's centre with the model's `torsion` limit.
-void addPointRows(const ContactToSolve& in, double torsion, SolveRows& out) {
+// the contact's friction is one block at the load's centre with the model's `torsion` limit,
+// and for a god-finger patch (`rolling`) rolling rows limited by its rim (patchRolling).
+void addPointRows(const ContactToSolve& in, double torsion, bool rolling, SolveRows& out) {
   FingerContact& c = in.contact;
   const double share = truthShare(c);
   FrictionBlock block = frictionBlock(in);
@@ -131,12 +152,14 @@ void addPointRows(const ContactToSolve& in, double torsion, SolveRows& out) {
   }
   block.centre = onTangentPlane(centre, c.truth);
   block.torsion = torsion == kTorsionFromPoints ? patchTorsion(c, block, out.scratch) : torsion;
+  block.rolling = rolling && c.sgo_count > 0 ? patchRolling(c, block) : 0.0;
   c.block = out.solver.addBlock(block);
   addBlockPoints(in, out);
 }
 
 // Aggregate solver: one block whose normal and tilt rows the pressing points make, with their
-// share of the stiffness and damping; the manifold keeps no point for Bullet's own rows.
+// share of the stiffness and damping, and the same rolling rows as the points solver's; the
+// manifold keeps no point for Bullet's own rows.
 void addAggregateRows(const ContactToSolve& in, SolveRows& out) {
   FingerContact& c = in.contact;
   FrictionBlock block = frictionBlock(in);
@@ -150,6 +173,7 @@ void addAggregateRows(const ContactToSolve& in, SolveRows& out) {
                  c.truth.point_world, in.stiffness * p.share, in.damping * p.share, block.centre,
                  block.press);
   block.torsion = block.friction * block.press.mean_lever;
+  block.rolling = patchRolling(c, block);
   if (in.memory) {
     block.press.warm_normal = in.memory->normal_impulse;
     block.press.warm_tilt = in.memory->tilt_impulse;
@@ -160,18 +184,18 @@ void addAggregateRows(const ContactToSolve& in, SolveRows& out) {
 }  // namespace
 
 void GodObjectModel::addRows(const ContactToSolve& c, SolveRows& out) const {
-  addPointRows(c, 0.0, out);  // no torsion limit: a point turns freely
+  addPointRows(c, 0.0, false, out);  // no torsion limit: a point turns freely
 }
 
 void SoftFingerModel::addRows(const ContactToSolve& c, SolveRows& out) const {
-  addPointRows(c, c.settings.patch.torsional_friction, out);  // 0 without the friction effect
+  addPointRows(c, c.settings.patch.torsional_friction, false, out);  // 0 without the friction effect
 }
 
 void GodFingerModel::addRows(const ContactToSolve& c, SolveRows& out) const {
   if (c.contact.sgo_count > 0 && c.settings.solver == ContactSolver::kAggregate) {
     addAggregateRows(c, out);
   } else {
-    addPointRows(c, c.settings.friction_effect ? kTorsionFromPoints : 0.0, out);
+    addPointRows(c, c.settings.friction_effect ? kTorsionFromPoints : 0.0, true, out);
   }
 }
 

@@ -140,7 +140,9 @@ void PatchFrictionSolver::bind(const btContactSolverInfo& info) {
     b.block = static_cast<int>(k);
     b.proxy_body = proxy_of[k];
     b.object_body = object_of[k];
-    b.rows = fb.aggregate ? kRows : kFrictionRows;
+    b.aggregate = fb.aggregate;
+    b.rows = fb.aggregate ? kNormalRow + 3 : kFrictionRows;
+    if (fb.rolling > 0.0) b.roll = b.rows, b.rows += 2;
     b.n = fb.normal;
     btPlaneSpace1(b.n, b.t1, b.t2);
     setRows(b);
@@ -152,16 +154,21 @@ void PatchFrictionSolver::bind(const btContactSolverInfo& info) {
     invertActive(K, active, b.k_inv, nullptr);
     for (double& l : b.lambda) l = 0.0;
     if (fb.aggregate) bindPress(b, fb, info);
+    if (b.roll >= 0) bindRolling(b);
     // Warm start: last step's impulses on this step's rows, within this step's limits.
     if (info.m_solverMode & SOLVER_USE_WARMSTARTING) {
       double delta[kRows] = {active[0] ? fb.warm_force.dot(b.t1) : 0.0, active[1] ? fb.warm_force.dot(b.t2) : 0.0,
-                             active[2] ? fb.warm_torque * fb.normal.dot(b.n) : 0.0, 0.0, 0.0, 0.0};
+                             active[2] ? fb.warm_torque * fb.normal.dot(b.n) : 0.0};
       if (fb.aggregate) {
         delta[kNormalRow] = std::max(0.0, fb.press.warm_normal);
         for (int k2 = 0; k2 < 2; ++k2) {
           delta[kNormalRow + 1 + k2] = b.press_inv[1 + k2][1 + k2] != 0.0 ? fb.press.warm_tilt.dot(fb.press.tilt_axis[k2]) : 0.0;
         }
         if (tiltGauge(fb.press, delta[4], delta[5], delta[3]) > 1.0) delta[4] = delta[5] = 0.0;
+      }
+      if (b.roll >= 0 && b.roll_inv[0][0] != 0.0) {
+        delta[b.roll] = fb.warm_rolling.dot(b.t1);
+        delta[b.roll + 1] = fb.warm_rolling.dot(b.t2);
       }
       for (double& d : delta) d *= info.m_warmstartingFactor;
       apply(b, delta, 0, b.rows);
@@ -208,10 +215,14 @@ void PatchFrictionSolver::setRows(Bound& b) const {
   linear(0, b.t1);
   linear(1, b.t2);
   angular(2, b.n);
-  if (b.rows == kRows) {
+  if (b.aggregate) {
     linear(kNormalRow, b.n);
     angular(kNormalRow + 1, fb.press.tilt_axis[0]);
     angular(kNormalRow + 2, fb.press.tilt_axis[1]);
+  }
+  if (b.roll >= 0) {
+    angular(b.roll, b.t1);
+    angular(b.roll + 1, b.t2);
   }
   for (int row = 0; row < b.rows; ++row) {
     b.lin_p[row] = sp.m_originalBody ? b.lin[row] * sp.m_invMass : zero;
@@ -345,6 +356,66 @@ double PatchFrictionSolver::solvePress(Bound& b) {
   return residual;
 }
 
+// The rolling rows' effective mass, inverted over the rows that move anything (none against a
+// static body: the proxy cannot turn).
+void PatchFrictionSolver::bindRolling(Bound& b) const {
+  Eigen::Matrix2d K;
+  for (int row = 0; row < 2; ++row) {
+    for (int col = 0; col < 2; ++col) {
+      const int r = b.roll + row, c = b.roll + col;
+      K(row, col) = b.jac_p[r].dot(b.ang_p[c]) + b.jac_o[r].dot(b.ang_o[c]);
+    }
+  }
+  const double largest = std::max({K(0, 0), K(1, 1), 0.0});
+  const bool active = largest > 0.0 && K.determinant() > kInactiveRow * largest * largest;
+  const Eigen::Matrix2d inverse = active ? Eigen::Matrix2d(K.inverse()) : Eigen::Matrix2d::Zero();
+  for (int row = 0; row < 2; ++row) {
+    for (int col = 0; col < 2; ++col) b.roll_inv[row][col] = inverse(row, col);
+  }
+}
+
+// The moment (about the block's centre, tangential, N m s) the block's pressing rows already
+// take from the body: a points block's points' normal impulses at their offsets, an aggregate's
+// tilt impulse. The rolling rows' impulse L acts on the body as -L, these as -P.
+btVector3 PatchFrictionSolver::pressMoment(const Bound& b) const {
+  const FrictionBlock& fb = blocks_[static_cast<std::size_t>(b.block)];
+  if (fb.aggregate) return b.lambda[kNormalRow + 1] * fb.press.tilt_axis[0] + b.lambda[kNormalRow + 2] * fb.press.tilt_axis[1];
+  btVector3 moment(0, 0, 0);
+  for (int i = fb.first_point; i < fb.first_point + fb.point_count; ++i) {
+    const int j = pool_index_[static_cast<std::size_t>(i)];
+    if (j < 0) continue;
+    const FrictionPoint& fp = points_[static_cast<std::size_t>(i)];
+    const btVector3& at = fp.proxy_is_a ? fp.point->getPositionWorldOnB() : fp.point->getPositionWorldOnA();
+    const double lambda_n = std::max(0.0, static_cast<double>(m_tmpSolverContactConstraintPool[j].m_appliedImpulse));
+    moment += lambda_n * (at - fb.centre).cross(b.n);
+  }
+  return moment - moment.dot(b.n) * b.n;
+}
+
+// One step of a block's rolling rows: the impulse L that stops the body turning about the
+// tangent axes, such that the contact's whole moment about them, L plus what its pressing rows
+// take (pressMoment), stays within `rolling` N: the pressure cannot move past the patch's edge.
+double PatchFrictionSolver::solveRolling(Bound& b) {
+  if (b.roll_inv[0][0] == 0.0) return 0.0;
+  const FrictionBlock& fb = blocks_[static_cast<std::size_t>(b.block)];
+  const Motion m = motion(b);
+  const int r = b.roll;
+  const double u0 = relativeVelocity(b, m, r), u1 = relativeVelocity(b, m, r + 1);
+  double y0 = b.lambda[r] - (b.roll_inv[0][0] * u0 + b.roll_inv[0][1] * u1);
+  double y1 = b.lambda[r + 1] - (b.roll_inv[1][0] * u0 + b.roll_inv[1][1] * u1);
+  const btVector3 press = pressMoment(b);
+  const double p0 = press.dot(b.t1), p1 = press.dot(b.t2);
+  const double limit = fb.rolling * blockNormal(b), size = std::hypot(y0 + p0, y1 + p1);
+  if (size > limit) {
+    const double scale = limit > 0.0 ? limit / size : 0.0;
+    y0 = (y0 + p0) * scale - p0;
+    y1 = (y1 + p1) * scale - p1;
+  }
+  const double delta[2] = {y0 - b.lambda[r], y1 - b.lambda[r + 1]};
+  apply(b, delta, r, 2);
+  return std::max(delta[0] * delta[0], delta[1] * delta[1]);
+}
+
 // The normal impulse a block's friction is limited by.
 double PatchFrictionSolver::blockNormal(const Bound& b) const {
   const FrictionBlock& fb = blocks_[static_cast<std::size_t>(b.block)];
@@ -438,8 +509,9 @@ btScalar PatchFrictionSolver::solveSingleIteration(int iteration, btCollisionObj
   double residual = btSequentialImpulseConstraintSolver::solveSingleIteration(
       iteration, bodies, numBodies, manifolds, numManifolds, constraints, numConstraints, info, debug);
   for (Bound& b : bound_) {
-    if (b.rows == kRows) residual = std::max(residual, solvePress(b));
+    if (b.aggregate) residual = std::max(residual, solvePress(b));
     residual = std::max(residual, solveBlock(b));
+    if (b.roll >= 0) residual = std::max(residual, solveRolling(b));
   }
   return static_cast<btScalar>(residual);
 }
@@ -450,6 +522,7 @@ btScalar PatchFrictionSolver::solveGroupCacheFriendlyFinish(btCollisionObject** 
     FrictionBlock& fb = blocks_[static_cast<std::size_t>(b.block)];
     fb.force = b.lambda[0] * b.t1 + b.lambda[1] * b.t2;
     fb.torque = b.lambda[2];
+    fb.rolling_impulse = b.roll >= 0 ? b.lambda[b.roll] * b.t1 + b.lambda[b.roll + 1] * b.t2 : btVector3(0, 0, 0);
     fb.normal_impulse = blockNormal(b);
     if (fb.aggregate) fb.press.tilt = b.lambda[kNormalRow + 1] * fb.press.tilt_axis[0] + b.lambda[kNormalRow + 2] * fb.press.tilt_axis[1];
     fb.solved = true;

@@ -178,6 +178,7 @@ void World::Impl::rememberImpulses(Finger& f) {
     const FrictionBlock& block = solver.block(c.block);
     mem.friction_force = block.solved ? block.force : btVector3(0, 0, 0);
     mem.friction_torque = block.solved ? block.torque : 0.0;
+    mem.rolling_impulse = block.solved ? block.rolling_impulse : btVector3(0, 0, 0);
     mem.normal_impulse = block.solved ? block.normal_impulse : 0.0;
     mem.tilt_impulse = block.solved && block.aggregate ? block.press.tilt : btVector3(0, 0, 0);
     c.manifold = nullptr;  // Bullet may free it at the next collision pass

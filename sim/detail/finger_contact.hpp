@@ -48,6 +48,7 @@ struct ContactMemory {
   Vec3 pad_normal = Vec3::UnitY();    ///< the pad plane's normal (world)
   btVector3 friction_force{0, 0, 0};  ///< the friction block's impulses (warm start, N s)
   double friction_torque = 0.0;       ///< N m s
+  btVector3 rolling_impulse{0, 0, 0};  ///< a points block's rolling impulse (N m s)
   double normal_impulse = 0.0;        ///< the contact's total normal impulse (N s)
   btVector3 tilt_impulse{0, 0, 0};    ///< an aggregate block's tilt impulse (N m s)
 };

@@ -5,7 +5,12 @@
 // points carry only normal rows (their own friction is zero) and the block gives the whole
 // contact one isotropic friction disc instead of a pyramid per point, a torsion limit of mu N
 // times the points' load-weighted mean lever for a god-finger patch (the aggregate's) or mu_t N
-// for a soft finger, and it converges in the iterations Bullet already runs.
+// for a soft finger, and it converges in the iterations Bullet already runs. A god-finger
+// patch's block has two rolling rows too: the body may not turn about the contact's tangent axes
+// while the moment that takes stays within N times the rim's mean lever (the pressure moving to
+// the patch's edge, the r of theta + r / R >= 1). The points' normal rows alone hold that turn
+// only through their damping, on a sphere (where turning changes no depth) not at all: a pushed
+// ball crept into rolling under a filled patch.
 //
 // Aggregate ("aggregate" solver): the patch's points reach the solver as three more rows of the
 // same block instead of one contact row each: the normal at the load centre and two tilt rows
@@ -38,10 +43,14 @@ struct FrictionBlock {
   double friction = 0.0;      ///< Coulomb coefficient against sliding
   /// Torsion limit per unit normal impulse (m); 0 for none.
   double torsion = 0.0;
+  /// Rolling limit per unit normal impulse (m), the moment about the tangent axes; 0 for no
+  /// rolling rows.
+  double rolling = 0.0;
   /// Warm start: last step's friction impulse on the proxy (world, N s) and torsional impulse
   /// about the normal (N m s).
   btVector3 warm_force{0, 0, 0};
   double warm_torque = 0.0;
+  btVector3 warm_rolling{0, 0, 0};  ///< last step's rolling impulse (world, N m s)
   /// Aggregate: the block carries the contact's normal and tilt rows too (`press`) and has no
   /// points; its bodies are found by their solver bodies.
   bool aggregate = false;
@@ -50,6 +59,7 @@ struct FrictionBlock {
   // Results of the solve (the same quantities as the warm start, and the normal impulse).
   btVector3 force{0, 0, 0};
   double torque = 0.0;
+  btVector3 rolling_impulse{0, 0, 0};
   double normal_impulse = 0.0;
   bool solved = false;  ///< false when none of its points (or bodies) reached the solver this step
 };
@@ -83,12 +93,16 @@ class PatchFrictionSolver final : public btSequentialImpulseConstraintSolver {
                                          const btContactSolverInfo& info) override;
 
  private:
-  static constexpr int kRows = 6;  // tangential t1, t2, torsion; aggregate: normal, tilt a0, a1
+  // tangential t1, t2, torsion; aggregate: normal, tilt a0, a1; then with a rolling limit:
+  // rolling about t1, t2
+  static constexpr int kRows = 8;
   // A block bound to this solve: its solver bodies, rows and accumulated impulses.
   struct Bound {
     int block = -1;
     int proxy_body = -1, object_body = -1;  // indices into m_tmpSolverBodyPool
-    int rows = 3;                           // 3, or 6 for an aggregate block
+    int rows = 3;                           // 3, or 6 for an aggregate block; + 2 rolling rows
+    int roll = -1;                          // the first rolling row, -1 for none
+    bool aggregate = false;
     btVector3 t1, t2, n;                    // friction row directions
     btVector3 r_proxy, r_object;            // centre relative to each body's centre of mass
     // Per row: the Jacobian (linear part along `lin` at the centre, proxy +, object -; angular
@@ -101,6 +115,7 @@ class PatchFrictionSolver final : public btSequentialImpulseConstraintSolver {
     double press_inv[3][3];  // its inverse (active rows only)
     double bias[3];          // pressing rows: target relative velocity is -bias - cfm lambda
     double cfm[3];
+    double roll_inv[2][2];   // inverse of the rolling rows' effective mass
     double lambda[kRows];    // accumulated impulses
   };
   // The bodies' relative motion a block's rows read (with the impulses applied so far).
@@ -120,6 +135,9 @@ class PatchFrictionSolver final : public btSequentialImpulseConstraintSolver {
   static void invertActive(Eigen::Matrix3d K, const bool active[3], double inv[3][3], double kept[3][3]);
   double solvePress(Bound& b);
   double solveBlock(Bound& b);
+  void bindRolling(Bound& b) const;
+  btVector3 pressMoment(const Bound& b) const;
+  double solveRolling(Bound& b);
   double blockNormal(const Bound& b) const;
   static Eigen::Vector3d projectOntoLimit(const Eigen::Matrix3d& e, const Eigen::Vector3d& d, const Eigen::Vector3d& y,
                                           double outside);
