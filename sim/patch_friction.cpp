@@ -398,14 +398,15 @@ btVector3 PatchFrictionSolver::pressMoment(const Bound& b) const {
 double PatchFrictionSolver::solveRolling(Bound& b) {
   if (b.roll_inv[0][0] == 0.0) return 0.0;
   const FrictionBlock& fb = blocks_[static_cast<std::size_t>(b.block)];
-  const Motion m = motion(b);
+  // Angular rows: only the relative spin is read.
+  const btVector3 spin = spinOf(m_tmpSolverBodyPool[b.proxy_body]) - spinOf(m_tmpSolverBodyPool[b.object_body]);
   const int r = b.roll;
-  const double u0 = relativeVelocity(b, m, r), u1 = relativeVelocity(b, m, r + 1);
+  const double u0 = b.jac_p[r].dot(spin), u1 = b.jac_p[r + 1].dot(spin);
   double y0 = b.lambda[r] - (b.roll_inv[0][0] * u0 + b.roll_inv[0][1] * u1);
   double y1 = b.lambda[r + 1] - (b.roll_inv[1][0] * u0 + b.roll_inv[1][1] * u1);
   const btVector3 press = pressMoment(b);
   const double p0 = press.dot(b.t1), p1 = press.dot(b.t2);
-  const double limit = fb.rolling * blockNormal(b), size = std::hypot(y0 + p0, y1 + p1);
+  const double limit = fb.rolling * blockNormal(b), size = std::sqrt((y0 + p0) * (y0 + p0) + (y1 + p1) * (y1 + p1));
   if (size > limit) {
     const double scale = limit > 0.0 ? limit / size : 0.0;
     y0 = (y0 + p0) * scale - p0;
