@@ -11,6 +11,7 @@
 #include "app/scene/data_folder.hpp"
 #include "app/scene/scene_file.hpp"
 #include "app/scene/toml_reader.hpp"
+#include "app/study/contact_whole.hpp"
 #include "app/study/study.hpp"
 
 namespace gf::app {
@@ -249,6 +250,11 @@ void checkMeasures(const StudyDesc& study, const StudySeries& series, const Sess
     if (m.kind != MeasureKind::kGeodesicRadius && body->mass <= 0.0) fail("body", "'" + m.body + "' is static: it does not move");
     if (m.kind == MeasureKind::kGeodesicRadius && body->shape != sim::ShapeKind::kSphere) fail("body", "must be a sphere");
     if (m.kind == MeasureKind::kRollRatio && body->shape != sim::ShapeKind::kSphere) fail("body", "must be a sphere");
+    const bool friction = m.kind == MeasureKind::kFrictionTorque || m.kind == MeasureKind::kFrictionForce;
+    if (friction && !hasFlatFaces(body->shape)) {
+      fail("body", "must be a box or a cylinder: the measure checks that the finger's contact stays whole on "
+                   "the flat face it presses");
+    }
     bool finger = m.finger.empty() && !s.scene.fingers.empty();
     for (const sim::FingerDesc& f : s.scene.fingers) finger = finger || f.name == m.finger;
     if (!finger) fail("finger", "no finger '" + m.finger + "' in " + s.source);

@@ -11,6 +11,8 @@
 
 #include "app/runs/run_folder.hpp"
 #include "app/runs/run_reader.hpp"
+#include "app/study/contact_whole.hpp"
+#include "sim/effective_settings.hpp"
 #include "sim/god_finger.hpp"
 
 namespace gf::app {
@@ -100,6 +102,33 @@ class View {
       }
     }
   }
+  // Fails at the first row of the window where the finger's contact is no longer whole on the
+  // face it presses (app/study/contact_whole.hpp): a friction limit measured while the contact
+  // hangs over the edge is partly the edge's. The window must end before it.
+  void checkWhole() const {
+    const std::string f = finger_->name;
+    const sim::SceneDesc& scene = run_.session.scene;
+    const sim::PatchSettings patch =
+        sim::effectiveSettings(finger_->patch, scene.effects, scene.world.contact_solver).patch;
+    const auto at = [&](const std::string& column, std::size_t r) { return run_.column(column)[r]; };
+    for (std::size_t r : rows_) {
+      PressState s;
+      s.body = {bodyVector(r, ".px", ".py", ".pz"), orientation(r)};
+      s.proxy = Vec3(at(f + ".px", r), at(f + ".py", r), at(f + ".pz", r));
+      s.device = Vec3(at(f + ".dx", r), at(f + ".dy", r), at(f + ".dz", r));
+      s.patch_radius = at(f + ".r", r);
+      const std::optional<double> over = contactOverhang(*body_, patch, m_.axis, s);
+      char b[96];
+      if (!over) {
+        std::snprintf(b, sizeof b, " along the axis at t = %.4f s", t_[r]);
+        fail("the finger presses no flat face of the " + m_.body + b);
+      }
+      if (*over <= 0.0) continue;
+      std::snprintf(b, sizeof b, " at t = %.4f s, inside the window [%g, %g]; end the window before it", t_[r],
+                    m_.from, m_.to);
+      fail("the finger's contact leaves the " + m_.body + "'s face" + b);
+    }
+  }
   // The finger's mean patch radius over the window rows where it had one (m); 0 when it had
   // none (a god-object or soft finger has no area).
   double patchRadius() const {
@@ -151,6 +180,7 @@ class View {
 // Applied torque about the axis minus I times the fitted angular acceleration: the friction
 // torque while the body spins (N m).
 double frictionTorque(const StudyMeasure& m, const View& v) {
+  v.checkWhole();
   v.checkPressed();
   std::vector<double> t = v.times(), w, applied, inertia;
   for (std::size_t r : v.rows()) {
@@ -163,6 +193,7 @@ double frictionTorque(const StudyMeasure& m, const View& v) {
 
 // Applied force minus m times the fitted acceleration, across the axis: the friction force (N).
 double frictionForce(const StudyMeasure& m, const View& v) {
+  v.checkWhole();
   v.checkPressed();
   const std::vector<double> t = v.times();
   Vec3 applied = Vec3::Zero();
