@@ -36,6 +36,7 @@ bool referenceFits(MeasureKind m, ReferenceKind r) {
     case ReferenceKind::kMuF: return m == MeasureKind::kFrictionForce;
     case ReferenceKind::kRollingPrediction: return m == MeasureKind::kRollRatio;
     case ReferenceKind::kPatchRadius: return m == MeasureKind::kGeodesicRadius;
+    case ReferenceKind::kValue: return m != MeasureKind::kTrajectory;  // its reference is the path's
   }
   return false;
 }
@@ -141,15 +142,23 @@ StudyMeasure readMeasure(Reader& r) {
     if (!(m.from >= 0.0) || !(m.to > m.from)) r.fail(w, "window", "expected 0 <= from < to");
   }
   m.at = r.number("at", 0.0, 0.0, 1e6);
-  m.reference = static_cast<ReferenceKind>(r.choice("reference", kReferenceKinds, 0));
+  // A number is a reference of its own (a free ball's roll ratio: 1); else a named one.
+  const toml::node* reference = r.find("reference");
+  if (reference && reference->is_number()) {
+    m.reference = ReferenceKind::kValue;
+    m.reference_value = r.number("reference", 0.0, -1e300, 1e300);
+  } else {
+    m.reference = static_cast<ReferenceKind>(r.choice("reference", kReferenceKinds, 0));
+  }
   if (!referenceFits(m.kind, m.reference)) {
-    r.fail(r.nodeOf("reference"), "reference",
-           std::string("'") + kReferenceKinds[static_cast<int>(m.reference)] + "' is not a reference of " +
-               kMeasureKinds[static_cast<int>(m.kind)]);
+    const std::string name = m.reference == ReferenceKind::kValue
+                                 ? std::string("a number")
+                                 : "'" + std::string(kReferenceKinds[static_cast<int>(m.reference)]) + "'";
+    r.fail(reference, "reference", name + " is not a reference of " + kMeasureKinds[static_cast<int>(m.kind)]);
   }
   const ErrorKind default_error = m.kind == MeasureKind::kTrajectory ? ErrorKind::kDeviation
                                   : m.kind == MeasureKind::kSwing || m.kind == MeasureKind::kForceSd ||
-                                          m.reference == ReferenceKind::kRollingPrediction
+                                          m.kind == MeasureKind::kRollRatio
                                       ? ErrorKind::kAbsolute
                                       : ErrorKind::kRelative;
   m.error = static_cast<ErrorKind>(r.choice("error", kErrorKinds, static_cast<int>(default_error)));

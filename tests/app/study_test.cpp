@@ -246,6 +246,62 @@ name = "only"
   EXPECT_EQ(csv.rows[0][static_cast<std::size_t>(csv.column("status"))], "unmeasured");
 }
 
+// A hand-made Fig. 5 run (3 s): the ball goes `speed` along x from 0.5 s, turning about z as far
+// as `roll` times rolling would.
+void writeBallRun(const fs::path& dir, double speed, double roll) {
+  fs::create_directories(dir);
+  std::ofstream(dir / "summary.json") << R"({"step_time_us": {"median": 10.0, "p99": 20.0}, "counters": {"steps": 3000}, )"
+                                      << R"("patch_time_us": {"mean": 1.0, "calls": 1}})" << "\n";
+  std::ofstream t(dir / "trace.csv");
+  t << "t,ball.px,ball.py,ball.pz,ball.qx,ball.qy,ball.qz,ball.qw\n";
+  t.precision(17);
+  for (int i = 0; i <= 1000; ++i) {
+    const double time = i * 1e-3, x = speed * std::max(0.0, time - 0.5), half = -0.5 * roll * x / 0.03;
+    t << time << "," << x << ",0.03,0,0,0," << std::sin(half) << "," << std::cos(half) << "\n";
+  }
+}
+
+// A number is a reference of its own: the roll ratio after a push against 1. A ball that went
+// less than 1 % of its radius has no roll ratio: NaN, with a note the report lists, and the run
+// still counts as measured.
+TEST(StudyMeasure, ANumberIsAReferenceAndABallAtRestHasNoRollRatio) {
+  const fs::path dir = freshDir("gf_study_free_roll");
+  const fs::path study = writeStudy(dir, R"(
+[[measures]]
+name = "free_roll_ratio"
+kind = "roll_ratio"
+body = "ball"
+window = [0.5, 1.0]
+reference = 1.0
+[[series]]
+name = "only"
+scene = "fig5-push-ball"
+axes = [{ field = "fingers.index.friction", values = [0.3, 1.1] }]
+)");
+  const StudyPlan plan = expandStudy(loadStudyFile(study.string()), false, {});
+  ASSERT_EQ(plan.runs.size(), 2u);
+  const StudyMeasure& m = plan.study.series[0].measures[0];
+  EXPECT_EQ(m.reference, ReferenceKind::kValue);
+  EXPECT_EQ(m.error, ErrorKind::kAbsolute) << "a roll ratio's error is absolute";
+  writeBallRun(dir / "runs" / plan.runs[0].id, 0.05, 0.98);
+  writeBallRun(dir / "runs" / plan.runs[1].id, 0.0002, 1.0);  // 0.1 mm in 0.5 s: at rest
+  ASSERT_EQ(collectStudy(plan, dir.string(), dir.string(), false), 0);
+  const Csv csv = readCsv(dir / "results.csv");
+  ASSERT_EQ(csv.rows.size(), 2u);
+  const auto cell = [&](std::size_t row, const char* c) {
+    return csv.rows[row][static_cast<std::size_t>(csv.column(c))];
+  };
+  EXPECT_NEAR(std::stod(cell(0, "measure")), 0.98, 1e-9);
+  EXPECT_EQ(std::stod(cell(0, "reference")), 1.0);
+  EXPECT_NEAR(std::stod(cell(0, "error")), -0.02, 1e-9);
+  EXPECT_EQ(cell(1, "measure"), "nan");
+  EXPECT_EQ(cell(1, "status"), "ok");
+  EXPECT_NE(readFile(dir / "report.md").find("- only, friction 1.1, `free_roll_ratio`: no roll ratio: the ball went 0.1 mm "
+                                             "in the window [0.5, 1], less than 1 % of its radius (it rests)"),
+            std::string::npos)
+      << readFile(dir / "report.md");
+}
+
 // A measure against the reference run is looked up in the reference run's folder: collecting
 // hand-made folders gives error = swing - reference swing (absolute, deg) for each run.
 TEST(StudyMeasure, ReferenceRunIsLookedUpWhenCollecting) {
@@ -359,6 +415,8 @@ TEST(StudyFile, MalformedStudiesNameFileLineColumnAndField) {
       {"[[measures]]\nkind = \"friction_force\"\nbody = \"ball\"\nreference = \"mu_f\"\n[[series]]\nname = \"a\"\n"
        "scene = \"fig5-push-ball\"\n",
        ":2:1: measures.0.body: must be a box or a cylinder"},
+      {"[[measures]]\nkind = \"trajectory\"\nbody = \"puck\"\nreference = 0.5\n[[series]]\nname = \"a\"\n",
+       ":5:13: measures.0.reference: a number is not a reference of trajectory"},
   };
   for (const Case& c : cases) {
     const fs::path study = writeStudy(dir, c.text);
