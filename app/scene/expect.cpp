@@ -9,8 +9,8 @@
 namespace gf::app {
 namespace {
 
-// max_roll_ratio and its roll_window: a sphere's (the ratio needs its radius), the window within
-// the run's time and only with the limit it bounds.
+// max_roll_ratio and its roll_window: a sphere's only (the ratio needs its radius), the window
+// [from, to] with 0 <= from < to, and only with the limit it bounds.
 void readRollRatio(Reader& br, const sim::BodyDesc& body, BodyExpect& b) {
   if (br.has("max_roll_ratio")) b.max_roll_ratio = br.number("max_roll_ratio", 0.0, 0.0, 1e6);
   if (b.max_roll_ratio && body.shape != sim::ShapeKind::kSphere) {
