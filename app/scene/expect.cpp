@@ -7,6 +7,29 @@
 #include "sim/settings.hpp"
 
 namespace gf::app {
+namespace {
+
+// max_roll_ratio and its roll_window: a sphere's only (the ratio needs its radius), the window
+// [from, to] with 0 <= from < to, and only with the limit it bounds.
+void readRollRatio(Reader& br, const sim::BodyDesc& body, BodyExpect& b) {
+  if (br.has("max_roll_ratio")) b.max_roll_ratio = br.number("max_roll_ratio", 0.0, 0.0, 1e6);
+  if (b.max_roll_ratio && body.shape != sim::ShapeKind::kSphere) {
+    br.fail(br.nodeOf("max_roll_ratio"), "max_roll_ratio",
+            "'" + body.name + "' is not a sphere: a roll ratio needs its radius");
+  }
+  const toml::node* w = br.find("roll_window");
+  if (!w) return;
+  const std::vector<double> v = br.numbers("roll_window");
+  if (v.size() != 2 || !(v[0] >= 0.0) || !(v[1] > v[0])) {
+    br.fail(w, "roll_window", "expected [from, to] in seconds, 0 <= from < to");
+  }
+  if (!b.max_roll_ratio) br.fail(w, "roll_window", "without max_roll_ratio it checks nothing");
+  b.roll_from = v[0];
+  b.roll_to = v[1];
+}
+
+}  // namespace
+
 // [expect]: invariants of the run (app/scene/expect_desc.hpp).
 void readExpect(Reader& parent, SessionDesc& s) {
   const toml::node* n = parent.find("expect");
@@ -42,6 +65,7 @@ void readExpect(Reader& parent, SessionDesc& s) {
     b.rests_after = optional(br, "rests_after", 0.0, 1e6);
     b.rest_speed = br.number("rest_speed", b.rest_speed, 0.0, 1e6);
     b.rest_tilt_rate = br.number("rest_tilt_rate", b.rest_tilt_rate, 0.0, 1e6);
+    readRollRatio(br, *body, b);
     br.finish();
   }
   for (const auto& [name, t] : r.namedTables("fingers")) {

@@ -52,6 +52,12 @@ ExpectChecker::ExpectChecker(const ExpectDesc& expect, const sim::World& world) 
       s.rest_tilt = add(p + "rests_after.tilt_rate", e.rest_tilt_rate, true);
       s.rests_after = *e.rests_after;
     }
+    if (e.max_roll_ratio) {
+      s.roll = add(p + "max_roll_ratio", *e.max_roll_ratio, true);
+      s.roll_from = e.roll_from;
+      s.roll_to = e.roll_to;
+      s.roll_ratio = RollRatio(scene.bodies[static_cast<std::size_t>(s.body)].radius, sim::Vec3::UnitY());
+    }
     s.after = e.after;
     bodies_.push_back(s);
   }
@@ -169,6 +175,11 @@ void ExpectChecker::checkBody(const sim::World& world, BodyState& s, double t) {
     const double angle = Eigen::AngleAxisd(p.orientation * s.start.inverse()).angle() * kRadToDeg;
     observe(checks_[static_cast<std::size_t>(s.rotation)], angle, t);
   }
+  // The poses of the roll window, selected as a study selects trace rows (to 1e-9 s).
+  if (s.roll >= 0 && t >= s.roll_from - 1e-9 && t <= s.roll_to + 1e-9) {
+    s.roll_ratio.add(p.position, p.orientation);
+    s.roll_last = t;
+  }
   if (s.rest_speed >= 0 && t > s.rests_after + 1e-12) {
     observe(checks_[static_cast<std::size_t>(s.rest_speed)], v.norm(), t);
     // Tilt: turning about a horizontal axis (y is up); a spin about the vertical is not a tilt.
@@ -205,6 +216,11 @@ void ExpectChecker::checkTunnelling(const sim::World& world, FingerState& s, dou
 std::vector<ExpectFailure> ExpectChecker::finish(const sim::World& world) {
   for (const BodyState& s : bodies_) {
     if (s.body >= 0 && s.ends >= 0) observe(checks_[static_cast<std::size_t>(s.ends)], world.bodyPose(s.body).position.y(), world.time());
+    // A run that ended before its roll window holds two poses leaves it unchecked; NaN (a ball
+    // that did not go 1 % of its radius) fails.
+    if (s.roll >= 0 && s.roll_ratio.samples() >= 2) {
+      observe(checks_[static_cast<std::size_t>(s.roll)], s.roll_ratio.value(), s.roll_last);
+    }
   }
   std::vector<ExpectFailure> out;
   for (const Check& c : checks_) {

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "app/scene/expect_desc.hpp"
+#include "app/study/roll_ratio.hpp"
 #include "sim/mesh.hpp"
 
 namespace gf::sim {
@@ -59,6 +60,9 @@ class ExpectChecker {
     double after = 0.0, rests_after = 0.0;
     bool have_start = false;
     Eigen::Quaterniond start = Eigen::Quaterniond::Identity();
+    int roll = -1;  // max_roll_ratio: taken at the end over the poses of roll_window
+    double roll_from = 0.0, roll_to = 0.0, roll_last = 0.0;
+    RollRatio roll_ratio{0.0, sim::Vec3::UnitY()};
   };
   struct FingerState {
     int finger = -1;

@@ -4,6 +4,7 @@
 // are then collected from the run folders into results.csv, a work-precision chart and a report.
 #pragma once
 
+#include <cmath>
 #include <optional>
 #include <string>
 #include <vector>
@@ -51,6 +52,7 @@ enum class ReferenceKind {
   kMuF,                 ///< mu F: Coulomb sliding
   kRollingPrediction,   ///< 0 (slides) when theta + r/R >= 1, else 1 (rolls)
   kPatchRadius,         ///< the Eq. 1 radius the patch walked
+  kValue,               ///< a number the study file gives (StudyMeasure::reference_value)
 };
 
 enum class ErrorKind {
@@ -63,6 +65,7 @@ struct StudyMeasure {
   std::string name;  ///< column prefix (the first measure's columns are measure, reference, error)
   MeasureKind kind = MeasureKind::kFrictionTorque;
   ReferenceKind reference = ReferenceKind::kRun;
+  double reference_value = NAN;          ///< ReferenceKind::kValue's, in the measure's unit
   ErrorKind error = ErrorKind::kRelative;
   std::string body, finger;              ///< scene names (finger: the first when empty)
   sim::Vec3 axis = sim::Vec3::UnitY();   ///< world axis of the measure

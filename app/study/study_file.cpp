@@ -11,6 +11,7 @@
 #include "app/scene/data_folder.hpp"
 #include "app/scene/scene_file.hpp"
 #include "app/scene/toml_reader.hpp"
+#include "app/study/contact_whole.hpp"
 #include "app/study/study.hpp"
 
 namespace gf::app {
@@ -35,6 +36,7 @@ bool referenceFits(MeasureKind m, ReferenceKind r) {
     case ReferenceKind::kMuF: return m == MeasureKind::kFrictionForce;
     case ReferenceKind::kRollingPrediction: return m == MeasureKind::kRollRatio;
     case ReferenceKind::kPatchRadius: return m == MeasureKind::kGeodesicRadius;
+    case ReferenceKind::kValue: return m != MeasureKind::kTrajectory;  // its reference is the path's
   }
   return false;
 }
@@ -140,15 +142,23 @@ StudyMeasure readMeasure(Reader& r) {
     if (!(m.from >= 0.0) || !(m.to > m.from)) r.fail(w, "window", "expected 0 <= from < to");
   }
   m.at = r.number("at", 0.0, 0.0, 1e6);
-  m.reference = static_cast<ReferenceKind>(r.choice("reference", kReferenceKinds, 0));
+  // A number is a reference of its own (a free ball's roll ratio: 1); else a named one.
+  const toml::node* reference = r.find("reference");
+  if (reference && reference->is_number()) {
+    m.reference = ReferenceKind::kValue;
+    m.reference_value = r.number("reference", 0.0, -1e300, 1e300);
+  } else {
+    m.reference = static_cast<ReferenceKind>(r.choice("reference", kReferenceKinds, 0));
+  }
   if (!referenceFits(m.kind, m.reference)) {
-    r.fail(r.nodeOf("reference"), "reference",
-           std::string("'") + kReferenceKinds[static_cast<int>(m.reference)] + "' is not a reference of " +
-               kMeasureKinds[static_cast<int>(m.kind)]);
+    const std::string name = m.reference == ReferenceKind::kValue
+                                 ? std::string("a number")
+                                 : "'" + std::string(kReferenceKinds[static_cast<int>(m.reference)]) + "'";
+    r.fail(reference, "reference", name + " is not a reference of " + kMeasureKinds[static_cast<int>(m.kind)]);
   }
   const ErrorKind default_error = m.kind == MeasureKind::kTrajectory ? ErrorKind::kDeviation
                                   : m.kind == MeasureKind::kSwing || m.kind == MeasureKind::kForceSd ||
-                                          m.reference == ReferenceKind::kRollingPrediction
+                                          m.kind == MeasureKind::kRollRatio
                                       ? ErrorKind::kAbsolute
                                       : ErrorKind::kRelative;
   m.error = static_cast<ErrorKind>(r.choice("error", kErrorKinds, static_cast<int>(default_error)));
@@ -249,6 +259,11 @@ void checkMeasures(const StudyDesc& study, const StudySeries& series, const Sess
     if (m.kind != MeasureKind::kGeodesicRadius && body->mass <= 0.0) fail("body", "'" + m.body + "' is static: it does not move");
     if (m.kind == MeasureKind::kGeodesicRadius && body->shape != sim::ShapeKind::kSphere) fail("body", "must be a sphere");
     if (m.kind == MeasureKind::kRollRatio && body->shape != sim::ShapeKind::kSphere) fail("body", "must be a sphere");
+    const bool friction = m.kind == MeasureKind::kFrictionTorque || m.kind == MeasureKind::kFrictionForce;
+    if (friction && !hasFlatFaces(body->shape)) {
+      fail("body", "must be a box or a cylinder: the measure checks that the finger's contact stays whole on "
+                   "the flat face it presses");
+    }
     bool finger = m.finger.empty() && !s.scene.fingers.empty();
     for (const sim::FingerDesc& f : s.scene.fingers) finger = finger || f.name == m.finger;
     if (!finger) fail("finger", "no finger '" + m.finger + "' in " + s.source);

@@ -11,6 +11,9 @@
 
 #include "app/runs/run_folder.hpp"
 #include "app/runs/run_reader.hpp"
+#include "app/study/contact_whole.hpp"
+#include "app/study/roll_ratio.hpp"
+#include "sim/effective_settings.hpp"
 #include "sim/god_finger.hpp"
 
 namespace gf::app {
@@ -100,6 +103,33 @@ class View {
       }
     }
   }
+  // Fails at the first row of the window where the finger's contact is no longer whole on the
+  // face it presses (app/study/contact_whole.hpp): a friction limit measured while the contact
+  // hangs over the edge is partly the edge's. The window must end before it.
+  void checkWhole() const {
+    const std::string f = finger_->name;
+    const sim::SceneDesc& scene = run_.session.scene;
+    const sim::PatchSettings patch =
+        sim::effectiveSettings(finger_->patch, scene.effects, scene.world.contact_solver).patch;
+    const auto at = [&](const std::string& column, std::size_t r) { return run_.column(column)[r]; };
+    for (std::size_t r : rows_) {
+      PressState s;
+      s.body = {bodyVector(r, ".px", ".py", ".pz"), orientation(r)};
+      s.proxy = Vec3(at(f + ".px", r), at(f + ".py", r), at(f + ".pz", r));
+      s.device = Vec3(at(f + ".dx", r), at(f + ".dy", r), at(f + ".dz", r));
+      s.patch_radius = at(f + ".r", r);
+      const std::optional<double> over = contactOverhang(*body_, patch, m_.axis, s);
+      char b[96];
+      if (!over) {
+        std::snprintf(b, sizeof b, " along the axis at t = %.4f s", t_[r]);
+        fail("the finger presses no flat face of the " + m_.body + b);
+      }
+      if (*over <= 0.0) continue;
+      std::snprintf(b, sizeof b, " at t = %.4f s, inside the window [%g, %g]; end the window before it", t_[r],
+                    m_.from, m_.to);
+      fail("the finger's contact leaves the " + m_.body + "'s face" + b);
+    }
+  }
   // The finger's mean patch radius over the window rows where it had one (m); 0 when it had
   // none (a god-object or soft finger has no area).
   double patchRadius() const {
@@ -151,6 +181,7 @@ class View {
 // Applied torque about the axis minus I times the fitted angular acceleration: the friction
 // torque while the body spins (N m).
 double frictionTorque(const StudyMeasure& m, const View& v) {
+  v.checkWhole();
   v.checkPressed();
   std::vector<double> t = v.times(), w, applied, inertia;
   for (std::size_t r : v.rows()) {
@@ -163,6 +194,7 @@ double frictionTorque(const StudyMeasure& m, const View& v) {
 
 // Applied force minus m times the fitted acceleration, across the axis: the friction force (N).
 double frictionForce(const StudyMeasure& m, const View& v) {
+  v.checkWhole();
   v.checkPressed();
   const std::vector<double> t = v.times();
   Vec3 applied = Vec3::Zero();
@@ -172,17 +204,22 @@ double frictionForce(const StudyMeasure& m, const View& v) {
   return (f - f.dot(m.axis) * m.axis).norm();
 }
 
-// Rotation angle times the radius over the distance travelled across the axis.
-double rollRatio(const StudyMeasure& m, const View& v) {
-  double angle = 0.0;
-  const std::vector<std::size_t>& rows = v.rows();
-  for (std::size_t i = 1; i < rows.size(); ++i) {
-    angle += Eigen::AngleAxisd(v.orientation(rows[i]) * v.orientation(rows[i - 1]).inverse()).angle();
-  }
-  Vec3 d = v.bodyVector(rows.back(), ".px", ".py", ".pz") - v.bodyVector(rows.front(), ".px", ".py", ".pz");
-  d -= d.dot(m.axis) * m.axis;
-  if (d.norm() < 1e-6) v.fail("the body did not travel in the window");
-  return angle * v.body().radius / d.norm();
+// A measure's value, and why it has none when it is NaN.
+struct Value {
+  double x = NAN;
+  std::string note;
+};
+
+// Rotation angle times the radius over the distance travelled across the axis
+// (app/study/roll_ratio.hpp, as [expect] max_roll_ratio takes it); none for a body at rest.
+Value rollRatio(const StudyMeasure& m, const View& v) {
+  RollRatio roll(v.body().radius, m.axis);
+  for (std::size_t r : v.rows()) roll.add(v.bodyVector(r, ".px", ".py", ".pz"), v.orientation(r));
+  if (roll.travelled()) return {roll.value(), {}};
+  char b[160];
+  std::snprintf(b, sizeof b, "the %s went %.3g mm in the window [%g, %g], less than %g %% of its radius (it rests)",
+                m.body.c_str(), roll.distance() * 1e3, m.from, m.to, RollRatio::kMinTravel * 100.0);
+  return {NAN, std::string("no roll ratio: ") + b};
 }
 
 // Largest rotation about the axis since the window's first row (deg).
@@ -269,14 +306,14 @@ std::pair<double, double> trajectory(const StudyMeasure& m, const RunOutputs& ru
   return {std::sqrt(dev / n), std::sqrt(disp / n)};
 }
 
-double measureOnly(const StudyMeasure& m, const RunOutputs& run, const View& v) {
+Value measureOnly(const StudyMeasure& m, const RunOutputs& run, const View& v) {
   switch (m.kind) {
-    case MeasureKind::kFrictionTorque: return frictionTorque(m, v);
-    case MeasureKind::kFrictionForce: return frictionForce(m, v);
+    case MeasureKind::kFrictionTorque: return {frictionTorque(m, v), {}};
+    case MeasureKind::kFrictionForce: return {frictionForce(m, v), {}};
     case MeasureKind::kRollRatio: return rollRatio(m, v);
-    case MeasureKind::kSwing: return swing(m, v);
-    case MeasureKind::kForceSd: return forceSd(m, v, run);
-    case MeasureKind::kGeodesicRadius: return geodesicRadius(m, run, v);
+    case MeasureKind::kSwing: return {swing(m, v), {}};
+    case MeasureKind::kForceSd: return {forceSd(m, v, run), {}};
+    case MeasureKind::kGeodesicRadius: return {geodesicRadius(m, run, v), {}};
     case MeasureKind::kTrajectory: break;
   }
   v.fail("a trajectory is measured against its reference run");
@@ -306,12 +343,15 @@ MeasureResult evaluateMeasure(const StudyMeasure& m, const RunOutputs& run, cons
     if (!reference_run) v.fail("no reference run");
     std::tie(r.measure, r.reference) = trajectory(m, run, *reference_run);
   } else {
-    r.measure = measureOnly(m, run, v);
+    const Value x = measureOnly(m, run, v);
+    r.measure = x.x;
+    r.note = x.note;
     switch (m.reference) {
       case ReferenceKind::kRun:
         if (!reference_run) v.fail("no reference run");
-        r.reference = measureOnly(m, *reference_run, View(m, *reference_run));
+        r.reference = measureOnly(m, *reference_run, View(m, *reference_run)).x;
         break;
+      case ReferenceKind::kValue: r.reference = m.reference_value; break;
       case ReferenceKind::kTwoThirdsMuFR: r.reference = 2.0 / 3.0 * v.friction() * v.normalForce() * v.pressRadius(); break;
       case ReferenceKind::kMuFR: r.reference = v.friction() * v.normalForce() * v.pressRadius(); break;
       case ReferenceKind::kHertzMuFR:

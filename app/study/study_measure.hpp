@@ -30,6 +30,7 @@ RunOutputs readRunOutputs(const std::string& dir, const SessionDesc& session);
 
 struct MeasureResult {
   double measure = NAN, reference = NAN, error = NAN;
+  std::string note;  ///< why the measure is NaN when the run gives it none (a roll ratio of a body at rest)
 };
 
 /// Measure `m` of `run` against its reference: the analytic formula of the run's own measured

@@ -257,6 +257,26 @@ render::ChartSpec workPrecisionChart(const StudyPlan& plan, const std::vector<Ro
   return chart;
 }
 
+// True when a further measure is not the first one's quantity against another reference
+// (another kind, body, finger, axis or window): the report then shows its value too.
+bool otherQuantity(const StudyMeasure& a, const StudyMeasure& b) {
+  return a.kind != b.kind || a.body != b.body || a.finger != b.finger || a.axis != b.axis || a.from != b.from ||
+         a.to != b.to;
+}
+
+// Why some measures have no value (a roll ratio of a body at rest), one line each.
+std::string notesMd(const StudyPlan& plan, const std::vector<Row>& rows) {
+  std::string out;
+  for (const Row& r : rows) {
+    const std::vector<StudyMeasure>& own = measuresOf(plan, *r.run);
+    for (std::size_t k = 0; k < r.measures.size() && k < own.size(); ++k) {
+      if (r.measures[k].note.empty()) continue;
+      out += "- " + configurationText(r) + ", `" + own[k].name + "`: " + r.measures[k].note + "\n";
+    }
+  }
+  return out.empty() ? out : "\nNo value:\n\n" + out;
+}
+
 std::string reportMd(const StudyPlan& plan, const std::vector<Row>& rows, bool parallel_times) {
   const StudyDesc& study = plan.study;
   const std::vector<StudyMeasure>& measures = study.series.front().measures;
@@ -276,9 +296,11 @@ std::string reportMd(const StudyPlan& plan, const std::vector<Row>& rows, bool p
   bool same_measure = true;
   for (const StudySeries& s : study.series) same_measure = same_measure && s.measures.front().name == m.name;
   out += "| configuration | " + (same_measure ? m.name : std::string("measure (its series')")) + " | reference | error |";
-  for (std::size_t k = 1; k < measures.size(); ++k) out += " " + measures[k].name + " error |";
+  for (std::size_t k = 1; k < measures.size(); ++k) {
+    out += (otherQuantity(measures[k], m) ? " " + measures[k].name + " |" : "") + " " + measures[k].name + " error |";
+  }
   out += " step us (median) | step us (p99) | patch us |\n|---|---|---|---|";
-  for (std::size_t k = 1; k < measures.size(); ++k) out += "---|";
+  for (std::size_t k = 1; k < measures.size(); ++k) out += otherQuantity(measures[k], m) ? "---|---|" : "---|";
   out += "---|---|---|\n";
   char b[160];
   for (const Row& r : rows) {
@@ -290,11 +312,17 @@ std::string reportMd(const StudyPlan& plan, const std::vector<Row>& rows, bool p
     out += b;
     for (std::size_t k = 1; k < measures.size(); ++k) {
       const StudyMeasure& mk = k < own.size() ? own[k] : measures[k];
-      out.append(1, ' ').append(errorText(mk, k < r.measures.size() ? r.measures[k].error : NAN)).append(" |");
+      const MeasureResult xk = k < r.measures.size() ? r.measures[k] : MeasureResult{};
+      if (otherQuantity(measures[k], m)) {
+        std::snprintf(b, sizeof b, " %.5g |", xk.measure);
+        out += b;
+      }
+      out.append(1, ' ').append(errorText(mk, xk.error)).append(" |");
     }
     std::snprintf(b, sizeof b, " %.1f | %.1f | %.2f |\n", r.step_median, r.step_p99, r.patch_mean);
     out += b;
   }
+  out += notesMd(plan, rows);
   out += "\n## The most accurate configuration per budget\n\n";
   out += "Budget on the " + costLabel(study.cost) + "; reference runs left out, and runs measured otherwise than " +
          "the first series (`" + m.name + "`).\n\n| budget (us) | configuration | error | cost (us) |\n|---|---|---|---|\n";
@@ -382,6 +410,10 @@ int collectStudy(const StudyPlan& plan, const std::string& runs_dir, const std::
     for (const StudyMeasure& m : measuresOf(plan, run)) {
       try {
         rows[i].measures.push_back(evaluateMeasure(m, *outputs[i], ref));
+        const std::string& note = rows[i].measures.back().note;
+        if (!note.empty()) {
+          std::fprintf(stderr, "godfinger study: %s: %s: %s\n", outputs[i]->dir.c_str(), m.name.c_str(), note.c_str());
+        }
       } catch (const std::exception& e) {
         std::fprintf(stderr, "godfinger study: %s\n", e.what());
         rows[i].measures.push_back({});

@@ -477,6 +477,8 @@ max_rotation_deg = 5.0
 after = 0.1
 rests_after = 0.5
 rest_tilt_rate = 0.01
+max_roll_ratio = 0.2
+roll_window = [0.05, 0.2]
 [expect.fingers.left]
 min_sgo = 3
 window = [0.1, 0.2]
@@ -490,6 +492,9 @@ window = [0.1, 0.2]
   EXPECT_EQ(*s.expect.bodies.at("ball").rests_after, 0.5);
   EXPECT_EQ(s.expect.bodies.at("ball").rest_speed, 1e-3);  // the default
   EXPECT_EQ(s.expect.bodies.at("ball").rest_tilt_rate, 0.01);
+  EXPECT_EQ(*s.expect.bodies.at("ball").max_roll_ratio, 0.2);
+  EXPECT_EQ(s.expect.bodies.at("ball").roll_from, 0.05);
+  EXPECT_EQ(s.expect.bodies.at("ball").roll_to, 0.2);
   EXPECT_EQ(*s.expect.fingers.at("left").min_sgo, 3);
   EXPECT_EQ(s.expect.fingers.at("left").from, 0.1);
   EXPECT_STREQ(errorOf(kMinimal + "[expect.bodies.ground]\nstays_above = 0.0\n").what(),
@@ -500,6 +505,14 @@ window = [0.1, 0.2]
                "scene.toml:16:13: expect.max_speed: must be in [0, 1e+06], got -1");
   EXPECT_STREQ(errorOf(kMinimal + "[expect]\nmax_sped = 1.0\n").what(),
                "scene.toml:16:12: expect.max_sped: unknown field");
+  EXPECT_STREQ(errorOf(kMinimal + "[expect.bodies.ball]\nroll_window = [0.1, 0.2]\n").what(),
+               "scene.toml:16:15: expect.bodies.ball.roll_window: without max_roll_ratio it checks nothing");
+  EXPECT_STREQ(errorOf(kMinimal + "[expect.bodies.ball]\nmax_roll_ratio = 0.2\nroll_window = [0.2, 0.1]\n").what(),
+               "scene.toml:17:15: expect.bodies.ball.roll_window: expected [from, to] in seconds, 0 <= from < to");
+  const std::string box =
+      replaced("shape = \"sphere\"\nradius = 0.03", "shape = \"box\"\nhalf_extents = [0.03, 0.03, 0.03]");
+  EXPECT_STREQ(errorOf(box + "[expect.bodies.ball]\nmax_roll_ratio = 0.2\n").what(),
+               "scene.toml:16:18: expect.bodies.ball.max_roll_ratio: 'ball' is not a sphere: a roll ratio needs its radius");
 }
 
 // Huge but finite numbers that made every step roll back are rejected with their field: a body

@@ -17,6 +17,7 @@
 #include "app/scene/data_folder.hpp"
 #include "app/scene/scene_file.hpp"
 #include "app/session/expectations.hpp"
+#include "app/study/study_measure.hpp"
 #include "render/image.hpp"
 #include "tests/scratch.hpp"
 
@@ -306,6 +307,44 @@ TEST(Session, ARestingBodyMaySpinButNotTiltOrMove) {
   ASSERT_TRUE(by_name.contains("bodies.puck.rests_after.speed"));
   EXPECT_GT(by_name["bodies.puck.rests_after.speed"].value, 1e-3);
   EXPECT_GT(by_name["bodies.puck.rests_after.speed"].time, 0.6);
+}
+
+// max_roll_ratio: pushed by the god-finger, the Fig. 5 ball slides (its roll ratio over the
+// push stays under the scene's 0.2); pushed by a god-object it rolls, 1, and the check fails at
+// the window's end. Both are the studies' roll_ratio measure of the run's trace, to the bit.
+// The first 0.6 s of the push only, to keep the test short.
+TEST(Session, TheFig5BallSlidesUnderAGodFingerAndRollsUnderAGodObject) {
+  SessionDesc s = loadSceneFile(resolveScenePath("fig5-push-ball"));
+  s.scene.duration = 1.2;
+  BodyExpect& ball = s.expect.bodies.at("ball");
+  ASSERT_EQ(ball.max_roll_ratio, 0.2);
+  ASSERT_EQ(ball.roll_from, 0.6);
+  ball.roll_to = 1.2;
+  StudyMeasure study_measure;
+  study_measure.name = "roll_ratio";
+  study_measure.kind = MeasureKind::kRollRatio;
+  study_measure.reference = ReferenceKind::kRollingPrediction;
+  study_measure.body = "ball";
+  study_measure.from = 0.6;
+  study_measure.to = 1.2;
+  std::vector<ExpectFailure> failed{{"placeholder", 0, 0, 0}};
+  SessionOptions options = freshOutput("gf_session_roll");
+  options.expect_failures = &failed;
+  runSession(s, options);
+  EXPECT_TRUE(failed.empty()) << failed.front().text();
+  const double sliding = readJson(fs::path(options.out_dir) / "summary.json")["measures"]["bodies.ball.max_roll_ratio"];
+  EXPECT_LT(sliding, 0.2);
+  EXPECT_EQ(sliding, evaluateMeasure(study_measure, readRunOutputs(options.out_dir, s), nullptr).measure);
+
+  s.scene.fingers.at(0).patch.n_sgo = 0;
+  runSession(s, options);
+  std::map<std::string, ExpectFailure> by_name;
+  for (const ExpectFailure& f : failed) by_name[f.name] = f;
+  ASSERT_TRUE(by_name.contains("bodies.ball.max_roll_ratio"));
+  EXPECT_NEAR(by_name["bodies.ball.max_roll_ratio"].value, 1.0, 1e-3);
+  EXPECT_NEAR(by_name["bodies.ball.max_roll_ratio"].time, 1.2, 1e-9);
+  EXPECT_EQ(by_name["bodies.ball.max_roll_ratio"].value,
+            evaluateMeasure(study_measure, readRunOutputs(options.out_dir, s), nullptr).measure);
 }
 
 }  // namespace

@@ -2,6 +2,7 @@
 // run folders, the emit / GNU parallel / collect path, and malformed study files.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
@@ -109,7 +110,8 @@ INSTANTIATE_TEST_SUITE_P(Study, BundledStudy,
                          [](const testing::TestParamInfo<const char*>& i) { return std::string(i.param); });
 
 // A hand-made run folder: a pressed puck (the pressed-puck scene) spinning up at a known angular
-// acceleration while the finger presses with a known force.
+// acceleration while the finger presses with a known force, its proxy resting on the top face's
+// centre (y = 0.048) until the puck slides away under it.
 struct HandMadeRun {
   long steps = 1000;        // the scene's 1 s at 1 kHz: a complete run
   double inertia = 8e-4;    // kg m^2 about y
@@ -117,6 +119,7 @@ struct HandMadeRun {
   double press = 4.0;       // N
   double radius = 0.0075;   // m, the finger's patch
   double swing_deg = 0.0;   // rotation about x, growing linearly to this by 1 s
+  double slide = 0.0;       // m/s^2: the puck's acceleration along x from 0.6 s
 };
 
 void writeRun(const fs::path& dir, const HandMadeRun& h) {
@@ -128,13 +131,14 @@ void writeRun(const fs::path& dir, const HandMadeRun& h) {
                                       << h.inertia << ", 0.0005]}]}\n";
   std::ofstream t(dir / "trace.csv");
   t << "t,puck.px,puck.py,puck.pz,puck.qx,puck.qy,puck.qz,puck.qw,index.fx,index.fy,index.fz,index.n_sgo,index.r,"
-       "puck.vx,puck.vy,puck.vz,puck.wx,puck.wy,puck.wz\n";
+       "index.px,index.py,index.pz,index.dx,index.dy,index.dz,puck.vx,puck.vy,puck.vz,puck.wx,puck.wy,puck.wz\n";
   t.precision(17);
   for (int i = 0; i <= 1000; ++i) {
-    const double time = i * 1e-3, w = time > 0.6 ? h.alpha * (time - 0.6) : 0.0;
+    const double time = i * 1e-3, after = std::max(0.0, time - 0.6), w = h.alpha * after;
     const double half = 0.5 * h.swing_deg * std::numbers::pi / 180.0 * time;
-    t << time << ",0,0.02,0," << std::sin(half) << ",0,0," << std::cos(half) << ",0," << -h.press << ",0,8,"
-      << h.radius << ",0,0,0,0," << w << ",0\n";
+    t << time << "," << 0.5 * h.slide * after * after << ",0.02,0," << std::sin(half) << ",0,0," << std::cos(half)
+      << ",0," << -h.press << ",0,8," << h.radius << ",0,0.048,0,0,0.04225,0," << h.slide * after << ",0,0,0," << w
+      << ",0\n";
   }
 }
 
@@ -180,6 +184,122 @@ name = "only"
   EXPECT_NEAR(b.reference, 3.0 * std::numbers::pi / 16.0 * h.press * r, 1e-12);
   EXPECT_NEAR(measureError(ErrorKind::kAbsolute, 3.0, 1.0), 2.0, 0.0);
   EXPECT_NEAR(measureError(ErrorKind::kDeviation, 3.0, 1.5), 2.0, 0.0);
+}
+
+// A friction measure whose window runs on after the finger's contact has left the face it
+// presses fails, naming the run, the measure and the time. The puck slides 0.5 a s^2 along x
+// (s from 0.6 s) under a finger resting over its centre, unstretched (the device straight
+// below the proxy): a patch of radius r reaches the edge (R = 0.04 m) when that is R - r, a
+// point contact when it is R. A window that ends before is measured: the force is m a.
+TEST(StudyMeasure, FrictionWindowPastTheContactLeavingTheFaceFails) {
+  const fs::path dir = freshDir("gf_study_leaves");
+  const fs::path study = writeStudy(dir, R"(
+[[measures]]
+name = "slip_force"
+kind = "friction_force"
+body = "puck"
+window = [0.65, 0.9]
+reference = "mu_f"
+[[measures]]
+name = "slip_torque"
+kind = "friction_torque"
+body = "puck"
+window = [0.65, 0.9]
+reference = "two_thirds_mu_f_r"
+[[measures]]
+name = "before"
+kind = "friction_force"
+body = "puck"
+window = [0.65, 0.75]
+reference = "mu_f"
+[[series]]
+name = "only"
+)");
+  const StudyPlan plan = expandStudy(loadStudyFile(study.string()), false, {});
+  ASSERT_EQ(plan.runs.size(), 1u);
+  const std::vector<StudyMeasure>& m = plan.study.series[0].measures;
+  const fs::path run_dir = dir / "runs" / plan.runs[0].id;
+  HandMadeRun h;
+  h.slide = 2.5;  // m/s^2, m 1 kg
+  // r 7.5 mm: 1.25 s^2 = 0.0325 at s = 0.16125 (row 0.762); a point: 0.04 at s = 0.17889 (row 0.779).
+  for (const auto& [radius, time] : {std::pair{0.0075, "0.7620"}, std::pair{0.0, "0.7790"}}) {
+    h.radius = radius;
+    writeRun(run_dir, h);
+    const RunOutputs run = readRunOutputs(run_dir.string(), loadSceneFile(plan.runs[0].scene));
+    for (std::size_t k : {0u, 1u}) {
+      try {
+        evaluateMeasure(m[k], run, nullptr);
+        ADD_FAILURE() << m[k].name << " measured past the edge, r = " << radius;
+      } catch (const std::runtime_error& e) {
+        const std::string expected = run_dir.string() + ": " + m[k].name +
+                                     ": the finger's contact leaves the puck's face at t = " + time +
+                                     " s, inside the window [0.65, 0.9]; end the window before it";
+        EXPECT_EQ(e.what(), expected);
+      }
+    }
+    EXPECT_NEAR(evaluateMeasure(m[2], run, nullptr).measure, 2.5, 1e-6) << "r = " << radius;
+  }
+  // Collected, the run is unmeasured and the study not whole.
+  EXPECT_NE(collectStudy(plan, dir.string(), dir.string(), false), 0);
+  const Csv csv = readCsv(dir / "results.csv");
+  ASSERT_EQ(csv.rows.size(), 1u);
+  EXPECT_EQ(csv.rows[0][static_cast<std::size_t>(csv.column("status"))], "unmeasured");
+}
+
+// A hand-made Fig. 5 run (3 s): the ball goes `speed` along x from 0.5 s, turning about z as far
+// as `roll` times rolling would.
+void writeBallRun(const fs::path& dir, double speed, double roll) {
+  fs::create_directories(dir);
+  std::ofstream(dir / "summary.json") << R"({"step_time_us": {"median": 10.0, "p99": 20.0}, "counters": {"steps": 3000}, )"
+                                      << R"("patch_time_us": {"mean": 1.0, "calls": 1}})" << "\n";
+  std::ofstream t(dir / "trace.csv");
+  t << "t,ball.px,ball.py,ball.pz,ball.qx,ball.qy,ball.qz,ball.qw\n";
+  t.precision(17);
+  for (int i = 0; i <= 1000; ++i) {
+    const double time = i * 1e-3, x = speed * std::max(0.0, time - 0.5), half = -0.5 * roll * x / 0.03;
+    t << time << "," << x << ",0.03,0,0,0," << std::sin(half) << "," << std::cos(half) << "\n";
+  }
+}
+
+// A number is a reference of its own: the roll ratio after a push against 1. A ball that went
+// less than 1 % of its radius has no roll ratio: NaN, with a note the report lists, and the run
+// still counts as measured.
+TEST(StudyMeasure, ANumberIsAReferenceAndABallAtRestHasNoRollRatio) {
+  const fs::path dir = freshDir("gf_study_free_roll");
+  const fs::path study = writeStudy(dir, R"(
+[[measures]]
+name = "free_roll_ratio"
+kind = "roll_ratio"
+body = "ball"
+window = [0.5, 1.0]
+reference = 1.0
+[[series]]
+name = "only"
+scene = "fig5-push-ball"
+axes = [{ field = "fingers.index.friction", values = [0.3, 1.1] }]
+)");
+  const StudyPlan plan = expandStudy(loadStudyFile(study.string()), false, {});
+  ASSERT_EQ(plan.runs.size(), 2u);
+  const StudyMeasure& m = plan.study.series[0].measures[0];
+  EXPECT_EQ(m.reference, ReferenceKind::kValue);
+  EXPECT_EQ(m.error, ErrorKind::kAbsolute) << "a roll ratio's error is absolute";
+  writeBallRun(dir / "runs" / plan.runs[0].id, 0.05, 0.98);
+  writeBallRun(dir / "runs" / plan.runs[1].id, 0.0002, 1.0);  // 0.1 mm in 0.5 s: at rest
+  ASSERT_EQ(collectStudy(plan, dir.string(), dir.string(), false), 0);
+  const Csv csv = readCsv(dir / "results.csv");
+  ASSERT_EQ(csv.rows.size(), 2u);
+  const auto cell = [&](std::size_t row, const char* c) {
+    return csv.rows[row][static_cast<std::size_t>(csv.column(c))];
+  };
+  EXPECT_NEAR(std::stod(cell(0, "measure")), 0.98, 1e-9);
+  EXPECT_EQ(std::stod(cell(0, "reference")), 1.0);
+  EXPECT_NEAR(std::stod(cell(0, "error")), -0.02, 1e-9);
+  EXPECT_EQ(cell(1, "measure"), "nan");
+  EXPECT_EQ(cell(1, "status"), "ok");
+  EXPECT_NE(readFile(dir / "report.md").find("- only, friction 1.1, `free_roll_ratio`: no roll ratio: the ball went 0.1 mm "
+                                             "in the window [0.5, 1], less than 1 % of its radius (it rests)"),
+            std::string::npos)
+      << readFile(dir / "report.md");
 }
 
 // A measure against the reference run is looked up in the reference run's folder: collecting
@@ -292,6 +412,11 @@ TEST(StudyFile, MalformedStudiesNameFileLineColumnAndField) {
        ":8:55: series.0.axes.0.values.1: 'fingers.index.n_sgo=99': fingers.index.n_sgo: must be"},
       {"[[measures]]\nkind = \"swing\"\nbody = \"puck\"\n[[series]]\nname = \"a\"\n",
        ":2:1: measures.0.reference: 'run' needs a [reference_run]"},
+      {"[[measures]]\nkind = \"friction_force\"\nbody = \"ball\"\nreference = \"mu_f\"\n[[series]]\nname = \"a\"\n"
+       "scene = \"fig5-push-ball\"\n",
+       ":2:1: measures.0.body: must be a box or a cylinder"},
+      {"[[measures]]\nkind = \"trajectory\"\nbody = \"puck\"\nreference = 0.5\n[[series]]\nname = \"a\"\n",
+       ":5:13: measures.0.reference: a number is not a reference of trajectory"},
   };
   for (const Case& c : cases) {
     const fs::path study = writeStudy(dir, c.text);
