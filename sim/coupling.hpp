@@ -5,6 +5,9 @@
 
 namespace gf::sim {
 
+/// m/s: faster than a hand moves a haptic device (arm movements peak at 2 to 5 m/s).
+inline constexpr double kDefaultMaxDeviceSpeed = 10.0;
+
 /// Spring-damper between device and proxy (Colgate et al. 1995 virtual coupling).
 struct CouplingSettings {
   double stiffness = 800.0;  ///< N/m
@@ -13,6 +16,32 @@ struct CouplingSettings {
   /// N/s: how fast the force sent to the device may change (World::feedbackForce), whatever the
   /// device or the contact does; 0: max_force / kDefaultForceRamp
   double max_force_rate = 0.0;
+  /// m/s: a device sample further from the last than this times the step is a jump (a new
+  /// sender, a tracking glitch, a scripted move), not a hand's motion: the passivity observer
+  /// counts its work apart (World::portObserver)
+  double max_device_speed = kDefaultMaxDeviceSpeed;
+};
+
+/// The passivity observer of a device port (Hannaford and Ryu 2002): the work the hand has done
+/// on the device against the force sent (J), summed over the steps where the device moved as a
+/// hand can. A step where it moved faster than max_device_speed is a jump: its work is summed
+/// apart, since no hand took or gave it (a tracking glitch, a sender taking over, a scripted
+/// move), and the force sent, which may not jump, cannot take it back in that step.
+struct PortObserver {
+  double energy = 0.0;       ///< J; a passive simulation keeps it at or above zero
+  double min_energy = 0.0;   ///< J: the lowest `energy` was
+  long jumps = 0;            ///< steps the device jumped
+  double jump_energy = 0.0;  ///< J: the work of those steps
+
+  void observe(double work, bool jump) {
+    if (jump) {
+      ++jumps;
+      jump_energy += work;
+      return;
+    }
+    energy += work;
+    min_energy = energy < min_energy ? energy : min_energy;
+  }
 };
 
 /// s: the default max_force_rate takes this long from zero to max_force.

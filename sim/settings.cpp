@@ -212,6 +212,7 @@ std::span<const Setting<FingerDesc>> fingerSettings() {
       row<F, &F::coupling, &CouplingSettings::damping>("coupling_damping", "N s/m", 0.0, 1e5),
       aboveMin(row<F, &F::coupling, &CouplingSettings::max_force>("max_force", "N", 0.0, 1e4)),
       row<F, &F::coupling, &CouplingSettings::max_force_rate>("max_force_rate", "N/s", 0.0, 1e7),
+      row<F, &F::coupling, &CouplingSettings::max_device_speed>("max_device_speed", "m/s", 0.01, 1e4),
   };
   return kTable;
 }
@@ -246,7 +247,7 @@ std::string jsonKey(const Setting<Desc>& s) {
   static constexpr std::pair<std::string_view, std::string_view> kSuffixes[] = {
       {"", ""},         {"m", "_m"},        {"deg", "_deg"},         {"kg", "_kg"},        {"s", "_s"},
       {"N", "_n"},      {"Hz", "_hz"},      {"N/m", "_n_per_m"},     {"N s/m", "_ns_per_m"},
-      {"1/s", "_per_s"}, {"m/s^2", "_m_per_s2"}, {"N m", "_nm"},  {"N/s", "_n_per_s"},
+      {"1/s", "_per_s"}, {"m/s^2", "_m_per_s2"}, {"N m", "_nm"},  {"N/s", "_n_per_s"}, {"m/s", "_m_per_s"},
   };
   std::string key(s.name);
   for (char& c : key) c = c == '.' ? '_' : c;

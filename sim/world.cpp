@@ -25,7 +25,7 @@ void World::step(double dt, std::span<const DeviceSample> devices) {
   GF_ASSERT_OWNER();
   Impl& w = *impl_;
   w.applyChangesDue(dt);
-  w.applyCouplings(devices);
+  w.applyCouplings(devices, dt);
   w.applyLoads();
   w.saveStates();
   w.world.stepSimulation(dt, 0, dt);
@@ -139,7 +139,12 @@ Vec3 World::feedbackForce(int finger) const {
 
 double World::portEnergy(int finger) const {
   GF_ASSERT_OWNER();
-  return impl_->fingers[finger].port_energy;
+  return impl_->fingers[finger].port.energy;
+}
+
+const PortObserver& World::portObserver(int finger) const {
+  GF_ASSERT_OWNER();
+  return impl_->fingers[finger].port;
 }
 
 bool World::touching(int finger) const {

@@ -75,9 +75,12 @@ class World {
   Vec3 feedbackForce(int finger) const;
   /// The passivity observer of the finger's device port (Hannaford and Ryu 2002): the work the
   /// hand has done on the device against the force sent, the sum over steps of
-  /// -feedbackForce . (device displacement) (J). A passive simulation never lets it fall below
-  /// zero: it returns no more energy than it was given.
+  /// -feedbackForce . (device displacement) (J), leaving out the steps where the device jumped
+  /// (PortObserver). A passive simulation never lets it fall below zero: it returns no more
+  /// energy than it was given.
   double portEnergy(int finger) const;
+  /// The same observer with its lowest value and the device's jumps, whose work it leaves out.
+  const PortObserver& portObserver(int finger) const;
   /// Finger i's proxy touched a body in the last step.
   bool touching(int finger) const;
   /// SGOs finger i fed to the solver in the last step, over all its contacts.

@@ -100,15 +100,17 @@ void World::Impl::applyChangesDue(double dt) {
 }
 
 // Each finger's newest finite device sample (a sample missing or not finite keeps the last)
-// and the coupling force it puts on the proxy for this step.
-void World::Impl::applyCouplings(std::span<const DeviceSample> devices) {
+// and the coupling force it puts on the proxy for this step. The work the hand did against the
+// force sent while the device moved there goes to the port's observer, a jump's apart.
+void World::Impl::applyCouplings(std::span<const DeviceSample> devices, double dt) {
   for (std::size_t i = 0; i < fingers.size(); ++i) {
     Finger& f = fingers[i];
+    const CouplingSettings& cs = desc.fingers[i].coupling;
     if (i < devices.size() && devices[i].position.allFinite() && devices[i].velocity.allFinite()) {
-      f.port_energy -= f.sent.dot(devices[i].position - f.device.position);
+      const Vec3 moved = devices[i].position - f.device.position;
+      f.port.observe(-f.sent.dot(moved), moved.norm() > cs.max_device_speed * dt);
       f.device = devices[i];
     }
-    const CouplingSettings& cs = desc.fingers[i].coupling;
     f.force = sim::couplingForce(cs, f.device.position, f.device.velocity,
                                  toEigen(f.proxy->getCenterOfMassPosition()),
                                  toEigen(f.proxy->getLinearVelocity()));

@@ -53,7 +53,14 @@ nlohmann::json summaryJson(const SessionDesc& session, const sim::World& world, 
                            bool realtime) {
   const sim::SceneDesc& scene = session.scene;
   nlohmann::json fingers = nlohmann::json::array();
-  for (const sim::FingerDesc& f : scene.fingers) fingers.push_back(fingerJson(f));
+  for (std::size_t i = 0; i < scene.fingers.size(); ++i) {
+    nlohmann::json j = fingerJson(scene.fingers[i]);
+    // The device port's passivity observer at the end and its lowest; the device's jumps apart.
+    const sim::PortObserver& port = world.portObserver(static_cast<int>(i));
+    j["port"] = {{"energy_j", port.energy}, {"min_energy_j", port.min_energy}, {"jumps", port.jumps},
+                 {"jump_energy_j", port.jump_energy}};
+    fingers.push_back(j);
+  }
   const sim::WorldCounters& c = world.counters();
   nlohmann::json bodies = nlohmann::json::array();
   for (std::size_t b = 0; b < scene.bodies.size(); ++b) {

@@ -41,7 +41,7 @@ struct World::Impl final : SolveHooks {
     DeviceSample device;
     Vec3 force = Vec3::Zero();  // coupling force on the proxy (N)
     Vec3 sent = Vec3::Zero();   // force the device is to render (N): -force, rate-limited
-    double port_energy = 0.0;   // J: work done on the device port by the hand, sum of -sent . dx
+    PortObserver port;          // the work done on the device port by the hand (-sent . dx)
     std::array<FingerContact, kMaxContactsPerFinger> contacts;
     int contact_count = 0;
     std::array<ContactMemory, kMaxContactsPerFinger> memory;
@@ -71,7 +71,7 @@ struct World::Impl final : SolveHooks {
   /// The finger's settings from now on: effectiveSettings and its model, once per change.
   void applySettings(Finger& f, const PatchSettings& patch) const;
   void applyChangesDue(double dt);  ///< scripted changes due at this step's start
-  void applyCouplings(std::span<const DeviceSample> devices);  ///< device samples, coupling forces
+  void applyCouplings(std::span<const DeviceSample> devices, double dt);  ///< device samples, coupling forces
   void applyLoads();                ///< the scene's loads at time (N, N m)
   void slewSentForces(double dt);   ///< the forces sent after the step (max_force_rate)
   void countStep(double dt);        ///< time after a step of dt seconds, and the step counter

@@ -185,6 +185,42 @@ TEST(WorldFeedback, ASmoothPressAndReleaseIsPassiveAtTheDevicePort) {
   EXPECT_GT(ctx.world().portEnergy(0), 0.0);
 }
 
+// The same press, held, then the device jumps 5 cm up in one step (50 m/s, past the default
+// max_device_speed of 10 m/s) and stays: the observer counts that step apart, its work exactly
+// -sent . jump with the force sent before it (5 N up, the press-box clamp: -0.25 J), and the
+// hand's motion before and after stays passive. A move of 5 mm in a step (5 m/s) is a hand's:
+// observed, it returns 0.025 J and the observer goes below zero.
+TEST(WorldFeedback, ADeviceJumpIsCountedApartByThePortObserver) {
+  for (const double jump : {0.05, 0.005}) {
+    TestContext ctx("press-box", 8);
+    std::vector<DeviceSample> device(1);
+    Vec3 sent_before = Vec3::Zero();
+    double hand_before = 0.0, hand_after = 0.0;
+    for (int k = 0; k < 1500; ++k) {
+      const double t = k * 0.001;
+      const double y = t < 0.5 ? 0.06 - 0.036 * t : (t < 1.0 ? 0.042 : 0.042 + jump);
+      device[0] = {Vec3(0.0, y, 0.0), Vec3(0.0, t < 0.5 ? -0.036 : 0.0, 0.0)};
+      if (k == 1000) sent_before = ctx.world().feedbackForce(0), hand_before = ctx.world().portEnergy(0);
+      ctx.world().step(0.001, device);
+      if (k == 1000) hand_after = ctx.world().portEnergy(0);
+    }
+    const PortObserver& port = ctx.world().portObserver(0);
+    std::printf("jump %.3f m: force sent before %.3f N, jumps %ld, jump work %.4f J, hand's %.5f J (lowest %.2e J)\n",
+                jump, sent_before.y(), port.jumps, port.jump_energy, port.energy, port.min_energy);
+    EXPECT_GT(sent_before.y(), 4.0) << "the press pushes the device up";
+    if (jump > 10.0 * 0.001) {
+      EXPECT_EQ(port.jumps, 1);
+      EXPECT_NEAR(port.jump_energy, -sent_before.y() * jump, 1e-12);
+      EXPECT_GE(port.min_energy, -1e-3);
+    } else {
+      EXPECT_EQ(port.jumps, 0);
+      EXPECT_EQ(port.jump_energy, 0.0);
+      EXPECT_NEAR(hand_after - hand_before, -sent_before.y() * jump, 1e-12) << "a hand's step is observed";
+      EXPECT_LT(port.min_energy, -1e-3) << "and the energy it returned shows";
+    }
+  }
+}
+
 // 64-bit FNV-1a of the bytes of `values`.
 std::uint64_t hashOf(const std::vector<double>& values) {
   std::uint64_t h = 0xcbf29ce484222325ull;
