@@ -72,6 +72,7 @@ PatchFrictionSolver::PatchFrictionSolver() {
   object_body_of_.reserve(kBlocks);
   points_.reserve(kPoints);
   pool_index_.reserve(kPoints);
+  arm_.reserve(kPoints);
   by_address_.reserve(kPoints);
 }
 
@@ -154,7 +155,7 @@ void PatchFrictionSolver::bind(const btContactSolverInfo& info) {
     invertActive(K, active, b.k_inv, nullptr);
     for (double& l : b.lambda) l = 0.0;
     if (fb.aggregate) bindPress(b, fb, info);
-    if (b.roll >= 0) bindRolling(b);
+    if (b.roll >= 0) bindRolling(b, fb);
     // Warm start: last step's impulses on this step's rows, within this step's limits.
     if (info.m_solverMode & SOLVER_USE_WARMSTARTING) {
       double delta[kRows] = {active[0] ? fb.warm_force.dot(b.t1) : 0.0, active[1] ? fb.warm_force.dot(b.t2) : 0.0,
@@ -358,7 +359,7 @@ double PatchFrictionSolver::solvePress(Bound& b) {
 
 // The rolling rows' effective mass, inverted over the rows that move anything (none against a
 // static body: the proxy cannot turn).
-void PatchFrictionSolver::bindRolling(Bound& b) const {
+void PatchFrictionSolver::bindRolling(Bound& b, const FrictionBlock& fb) {
   Eigen::Matrix2d K;
   for (int row = 0; row < 2; ++row) {
     for (int col = 0; col < 2; ++col) {
@@ -372,24 +373,36 @@ void PatchFrictionSolver::bindRolling(Bound& b) const {
   for (int row = 0; row < 2; ++row) {
     for (int col = 0; col < 2; ++col) b.roll_inv[row][col] = inverse(row, col);
   }
+  // A points block's points' levers for pressMoment: they do not move during the solve.
+  if (fb.aggregate) return;
+  if (arm_.size() < points_.size()) arm_.resize(points_.size());
+  for (int i = fb.first_point; i < fb.first_point + fb.point_count; ++i) {
+    const FrictionPoint& fp = points_[static_cast<std::size_t>(i)];
+    const btVector3& at = fp.proxy_is_a ? fp.point->getPositionWorldOnB() : fp.point->getPositionWorldOnA();
+    arm_[static_cast<std::size_t>(i)] = (at - fb.centre).cross(b.n);
+  }
 }
 
 // The moment (about the block's centre, tangential, N m s) the block's pressing rows already
 // take from the body: a points block's points' normal impulses at their offsets, an aggregate's
-// tilt impulse. The rolling rows' impulse L acts on the body as -L, these as -P.
-btVector3 PatchFrictionSolver::pressMoment(const Bound& b) const {
+// tilt impulse. The rolling rows' impulse L acts on the body as -L, these as -P. `normal`
+// receives the block's normal impulse (blockNormal), summed in the same pass.
+btVector3 PatchFrictionSolver::pressMoment(const Bound& b, double& normal) const {
   const FrictionBlock& fb = blocks_[static_cast<std::size_t>(b.block)];
-  if (fb.aggregate) return b.lambda[kNormalRow + 1] * fb.press.tilt_axis[0] + b.lambda[kNormalRow + 2] * fb.press.tilt_axis[1];
+  if (fb.aggregate) {
+    normal = b.lambda[kNormalRow];
+    return b.lambda[kNormalRow + 1] * fb.press.tilt_axis[0] + b.lambda[kNormalRow + 2] * fb.press.tilt_axis[1];
+  }
   btVector3 moment(0, 0, 0);
+  normal = 0.0;
   for (int i = fb.first_point; i < fb.first_point + fb.point_count; ++i) {
     const int j = pool_index_[static_cast<std::size_t>(i)];
     if (j < 0) continue;
-    const FrictionPoint& fp = points_[static_cast<std::size_t>(i)];
-    const btVector3& at = fp.proxy_is_a ? fp.point->getPositionWorldOnB() : fp.point->getPositionWorldOnA();
     const double lambda_n = std::max(0.0, static_cast<double>(m_tmpSolverContactConstraintPool[j].m_appliedImpulse));
-    moment += lambda_n * (at - fb.centre).cross(b.n);
+    moment += lambda_n * arm_[static_cast<std::size_t>(i)];
+    normal += lambda_n;
   }
-  return moment - moment.dot(b.n) * b.n;
+  return moment;
 }
 
 // One step of a block's rolling rows: the impulse L that stops the body turning about the
@@ -404,9 +417,10 @@ double PatchFrictionSolver::solveRolling(Bound& b) {
   const double u0 = b.jac_p[r].dot(spin), u1 = b.jac_p[r + 1].dot(spin);
   double y0 = b.lambda[r] - (b.roll_inv[0][0] * u0 + b.roll_inv[0][1] * u1);
   double y1 = b.lambda[r + 1] - (b.roll_inv[1][0] * u0 + b.roll_inv[1][1] * u1);
-  const btVector3 press = pressMoment(b);
+  double normal = 0.0;
+  const btVector3 press = pressMoment(b, normal);
   const double p0 = press.dot(b.t1), p1 = press.dot(b.t2);
-  const double limit = fb.rolling * blockNormal(b), size = std::sqrt((y0 + p0) * (y0 + p0) + (y1 + p1) * (y1 + p1));
+  const double limit = fb.rolling * normal, size = std::sqrt((y0 + p0) * (y0 + p0) + (y1 + p1) * (y1 + p1));
   if (size > limit) {
     const double scale = limit > 0.0 ? limit / size : 0.0;
     y0 = (y0 + p0) * scale - p0;

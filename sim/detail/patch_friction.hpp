@@ -135,8 +135,8 @@ class PatchFrictionSolver final : public btSequentialImpulseConstraintSolver {
   static void invertActive(Eigen::Matrix3d K, const bool active[3], double inv[3][3], double kept[3][3]);
   double solvePress(Bound& b);
   double solveBlock(Bound& b);
-  void bindRolling(Bound& b) const;
-  btVector3 pressMoment(const Bound& b) const;
+  void bindRolling(Bound& b, const FrictionBlock& fb);
+  btVector3 pressMoment(const Bound& b, double& normal) const;
   double solveRolling(Bound& b);
   double blockNormal(const Bound& b) const;
   static Eigen::Vector3d projectOntoLimit(const Eigen::Matrix3d& e, const Eigen::Vector3d& d, const Eigen::Vector3d& y,
@@ -145,6 +145,7 @@ class PatchFrictionSolver final : public btSequentialImpulseConstraintSolver {
   std::vector<FrictionBlock> blocks_;
   std::vector<FrictionPoint> points_;
   std::vector<int> pool_index_;  // per point: its row in m_tmpSolverContactConstraintPool, or -1
+  std::vector<btVector3> arm_;    // per point of a block with rolling rows: (point - centre) x n
   std::vector<std::pair<const btManifoldPoint*, int>> by_address_;  // points sorted by address
   std::vector<Bound> bound_;
   std::vector<int> proxy_body_of_, object_body_of_;  // per block: its solver bodies, or -1
