@@ -145,6 +145,104 @@ class SphereContactAlgorithm final : public ManifoldAlgorithm {
                         const btDispatcherInfo&, btManifoldResult* result) override;
 };
 
+// A sphere (a proxy, a ball) on a box or a cylinder: the closest point of the solid, its
+// rounding margin included, to the sphere's centre, in closed form. Bullet's GJK finds the same
+// point iteratively, and how many iterations it takes depends on the last digits of the pose: a
+// pinch held still cost from 19 to 25 M instructions per 1000 steps by how the cylinder stood.
+class RoundedContactAlgorithm final : public ManifoldAlgorithm {
+ public:
+  RoundedContactAlgorithm(const btCollisionAlgorithmConstructionInfo& ci, const btCollisionObjectWrapper* body0,
+                          const btCollisionObjectWrapper* body1, bool swapped)
+      : ManifoldAlgorithm(ci.m_manifold, ci, body0->getCollisionObject(), body1->getCollisionObject()),
+        swapped_(swapped) {}
+
+  void processCollision(const btCollisionObjectWrapper* body0, const btCollisionObjectWrapper* body1,
+                        const btDispatcherInfo&, btManifoldResult* result) override;
+
+ private:
+  bool swapped_;  // the sphere is body1
+};
+
+// The point of the solid inner shape (a box's or a cylinder's, without its rounding) nearest to
+// `c` (shape frame), and the outward normal there; a centre inside leaves by the nearest side.
+// Returns the signed distance from the inner shape (negative inside).
+btScalar nearestOnInner(const btConvexShape& shape, const btVector3& c, btVector3& nearest, btVector3& normal) {
+  if (shape.getShapeType() == BOX_SHAPE_PROXYTYPE) {
+    const btVector3 h = static_cast<const btBoxShape&>(shape).getHalfExtentsWithoutMargin();
+    nearest = btVector3(btClamped(c.x(), -h.x(), h.x()), btClamped(c.y(), -h.y(), h.y()), btClamped(c.z(), -h.z(), h.z()));
+    const btVector3 out = c - nearest;
+    const btScalar length = out.length();
+    if (length > SIMD_EPSILON) return normal = out / length, length;
+    int axis = 0;  // inside: the face nearest to the centre
+    btScalar room = BT_LARGE_FLOAT;
+    for (int i = 0; i < 3; ++i) {
+      if (h[i] - std::abs(c[i]) < room) room = h[i] - std::abs(c[i]), axis = i;
+    }
+    normal = btVector3(0, 0, 0);
+    normal[axis] = c[axis] < 0 ? -1 : 1;
+    nearest = c;
+    nearest[axis] = normal[axis] * h[axis];
+    return -room;
+  }
+  const auto& cylinder = static_cast<const btCylinderShape&>(shape);
+  const int up = cylinder.getUpAxis(), a = (up + 1) % 3;
+  const btVector3 inner = cylinder.getHalfExtentsWithoutMargin();
+  const btScalar radius = inner[a], half = inner[up];
+  btVector3 across = c;
+  across[up] = 0;
+  const btScalar rho = across.length();
+  const btVector3 radial = rho > SIMD_EPSILON ? across / rho : btVector3(a == 0 ? 1 : 0, a == 1 ? 1 : 0, a == 2 ? 1 : 0);
+  nearest = std::min(rho, radius) * radial;
+  nearest[up] = btClamped(c[up], -half, half);
+  const btVector3 out = c - nearest;
+  const btScalar length = out.length();
+  if (length > SIMD_EPSILON) return normal = out / length, length;
+  const btScalar to_side = radius - rho, to_end = half - std::abs(c[up]);
+  if (to_side < to_end) {
+    normal = radial;
+    nearest = radius * radial;
+    nearest[up] = c[up];
+    return -to_side;
+  }
+  normal = btVector3(0, 0, 0);
+  normal[up] = c[up] < 0 ? -1 : 1;
+  nearest = c;
+  nearest[up] = normal[up] * half;
+  return -to_end;
+}
+
+void RoundedContactAlgorithm::processCollision(const btCollisionObjectWrapper* body0,
+                                               const btCollisionObjectWrapper* body1, const btDispatcherInfo&,
+                                               btManifoldResult* result) {
+  if (!manifold_) return;
+  result->setPersistentManifold(manifold_);
+  const btCollisionObjectWrapper* sphere_wrap = swapped_ ? body1 : body0;
+  const btCollisionObjectWrapper* solid_wrap = swapped_ ? body0 : body1;
+  const btScalar r = static_cast<const btSphereShape*>(sphere_wrap->getCollisionShape())->getRadius();
+  const auto& solid = *static_cast<const btConvexShape*>(solid_wrap->getCollisionShape());
+  const btTransform& pose = solid_wrap->getWorldTransform();
+  const btVector3 centre = sphere_wrap->getWorldTransform().getOrigin();
+  btVector3 nearest, normal;
+  const btScalar inner = nearestOnInner(solid, pose.invXform(centre), nearest, normal);
+  const btScalar margin = solid.getMargin(), gap = inner - margin - r;
+  if (gap > manifold_->getContactBreakingThreshold()) {
+    if (own_manifold_) manifold_->clearManifold();
+    return;
+  }
+  const btVector3 n = pose.getBasis() * normal;  // from the solid towards the sphere
+  const btVector3 on_solid = pose * nearest + margin * n, on_sphere = centre - r * n;
+  if (own_manifold_) {
+    const btVector3 on_first = manifold_->getBody0() == sphere_wrap->getCollisionObject() ? on_sphere : on_solid;
+    dropOthers(&on_first, 1);
+  }
+  // The manifold result takes the normal on body1 and the point on body1.
+  if (swapped_) {
+    result->addContactPoint(-n, on_sphere, gap);
+  } else {
+    result->addContactPoint(n, on_solid, gap);
+  }
+}
+
 void PlaneContactAlgorithm::processCollision(const btCollisionObjectWrapper* body0,
                                              const btCollisionObjectWrapper* body1, const btDispatcherInfo&,
                                              btManifoldResult* result) {
@@ -252,8 +350,19 @@ btCollisionAlgorithm* SphereContactCreateFunc::CreateCollisionAlgorithm(btCollis
   return new (memory) SphereContactAlgorithm(ci, body0, body1);
 }
 
+btCollisionAlgorithm* RoundedContactCreateFunc::CreateCollisionAlgorithm(btCollisionAlgorithmConstructionInfo& ci,
+                                                                         const btCollisionObjectWrapper* body0,
+                                                                         const btCollisionObjectWrapper* body1) {
+  void* memory = ci.m_dispatcher1->allocateCollisionAlgorithm(sizeof(RoundedContactAlgorithm));
+  return new (memory) RoundedContactAlgorithm(ci, body0, body1, m_swapped);
+}
+
 void ContactAlgorithms::registerWith(btCollisionDispatcher& dispatcher) {
   dispatcher.registerCollisionCreateFunc(SPHERE_SHAPE_PROXYTYPE, SPHERE_SHAPE_PROXYTYPE, &spheres);
+  for (const int solid : {BOX_SHAPE_PROXYTYPE, CYLINDER_SHAPE_PROXYTYPE}) {
+    dispatcher.registerCollisionCreateFunc(SPHERE_SHAPE_PROXYTYPE, solid, &sphere_first);
+    dispatcher.registerCollisionCreateFunc(solid, SPHERE_SHAPE_PROXYTYPE, &solid_first);
+  }
   for (const int convex : {BOX_SHAPE_PROXYTYPE, CYLINDER_SHAPE_PROXYTYPE, CONVEX_HULL_SHAPE_PROXYTYPE}) {
     dispatcher.registerCollisionCreateFunc(convex, STATIC_PLANE_PROXYTYPE, &convex_first);
     dispatcher.registerCollisionCreateFunc(STATIC_PLANE_PROXYTYPE, convex, &plane_first);

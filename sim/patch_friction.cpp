@@ -408,7 +408,7 @@ btVector3 PatchFrictionSolver::pressMoment(const Bound& b, double& normal) const
 // One step of a block's rolling rows: the impulse L that stops the body turning about the
 // tangent axes, such that the contact's whole moment about them, L plus what its pressing rows
 // take (pressMoment), stays within `rolling` N: the pressure cannot move past the patch's edge.
-double PatchFrictionSolver::solveRolling(Bound& b) {
+double PatchFrictionSolver::solveRolling(Bound& b, double normal, const btVector3& press) {
   if (b.roll_inv[0][0] == 0.0) return 0.0;
   const FrictionBlock& fb = blocks_[static_cast<std::size_t>(b.block)];
   // Angular rows: only the relative spin is read.
@@ -417,8 +417,6 @@ double PatchFrictionSolver::solveRolling(Bound& b) {
   const double u0 = b.jac_p[r].dot(spin), u1 = b.jac_p[r + 1].dot(spin);
   double y0 = b.lambda[r] - (b.roll_inv[0][0] * u0 + b.roll_inv[0][1] * u1);
   double y1 = b.lambda[r + 1] - (b.roll_inv[1][0] * u0 + b.roll_inv[1][1] * u1);
-  double normal = 0.0;
-  const btVector3 press = pressMoment(b, normal);
   const double p0 = press.dot(b.t1), p1 = press.dot(b.t2);
   const double limit = fb.rolling * normal, size = std::sqrt((y0 + p0) * (y0 + p0) + (y1 + p1) * (y1 + p1));
   if (size > limit) {
@@ -454,9 +452,8 @@ double PatchFrictionSolver::blockNormal(const Bound& b) const {
 // instead is wrong whenever one row's demand dwarfs the others': a pad on a disc spinning under
 // it (sliding 0.9 m/s, turning 30 rad/s about its normal, torsion limit about mu N 1 mm) spent its
 // whole friction on the torsion row and slid with no friction force at all.
-double PatchFrictionSolver::solveBlock(Bound& b) {
+double PatchFrictionSolver::solveBlock(Bound& b, double normal) {
   const FrictionBlock& fb = blocks_[static_cast<std::size_t>(b.block)];
-  const double normal = blockNormal(b);
   const double slide_limit = fb.friction * normal;
   const double twist_limit = fb.torsion * normal;
   const double limit[kFrictionRows] = {slide_limit, slide_limit, twist_limit};
@@ -525,8 +522,13 @@ btScalar PatchFrictionSolver::solveSingleIteration(int iteration, btCollisionObj
       iteration, bodies, numBodies, manifolds, numManifolds, constraints, numConstraints, info, debug);
   for (Bound& b : bound_) {
     if (b.aggregate) residual = std::max(residual, solvePress(b));
-    residual = std::max(residual, solveBlock(b));
-    if (b.roll >= 0) residual = std::max(residual, solveRolling(b));
+    // The normal impulse that limits the friction (and with rolling rows, the moment the
+    // pressing rows take) in one pass over the points; neither changes until the next iteration.
+    double normal = 0.0;
+    const btVector3 press = b.roll >= 0 ? pressMoment(b, normal) : btVector3(0, 0, 0);
+    if (b.roll < 0) normal = blockNormal(b);
+    residual = std::max(residual, solveBlock(b, normal));
+    if (b.roll >= 0) residual = std::max(residual, solveRolling(b, normal, press));
   }
   return static_cast<btScalar>(residual);
 }

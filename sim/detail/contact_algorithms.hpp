@@ -16,7 +16,11 @@
 // the spheres are apart, so a proxy pushed a micrometre off a ball lost its contact, and its
 // patch, for that step (Fig. 5 with a filled patch flickered 24 <-> 0 SGOs every few steps and
 // the ball was shot ahead). This one keeps the point while the gap is within the contact
-// breaking threshold, as Bullet's tests of other shapes do. Internal to sim/.
+// breaking threshold, as Bullet's tests of other shapes do.
+//
+// A sphere on a box or a cylinder (a proxy on the bodies most scenes hold): the nearest point in
+// closed form, where Bullet's GJK takes as many iterations as the pose's last digits ask.
+// Internal to sim/.
 #pragma once
 
 #include <btBulletDynamicsCommon.h>
@@ -41,13 +45,24 @@ class SphereContactCreateFunc final : public btCollisionAlgorithmCreateFunc {
                                                  const btCollisionObjectWrapper* body1) override;
 };
 
+/// Creates the sphere test against a box or a cylinder; `swapped` for (box or cylinder; sphere).
+class RoundedContactCreateFunc final : public btCollisionAlgorithmCreateFunc {
+ public:
+  explicit RoundedContactCreateFunc(bool swapped) { m_swapped = swapped; }
+  btCollisionAlgorithm* CreateCollisionAlgorithm(btCollisionAlgorithmConstructionInfo& ci,
+                                                 const btCollisionObjectWrapper* body0,
+                                                 const btCollisionObjectWrapper* body1) override;
+};
+
 /// The tests' create functions; declared before the dispatcher they are registered with, so
 /// that they outlive it.
 struct ContactAlgorithms {
   PlaneContactCreateFunc convex_first{false}, plane_first{true};
   SphereContactCreateFunc spheres;
+  RoundedContactCreateFunc sphere_first{false}, solid_first{true};
   /// Registers the plane test for boxes, cylinders and convex hulls (alone or as parts of a
-  /// compound) against static planes, and the sphere–sphere test.
+  /// compound) against static planes, the sphere–sphere test and the sphere's test against a
+  /// box or a cylinder.
   void registerWith(btCollisionDispatcher& dispatcher);
 };
 

@@ -134,10 +134,10 @@ class PatchFrictionSolver final : public btSequentialImpulseConstraintSolver {
   static bool moves(const Eigen::Matrix3d& K, int row);
   static void invertActive(Eigen::Matrix3d K, const bool active[3], double inv[3][3], double kept[3][3]);
   double solvePress(Bound& b);
-  double solveBlock(Bound& b);
+  double solveBlock(Bound& b, double normal);
   void bindRolling(Bound& b, const FrictionBlock& fb);
   btVector3 pressMoment(const Bound& b, double& normal) const;
-  double solveRolling(Bound& b);
+  double solveRolling(Bound& b, double normal, const btVector3& press);
   double blockNormal(const Bound& b) const;
   static Eigen::Vector3d projectOntoLimit(const Eigen::Matrix3d& e, const Eigen::Vector3d& d, const Eigen::Vector3d& y,
                                           double outside);

