@@ -2,6 +2,7 @@
 // points near a static plane, chosen by the body's geometry so that a resting body keeps them.
 #include "sim/detail/contact_algorithms.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 namespace gf::sim {
@@ -56,7 +57,7 @@ void visitCandidates(const btConvexShape& shape, const LocalPlane& plane, Visit&
     const int up = cylinder.getUpAxis();
     const btVector3 inner = cylinder.getHalfExtentsWithoutMargin();
     const int a = (up + 1) % 3, b = (up + 2) % 3;
-    const btScalar radius = inner[a];
+    const btScalar radius = inner[up == 0 ? 1 : 0];  // Bullet's: x, or y when the axis is x
     btVector3 axis(0, 0, 0), e1(0, 0, 0), e2(0, 0, 0);
     axis[up] = 1;
     e1[a] = 1;
@@ -168,11 +169,16 @@ class RoundedContactAlgorithm final : public ManifoldAlgorithm {
 // Returns the signed distance from the inner shape (negative inside).
 btScalar nearestOnInner(const btConvexShape& shape, const btVector3& c, btVector3& nearest, btVector3& normal) {
   if (shape.getShapeType() == BOX_SHAPE_PROXYTYPE) {
-    const btVector3 h = static_cast<const btBoxShape&>(shape).getHalfExtentsWithoutMargin();
+    // A box thinner than twice the rounding has no inner extent left along that axis.
+    btVector3 h = static_cast<const btBoxShape&>(shape).getHalfExtentsWithoutMargin();
+    h.setMax(btVector3(0, 0, 0));
     nearest = btVector3(btClamped(c.x(), -h.x(), h.x()), btClamped(c.y(), -h.y(), h.y()), btClamped(c.z(), -h.z(), h.z()));
     const btVector3 out = c - nearest;
     const btScalar length = out.length();
-    if (length > SIMD_EPSILON) return normal = out / length, length;
+    if (length > SIMD_EPSILON) {
+      normal = out / length;
+      return length;
+    }
     int axis = 0;  // inside: the face nearest to the centre
     btScalar room = BT_LARGE_FLOAT;
     for (int i = 0; i < 3; ++i) {
@@ -185,9 +191,10 @@ btScalar nearestOnInner(const btConvexShape& shape, const btVector3& c, btVector
     return -room;
   }
   const auto& cylinder = static_cast<const btCylinderShape&>(shape);
-  const int up = cylinder.getUpAxis(), a = (up + 1) % 3;
+  // Bullet's cylinder takes its radius from x, or from y when its axis is x.
+  const int up = cylinder.getUpAxis(), a = up == 0 ? 1 : 0;
   const btVector3 inner = cylinder.getHalfExtentsWithoutMargin();
-  const btScalar radius = inner[a], half = inner[up];
+  const btScalar radius = std::max<btScalar>(inner[a], 0), half = std::max<btScalar>(inner[up], 0);
   btVector3 across = c;
   across[up] = 0;
   const btScalar rho = across.length();
@@ -196,7 +203,10 @@ btScalar nearestOnInner(const btConvexShape& shape, const btVector3& c, btVector
   nearest[up] = btClamped(c[up], -half, half);
   const btVector3 out = c - nearest;
   const btScalar length = out.length();
-  if (length > SIMD_EPSILON) return normal = out / length, length;
+  if (length > SIMD_EPSILON) {
+    normal = out / length;
+    return length;
+  }
   const btScalar to_side = radius - rho, to_end = half - std::abs(c[up]);
   if (to_side < to_end) {
     normal = radial;

@@ -23,15 +23,18 @@ struct CouplingSettings {
 };
 
 /// The passivity observer of a device port (Hannaford and Ryu 2002): the work the hand has done
-/// on the device against the force sent (J), summed over the steps where the device moved as a
-/// hand can. A step where it moved faster than max_device_speed is a jump: its work is summed
-/// apart, since no hand took or gave it (a tracking glitch, a sender taking over, a scripted
-/// move), and the force sent, which may not jump, cannot take it back in that step.
+/// on the device against the force sent (J), -sent . dx summed over the steps where the device
+/// moved as a hand can. A move faster than max_device_speed is a jump (a tracking glitch, a
+/// sender taking over, a scripted move): no hand did that work, and the force sent, which may
+/// not jump, would mis-price it (a jump away from a press at the clamp "returns" F D in one
+/// step), so its work is summed apart. What a jump into a body stores in the coupling is
+/// energy the hand did not put in: when the hand then takes it back moving out, `energy` shows
+/// it, by at most that stored energy.
 struct PortObserver {
   double energy = 0.0;       ///< J; a passive simulation keeps it at or above zero
   double min_energy = 0.0;   ///< J: the lowest `energy` was
   long jumps = 0;            ///< steps the device jumped
-  double jump_energy = 0.0;  ///< J: the work of those steps
+  double jump_energy = 0.0;  ///< J: the work of those steps, -sent . dx
 
   void observe(double work, bool jump) {
     if (jump) {

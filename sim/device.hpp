@@ -17,6 +17,9 @@ enum class Interpolation {
 struct DeviceSample {
   Vec3 position = Vec3::Zero();  ///< m
   Vec3 velocity = Vec3::Zero();  ///< m/s
+  /// s: how long the device took to move to `position` from the position it gave before (a
+  /// sender's time between its last two packets); 0 for one step, a source sampled every step.
+  double interval = 0.0;
 };
 
 /// A device path through keyframes (time in s, position in m), held at both ends.

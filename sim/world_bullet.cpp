@@ -2,6 +2,8 @@
 // and what each step puts into it before the solve (scripted changes, couplings, loads).
 #include <BulletCollision/Gimpact/btGImpactCollisionAlgorithm.h>
 
+#include <algorithm>
+
 #include "sim/assert.hpp"
 #include "sim/detail/world_impl.hpp"
 #include "sim/settings.hpp"
@@ -100,15 +102,20 @@ void World::Impl::applyChangesDue(double dt) {
 }
 
 // Each finger's newest finite device sample (a sample missing or not finite keeps the last)
-// and the coupling force it puts on the proxy for this step. The work the hand did against the
-// force sent while the device moved there goes to the port's observer, a jump's apart.
+// and the coupling force it puts on the proxy for this step. The work against the force sent
+// goes to the port's observer (PortObserver), a jump's apart: a move faster than
+// max_device_speed over the step or over the interval the device reports (a sender at 250 Hz
+// moves once in four steps).
 void World::Impl::applyCouplings(std::span<const DeviceSample> devices, double dt) {
   for (std::size_t i = 0; i < fingers.size(); ++i) {
     Finger& f = fingers[i];
     const CouplingSettings& cs = desc.fingers[i].coupling;
     if (i < devices.size() && devices[i].position.allFinite() && devices[i].velocity.allFinite()) {
       const Vec3 moved = devices[i].position - f.device.position;
-      f.port.observe(-f.sent.dot(moved), moved.norm() > cs.max_device_speed * dt);
+      if (moved.squaredNorm() > 0.0) {
+        const bool jump = moved.norm() > cs.max_device_speed * std::max(dt, devices[i].interval);
+        f.port.observe(-f.sent.dot(moved), jump);
+      }
       f.device = devices[i];
     }
     f.force = sim::couplingForce(cs, f.device.position, f.device.velocity,

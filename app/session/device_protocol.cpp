@@ -102,7 +102,11 @@ bool DeviceLink::take(const DevicePacket& p, double t, std::uint64_t sender) {
     ramping_ = true;
   }
   const double gap = p.time - device_time_;
-  if (!heard_ || takeover || gap < 0.0 || gap > desc_.stale_after) {
+  // How long the hand took to move here: unknown for a new stream (its first move is a jump if
+  // it is a far one), the device clock's gap otherwise.
+  const bool new_stream = !heard_ || takeover || gap < 0.0 || gap > desc_.stale_after;
+  interval_ = new_stream ? 0.0 : gap;
+  if (new_stream) {
     velocity_.setZero();  // a new stream: no estimate yet
   } else if (gap >= kMinVelocityInterval) {
     const sim::Vec3 raw = (position - position_) / gap;
@@ -131,7 +135,7 @@ sim::DeviceSample DeviceLink::sample(double t) {
   stale_ = stale;
   if (stale_) resync_ = ramping_ = true;
   if (stale_) ++counters_.stale_steps;
-  return {position_, stale_ ? sim::Vec3::Zero() : velocity_};
+  return {position_, stale_ ? sim::Vec3::Zero() : velocity_, interval_};
 }
 
 DeviceReply DeviceLink::reply(double t, const sim::DeviceFeedback& f) {

@@ -125,6 +125,7 @@ class DeviceLink {
   std::uint32_t seq_ = 0, buttons_ = 0;
   std::uint64_t sender_ = 0;
   double received_at_ = 0.0, device_time_ = 0.0, sample_time_ = 0.0, first_packet_at_ = 0.0, gain_ = 0.0;
+  double interval_ = 0.0;  // s: device-clock gap between the last two packets of one stream
   sim::Vec3 position_, velocity_ = sim::Vec3::Zero();  // scene frame
   Counters counters_;
 };

@@ -41,7 +41,7 @@ struct World::Impl final : SolveHooks {
     DeviceSample device;
     Vec3 force = Vec3::Zero();  // coupling force on the proxy (N)
     Vec3 sent = Vec3::Zero();   // force the device is to render (N): -force, rate-limited
-    PortObserver port;          // the work done on the device port by the hand (-sent . dx)
+    PortObserver port;          // the energy that came in through the device port
     std::array<FingerContact, kMaxContactsPerFinger> contacts;
     int contact_count = 0;
     std::array<ContactMemory, kMaxContactsPerFinger> memory;

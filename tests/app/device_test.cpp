@@ -326,6 +326,27 @@ TEST(DeviceLink, OlderPacketsAreIgnoredExceptAfterADropout) {
 
 // Scene position = workspace_offset + workspace_scale * device position; the velocity is the
 // packets' difference over their device times, low-pass filtered with velocity_smoothing.
+// A sample says how long the hand took to get there: the device clock's gap between the last
+// two packets of one stream (4 ms at 250 Hz, lost packets included), 0 for a new stream (the
+// first packet, one after a dropout, another sender's), whose first move the World may call a
+// jump.
+TEST(DeviceLink, ASampleCarriesTheIntervalItsHandTook) {
+  UdpDeviceDesc d;
+  d.stale_after = 0.05;
+  DeviceLink link(d);
+  EXPECT_TRUE(link.take(packet(1, 10.000, Vec3(0.0, 0.1, 0.0)), 0.000, 7));
+  EXPECT_EQ(link.sample(0.000).interval, 0.0) << "a first packet";
+  EXPECT_TRUE(link.take(packet(2, 10.004, Vec3(0.0, 0.1, 0.012)), 0.004, 7));
+  EXPECT_NEAR(link.sample(0.004).interval, 0.004, 1e-12);
+  EXPECT_NEAR(link.sample(0.005).interval, 0.004, 1e-12) << "held between packets";
+  EXPECT_TRUE(link.take(packet(4, 10.012, Vec3(0.0, 0.1, 0.036)), 0.012, 7));  // packet 3 lost
+  EXPECT_NEAR(link.sample(0.012).interval, 0.008, 1e-12);
+  EXPECT_TRUE(link.take(packet(5, 10.016, Vec3(0.0, 0.1, 0.5)), 0.016, 8));  // another sender
+  EXPECT_EQ(link.sample(0.016).interval, 0.0);
+  EXPECT_TRUE(link.take(packet(9, 10.2, Vec3(0.0, 0.1, 0.5)), 0.2, 8));  // after a dropout
+  EXPECT_EQ(link.sample(0.2).interval, 0.0);
+}
+
 TEST(DeviceLink, TheWorkspaceMapsPositionsAndVelocities) {
   UdpDeviceDesc d;
   d.workspace_scale = 2.0;
