@@ -9,7 +9,6 @@
 
 #include <pthread.h>
 #include <sched.h>
-#include <sys/prctl.h>
 #include <sys/resource.h>
 
 namespace gf::sim {
@@ -47,24 +46,6 @@ class FifoPriority {
   bool active_ = false;
 };
 
-// The calling thread's timer slack (how late the kernel may wake a sleep, to batch wake-ups) set
-// to `ns` while alive; the previous value is restored after.
-class TimerSlack {
- public:
-  explicit TimerSlack(unsigned long ns) : saved_(prctl(PR_GET_TIMERSLACK, 0, 0, 0, 0)) {
-    prctl(PR_SET_TIMERSLACK, ns, 0, 0, 0);
-  }
-  ~TimerSlack() {
-    if (saved_ > 0) prctl(PR_SET_TIMERSLACK, static_cast<unsigned long>(saved_), 0, 0, 0);
-  }
-  TimerSlack(const TimerSlack&) = delete;
-  TimerSlack& operator=(const TimerSlack&) = delete;
-
- private:
-  long saved_;
-};
-
-constexpr unsigned long kRealtimeTimerSlackNs = 1000;
 
 }  // namespace
 
@@ -77,10 +58,11 @@ double percentile(std::vector<float>& v, double q) {
 
 HapticTimings LiveTimings::summary() const {
   const std::size_t n = std::min(recent_us.size(), static_cast<std::size_t>(std::max(0L, steps)));
-  std::vector<float> v(recent_us.begin(), recent_us.begin() + static_cast<std::ptrdiff_t>(n));
+  scratch_.reserve(recent_us.size());
+  scratch_.assign(recent_us.begin(), recent_us.begin() + static_cast<std::ptrdiff_t>(n));
   HapticTimings t;
-  t.step_p99_us = percentile(v, 0.99);
-  t.step_median_us = percentile(v, 0.5);
+  t.step_p99_us = percentile(scratch_, 0.99);
+  t.step_median_us = percentile(scratch_, 0.5);
   t.late_steps = late_steps;
   return t;
 }
@@ -102,13 +84,20 @@ LoopStats runHapticLoop(World& world, const std::vector<DeviceTrack>& devices,
   std::vector<float> step_us(static_cast<std::size_t>(steps));
   LoopStats stats;
   const double t0 = world.time();
+  const bool realtime = settings.clock == ClockMode::kRealtime;
+  std::vector<float> late_us(realtime ? static_cast<std::size_t>(steps) : 0);
   std::optional<FifoPriority> priority;
   std::optional<TimerSlack> slack;
-  const bool realtime = settings.clock == ClockMode::kRealtime;
+  std::optional<MemoryLock> memory;
+  std::optional<ShortSlice> short_slice;
   if (realtime && settings.fifo) stats.fifo_priority = priority.emplace().active();
+  if (realtime && !stats.fifo_priority && settings.short_slice) stats.short_slice = short_slice.emplace(kRealtimeSlice).granted();
   if (realtime) {
     slack.emplace(kRealtimeTimerSlackNs);
     stats.late_per_second.assign(static_cast<std::size_t>(std::ceil(settings.duration)) + 1, 0);
+    stats.first_late.reserve(LoopStats::kLateStepsKept);
+    memory.emplace();  // after every buffer above exists, so they are locked too
+    stats.memory = memory->state();
   }
   // A SCHED_FIFO thread needs no spin, and one that never sleeps is throttled by the kernel
   // (sched_rt_runtime_us: 50 ms of every second by default): spin only at normal priority.
@@ -117,22 +106,42 @@ LoopStats runHapticLoop(World& world, const std::vector<DeviceTrack>& devices,
   const auto spin = std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double, std::micro>(spin_us));
   const auto start = Clock::now();
   const auto period = std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(dt));
+  const ThreadUsage usage_start = realtime ? ThreadUsage::now() : ThreadUsage{};
+  ThreadUsage usage_before = usage_start;  // at the previous step's start
+  auto iteration_end = start;              // when the previous iteration's outputs were done
+  float work_us = 0.0f;                    // the previous iteration's time after World::step
+  bool previous_late = false;
   long k = 0;
   for (; k < steps; ++k) {
     if (settings.stop && settings.stop->load(std::memory_order_relaxed)) break;
-    if (settings.clock == ClockMode::kRealtime) {
+    if (realtime) {
       // Absolute deadline: drift-free, a late step does not shift the following ones.
       const auto deadline = start + k * period;
-      std::this_thread::sleep_until(deadline - spin);
-      while (Clock::now() < deadline) {
-      }
-      const double late = std::chrono::duration<double>(Clock::now() - deadline).count();
+      sleepUntil(deadline - spin);
+      auto now = Clock::now();
+      while (now < deadline) now = Clock::now();
+      const double late = std::chrono::duration<double>(now - deadline).count();
+      late_us[static_cast<std::size_t>(k)] = static_cast<float>(1e6 * late);
+      stats.late_histogram.add(1e6 * late);
       stats.max_lateness_us = std::max(stats.max_lateness_us, late * 1e6);
-      if (late > settings.late_threshold) {
+      const ThreadUsage usage = ThreadUsage::now();
+      const bool is_late = late > settings.late_threshold;
+      if (is_late) {
         ++stats.late_steps;
+        const char* cause = "woke late";
+        if (k > 0 && iteration_end > deadline) cause = previous_late ? "catching up" : "overran";
+        ++(cause[0] == 'w' ? stats.late_woke : cause[0] == 'o' ? stats.late_overran : stats.late_catching_up);
         const auto second = static_cast<std::size_t>(static_cast<double>(k) / settings.rate_hz);
         ++stats.late_per_second[std::min(stats.late_per_second.size() - 1, second)];
+        if (stats.first_late.size() < LoopStats::kLateStepsKept) {
+          stats.first_late.push_back({t0 + static_cast<double>(k) * dt, 1e6 * late, cause,
+                                      k > 0 ? step_us[static_cast<std::size_t>(k - 1)] : 0.0, work_us,
+                                      usage.minor_faults + usage.major_faults - usage_before.minor_faults - usage_before.major_faults,
+                                      usage.involuntary_switches - usage_before.involuntary_switches});
+        }
       }
+      usage_before = usage;
+      previous_late = is_late;
       if (settings.live) settings.live->late_steps = stats.late_steps;
     }
     // Time of step k from its index, so no rounding accumulates over long runs.
@@ -143,7 +152,8 @@ LoopStats runHapticLoop(World& world, const std::vector<DeviceTrack>& devices,
     }
     const auto before = Clock::now();
     world.step(dt, samples);
-    step_us[k] = std::chrono::duration<float, std::micro>(Clock::now() - before).count();
+    const auto stepped = Clock::now();
+    step_us[k] = std::chrono::duration<float, std::micro>(stepped - before).count();
     for (std::size_t i = 0; i < settings.sources.size(); ++i) {
       if (DeviceSource* source = settings.sources[i]) {
         const int f = static_cast<int>(i);
@@ -152,10 +162,26 @@ LoopStats runHapticLoop(World& world, const std::vector<DeviceTrack>& devices,
     }
     if (LiveTimings* live = settings.live) live->recent_us[live->steps++ % live->recent_us.size()] = step_us[k];
     if (observer) observer(world);
+    if (realtime) {
+      iteration_end = Clock::now();
+      work_us = std::chrono::duration<float, std::micro>(iteration_end - stepped).count();
+      stats.step_histogram.add(step_us[k]);
+      stats.work_histogram.add(work_us);
+    }
   }
   stats.wall_seconds = std::chrono::duration<double>(Clock::now() - start).count();
   stats.steps = k;
   stats.stopped = k < steps;
+  if (realtime) {
+    const ThreadUsage usage = ThreadUsage::now();
+    stats.minor_faults = usage.minor_faults - usage_start.minor_faults;
+    stats.major_faults = usage.major_faults - usage_start.major_faults;
+    stats.preemptions = usage.involuntary_switches - usage_start.involuntary_switches;
+    late_us.resize(static_cast<std::size_t>(k));
+    stats.late_p50_us = percentile(late_us, 0.5);
+    stats.late_p99_us = percentile(late_us, 0.99);
+    stats.late_p999_us = percentile(late_us, 0.999);
+  }
   step_us.resize(static_cast<std::size_t>(k));
   stats.step_max_us = step_us.empty() ? 0.0 : *std::max_element(step_us.begin(), step_us.end());
   stats.step_p99_us = percentile(step_us, 0.99);

@@ -7,6 +7,7 @@
 #include <span>
 #include <vector>
 
+#include "sim/realtime.hpp"
 #include "sim/world.hpp"
 
 namespace gf::sim {
@@ -23,8 +24,12 @@ struct LiveTimings {
   std::vector<float> recent_us = std::vector<float>(1000);  ///< ring: cost of the latest steps
   long steps = 0;                                           ///< steps recorded so far
   long late_steps = 0;                                      ///< realtime steps started late
-  /// Median and p99 over the ring, and the late count. Allocates a copy of the ring.
+  /// Median and p99 over the ring, and the late count. Copies the ring into a buffer kept from
+  /// the first call (no allocation after it); one thread.
   HapticTimings summary() const;
+
+ private:
+  mutable std::vector<float> scratch_;
 };
 
 /// Settings of one run.
@@ -44,9 +49,26 @@ struct LoopSettings {
   /// (us; 0: sleep to it; the period or more: never sleep). Ignored under SCHED_FIFO, where a
   /// thread that never sleeps is throttled by the kernel.
   double spin_us = 0.0;
+  /// Realtime without SCHED_FIFO: ask for the scheduler's shortest slice (ShortSlice), so a
+  /// waking step preempts ordinary threads sooner.
+  bool short_slice = true;
   /// Live devices, in finger order (empty, or one entry per finger): a finger with a source is
   /// sampled from it instead of its track, and gets each step's feedback.
   std::span<DeviceSource* const> sources{};
+};
+
+/// A late realtime step, with what its previous iteration did (the evidence of why it was late).
+struct LateStep {
+  double t = 0.0;             ///< simulated time of the step (s)
+  double late_us = 0.0;       ///< how late it started
+  /// Why: "woke late" (its sleep ended late: the thread waited for a core), "overran" (the
+  /// previous iteration started in time but ended after this step's deadline), "catching up"
+  /// (the previous step was late itself and the loop had not caught up yet).
+  const char* cause = "";
+  double before_step_us = 0.0;  ///< cost of the previous World::step
+  double before_work_us = 0.0;  ///< the rest of the previous iteration (feedback, outputs)
+  long faults = 0;            ///< page faults of the haptic thread in the previous iteration and its sleep
+  long preemptions = 0;       ///< involuntary context switches in the same span
 };
 
 /// Timing statistics of a run (wall-clock, so not deterministic).
@@ -65,6 +87,21 @@ struct LoopStats {
   /// shared the cores with the renderer and encoders at normal priority.
   bool fifo_priority = false;
   bool stopped = false;          ///< LoopSettings::stop ended the run before its duration
+  // Realtime only, from here on.
+  LatencyHistogram late_histogram;  ///< start lateness of every step (us)
+  LatencyHistogram step_histogram;  ///< cost of World::step (us)
+  LatencyHistogram work_histogram;  ///< the rest of each iteration: device feedback and the observer (us)
+  double late_p50_us = 0.0, late_p99_us = 0.0, late_p999_us = 0.0;
+  long late_woke = 0;      ///< late steps by cause (LateStep::cause)
+  long late_overran = 0;
+  long late_catching_up = 0;
+  /// At normal priority: the short EEVDF slice was granted (ShortSlice).
+  bool short_slice = false;
+  /// The haptic thread during the loop: page faults, and preemptions while it could run.
+  long minor_faults = 0, major_faults = 0, preemptions = 0;
+  std::string memory;               ///< MemoryLock::state()
+  static constexpr std::size_t kLateStepsKept = 64;
+  std::vector<LateStep> first_late;  ///< the first kLateStepsKept late steps
 };
 
 /// Called after every step with the world (haptic thread). Keep it cheap.
@@ -75,7 +112,8 @@ using StepObserver = std::function<void(const World&)>;
 /// each step's feedback). Allocates only before the first step. A realtime
 /// loop asks for SCHED_FIFO priority for the calling thread while it runs (so rendering and
 /// encoding threads cannot delay a step; settings.fifo) and a 1 us timer slack (the default 50 us
-/// delays every wake-up), and restores both afterwards.
+/// delays every wake-up), and restores both afterwards; it locks the process's memory where
+/// allowed (MemoryLock) and sleeps to each deadline with clock_nanosleep(TIMER_ABSTIME).
 LoopStats runHapticLoop(World& world, const std::vector<DeviceTrack>& devices,
                         const LoopSettings& settings, const StepObserver& observer);
 

@@ -16,7 +16,7 @@ namespace {
 constexpr CommandFactory kCommands[] = {makeRunCommand,      makePatchCommand,    makeStudyCommand,
                                         makeCheckCommand,    makeCompareCommand,  makeListCommand,
                                         makeLiveCommand,     makeMeshInfoCommand, makePlotCommand,
-                                        makeSchemaCommand,   makeScreenshotsCommand};
+                                        makeSchemaCommand,   makeScreenshotsCommand, makeBenchCommand};
 
 }  // namespace
 

@@ -66,5 +66,6 @@ std::unique_ptr<Command> makeMeshInfoCommand(const std::vector<std::string>& arg
 std::unique_ptr<Command> makePlotCommand(const std::vector<std::string>& argv);
 std::unique_ptr<Command> makeSchemaCommand(const std::vector<std::string>& argv);
 std::unique_ptr<Command> makeScreenshotsCommand(const std::vector<std::string>& argv);
+std::unique_ptr<Command> makeBenchCommand(const std::vector<std::string>& argv);
 
 }  // namespace gf::app

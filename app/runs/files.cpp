@@ -1,10 +1,11 @@
 #include "app/runs/files.hpp"
 
+#include <algorithm>
 #include <atomic>
+#include <chrono>
 #include <charconv>
 #include <condition_variable>
 #include <cstdio>
-#include <deque>
 #include <filesystem>
 #include <fstream>
 #include <mutex>
@@ -38,60 +39,83 @@ void writeFileAtomically(const std::string& path, const std::string& text) {
 }
 
 namespace {
-// Room past a full block for the row that fills it, so rows of up to this length never reallocate.
-constexpr std::size_t kRowMargin = 64 * 1024;
+// The writer's text is handed to the file once it holds this much.
+constexpr std::size_t kWriteBytes = std::size_t{1} << 20;
+// How long the writer sleeps when it finds the ring empty (the owner never wakes it: close() does).
+constexpr auto kWriterPoll = std::chrono::milliseconds(10);
 }  // namespace
 
-struct StreamedFile::Writer {
+struct RowFile::Writer {
   std::string path, tmp;
   std::ofstream out;
-  std::mutex mutex;
-  std::condition_variable changed;
-  std::deque<std::unique_ptr<std::string>> full;   // owner -> writer
-  std::vector<std::unique_ptr<std::string>> free;  // writer -> owner, emptied, capacity kept
+  std::size_t columns = 0, ring_rows = 0;
+  std::vector<double> ring;                 // ring_rows rows of `columns` numbers
+  alignas(64) std::atomic<std::size_t> head{0};  // rows pushed (owner)
+  alignas(64) std::atomic<std::size_t> tail{0};  // rows formatted (writer)
+  std::atomic<bool> failed{false};          // set by the writer, seen by the owner at its next push
+  long waits = 0;                           // owner only
+  std::mutex mutex;                         // close() only: never taken by push()
+  std::condition_variable closing_changed;
   bool closing = false;
-  std::atomic<bool> failed{false};  // set by the writer, seen by the owner at its next hand-over
   bool closed = false;
   std::thread thread;
 
+  void writeText(std::string& text) {
+    if (!failed && !text.empty()) {
+      out.write(text.data(), static_cast<std::streamsize>(text.size()));
+      if (!out) failed = true;
+    }
+    text.clear();
+  }
+
   void run() {
+    std::string text;
+    text.reserve(kWriteBytes + 64 * 1024);
     for (;;) {
-      std::unique_ptr<std::string> next;
-      {
+      const std::size_t h = head.load(std::memory_order_acquire);
+      std::size_t t = tail.load(std::memory_order_relaxed);
+      if (t == h) {
+        writeText(text);
         std::unique_lock lock(mutex);
-        changed.wait(lock, [&] { return !full.empty() || closing; });
-        if (full.empty()) return;
-        next = std::move(full.front());
-        full.pop_front();
+        if (closing && tail.load(std::memory_order_relaxed) == head.load(std::memory_order_acquire)) return;
+        closing_changed.wait_for(lock, kWriterPoll);
+        continue;
       }
-      if (!failed) {
-        out.write(next->data(), static_cast<std::streamsize>(next->size()));
-        if (!out) failed = true;  // read by the owner only after join()
+      for (; t != h; ++t) {
+        const double* row = &ring[(t % ring_rows) * columns];
+        for (std::size_t c = 0; c < columns; ++c) {
+          if (c > 0) text += ',';
+          appendNumber(text, row[c]);
+        }
+        text += '\n';
+        if (text.size() >= kWriteBytes) {
+          tail.store(t + 1, std::memory_order_release);
+          writeText(text);
+        }
       }
-      next->clear();
-      std::lock_guard lock(mutex);
-      free.push_back(std::move(next));
+      tail.store(t, std::memory_order_release);
     }
   }
 };
 
-StreamedFile::StreamedFile(std::string path) : writer_(std::make_unique<Writer>()) {
+RowFile::RowFile(std::string path, const std::vector<std::string>& columns, std::size_t ring_rows)
+    : writer_(std::make_unique<Writer>()) {
   Writer& w = *writer_;
   w.path = std::move(path);
   w.tmp = w.path + ".tmp";
   w.out.open(w.tmp, std::ios::binary | std::ios::trunc);
   if (!w.out) throw std::runtime_error(w.tmp + ": cannot create");
-  for (int i = 0; i < 3; ++i) {
-    auto spare = std::make_unique<std::string>();
-    spare->reserve(kBlockBytes + kRowMargin);
-    w.free.push_back(std::move(spare));
-  }
-  block_ = std::move(w.free.back());
-  w.free.pop_back();
+  std::string header;
+  for (const std::string& c : columns) header.append(header.empty() ? "" : ",").append(c);
+  header += '\n';
+  w.writeText(header);
+  w.columns = columns.size();
+  w.ring_rows = std::max<std::size_t>(1, ring_rows);
+  w.ring.assign(w.ring_rows * w.columns, 0.0);  // touched now, so the run takes no page fault in it
   w.thread = std::thread([&w] { w.run(); });
 }
 
-StreamedFile::~StreamedFile() {
+RowFile::~RowFile() {
   try {
     close();
   } catch (const std::exception& e) {
@@ -99,41 +123,34 @@ StreamedFile::~StreamedFile() {
   }
 }
 
-void StreamedFile::handOverFull() {
-  // A write that failed (a full disk) stops the owner now, not at close().
-  if (writer_->failed.load(std::memory_order_relaxed)) throw std::runtime_error(writer_->path + ": cannot write (disk full?)");
-  handOver();
-}
+std::size_t RowFile::columns() const { return writer_->columns; }
+long RowFile::waits() const { return writer_->waits; }
 
-void StreamedFile::handOver() {
+void RowFile::push(const double* row) {
   Writer& w = *writer_;
-  std::unique_ptr<std::string> next;
-  {
-    std::lock_guard lock(w.mutex);
-    w.full.push_back(std::move(block_));
-    if (!w.free.empty()) {
-      next = std::move(w.free.back());
-      w.free.pop_back();
+  // A write that failed (a full disk) stops the owner now, not at close().
+  if (w.failed.load(std::memory_order_relaxed)) throw std::runtime_error(w.path + ": cannot write (disk full?)");
+  const std::size_t h = w.head.load(std::memory_order_relaxed);
+  if (h - w.tail.load(std::memory_order_acquire) == w.ring_rows) {
+    ++w.waits;  // the writer is a whole ring behind: wait for it rather than lose a row
+    while (h - w.tail.load(std::memory_order_acquire) == w.ring_rows) {
+      if (w.failed.load(std::memory_order_relaxed)) throw std::runtime_error(w.path + ": cannot write (disk full?)");
+      std::this_thread::yield();
     }
   }
-  w.changed.notify_one();
-  if (!next) {  // the writer is behind (a slow disk): one more block rather than a wait
-    next = std::make_unique<std::string>();
-    next->reserve(kBlockBytes + kRowMargin);
-  }
-  block_ = std::move(next);
+  std::copy(row, row + w.columns, &w.ring[(h % w.ring_rows) * w.columns]);
+  w.head.store(h + 1, std::memory_order_release);
 }
 
-void StreamedFile::close() {
+void RowFile::close() {
   Writer& w = *writer_;
   if (w.closed) return;
   w.closed = true;
-  if (!block_->empty()) handOver();
   {
     std::lock_guard lock(w.mutex);
     w.closing = true;
   }
-  w.changed.notify_one();
+  w.closing_changed.notify_one();
   w.thread.join();
   w.out.close();
   if (w.failed || !w.out) {

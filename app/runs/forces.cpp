@@ -15,14 +15,12 @@ ForceWriter::ForceWriter(const sim::World& world, const std::vector<std::string>
     }
   }
   if (!path.empty() && !bodies_.empty()) {
-    file_ = std::make_unique<StreamedFile>(path);
-    std::string& text = file_->block();
-    text.push_back('t');
+    std::vector<std::string> columns = {"t"};
     for (int b : bodies_) {
-      for (const char* c : {".fx", ".fy", ".fz"}) text.append(1, ',').append(d.bodies[static_cast<std::size_t>(b)].name).append(c);
+      for (const char* c : {".fx", ".fy", ".fz"}) columns.push_back(d.bodies[static_cast<std::size_t>(b)].name + c);
     }
-    text += '\n';
-    file_->rowDone();
+    file_ = std::make_unique<RowFile>(path, columns);
+    row_.resize(columns.size());
   }
   gravity_ = d.effects.gravity ? d.world.gravity : sim::Vec3::Zero();
   times_.reserve(static_cast<std::size_t>(std::max(0L, rows)));
@@ -31,22 +29,15 @@ ForceWriter::ForceWriter(const sim::World& world, const std::vector<std::string>
 
 void ForceWriter::record(const sim::World& world, double dt) {
   times_.push_back(world.time());
-  std::string* text = file_ ? &file_->block() : nullptr;
-  if (text) appendNumber(*text, world.time());
+  if (file_) row_[0] = world.time();
   for (std::size_t i = 0; i < bodies_.size(); ++i) {
     const sim::Vec3 v = world.bodyLinearVelocity(bodies_[i]);
     const sim::Vec3 f = world.desc().bodies[bodies_[i]].mass * ((v - previous_[i]) / dt - gravity_);
     previous_[i] = v;
     if (i == 0) fy_.push_back(f.y());
-    if (!text) continue;
-    for (double x : {f.x(), f.y(), f.z()}) {
-      *text += ',';
-      appendNumber(*text, x);
-    }
+    if (file_) std::copy(f.data(), f.data() + 3, &row_[1 + 3 * i]);
   }
-  if (!text) return;
-  *text += '\n';
-  file_->rowDone();
+  if (file_) file_->push(row_.data());
 }
 
 void ForceWriter::close() {

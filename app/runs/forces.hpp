@@ -14,7 +14,7 @@ namespace gf::app {
 
 /// The force on each body of `names` other than gravity (N): m (dv/dt - g) over each step. This
 /// is the paper's Fig. 8 curve for the pinched cylinder. Haptic thread only; allocates only in
-/// its constructor (it reserves `rows` samples) and when a streamed block is full.
+/// its constructor (it reserves `rows` samples).
 class ForceWriter {
  public:
   /// Streams forces.csv to `path` when it is not empty and a body is listed. Throws
@@ -30,7 +30,8 @@ class ForceWriter {
   render::ChartSeries series(const std::string& label, const Eigen::Vector3f& colour) const;
 
  private:
-  std::unique_ptr<StreamedFile> file_;
+  std::unique_ptr<RowFile> file_;
+  std::vector<double> row_;  // the row being filled
   std::vector<int> bodies_;
   std::vector<sim::Vec3> previous_;
   std::vector<double> times_, fy_;

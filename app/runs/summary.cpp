@@ -130,14 +130,51 @@ nlohmann::json renderJson(render::RenderStats r, long published) {
 std::string versionString() { return sim::libraryVersion(); }
 std::string commitString() { return GF_GIT_COMMIT; }
 
+namespace {
+
+// A histogram as {"upper_us": [edges..., null], "counts": [...]}: the last bin is open.
+nlohmann::json histogramJson(const sim::LatencyHistogram& h) {
+  nlohmann::json upper(sim::LatencyHistogram::kEdgesUs);
+  upper.push_back(nullptr);
+  return {{"upper_us", upper}, {"counts", h.counts}};
+}
+
+}  // namespace
+
+nlohmann::json sleeperJson(const sim::SleeperStats& s) {
+  return {{"wakeups", s.wakeups},
+          {"late", s.late},
+          {"late_percent", s.late_percent()},
+          {"late_us", {{"p50", s.p50_us}, {"p99", s.p99_us}, {"p999", s.p999_us}, {"max", s.max_late_us}}},
+          {"histogram", histogramJson(s.histogram)}};
+}
+
 nlohmann::json realtimeJson(const sim::LoopStats& stats, bool fifo_requested) {
+  nlohmann::json late = nlohmann::json::array();
+  for (const sim::LateStep& l : stats.first_late) {
+    late.push_back({{"t", l.t}, {"late_us", l.late_us}, {"cause", l.cause},
+                    {"before_step_us", l.before_step_us}, {"before_work_us", l.before_work_us},
+                    {"faults", l.faults}, {"preemptions", l.preemptions}});
+  }
   return {{"haptic_priority", stats.fifo_priority ? "SCHED_FIFO" : "normal"},
           {"fifo_requested", fifo_requested},
           {"spin_us", stats.spin_us},
+          {"memory", stats.memory},
           {"late_steps", stats.late_steps},
           {"late_percent", stats.steps > 0 ? 100.0 * stats.late_steps / stats.steps : 0.0},
           {"max_lateness_us", stats.max_lateness_us},
-          {"late_per_second", stats.late_per_second}};
+          {"late_per_second", stats.late_per_second},
+          {"short_slice", stats.short_slice},
+          {"late_causes", {{"woke_late", stats.late_woke}, {"overran", stats.late_overran},
+                           {"catching_up", stats.late_catching_up}}},
+          {"lateness_us", {{"p50", stats.late_p50_us}, {"p99", stats.late_p99_us}, {"p999", stats.late_p999_us},
+                           {"max", stats.max_lateness_us}}},
+          {"histograms", {{"lateness", histogramJson(stats.late_histogram)},
+                          {"step", histogramJson(stats.step_histogram)},
+                          {"work", histogramJson(stats.work_histogram)}}},
+          {"haptic_thread", {{"minor_faults", stats.minor_faults}, {"major_faults", stats.major_faults},
+                             {"preemptions", stats.preemptions}}},
+          {"first_late_steps", late}};
 }
 
 nlohmann::json provenanceJson(const SessionDesc& session, const std::vector<std::string>& command_line) {

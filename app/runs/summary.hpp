@@ -27,6 +27,8 @@ nlohmann::json summaryJson(const SessionDesc& session, const sim::World& world, 
 
 /// How the realtime loop kept its deadlines: policy, spin, late steps and their share.
 nlohmann::json realtimeJson(const sim::LoopStats& stats, bool fifo_requested);
+/// A periodic sleeper's lateness (sim::runSleeper), as `godfinger bench realtime` reports it.
+nlohmann::json sleeperJson(const sim::SleeperStats& s);
 
 /// The render thread's figures: frames drawn and `published` (handed over by the haptic thread),
 /// frame times (it sorts its copy of them), encoders, priority and GL.

@@ -1,5 +1,7 @@
 #include "app/runs/trace.hpp"
 
+#include "sim/assert.hpp"
+
 namespace gf::app {
 
 std::vector<std::string> traceColumns(const sim::SceneDesc& d) {
@@ -22,55 +24,41 @@ std::vector<std::string> traceColumns(const sim::SceneDesc& d) {
   return out;
 }
 
-TraceWriter::TraceWriter(const sim::World& world, const std::string& path) : file_(path) {
+TraceWriter::TraceWriter(const sim::World& world, const std::string& path)
+    : file_(path, traceColumns(world.desc())), row_(file_.columns()) {
   const sim::SceneDesc& d = world.desc();
   for (std::size_t b = 0; b < d.bodies.size(); ++b) {
     if (d.bodies[b].mass > 0.0) dynamic_bodies_.push_back(static_cast<int>(b));
   }
-  std::string& text = file_.block();
-  for (const std::string& column : traceColumns(d)) {
-    if (!text.empty()) text += ',';
-    text += column;
-  }
-  text += '\n';
-  file_.rowDone();
 }
 
 void TraceWriter::record(const sim::World& world) {
-  std::string& text = file_.block();
-  appendNumber(text, world.time());
+  double* x = row_.data();
+  *x++ = world.time();
   for (int b : dynamic_bodies_) {
     const sim::Pose p = world.bodyPose(b);
-    for (double x : {p.position.x(), p.position.y(), p.position.z(), p.orientation.x(),
-                     p.orientation.y(), p.orientation.z(), p.orientation.w()}) {
-      text += ',';
-      appendNumber(text, x);
+    for (double v : {p.position.x(), p.position.y(), p.position.z(), p.orientation.x(), p.orientation.y(),
+                     p.orientation.z(), p.orientation.w()}) {
+      *x++ = v;
     }
   }
   for (int f = 0; f < static_cast<int>(world.desc().fingers.size()); ++f) {
     const sim::Vec3 force = world.couplingForce(f), proxy = world.proxyPosition(f), device = world.devicePosition(f);
-    for (double x : {force.x(), force.y(), force.z(), double(world.sgoCount(f)), world.contactRadius(f), proxy.x(),
+    for (double v : {force.x(), force.y(), force.z(), double(world.sgoCount(f)), world.contactRadius(f), proxy.x(),
                      proxy.y(), proxy.z(), device.x(), device.y(), device.z()}) {
-      text += ',';
-      appendNumber(text, x);
+      *x++ = v;
     }
   }
   for (int b : dynamic_bodies_) {
     const sim::Vec3 v = world.bodyLinearVelocity(b), w = world.bodyAngularVelocity(b);
-    for (double x : {v.x(), v.y(), v.z(), w.x(), w.y(), w.z()}) {
-      text += ',';
-      appendNumber(text, x);
-    }
+    for (double u : {v.x(), v.y(), v.z(), w.x(), w.y(), w.z()}) *x++ = u;
   }
   for (int f = 0; f < static_cast<int>(world.desc().fingers.size()); ++f) {
     const sim::Vec3 sent = world.feedbackForce(f);
-    for (double x : {sent.x(), sent.y(), sent.z(), world.portEnergy(f)}) {
-      text += ',';
-      appendNumber(text, x);
-    }
+    for (double v : {sent.x(), sent.y(), sent.z(), world.portEnergy(f)}) *x++ = v;
   }
-  text += '\n';
-  file_.rowDone();
+  GF_ASSERT(x == row_.data() + row_.size() && "trace.csv's row matches traceColumns()");
+  file_.push(row_.data());
 }
 
 }  // namespace gf::app

@@ -12,7 +12,8 @@ namespace gf::app {
 /// trace.csv's columns for a scene, in order (as TraceWriter documents them).
 std::vector<std::string> traceColumns(const sim::SceneDesc& scene);
 
-/// trace.csv, streamed to its file while the run goes (haptic thread only).
+/// trace.csv, streamed to its file while the run goes (haptic thread only; no allocation, no lock
+/// and no formatting on it: RowFile).
 class TraceWriter {
  public:
   /// Writes the header for the world's dynamic bodies and fingers.
@@ -25,12 +26,13 @@ class TraceWriter {
   /// Appends the row of the world's current state.
   void record(const sim::World& world);
 
-  /// Writes the last rows and puts the file in place (see StreamedFile::close).
+  /// Writes the last rows and puts the file in place (see RowFile::close).
   void close() { file_.close(); }
 
  private:
-  StreamedFile file_;
+  RowFile file_;
   std::vector<int> dynamic_bodies_;
+  std::vector<double> row_;  // the row being filled
 };
 
 }  // namespace gf::app

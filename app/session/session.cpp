@@ -319,6 +319,7 @@ sim::LoopStats SessionRun::loop() {
   loop.live = &live_;
   loop.fifo = options_.fifo;
   loop.spin_us = options_.spin_us;
+  loop.short_slice = options_.short_slice;
   loop.stop = &halt_;
   if (udp_) loop.sources = udp_->sources();
   Progress progress(scene_.name, scene_.duration, steps_, options_.progress);

@@ -30,6 +30,8 @@ struct SessionOptions {
   bool fifo = true;
   /// Realtime: the haptic loop sleeps until this long before each deadline, then spins (us).
   double spin_us = 0.0;
+  /// Realtime without SCHED_FIFO: the haptic loop asks for the scheduler's shortest slice.
+  bool short_slice = true;
   /// Realtime: the render thread, its encoders and llvmpipe's workers run at SCHED_IDLE so the
   /// haptic loop preempts them even at normal priority (`run --no-yield` turns it off).
   bool yield_render = true;

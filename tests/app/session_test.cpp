@@ -33,48 +33,50 @@ std::string readFile(const fs::path& p) {
   return s.str();
 }
 
-// A long run's rows go to disk while it runs: several blocks' worth arrive whole and in order,
-// and the file appears (replacing the earlier one) only when it is closed.
-TEST(StreamedFile, RowsOfManyBlocksArriveInOrderAndReplaceTheFileOnlyAtClose) {
-  const fs::path path = gf::test::scratchRoot() / "gf_streamed.csv";
+// A long run's rows go to disk while it runs: many rings' worth arrive whole, in order and
+// formatted as appendNumber formats them, the owner waiting for the writer when the ring is full
+// rather than losing a row; the file appears (replacing the earlier one) only when it is closed.
+TEST(RowFile, RowsOfManyRingsArriveInOrderAndReplaceTheFileOnlyAtClose) {
+  const fs::path path = gf::test::scratchRoot() / "gf_rows.csv";
   {
     std::ofstream earlier(path);
     earlier << "earlier run\n";
   }
-  std::string expected;
+  std::string expected = "i,x\n";
   {
-    StreamedFile file(path.string());
-    for (int row = 0; row < 400000; ++row) {  // about 4.5 MiB: four full blocks and a partial one
-      const std::string line = std::to_string(row) + ",0.125\n";
-      file.block() += line;
-      expected += line;
-      file.rowDone();
+    RowFile file(path.string(), {"i", "x"}, 1024);
+    ASSERT_EQ(file.columns(), 2u);
+    for (int i = 0; i < 100000; ++i) {  // about 100 rings of 1024 rows
+      const double row[2] = {static_cast<double>(i), 1.0 / (i + 3)};
+      file.push(row);
+      expected += std::to_string(i) + ',';
+      appendNumber(expected, row[1]);
+      expected += '\n';
     }
     EXPECT_EQ(readFile(path), "earlier run\n");
     file.close();
   }
-  EXPECT_GT(expected.size(), 4 * StreamedFile::kBlockBytes);
   EXPECT_EQ(readFile(path), expected);
   EXPECT_FALSE(fs::exists(path.string() + ".tmp"));
 }
 
 // A run that throws part-way still leaves a valid file of the rows it reached.
-TEST(StreamedFile, AnOwnerThatThrowsLeavesTheRowsItReached) {
-  const fs::path path = gf::test::scratchRoot() / "gf_streamed_thrown.csv";
+TEST(RowFile, AnOwnerThatThrowsLeavesTheRowsItReached) {
+  const fs::path path = gf::test::scratchRoot() / "gf_rows_thrown.csv";
   try {
-    StreamedFile file(path.string());
-    file.block() += "t\n0\n";
-    file.rowDone();
+    RowFile file(path.string(), {"t"});
+    const double row = 0.0;
+    file.push(&row);
     throw std::runtime_error("the run failed");
   } catch (const std::runtime_error&) {
   }
   EXPECT_EQ(readFile(path), "t\n0\n");
 }
 
-TEST(StreamedFile, AFileThatCannotBeCreatedIsNamed) {
+TEST(RowFile, AFileThatCannotBeCreatedIsNamed) {
   const std::string path = (gf::test::scratchRoot() / "gf_no_such_folder" / "trace.csv").string();
   try {
-    StreamedFile file(path);
+    RowFile file(path, {"t"});
     FAIL() << "opened " << path;
   } catch (const std::runtime_error& e) {
     EXPECT_NE(std::string(e.what()).find(path + ".tmp: cannot create"), std::string::npos) << e.what();
