@@ -90,6 +90,8 @@ LoopStats runHapticLoop(World& world, const std::vector<DeviceTrack>& devices,
   std::optional<TimerSlack> slack;
   std::optional<MemoryLock> memory;
   std::optional<ShortSlice> short_slice;
+  std::optional<CpuPin> pin;
+  if (realtime && settings.cpu >= 0 && pin.emplace(std::vector<int>{settings.cpu}).active()) stats.cpu = settings.cpu;
   if (realtime && settings.fifo) stats.fifo_priority = priority.emplace().active();
   if (realtime && !stats.fifo_priority && settings.short_slice) stats.short_slice = short_slice.emplace(kRealtimeSlice).granted();
   if (realtime) {

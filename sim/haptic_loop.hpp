@@ -52,6 +52,8 @@ struct LoopSettings {
   /// Realtime without SCHED_FIFO: ask for the scheduler's shortest slice (ShortSlice), so a
   /// waking step preempts ordinary threads sooner.
   bool short_slice = true;
+  /// Realtime: the CPU the loop's thread runs on alone while it runs (CpuPin; -1: any).
+  int cpu = -1;
   /// Live devices, in finger order (empty, or one entry per finger): a finger with a source is
   /// sampled from it instead of its track, and gets each step's feedback.
   std::span<DeviceSource* const> sources{};
@@ -97,6 +99,7 @@ struct LoopStats {
   long late_catching_up = 0;
   /// At normal priority: the short EEVDF slice was granted (ShortSlice).
   bool short_slice = false;
+  int cpu = -1;  ///< the CPU the loop was pinned to (-1: not pinned)
   /// The haptic thread during the loop: page faults, and preemptions while it could run.
   long minor_faults = 0, major_faults = 0, preemptions = 0;
   std::string memory;               ///< MemoryLock::state()

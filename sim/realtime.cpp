@@ -148,6 +148,42 @@ MemoryLock::~MemoryLock() {
   if (locked_) munlockall();
 }
 
+CpuPin::CpuPin(const std::vector<int>& cpus) {
+  if (cpus.empty()) return;
+  cpu_set_t old;
+  CPU_ZERO(&old);
+  if (sched_getaffinity(0, sizeof old, &old) != 0) return;
+  cpu_set_t set;
+  CPU_ZERO(&set);
+  for (int c : cpus) {
+    if (c >= 0 && c < CPU_SETSIZE) CPU_SET(c, &set);
+  }
+  if (sched_setaffinity(0, sizeof set, &set) != 0) return;
+  const auto* bytes = reinterpret_cast<const unsigned char*>(&old);
+  saved_.assign(bytes, bytes + sizeof old);
+  active_ = true;
+}
+
+CpuPin::~CpuPin() {
+  if (!active_) return;
+  cpu_set_t old;
+  std::memcpy(&old, saved_.data(), sizeof old);
+  sched_setaffinity(0, sizeof old, &old);
+}
+
+CpuSplit splitCpus() {
+  CpuSplit split;
+  cpu_set_t set;
+  CPU_ZERO(&set);
+  if (sched_getaffinity(0, sizeof set, &set) != 0 || CPU_COUNT(&set) < 2) return split;
+  for (int c = 0; c < CPU_SETSIZE; ++c) {
+    if (CPU_ISSET(c, &set)) split.others.push_back(c);
+  }
+  split.haptic = split.others.back();
+  split.others.pop_back();
+  return split;
+}
+
 SleeperStats runSleeper(double rate_hz, double seconds, double late_threshold) {
   const long n = std::max(0L, stepCount(seconds, rate_hz));
   std::vector<float> late_us(static_cast<std::size_t>(n));

@@ -92,6 +92,30 @@ class MemoryLock {
   std::string state_;
 };
 
+/// While alive, the calling thread may run only on `cpus` (sched_setaffinity); the previous set
+/// is restored after. Threads (and processes) it starts meanwhile inherit the set. active() is
+/// false when `cpus` is empty or the system refused it.
+class CpuPin {
+ public:
+  explicit CpuPin(const std::vector<int>& cpus);
+  ~CpuPin();
+  CpuPin(const CpuPin&) = delete;
+  CpuPin& operator=(const CpuPin&) = delete;
+  bool active() const { return active_; }
+
+ private:
+  bool active_ = false;
+  std::vector<unsigned char> saved_;  // the previous cpu_set_t's bytes
+};
+
+/// The calling thread's CPUs split for a realtime run: the haptic loop's own CPU (the last one the
+/// thread may use) and the rest for everything else. haptic is -1 with fewer than two CPUs.
+struct CpuSplit {
+  int haptic = -1;
+  std::vector<int> others;
+};
+CpuSplit splitCpus();
+
 /// Wake-up lateness of a periodic sleeper.
 struct SleeperStats {
   long wakeups = 0;

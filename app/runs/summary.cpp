@@ -165,6 +165,7 @@ nlohmann::json realtimeJson(const sim::LoopStats& stats, bool fifo_requested) {
           {"max_lateness_us", stats.max_lateness_us},
           {"late_per_second", stats.late_per_second},
           {"short_slice", stats.short_slice},
+          {"cpu", stats.cpu >= 0 ? nlohmann::json(stats.cpu) : nlohmann::json()},
           {"late_causes", {{"woke_late", stats.late_woke}, {"overran", stats.late_overran},
                            {"catching_up", stats.late_catching_up}}},
           {"lateness_us", {{"p50", stats.late_p50_us}, {"p99", stats.late_p99_us}, {"p999", stats.late_p999_us},

@@ -233,6 +233,7 @@ class SessionRun {
   const fs::path dir_;
   const double dt_;
   const long steps_;
+  sim::CpuSplit cpus_;  // realtime, pinned: the loop's CPU and the others'
   std::optional<UdpDeviceBridge> udp_;
   std::optional<InterruptScope> interrupt_;
   std::optional<SignalsBlocked> quiet_threads_;
@@ -295,6 +296,10 @@ void SessionRun::prepareOutputs() {
 // The render thread (frames, close-ups, charts), then the files: what an earlier run left of
 // this run's outputs goes only now, when everything that can fail before the first step has.
 void SessionRun::startThreads() {
+  // Pinned: the threads started here (and the processes they start) inherit the other CPUs.
+  if (options_.realtime && options_.pin_cpus) cpus_ = sim::splitCpus();
+  std::optional<sim::CpuPin> elsewhere;
+  if (cpus_.haptic >= 0) elsewhere.emplace(cpus_.others);
   const bool stream = options_.frames || !options_.video_path.empty();
   closeups_ = options_.close_ups && !pending_.empty();
   if (stream || closeups_ || session_.record.force_chart) {
@@ -320,6 +325,7 @@ sim::LoopStats SessionRun::loop() {
   loop.fifo = options_.fifo;
   loop.spin_us = options_.spin_us;
   loop.short_slice = options_.short_slice;
+  loop.cpu = cpus_.haptic;
   loop.stop = &halt_;
   if (udp_) loop.sources = udp_->sources();
   Progress progress(scene_.name, scene_.duration, steps_, options_.progress);
@@ -440,7 +446,10 @@ nlohmann::json SessionRun::summary(const sim::LoopStats& stats) {
                  world_->counters().nan_recoveries);
   }
   if (options_.expect_failures) *options_.expect_failures = failed_;
-  if (options_.realtime) out["realtime"] = realtimeJson(stats, options_.fifo);
+  if (options_.realtime) {
+    out["realtime"] = realtimeJson(stats, options_.fifo);
+    out["realtime"]["other_cpus"] = cpus_.others;
+  }
   return out;
 }
 

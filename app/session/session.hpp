@@ -32,6 +32,10 @@ struct SessionOptions {
   double spin_us = 0.0;
   /// Realtime without SCHED_FIFO: the haptic loop asks for the scheduler's shortest slice.
   bool short_slice = true;
+  /// Realtime on two or more CPUs: the haptic loop runs alone on one CPU and every other thread
+  /// of the run (the renderer, llvmpipe's workers, encoders, ffmpeg, file writers) on the others,
+  /// so their CPU time is not charged to the loop's scheduling group on its CPU (`run --no-pin`).
+  bool pin_cpus = true;
   /// Realtime: the render thread, its encoders and llvmpipe's workers run at SCHED_IDLE so the
   /// haptic loop preempts them even at normal priority (`run --no-yield` turns it off).
   bool yield_render = true;

@@ -1,6 +1,8 @@
 // The `godfinger` command line: bad input exits non-zero and keeps what an earlier run wrote.
 #include <gtest/gtest.h>
 
+#include <nlohmann/json.hpp>
+
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
@@ -128,6 +130,35 @@ TEST(Command, SchemaAcceptsTheBundledScenesAndCatchesMistakes) {
   mistake("unknown-effect", "\"gravity\"", "\"gravitation\"");
   mistake("two-device-sources", "keyframes = [", "csv = \"x.csv\"\nkeyframes = [");
   mistake("negative-mass", "mass = ", "mass = -");
+}
+
+// `godfinger bench realtime`: each round's sleeper and loop are in bench.json, every wake-up and
+// step counted, and the headline shares pooled over the rounds with their difference. Wall-clock
+// values are checked for consistency only. A value out of range is refused before anything runs.
+TEST(Command, BenchRealtimeReportsTheLoopBesideTheSleeper) {
+  namespace fs = std::filesystem;
+  const fs::path out = gf::test::scratchRoot() / "gf_bench_realtime";
+  fs::remove_all(out);
+  const std::string bin = std::string(GF_BINARY_DIR) + "/godfinger bench realtime ";
+  ASSERT_EQ(std::system((bin + "fig7-side-pick --duration 0.2 --rounds 2 --no-frames --no-fifo --out " + out.string() +
+                         " > " + (out.string() + ".txt")).c_str()),
+            0);
+  std::ifstream in(out / "bench.json");
+  const nlohmann::json b = nlohmann::json::parse(in);
+  ASSERT_EQ(b["rounds"].size(), 2u);
+  long sleeper_late = 0, loop_late = 0;
+  for (const nlohmann::json& r : b["rounds"]) {
+    EXPECT_EQ(r["sleeper"]["wakeups"], 200);
+    EXPECT_EQ(r["loop"]["histograms"]["lateness"]["counts"].get<std::vector<long>>().size(), 14u);
+    EXPECT_TRUE(fs::exists(fs::path(r["run_folder"].get<std::string>()) / "summary.json"));
+    sleeper_late += r["sleeper"]["late"].get<long>();
+    loop_late += r["loop"]["late_steps"].get<long>();
+  }
+  EXPECT_DOUBLE_EQ(b["sleeper_late_percent"].get<double>(), 100.0 * sleeper_late / 400.0);
+  EXPECT_DOUBLE_EQ(b["loop_late_percent"].get<double>(), 100.0 * loop_late / 400.0);
+  EXPECT_DOUBLE_EQ(b["difference_points"].get<double>(),
+                   b["loop_late_percent"].get<double>() - b["sleeper_late_percent"].get<double>());
+  EXPECT_NE(std::system((bin + "--rounds 0 --out " + out.string() + " 2>/dev/null").c_str()), 0);
 }
 
 }  // namespace

@@ -3,7 +3,9 @@
 // and, for comparison, with SCHED_FIFO when the user may have it. Args: fifo (0, 1), the
 // haptic loop's spin before each deadline (us: 0 sleeps to it, 1000 never sleeps) and whether
 // the renderer yields (SCHED_IDLE, 1) or runs at normal priority (0). Counters: late steps
-// (> 0.5 ms), the worst lateness, frames drawn per second, and whether SCHED_FIFO was granted.
+// (> 0.5 ms), the worst lateness, frames drawn per second, whether SCHED_FIFO was granted, and
+// the same machine's floor measured just before: a bare 1 kHz sleeper's late share and worst
+// wake-up (sim::runSleeper, what cyclictest measures), at the benchmark's own priority.
 // Wall-clock only: run by hand, never by ctest.
 #include <benchmark/benchmark.h>
 
@@ -15,6 +17,7 @@
 #include "app/scene/data_folder.hpp"
 #include "app/scene/scene_file.hpp"
 #include "app/session/session.hpp"
+#include "sim/realtime.hpp"
 
 namespace {
 
@@ -32,8 +35,12 @@ void BM_RealtimeDeadlines(benchmark::State& state) {
   options.fifo = state.range(0) == 1;
   options.spin_us = static_cast<double>(state.range(1));
   options.yield_render = state.range(2) == 1;
-  double late = 0, worst = 0, fps = 0, fifo = 0;
+  double late = 0, worst = 0, fps = 0, fifo = 0, floor = 0, floor_worst = 0;
   for (auto _ : state) {
+    // The machine's floor first: a bare 1 kHz sleeper at the same priority (cyclictest's measure).
+    const sim::SleeperStats sleeper = sim::runSleeper(1000.0, session.scene.duration, sim::LoopSettings{}.late_threshold);
+    floor = sleeper.late_percent();
+    floor_worst = sleeper.max_late_us;
     std::filesystem::remove_all(out);
     const sim::LoopStats stats = app::runSession(session, options);
     std::ifstream in(out / "summary.json");
@@ -44,6 +51,8 @@ void BM_RealtimeDeadlines(benchmark::State& state) {
     fifo = stats.fifo_priority ? 1 : 0;
   }
   state.counters["late_percent"] = late;
+  state.counters["sleeper_late_percent"] = floor;
+  state.counters["sleeper_worst_late_us"] = floor_worst;
   state.counters["worst_late_us"] = worst;
   state.counters["frames_per_s"] = fps;
   state.counters["fifo_granted"] = fifo;

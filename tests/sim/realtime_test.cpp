@@ -7,6 +7,9 @@
 #include <gtest/gtest.h>
 
 #include <numeric>
+#include <vector>
+
+#include <sched.h>
 
 #include "sim/haptic_loop.hpp"
 #include "sim/world.hpp"
@@ -45,7 +48,9 @@ TEST(RealtimeLoop, HistogramsHoldEveryStepAndEveryLateStepHasOneCause) {
   World world(scene);
   LoopSettings settings{1000.0, 0.2, ClockMode::kRealtime};
   settings.fifo = false;
+  settings.cpu = splitCpus().haptic;  // -1 (not pinned) on one CPU
   const LoopStats stats = runHapticLoop(world, {}, settings, {});
+  EXPECT_EQ(stats.cpu, settings.cpu);
   EXPECT_EQ(stats.steps, 200);
   EXPECT_EQ(stats.late_histogram.total(), 200);
   EXPECT_EQ(stats.step_histogram.total(), 200);
@@ -79,6 +84,42 @@ TEST(ShortSlice, HoldsWhileAliveAndIsRestoredWhenItEnds) {
     EXPECT_EQ(ShortSlice::current(), kRealtimeSlice);
   }
   EXPECT_EQ(ShortSlice::current(), before);
+}
+
+// The CPUs the calling thread may run on.
+std::vector<int> allowedCpus() {
+  cpu_set_t set;
+  CPU_ZERO(&set);
+  EXPECT_EQ(sched_getaffinity(0, sizeof set, &set), 0);
+  std::vector<int> cpus;
+  for (int c = 0; c < CPU_SETSIZE; ++c) {
+    if (CPU_ISSET(c, &set)) cpus.push_back(c);
+  }
+  return cpus;
+}
+
+TEST(CpuPin, HoldsTheThreadOnItsCpusAndRestoresTheSetAfter) {
+  const std::vector<int> before = allowedCpus();
+  ASSERT_FALSE(before.empty());
+  {
+    const CpuPin pin({before.front()});
+    ASSERT_TRUE(pin.active());
+    EXPECT_EQ(allowedCpus(), std::vector<int>{before.front()});
+  }
+  EXPECT_EQ(allowedCpus(), before);
+  EXPECT_FALSE(CpuPin({}).active());
+}
+
+TEST(CpuPin, TheSplitGivesTheLoopTheLastCpuAndEverythingElseTheRest) {
+  const std::vector<int> cpus = allowedCpus();
+  const CpuSplit split = splitCpus();
+  if (cpus.size() < 2) {
+    EXPECT_EQ(split.haptic, -1);
+    EXPECT_TRUE(split.others.empty());
+    return;
+  }
+  EXPECT_EQ(split.haptic, cpus.back());
+  EXPECT_EQ(split.others, std::vector<int>(cpus.begin(), cpus.end() - 1));
 }
 
 }  // namespace
