@@ -123,11 +123,12 @@ LoopStats runHapticLoop(World& world, const std::vector<DeviceTrack>& devices,
       auto now = Clock::now();
       while (now < deadline) now = Clock::now();
       const double late = std::chrono::duration<double>(now - deadline).count();
-      late_us[static_cast<std::size_t>(k)] = static_cast<float>(1e6 * late);
-      stats.late_histogram.add(1e6 * late);
-      stats.max_lateness_us = std::max(stats.max_lateness_us, late * 1e6);
+      const float us = static_cast<float>(1e6 * late);  // kept as float, like the percentiles taken from them
+      late_us[static_cast<std::size_t>(k)] = us;
+      stats.late_histogram.add(us);
+      stats.max_lateness_us = std::max(stats.max_lateness_us, static_cast<double>(us));
       const ThreadUsage usage = ThreadUsage::now();
-      const bool is_late = late > settings.late_threshold;
+      const bool is_late = us > 1e6 * settings.late_threshold;
       if (is_late) {
         ++stats.late_steps;
         const char* cause = "woke late";
