@@ -69,6 +69,106 @@ HapticTimings LiveTimings::summary() const {
 
 long stepCount(double duration, double rate_hz) { return std::lround(duration * rate_hz); }
 
+namespace {
+
+// The realtime half of the loop: the thread's priority, slice, CPU, timer slack and memory while
+// it runs, the wait for each step's absolute deadline, and the account of how late each step
+// started and why. Allocates only in its constructor.
+class Deadlines {
+ public:
+  Deadlines(const LoopSettings& settings, long steps, double t0, LoopStats& stats)
+      : settings_(settings), stats_(stats), t0_(t0), late_us_(static_cast<std::size_t>(steps)) {
+    if (settings.cpu >= 0 && pin_.emplace(std::vector<int>{settings.cpu}).active()) stats.cpu = settings.cpu;
+    if (settings.fifo) stats.fifo_priority = priority_.emplace().active();
+    if (!stats.fifo_priority && settings.short_slice) stats.short_slice = slice_.emplace(kRealtimeSlice).granted();
+    slack_.emplace(kRealtimeTimerSlackNs);
+    stats.late_per_second.assign(static_cast<std::size_t>(std::ceil(settings.duration)) + 1, 0);
+    stats.first_late.reserve(LoopStats::kLateStepsKept);
+    memory_.emplace();  // after every buffer above exists, so they are locked too
+    stats.memory = memory_->state();
+    // A SCHED_FIFO thread needs no spin, and one that never sleeps is throttled by the kernel
+    // (sched_rt_runtime_us: 50 ms of every second by default): spin only at normal priority.
+    stats.spin_us = stats.fifo_priority ? 0.0 : std::max(0.0, settings.spin_us);
+    spin_ = std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double, std::micro>(stats.spin_us));
+    period_ = std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(1.0 / settings.rate_hz));
+  }
+
+  void start(Clock::time_point start) {
+    start_ = iteration_end_ = start;
+    usage_start_ = usage_before_ = ThreadUsage::now();
+  }
+
+  // Waits for step k's deadline and accounts for how late it starts. `step_us` holds the earlier
+  // steps' costs.
+  void wait(long k, const std::vector<float>& step_us) {
+    // Absolute deadline: drift-free, a late step does not shift the following ones.
+    const auto deadline = start_ + k * period_;
+    sleepUntil(deadline - spin_);
+    auto now = Clock::now();
+    while (now < deadline) now = Clock::now();
+    const auto us = static_cast<float>(std::chrono::duration<double, std::micro>(now - deadline).count());
+    late_us_[static_cast<std::size_t>(k)] = us;  // float, like the percentiles taken from them
+    stats_.late_histogram.add(us);
+    stats_.max_lateness_us = std::max(stats_.max_lateness_us, static_cast<double>(us));
+    const ThreadUsage usage = ThreadUsage::now();
+    const bool late = us > 1e6 * settings_.late_threshold;
+    if (late) countLate(k, us, deadline, usage, k > 0 ? step_us[static_cast<std::size_t>(k - 1)] : 0.0f);
+    usage_before_ = usage;
+    previous_late_ = late;
+    if (settings_.live) settings_.live->late_steps = stats_.late_steps;
+  }
+
+  // After step k's outputs: what the step and the rest of the iteration cost.
+  void iterationDone(float step_us, Clock::time_point stepped) {
+    iteration_end_ = Clock::now();
+    work_us_ = std::chrono::duration<float, std::micro>(iteration_end_ - stepped).count();
+    stats_.step_histogram.add(step_us);
+    stats_.work_histogram.add(work_us_);
+  }
+
+  void finish(long steps_run) {
+    const ThreadUsage usage = ThreadUsage::now();
+    stats_.minor_faults = usage.minor_faults - usage_start_.minor_faults;
+    stats_.major_faults = usage.major_faults - usage_start_.major_faults;
+    stats_.preemptions = usage.involuntary_switches - usage_start_.involuntary_switches;
+    late_us_.resize(static_cast<std::size_t>(steps_run));
+    stats_.late_p50_us = percentile(late_us_, 0.5);
+    stats_.late_p99_us = percentile(late_us_, 0.99);
+    stats_.late_p999_us = percentile(late_us_, 0.999);
+  }
+
+ private:
+  void countLate(long k, float us, Clock::time_point deadline, const ThreadUsage& usage, float before_step_us) {
+    ++stats_.late_steps;
+    const char* cause = "woke late";
+    if (k > 0 && iteration_end_ > deadline) cause = previous_late_ ? "catching up" : "overran";
+    ++(cause[0] == 'w' ? stats_.late_woke : cause[0] == 'o' ? stats_.late_overran : stats_.late_catching_up);
+    const auto second = static_cast<std::size_t>(static_cast<double>(k) / settings_.rate_hz);
+    ++stats_.late_per_second[std::min(stats_.late_per_second.size() - 1, second)];
+    if (stats_.first_late.size() == LoopStats::kLateStepsKept) return;
+    stats_.first_late.push_back({t0_ + static_cast<double>(k) / settings_.rate_hz, us, cause, before_step_us, work_us_,
+                                 usage.minor_faults + usage.major_faults - usage_before_.minor_faults - usage_before_.major_faults,
+                                 usage.involuntary_switches - usage_before_.involuntary_switches});
+  }
+
+  const LoopSettings& settings_;
+  LoopStats& stats_;
+  const double t0_;
+  std::vector<float> late_us_;
+  std::optional<CpuPin> pin_;
+  std::optional<FifoPriority> priority_;
+  std::optional<ShortSlice> slice_;
+  std::optional<TimerSlack> slack_;
+  std::optional<MemoryLock> memory_;
+  Clock::duration spin_{}, period_{};
+  Clock::time_point start_, iteration_end_;  // iteration_end_: when the previous iteration's outputs were done
+  ThreadUsage usage_start_, usage_before_;    // usage_before_: at the previous step's start
+  float work_us_ = 0.0f;                      // the previous iteration's time after World::step
+  bool previous_late_ = false;
+};
+
+}  // namespace
+
 LoopStats runHapticLoop(World& world, const std::vector<DeviceTrack>& devices,
                         const LoopSettings& settings, const StepObserver& observer) {
   if (!(settings.rate_hz > 0.0) || !std::isfinite(settings.rate_hz) || !(settings.duration >= 0.0) ||
@@ -84,69 +184,14 @@ LoopStats runHapticLoop(World& world, const std::vector<DeviceTrack>& devices,
   std::vector<float> step_us(static_cast<std::size_t>(steps));
   LoopStats stats;
   const double t0 = world.time();
-  const bool realtime = settings.clock == ClockMode::kRealtime;
-  std::vector<float> late_us(realtime ? static_cast<std::size_t>(steps) : 0);
-  std::optional<FifoPriority> priority;
-  std::optional<TimerSlack> slack;
-  std::optional<MemoryLock> memory;
-  std::optional<ShortSlice> short_slice;
-  std::optional<CpuPin> pin;
-  if (realtime && settings.cpu >= 0 && pin.emplace(std::vector<int>{settings.cpu}).active()) stats.cpu = settings.cpu;
-  if (realtime && settings.fifo) stats.fifo_priority = priority.emplace().active();
-  if (realtime && !stats.fifo_priority && settings.short_slice) stats.short_slice = short_slice.emplace(kRealtimeSlice).granted();
-  if (realtime) {
-    slack.emplace(kRealtimeTimerSlackNs);
-    stats.late_per_second.assign(static_cast<std::size_t>(std::ceil(settings.duration)) + 1, 0);
-    stats.first_late.reserve(LoopStats::kLateStepsKept);
-    memory.emplace();  // after every buffer above exists, so they are locked too
-    stats.memory = memory->state();
-  }
-  // A SCHED_FIFO thread needs no spin, and one that never sleeps is throttled by the kernel
-  // (sched_rt_runtime_us: 50 ms of every second by default): spin only at normal priority.
-  const double spin_us = stats.fifo_priority || !realtime ? 0.0 : std::max(0.0, settings.spin_us);
-  stats.spin_us = spin_us;
-  const auto spin = std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double, std::micro>(spin_us));
+  std::optional<Deadlines> deadlines;
+  if (settings.clock == ClockMode::kRealtime) deadlines.emplace(settings, steps, t0, stats);
   const auto start = Clock::now();
-  const auto period = std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(dt));
-  const ThreadUsage usage_start = realtime ? ThreadUsage::now() : ThreadUsage{};
-  ThreadUsage usage_before = usage_start;  // at the previous step's start
-  auto iteration_end = start;              // when the previous iteration's outputs were done
-  float work_us = 0.0f;                    // the previous iteration's time after World::step
-  bool previous_late = false;
+  if (deadlines) deadlines->start(start);
   long k = 0;
   for (; k < steps; ++k) {
     if (settings.stop && settings.stop->load(std::memory_order_relaxed)) break;
-    if (realtime) {
-      // Absolute deadline: drift-free, a late step does not shift the following ones.
-      const auto deadline = start + k * period;
-      sleepUntil(deadline - spin);
-      auto now = Clock::now();
-      while (now < deadline) now = Clock::now();
-      const double late = std::chrono::duration<double>(now - deadline).count();
-      const float us = static_cast<float>(1e6 * late);  // kept as float, like the percentiles taken from them
-      late_us[static_cast<std::size_t>(k)] = us;
-      stats.late_histogram.add(us);
-      stats.max_lateness_us = std::max(stats.max_lateness_us, static_cast<double>(us));
-      const ThreadUsage usage = ThreadUsage::now();
-      const bool is_late = us > 1e6 * settings.late_threshold;
-      if (is_late) {
-        ++stats.late_steps;
-        const char* cause = "woke late";
-        if (k > 0 && iteration_end > deadline) cause = previous_late ? "catching up" : "overran";
-        ++(cause[0] == 'w' ? stats.late_woke : cause[0] == 'o' ? stats.late_overran : stats.late_catching_up);
-        const auto second = static_cast<std::size_t>(static_cast<double>(k) / settings.rate_hz);
-        ++stats.late_per_second[std::min(stats.late_per_second.size() - 1, second)];
-        if (stats.first_late.size() < LoopStats::kLateStepsKept) {
-          stats.first_late.push_back({t0 + static_cast<double>(k) * dt, 1e6 * late, cause,
-                                      k > 0 ? step_us[static_cast<std::size_t>(k - 1)] : 0.0, work_us,
-                                      usage.minor_faults + usage.major_faults - usage_before.minor_faults - usage_before.major_faults,
-                                      usage.involuntary_switches - usage_before.involuntary_switches});
-        }
-      }
-      usage_before = usage;
-      previous_late = is_late;
-      if (settings.live) settings.live->late_steps = stats.late_steps;
-    }
+    if (deadlines) deadlines->wait(k, step_us);
     // Time of step k from its index, so no rounding accumulates over long runs.
     const double t = t0 + static_cast<double>(k) * dt;
     for (std::size_t i = 0; i < devices.size(); ++i) {
@@ -165,26 +210,12 @@ LoopStats runHapticLoop(World& world, const std::vector<DeviceTrack>& devices,
     }
     if (LiveTimings* live = settings.live) live->recent_us[live->steps++ % live->recent_us.size()] = step_us[k];
     if (observer) observer(world);
-    if (realtime) {
-      iteration_end = Clock::now();
-      work_us = std::chrono::duration<float, std::micro>(iteration_end - stepped).count();
-      stats.step_histogram.add(step_us[k]);
-      stats.work_histogram.add(work_us);
-    }
+    if (deadlines) deadlines->iterationDone(step_us[k], stepped);
   }
   stats.wall_seconds = std::chrono::duration<double>(Clock::now() - start).count();
   stats.steps = k;
   stats.stopped = k < steps;
-  if (realtime) {
-    const ThreadUsage usage = ThreadUsage::now();
-    stats.minor_faults = usage.minor_faults - usage_start.minor_faults;
-    stats.major_faults = usage.major_faults - usage_start.major_faults;
-    stats.preemptions = usage.involuntary_switches - usage_start.involuntary_switches;
-    late_us.resize(static_cast<std::size_t>(k));
-    stats.late_p50_us = percentile(late_us, 0.5);
-    stats.late_p99_us = percentile(late_us, 0.99);
-    stats.late_p999_us = percentile(late_us, 0.999);
-  }
+  if (deadlines) deadlines->finish(k);
   step_us.resize(static_cast<std::size_t>(k));
   stats.step_max_us = step_us.empty() ? 0.0 : *std::max_element(step_us.begin(), step_us.end());
   stats.step_p99_us = percentile(step_us, 0.99);
