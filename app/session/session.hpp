@@ -30,8 +30,9 @@ struct SessionOptions {
   bool fifo = true;
   /// Realtime: the haptic loop sleeps until this long before each deadline, then spins (us).
   double spin_us = 0.0;
-  /// Realtime: the render thread, its encoders and llvmpipe's workers run at SCHED_IDLE so the
-  /// haptic loop preempts them even at normal priority (`run --no-yield` turns it off).
+  /// Realtime: the render thread, its encoders and llvmpipe's workers run at nice 10 so the
+  /// haptic loop at nice 0 wins the cores even without root, while frames still get the rest
+  /// (`run --no-yield` turns it off).
   bool yield_render = true;
   /// The command line that started the run, recorded in summary.json (empty: not recorded).
   std::vector<std::string> command_line{};
