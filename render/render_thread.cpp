@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <atomic>
+#include <cerrno>
 #include <chrono>
 #include <condition_variable>
 #include <deque>
@@ -30,9 +31,14 @@ constexpr std::size_t kQueueDepth = 2;
 // kBackgroundNice, which any user may choose: the scheduler then gives a haptic loop at nice 0 about
 // ten times its share and wakes it ahead of the renderer, yet the renderer still gets what the
 // loop leaves (SCHED_IDLE got only that and starved frames). Threads and processes it starts
-// afterwards inherit it. Raising it back needs privileges. Returns whether the system accepted it.
+// afterwards inherit it. Raising it back needs privileges. Returns whether the thread now runs at
+// kBackgroundNice or nicer.
 bool lowerToNice() {
-  return setpriority(PRIO_PROCESS, static_cast<id_t>(gettid()), kBackgroundNice) == 0;
+  const id_t self = static_cast<id_t>(gettid());
+  errno = 0;
+  const int now = getpriority(PRIO_PROCESS, self);
+  if (errno == 0 && now >= kBackgroundNice) return true;  // started nicer still (`nice -n 15`): kept
+  return setpriority(PRIO_PROCESS, self, kBackgroundNice) == 0;
 }
 
 // Mesa's draw module allocates and frees vertex buffers at every draw call. With glibc's
