@@ -12,6 +12,7 @@
 #include <vector>
 
 #include <fcntl.h>
+#include <pthread.h>
 #include <sys/mman.h>
 #include <spawn.h>
 #include <sys/wait.h>
@@ -63,6 +64,7 @@ Image PngSequenceWriter::spare() {
 }
 
 void PngSequenceWriter::run() {
+  pthread_setname_np(pthread_self(), "gf-png");  // for top and perf
   for (;;) {
     Image frame;
     long index = 0;
@@ -78,16 +80,24 @@ void PngSequenceWriter::run() {
     const auto start = Clock::now();
     char name[32];
     std::snprintf(name, sizeof name, "%06ld.png", index);
+    // The same pixels as the frame before: the same file, without encoding it again.
+    const bool repeated = !previous_png_.empty() && frame.width == previous_.width &&
+                          frame.height == previous_.height && frame.rgb == previous_.rgb;
     try {
-      writePng((std::filesystem::path(folder_) / name).string(), frame);
+      if (!repeated) previous_png_ = encodePng(frame);
+      writeFileAtomically((std::filesystem::path(folder_) / name).string(), previous_png_);
     } catch (const ImageError& e) {
+      previous_png_.clear();
       std::lock_guard lock(mutex_);
       if (error_.empty()) error_ = e.what();
       changed_.notify_all();
     }
+    if (!repeated) std::swap(previous_, frame);  // keep what the bytes show; the older storage is spare
     std::lock_guard lock(mutex_);
     stats_.busy_seconds += secondsSince(start);
-    if (spares_.size() <= depth_) spares_.push_back(std::move(frame));
+    stats_.bytes += static_cast<long>(previous_png_.size());
+    stats_.repeated += repeated ? 1 : 0;
+    if (spares_.size() <= depth_ && !frame.rgb.empty()) spares_.push_back(std::move(frame));
   }
 }
 

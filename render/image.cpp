@@ -80,7 +80,10 @@ std::vector<std::uint8_t> encodePng(const Image& image, int zlib_level) {
 }
 
 void writePng(const std::string& path, const Image& image, int zlib_level) {
-  const std::vector<std::uint8_t> bytes = encodePng(image, zlib_level);
+  writeFileAtomically(path, encodePng(image, zlib_level));
+}
+
+void writeFileAtomically(const std::string& path, const std::vector<std::uint8_t>& bytes) {
   const std::string temporary = path + ".part";
   {
     std::ofstream out(temporary, std::ios::binary | std::ios::trunc);

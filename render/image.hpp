@@ -29,6 +29,10 @@ std::vector<std::uint8_t> encodePng(const Image& image, int zlib_level = 1);
 /// sees half a file. Throws ImageError naming the path.
 void writePng(const std::string& path, const Image& image, int zlib_level = 1);
 
+/// Writes `bytes` to `path` as writePng does (a temporary file `path.part`, removed when the
+/// write fails, then a rename). Throws ImageError naming the path. Any thread.
+void writeFileAtomically(const std::string& path, const std::vector<std::uint8_t>& bytes);
+
 /// Reads a PNG (any bit depth and colour type stb_image reads) as RGB8. Throws ImageError.
 Image readPng(const std::string& path);
 

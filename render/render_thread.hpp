@@ -18,6 +18,10 @@
 
 namespace gf::render {
 
+/// The nice value of a background renderer (FrameOutputSettings::background_priority; 0..19,
+/// higher yields more).
+constexpr int kBackgroundNice = 10;
+
 /// What the render thread draws and where it writes it.
 struct FrameOutputSettings {
   int width = 1280;               ///< pixels (1..1920 wide, 1..1080 high)
@@ -35,8 +39,8 @@ struct FrameOutputSettings {
   int close_up_px = 480;          ///< side of contact close-up images (pixels)
   bool realtime = false;          ///< draw the latest snapshot at `fps` of wall-clock time
   /// Run the render thread, its encoders and llvmpipe's workers (made with the context, after
-  /// the thread lowered itself) at SCHED_IDLE: a realtime haptic loop without root preempts them
-  /// as soon as it wakes.
+  /// the thread lowered itself) at nice kBackgroundNice: a realtime haptic loop at nice 0 without
+  /// root wins the cores when it wakes, and the frames still get what it leaves.
   bool background_priority = false;
 };
 
@@ -46,7 +50,7 @@ struct RenderStats {
   double wall_seconds = 0.0;      ///< from start to finish()
   SinkStats png, video;
   std::string gl;                 ///< GL version and renderer
-  bool background_priority = false;  ///< it ran at SCHED_IDLE
+  bool background_priority = false;  ///< it ran at nice kBackgroundNice
 };
 
 class RenderThread {

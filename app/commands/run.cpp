@@ -26,7 +26,7 @@ class RunCommand final : public Command {
     run->add_flag("--no-fifo", no_fifo_, "Realtime: do not ask for SCHED_FIFO for the haptic loop (run as a user "
                                          "without root or CAP_SYS_NICE does)");
     run->add_flag("--no-yield", no_yield_, "Realtime: keep the render thread and encoders at normal priority "
-                                           "instead of SCHED_IDLE");
+                                           "instead of nice 10");
     run->add_flag("--no-pin", no_pin_, "Realtime: do not keep the haptic loop alone on one CPU (the renderer and "
                                        "writers on the others)");
     run->add_option("--spin-us", spin_us_, "Realtime: sleep until this long before each step's deadline, then "

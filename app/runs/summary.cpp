@@ -121,9 +121,9 @@ nlohmann::json renderJson(render::RenderStats r, long published) {
   return {{"frames", frames},
           {"published", published},
           {"render_ms", {{"median", sim::percentile(r.frame_ms, 0.5)}, {"p99", sim::percentile(r.frame_ms, 0.99)}}},
-          {"png", {{"frames", r.png.frames}, {"encode_fps", fps(r.png)}}},
+          {"png", {{"frames", r.png.frames}, {"encode_fps", fps(r.png)}, {"repeated", r.png.repeated}}},
           {"video", {{"frames", r.video.frames}, {"bytes", r.video.bytes}}},
-          {"priority", r.background_priority ? "SCHED_IDLE" : "normal"},
+          {"priority", r.background_priority ? "nice " + std::to_string(render::kBackgroundNice) : std::string("normal")},
           {"gl", r.gl}};
 }
 

@@ -36,8 +36,9 @@ struct SessionOptions {
   /// of the run (the renderer, llvmpipe's workers, encoders, ffmpeg, file writers) on the others,
   /// so their CPU time is not charged to the loop's scheduling group on its CPU (`run --no-pin`).
   bool pin_cpus = true;
-  /// Realtime: the render thread, its encoders and llvmpipe's workers run at SCHED_IDLE so the
-  /// haptic loop preempts them even at normal priority (`run --no-yield` turns it off).
+  /// Realtime: the render thread, its encoders and llvmpipe's workers run at nice 10 so the
+  /// haptic loop at nice 0 wins the cores even without root, while frames still get the rest
+  /// (`run --no-yield` turns it off).
   bool yield_render = true;
   /// The command line that started the run, recorded in summary.json (empty: not recorded).
   std::vector<std::string> command_line{};

@@ -2,7 +2,7 @@
 // as a user without root or CAP_SYS_NICE runs it (no SCHED_FIFO, whoever runs the benchmark)
 // and, for comparison, with SCHED_FIFO when the user may have it. Args: fifo (0, 1), the
 // haptic loop's spin before each deadline (us: 0 sleeps to it, 1000 never sleeps) and whether
-// the renderer yields (SCHED_IDLE, 1) or runs at normal priority (0). Counters: late steps
+// the renderer yields (nice 10, 1) or runs at normal priority (0). Counters: late steps
 // (> 0.5 ms), the worst lateness, frames drawn per second, whether SCHED_FIFO was granted, and
 // the same machine's floor measured just before: a bare 1 kHz sleeper's late share and worst
 // wake-up (sim::runSleeper, what cyclictest measures), at the benchmark's own priority.

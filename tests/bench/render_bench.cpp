@@ -2,6 +2,7 @@
 // encoding of such a frame. Run by hand: build/release/gf_bench --benchmark_filter=Render|Png
 #include <benchmark/benchmark.h>
 
+#include <ctime>
 #include <optional>
 
 #include "app/scene/data_folder.hpp"
@@ -9,7 +10,9 @@
 #include "app/session/screenshots.hpp"
 #include "app/session/session.hpp"
 #include "render/context.hpp"
+#include "render/gl.hpp"
 #include "render/gpu.hpp"
+#include "render/patch_insets.hpp"
 #include "render/scene_renderer.hpp"
 
 namespace {
@@ -80,5 +83,57 @@ void BM_PngEncode1280x720(benchmark::State& state) {
   state.counters["frames/s"] = benchmark::Counter(static_cast<double>(state.iterations()), benchmark::Counter::kIsRate);
 }
 BENCHMARK(BM_PngEncode1280x720)->Unit(benchmark::kMillisecond);
+
+// CPU seconds of the whole process (llvmpipe's rasterizer threads included).
+double processCpuSeconds() {
+  timespec t{};
+  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t);
+  return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
+}
+
+// Where a Fig. 8 frame's CPU goes, stage by stage, as an offline run draws it (1280x720, FXAA,
+// shadows, patch insets) and encodes it: each stage is finished (glFinish) before the next
+// starts, so llvmpipe's rasterizers are charged to the stage that queued their work. Counters:
+// CPU ms of the process per frame for each stage.
+void BM_FrameStages1280x720(benchmark::State& state) {
+  const Prepared p = prepare("fig8-pinch-oscillation", 4.0);
+  render::GlContext context;
+  const render::FrameOutputSettings f = app::frameSettings(p.session, {});
+  render::SceneRenderer renderer(p.session.scene, f.scene);
+  render::Framebuffer frame(1280, 720, f.antialiasing, f.msaa_samples);
+  render::PatchInsets insets(p.session.scene, 1280, 720, render::InsetCorner::kBottomRight, f.antialiasing,
+                             f.msaa_samples);
+  render::Image image;
+  sim::Snapshot snapshot = p.snapshot;
+  double cpu[5] = {};  // scene (shadow map included), anti-aliasing, insets, read-back, PNG
+  for (auto _ : state) {
+    snapshot.step += 1;  // a new instant: the shadow map is redrawn, as in a run
+    double t = processCpuSeconds();
+    const auto lap = [&](int stage) {
+      const double now = processCpuSeconds();
+      cpu[stage] += now - t;
+      t = now;
+    };
+    frame.bind();
+    const render::PixelRect edges = renderer.draw(snapshot, f.camera, 1280, 720);
+    glFinish();
+    lap(0);
+    frame.resolve(edges);
+    glFinish();
+    lap(1);
+    GLint target = 0;
+    glGetIntegerv(GL_FRAMEBUFFER_BINDING, &target);
+    insets.draw(renderer, snapshot, static_cast<unsigned>(target));
+    glFinish();
+    lap(2);
+    frame.read(image);
+    lap(3);
+    benchmark::DoNotOptimize(render::encodePng(image, 1).size());
+    lap(4);
+  }
+  const char* names[] = {"scene_ms", "aa_ms", "insets_ms", "read_ms", "png_ms"};
+  for (int i = 0; i < 5; ++i) state.counters[names[i]] = 1e3 * cpu[i] / static_cast<double>(state.iterations());
+}
+BENCHMARK(BM_FrameStages1280x720)->Unit(benchmark::kMillisecond);
 
 }  // namespace
