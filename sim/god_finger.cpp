@@ -1,5 +1,7 @@
 #include "sim/god_finger.hpp"
 
+#include "sim/warm_walk.hpp"
+
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <array>
@@ -190,21 +192,70 @@ bool inPlane(const Vec3& nf, Vec3& dir) {
   return true;
 }
 
+// The edge crossings a walk of length d from face f may make.
+long walkBudget(const WalkContext& ctx, int f, double d) {
+  const double extra = std::min(kMaxCrossings, std::ceil(kCrossingsPerEdgeLength * d / ctx.mesh.meanEdge(f)));
+  return ctx.s.max_face_crossings + static_cast<long>(extra);
+}
+
+// Records one walk's path into a WalkCache (warm_walk.hpp) as the walk goes: its crossings and
+// end unfolded into the start face's plane, so the next step can carry it.
+struct WalkRecorder {
+  WalkPath* path = nullptr;  // null: not recording
+  WalkCrossing* crossings = nullptr;
+  double hx = 0.0, hy = 0.0, dx = 0.0, dy = 0.0;  // start and direction in the start plane
+
+  WalkRecorder(WalkCache* cache, int i, const Mesh& m, const Start& start, const Vec3& from, const Vec3& dir) {
+    if (!cache) return;
+    path = &cache->paths[static_cast<std::size_t>(i)];
+    crossings = cache->crossings.data() + static_cast<std::ptrdiff_t>(i) * kWarmCrossingsPerSgo;
+    *path = {false, start.face, start.side, -1, 0, Vec3::Zero(), 0.0, 0.0, Vec3::Zero(), Vec3::Zero()};
+    const StartPlane plane = startPlane(m, start.face, start.side);
+    hx = (from - plane.origin).dot(plane.x_axis), hy = (from - plane.origin).dot(plane.y_axis);
+    dx = dir.dot(plane.x_axis), dy = dir.dot(plane.y_axis);
+  }
+  // The walk (at `walked`, direction dir on face f of winding sign `side`) crossed edge k at p
+  // into a face of oriented normal `entered`.
+  void crossing(const Mesh& m, int f, int k, double side, const Vec3& dir, const Sgo& sgo, const Vec3& entered) {
+    if (!path) return;
+    if (path->crossings == kWarmCrossingsPerSgo) return void(path = nullptr);
+    const Vec3& u = m.edgeDirection(f, k);
+    const double along = u.dot(dir), across = u.dot((side * m.faceNormal(f)).cross(dir));
+    crossings[path->crossings++] = {sgo.position, u, (m.corner(f, k) - sgo.position).dot(u),
+                                    (m.corner(f, (k + 1) % 3) - sgo.position).dot(u), hx + sgo.walked * dx,
+                                    hy + sgo.walked * dy, along * dx - across * dy, along * dy + across * dx,
+                                    entered};
+  }
+  // The walk ended inside face f after d: the cache may carry it.
+  void end(const Mesh& m, double side, const Vec3& dir, const Sgo& sgo, double d) {
+    if (!path) return;
+    const Vec3 perp = (side * m.faceNormal(sgo.face)).cross(dir);
+    path->cached = true;
+    path->end_face = sgo.face;
+    path->end = sgo.position;
+    path->end_x = hx + d * dx, path->end_y = hy + d * dy;
+    path->axis_x = dx * dir - dy * perp;
+    path->axis_y = dy * dir + dx * perp;
+  }
+};
+
 // Algorithm 1: walks distance d from the hit along dir, crossing edges while the next face stays
-// within the angular limit. Appends the path; returns the SGO.
-Sgo walk(const WalkContext& ctx, const Start& start, const Vec3& from, double d, Patch& out) {
+// within the angular limit. Appends the path; returns the SGO. With a cache, records the path
+// of radial i in it.
+Sgo walk(const WalkContext& ctx, const Start& start, const Vec3& from, double d, Patch& out,
+         WalkCache* cache = nullptr, int i = 0) {
   const Mesh& m = ctx.mesh;
   Sgo sgo{from, start.face, -1, 0.0, WalkStop::kDistance, 0.0};
   Vec3 dir = start.dir;
   double side = start.side, remaining = d;
-  const double extra = std::min(kMaxCrossings, std::ceil(kCrossingsPerEdgeLength * d / m.meanEdge(start.face)));
-  const long budget = ctx.s.max_face_crossings + static_cast<long>(extra);
+  const long budget = walkBudget(ctx, start.face, d);
   out.path_points.push_back(from);
   // r_i <- projection of r_i on f (Alg. 1, line 3), kept unit length. Carried over an edge
   // below, a unit direction in f's plane stays unit and in the neighbour's plane (its parts
   // along the edge and across it, on orthonormal in-plane axes), so only the start projects.
   if (!inPlane(m.faceNormal(sgo.face), dir)) return sgo.stop = WalkStop::kDegenerate, sgo;
   if (remaining <= 0.0) return sgo;
+  WalkRecorder record(cache, i, m, start, from, dir);
   for (long crossings = 0;; ++crossings) {
     // Does d_i * r_i cross an edge of f? First edge the ray leaves through: the smallest
     // gap / speed, compared as products (speeds are positive) with one division at the end.
@@ -223,6 +274,7 @@ Sgo walk(const WalkContext& ctx, const Start& start, const Vec3& from, double d,
       sgo.position += remaining * dir;
       sgo.walked += remaining;
       out.path_points.push_back(sgo.position);
+      record.end(m, side, dir, sgo, d);
       return sgo;
     }
     // Reached edge e: p_SGO on e, d_i reduced by the distance travelled. A direction nearly
@@ -237,6 +289,7 @@ Sgo walk(const WalkContext& ctx, const Start& start, const Vec3& from, double d,
     const double next_side = link.flipped ? -side : side;
     const Vec3 next_normal = next_side * m.faceNormal(link.face);
     if (!faceAllowed(ctx, next_normal)) return sgo.stop = stopReason(ctx, next_normal), sgo;
+    record.crossing(m, sgo.face, k_exit, side, dir, sgo, next_normal);
     // Carry the direction over the edge: keep its component along the edge, turn the rest into
     // the neighbour (the unfolded straight line; equals the projection to first order).
     const Vec3& edge = m.edgeDirection(sgo.face, k_exit);
@@ -384,6 +437,38 @@ const RingAngles& ringAngles(int n) {
   return ring;
 }
 
+// Keys `cache` to this mesh, n_sgo and contact face and feature: its paths stay if it held a
+// patch with the same, else they start uncached. Reserves its storage
+// on first use (allocates once).
+void keyWarm(const Mesh& mesh, const PatchSettings& s, const SurfacePoint& hit, bool was_valid, WalkCache& cache) {
+  if (cache.paths.size() < static_cast<std::size_t>(kMaxSgo)) cache.reserve();
+  const bool same = was_valid && cache.mesh == &mesh && cache.n_sgo == s.n_sgo && cache.hit_face == hit.face &&
+                    cache.feature == hit.feature && cache.feature_index == hit.feature_index;
+  if (!same) {
+    cache.mesh = &mesh, cache.n_sgo = s.n_sgo, cache.hit_face = hit.face;
+    cache.feature = hit.feature, cache.feature_index = hit.feature_index;
+    for (WalkPath& p : cache.paths) p.cached = false;
+  }
+  cache.valid = true;
+}
+
+// One radial vector's walk: carried from the cache's path when it still holds, else Algorithm 1
+// from the contact (recorded in the cache when there is one).
+Sgo walkRadial(const WalkContext& ctx, const Start& start, const Vec3& from, double d, WalkCache* cache, int i,
+               Patch& out) {
+  if (!cache) return walk(ctx, start, from, d, out);
+  Vec3 dir = start.dir;
+  if (inPlane(ctx.mesh.faceNormal(start.face), dir) && d > 0.0) {
+    const WalkLimits limits{ctx.normal, ctx.cos_limit, ctx.has_limit, ctx.cos_facing};
+    const WalkStart ws{start.face, start.side, dir, from, d, walkBudget(ctx, start.face, d)};
+    Sgo sgo{from, start.face, -1, d, WalkStop::kDistance, 0.0};
+    if (carryWalk(ctx.mesh, limits, ws, i, *cache, out.path_points, sgo.position, sgo.face)) return sgo;
+  }
+  cache->paths[static_cast<std::size_t>(i)].cached = false;
+  ++cache->cold_walks;
+  return walk(ctx, start, from, d, out, cache, i);
+}
+
 }  // namespace
 
 void clearPatch(Patch& patch) { resetPatch(0, patch); }
@@ -453,6 +538,13 @@ SurfacePoint contactFeature(const Mesh& m, const PatchContact& c, double tol) {
 
 void computePatch(const Mesh& mesh, const PatchContact& contact, const Vec3& v,
                   const PatchSettings& s, Patch& out) {
+  computePatch(mesh, contact, v, s, out, nullptr);
+}
+
+void computePatch(const Mesh& mesh, const PatchContact& contact, const Vec3& v, const PatchSettings& s,
+                  Patch& out, WalkCache* warm) {
+  const bool was_valid = warm && warm->valid;
+  if (warm) warm->valid = false;  // until this patch's walks are in it
   resetPatch(s.n_sgo, out);
   // Step 1: reject what cannot be computed.
   const double nlen = contact.outward_normal_local.norm();
@@ -497,7 +589,9 @@ void computePatch(const Mesh& mesh, const PatchContact& contact, const Vec3& v,
   const Vec3 v_t = v - v.dot(n) * n;
   const bool filled = s.fill == PatchFill::kFilled;
   const StretchLogs logs(s);
-  // Step 4: per radial vector, its start face (Fig. 3), Eq. 2 distance and the walk (Alg. 1).
+  // Step 4: per radial vector, its start face (Fig. 3), Eq. 2 distance and the walk (Alg. 1),
+  // carried from the last step's path when the cache holds this contact's.
+  if (warm) keyWarm(mesh, s, out.hit, was_valid, *warm);
   out.path_offsets.push_back(0);
   const RingAngles& ring = ringAngles(s.n_sgo);
   for (int i = 0; i < s.n_sgo; ++i) {
@@ -507,10 +601,11 @@ void computePatch(const Mesh& mesh, const PatchContact& contact, const Vec3& v,
     out.radial.push_back(usable ? start.dir : r);
     out.d_i.push_back(usable ? stretched(out.radius, v_t, r, s, logs) : 0.0);
     if (!usable) {
+      if (warm) warm->paths[static_cast<std::size_t>(i)].cached = false;
       out.radial_stop.push_back(WalkStop::kDropped);
       continue;
     }
-    Sgo sgo = walk(ctx, start, out.hit.point, out.d_i.back(), out);
+    Sgo sgo = walkRadial(ctx, start, out.hit.point, out.d_i.back(), warm, i, out);
     sgo.radial = i;
     if (filled) fillPath(s.rings, 2.0 * std::numbers::pi / s.n_sgo, sgo, out);
     out.radial_stop.push_back(sgo.stop);
