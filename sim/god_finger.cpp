@@ -53,6 +53,18 @@ void tangentBasis(const Vec3& n, Vec3& t1, Vec3& t2) {
   t2 = Vec3(b, sign + n.y() * n.y() * a, -n.y());
 }
 
+// The ring's in-plane axes for unit normal n: t1 along the reference's part in the tangent
+// plane when it keeps enough of its length there, else a fixed basis of n.
+void ringAxes(const Vec3& ref, const Vec3& n, Vec3& t1, Vec3& t2) {
+  const Vec3 ref_t = ref - ref.dot(n) * n;
+  if (ref_t.norm() > kMinReferenceFraction * ref.norm() && ref_t.norm() > kDegenerateLength) {
+    t1 = ref_t.normalized();
+    t2 = n.cross(t1);
+  } else {
+    tangentBasis(n, t1, t2);
+  }
+}
+
 // Rotates x by the smallest rotation taking unit a onto unit b; projects when a = -b.
 Vec3 rotateOnto(const Vec3& x, const Vec3& a, const Vec3& b) {
   const double c = a.dot(b);
@@ -198,47 +210,6 @@ long walkBudget(const WalkContext& ctx, int f, double d) {
   return ctx.s.max_face_crossings + static_cast<long>(extra);
 }
 
-// Records one walk's path into a WalkCache (warm_walk.hpp) as the walk goes: its crossings and
-// end unfolded into the start face's plane, so the next step can carry it.
-struct WalkRecorder {
-  WalkPath* path = nullptr;  // null: not recording
-  WalkCrossing* crossings = nullptr;
-  double hx = 0.0, hy = 0.0, dx = 0.0, dy = 0.0;  // start and direction in the start plane
-
-  WalkRecorder(WalkCache* cache, int i, const Mesh& m, const Start& start, const Vec3& from, const Vec3& dir) {
-    if (!cache) return;
-    path = &cache->paths[static_cast<std::size_t>(i)];
-    crossings = cache->crossings.data() + static_cast<std::ptrdiff_t>(i) * kWarmCrossingsPerSgo;
-    *path = {false, start.face, start.side, -1, 0, Vec3::Zero(), 0.0, 0.0, Vec3::Zero(), Vec3::Zero()};
-    const StartPlane plane = startPlane(m, start.face, start.side);
-    hx = (from - plane.origin).dot(plane.x_axis), hy = (from - plane.origin).dot(plane.y_axis);
-    dx = dir.dot(plane.x_axis), dy = dir.dot(plane.y_axis);
-  }
-  // The walk (at `walked`, direction dir on face f of winding sign `side`) crossed edge k at p
-  // into a face of oriented normal `entered`.
-  void crossing(const Mesh& m, int f, int k, double side, const Vec3& dir, const Sgo& sgo, const Vec3& entered) {
-    if (!path) return;
-    if (path->crossings == kWarmCrossingsPerSgo) return void(path = nullptr);
-    const Vec3& u = m.edgeDirection(f, k);
-    const double along = u.dot(dir), across = u.dot((side * m.faceNormal(f)).cross(dir));
-    crossings[path->crossings++] = {sgo.position, u, (m.corner(f, k) - sgo.position).dot(u),
-                                    (m.corner(f, (k + 1) % 3) - sgo.position).dot(u), hx + sgo.walked * dx,
-                                    hy + sgo.walked * dy, along * dx - across * dy, along * dy + across * dx,
-                                    entered};
-  }
-  // The walk ended inside face f after d: the cache may carry it.
-  void end(const Mesh& m, double side, const Vec3& dir, const Sgo& sgo, double d) {
-    if (!path) return;
-    const Vec3 perp = (side * m.faceNormal(sgo.face)).cross(dir);
-    path->cached = true;
-    path->end_face = sgo.face;
-    path->end = sgo.position;
-    path->end_x = hx + d * dx, path->end_y = hy + d * dy;
-    path->axis_x = dx * dir - dy * perp;
-    path->axis_y = dy * dir + dx * perp;
-  }
-};
-
 // Algorithm 1: walks distance d from the hit along dir, crossing edges while the next face stays
 // within the angular limit. Appends the path; returns the SGO. With a cache, records the path
 // of radial i in it.
@@ -255,7 +226,7 @@ Sgo walk(const WalkContext& ctx, const Start& start, const Vec3& from, double d,
   // along the edge and across it, on orthonormal in-plane axes), so only the start projects.
   if (!inPlane(m.faceNormal(sgo.face), dir)) return sgo.stop = WalkStop::kDegenerate, sgo;
   if (remaining <= 0.0) return sgo;
-  WalkRecorder record(cache, i, m, start, from, dir);
+  WalkRecorder record(cache, i, m, start.face, start.side, from, dir);
   for (long crossings = 0;; ++crossings) {
     // Does d_i * r_i cross an edge of f? First edge the ray leaves through: the smallest
     // gap / speed, compared as products (speeds are positive) with one division at the end.
@@ -274,7 +245,7 @@ Sgo walk(const WalkContext& ctx, const Start& start, const Vec3& from, double d,
       sgo.position += remaining * dir;
       sgo.walked += remaining;
       out.path_points.push_back(sgo.position);
-      record.end(m, side, dir, sgo, d);
+      record.end(m, side, dir, sgo.face, sgo.position, d);
       return sgo;
     }
     // Reached edge e: p_SGO on e, d_i reduced by the distance travelled. A direction nearly
@@ -289,7 +260,7 @@ Sgo walk(const WalkContext& ctx, const Start& start, const Vec3& from, double d,
     const double next_side = link.flipped ? -side : side;
     const Vec3 next_normal = next_side * m.faceNormal(link.face);
     if (!faceAllowed(ctx, next_normal)) return sgo.stop = stopReason(ctx, next_normal), sgo;
-    record.crossing(m, sgo.face, k_exit, side, dir, sgo, next_normal);
+    record.crossing(m, sgo.face, k_exit, side, dir, sgo.position, sgo.walked, next_normal);
     // Carry the direction over the edge: keep its component along the edge, turn the rest into
     // the neighbour (the unfolded straight line; equals the projection to first order).
     const Vec3& edge = m.edgeDirection(sgo.face, k_exit);
@@ -437,21 +408,6 @@ const RingAngles& ringAngles(int n) {
   return ring;
 }
 
-// Keys `cache` to this mesh, n_sgo and contact face and feature: its paths stay if it held a
-// patch with the same, else they start uncached. Reserves its storage
-// on first use (allocates once).
-void keyWarm(const Mesh& mesh, const PatchSettings& s, const SurfacePoint& hit, bool was_valid, WalkCache& cache) {
-  if (cache.paths.size() < static_cast<std::size_t>(kMaxSgo)) cache.reserve();
-  const bool same = was_valid && cache.mesh == &mesh && cache.n_sgo == s.n_sgo && cache.hit_face == hit.face &&
-                    cache.feature == hit.feature && cache.feature_index == hit.feature_index;
-  if (!same) {
-    cache.mesh = &mesh, cache.n_sgo = s.n_sgo, cache.hit_face = hit.face;
-    cache.feature = hit.feature, cache.feature_index = hit.feature_index;
-    for (WalkPath& p : cache.paths) p.cached = false;
-  }
-  cache.valid = true;
-}
-
 // One radial vector's walk: carried from the cache's path when it still holds, else Algorithm 1
 // from the contact (recorded in the cache when there is one).
 Sgo walkRadial(const WalkContext& ctx, const Start& start, const Vec3& from, double d, WalkCache* cache, int i,
@@ -576,14 +532,7 @@ void computePatch(const Mesh& mesh, const PatchContact& contact, const Vec3& v, 
   ctx.cos_start = cosWithTolerance(std::acos(std::clamp(best_align, -1.0, 1.0)));
   // The ring of radial vectors: radial 0 along the reference carried from the last step.
   Vec3 t1, t2;
-  const Vec3& ref = contact.ring_reference_local;
-  const Vec3 ref_t = ref - ref.dot(n) * n;
-  if (ref_t.norm() > kMinReferenceFraction * ref.norm() && ref_t.norm() > kDegenerateLength) {
-    t1 = ref_t.normalized();
-    t2 = n.cross(t1);
-  } else {
-    tangentBasis(n, t1, t2);
-  }
+  ringAxes(contact.ring_reference_local, n, t1, t2);
   out.ring_tangent = t1;
   // Eq. 2 reads the tangential part of v: pressing alone stretches nothing.
   const Vec3 v_t = v - v.dot(n) * n;
@@ -591,21 +540,30 @@ void computePatch(const Mesh& mesh, const PatchContact& contact, const Vec3& v, 
   const StretchLogs logs(s);
   // Step 4: per radial vector, its start face (Fig. 3), Eq. 2 distance and the walk (Alg. 1),
   // carried from the last step's path when the cache holds this contact's.
-  if (warm) keyWarm(mesh, s, out.hit, was_valid, *warm);
+  // Walks carried on face hits only (edge and vertex scenes are sensitive to their rounding).
+  WalkCache* carry = warm && out.hit.feature == Feature::kFace ? warm : nullptr;
+  if (carry) keyWalkCache(&mesh, s.n_sgo, out.hit, was_valid, *carry);
   out.path_offsets.push_back(0);
   const RingAngles& ring = ringAngles(s.n_sgo);
+  // On a face hit every radial vector starts on the hit face, turned onto it by one rotation
+  // (linear: the face is within 90 degrees of n): the ring's axes turned once.
+  const bool face_hit = out.hit.feature == Feature::kFace;
+  const Vec3 hit_normal = side * mesh.faceNormal(out.hit.face);
+  const Vec3 f1 = face_hit ? rotateOnto(t1, n, hit_normal) : t1, f2 = face_hit ? rotateOnto(t2, n, hit_normal) : t2;
   for (int i = 0; i < s.n_sgo; ++i) {
-    const Vec3 r = ring.c[static_cast<std::size_t>(i)] * t1 + ring.s[static_cast<std::size_t>(i)] * t2;
-    const Start start = startFace(ctx, out.hit, side, r);
+    const double ci = ring.c[static_cast<std::size_t>(i)], si = ring.s[static_cast<std::size_t>(i)];
+    const Vec3 r = ci * t1 + si * t2;
+    const Start start = face_hit ? Start{out.hit.face, side, ci * f1 + si * f2, true} : startFace(ctx, out.hit, side, r);
     const bool usable = start.usable && start.dir.norm() > kDegenerateLength;
     out.radial.push_back(usable ? start.dir : r);
     out.d_i.push_back(usable ? stretched(out.radius, v_t, r, s, logs) : 0.0);
     if (!usable) {
-      if (warm) warm->paths[static_cast<std::size_t>(i)].cached = false;
+      if (carry) carry->paths[static_cast<std::size_t>(i)].cached = false;
       out.radial_stop.push_back(WalkStop::kDropped);
       continue;
     }
-    Sgo sgo = walkRadial(ctx, start, out.hit.point, out.d_i.back(), warm, i, out);
+    Sgo sgo = walkRadial(ctx, start, out.hit.point, out.d_i.back(), carry, i, out);
+    if (warm && !carry) ++warm->cold_walks;
     sgo.radial = i;
     if (filled) fillPath(s.rings, 2.0 * std::numbers::pi / s.n_sgo, sgo, out);
     out.radial_stop.push_back(sgo.stop);

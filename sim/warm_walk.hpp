@@ -42,6 +42,12 @@ struct WalkPath {
   Vec3 axis_x = Vec3::Zero(), axis_y = Vec3::Zero();
 };
 
+/// The start face's plane: origin at its corner 0, x along its edge 0, y = oriented normal x x.
+struct StartPlane {
+  Vec3 origin = Vec3::Zero();
+  Vec3 x_axis = Vec3::Zero(), y_axis = Vec3::Zero();
+};
+
 /// What one finger's contact with one body carries between steps for its walks. Storage is
 /// sized once by reserve(); after that nothing allocates.
 struct WalkCache {
@@ -53,16 +59,14 @@ struct WalkCache {
   int feature_index = -1;
   std::vector<WalkPath> paths;           ///< by radial index
   std::vector<WalkCrossing> crossings;   ///< radial i's in [i, i + 1) * kWarmCrossingsPerSgo
+  /// The last start plane used (of face plane_face, winding plane_side; -1: none this patch).
+  int plane_face = -1;
+  double plane_side = 1.0;
+  StartPlane plane;
   long warm_walks = 0;  ///< walks carried from the last step (cumulative)
   long cold_walks = 0;  ///< walks done from the contact (cumulative)
   /// Sizes the storage for kMaxSgo radial vectors. Allocates (once).
   void reserve();
-};
-
-/// The start face's plane: origin at its corner 0, x along its edge 0, y = oriented normal x x.
-struct StartPlane {
-  Vec3 origin = Vec3::Zero();
-  Vec3 x_axis = Vec3::Zero(), y_axis = Vec3::Zero();
 };
 
 /// The plane of face f with winding sign `side`. Any thread; no allocation.
@@ -86,9 +90,34 @@ struct WalkStart {
   long budget = 0;  ///< edge crossings allowed
 };
 
+/// Keys `cache` to a patch on `mesh` with n_sgo radial vectors and contact `hit` (face and
+/// feature): its paths stay if `was_valid` and the key is the same, else they start uncached.
+/// Sizes its storage on first use (allocates once).
+void keyWalkCache(const Mesh* mesh, int n_sgo, const SurfacePoint& hit, bool was_valid, WalkCache& cache);
+
+/// Records one walk from the contact into a cache as it goes: its crossings and end unfolded
+/// into the start face's plane, so the next step can carry it. Null cache: records nothing.
+class WalkRecorder {
+ public:
+  /// Radial i's walk from `from` on face `face` (winding sign `side`) along unit `dir`.
+  WalkRecorder(WalkCache* cache, int i, const Mesh& m, int face, double side, const Vec3& from, const Vec3& dir);
+  /// The walk, `walked` metres along, direction `dir` on face f (winding `side`), crossed edge
+  /// k at `point` into a face of oriented normal `entered`.
+  void crossing(const Mesh& m, int f, int k, double side, const Vec3& dir, const Vec3& point, double walked,
+                const Vec3& entered);
+  /// The walk ended at `point` inside face f after d metres: the cache may carry it.
+  void end(const Mesh& m, double side, const Vec3& dir, int f, const Vec3& point, double d);
+
+ private:
+  WalkPath* path_ = nullptr;  // null: not recording
+  WalkCrossing* crossings_ = nullptr;
+  double hx_ = 0.0, hy_ = 0.0, dx_ = 0.0, dy_ = 0.0;  // start and direction in the start plane
+};
+
 /// Carries radial `i`'s path of `cache` to the start `s`: on success appends the path (from,
 /// crossings, end) to `path_points`, updates the cache and returns true with the end's face in
-/// `end_face`; on failure leaves both as they were. Any thread; no allocation.
+/// `end_face`; on failure leaves `path_points` as it was (and the path to be walked from the
+/// contact). Any thread; no allocation once `path_points` has its capacity.
 bool carryWalk(const Mesh& mesh, const WalkLimits& limits, const WalkStart& s, int i, WalkCache& cache,
                std::vector<Vec3>& path_points, Vec3& end, int& end_face);
 

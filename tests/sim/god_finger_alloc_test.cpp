@@ -51,26 +51,25 @@ TEST(PatchAllocation, NoHeapAllocationInSteadyState) {
   EXPECT_EQ(sgos, 2000u * 16u);
 }
 
-// Warm-started walks: a finger moving over the sphere, its walks carried between patches.
+// Warm-started walks: a finger sliding over a box's top face, its walks carried between patches.
 TEST(PatchAllocation, WarmStartedWalksDoNotAllocateInSteadyState) {
-  const Mesh sphere = tessellateSphere(0.04, 4);
+  const Mesh box = tessellateBox(Vec3(0.05, 0.05, 0.05), 4);
   PatchSettings s;
   s.n_sgo = 16;
   Patch p;
   WalkCache cache;
-  const auto contact = [](int i) {  // sliding 10 um a step around the sphere, pressed 5 mm
-    const double a = 1e-3 * i / 4.0;
-    const Vec3 n(std::sin(a), std::cos(a), 0.0);
-    return std::make_pair(PatchContact{0.04 * n, n, -0.001}, Vec3(-0.005 * n + 0.002 * Vec3(n.y(), -n.x(), 0.0)));
+  const auto contact = [](int i) {  // sliding 10 um a step, pressed 5 mm
+    const Vec3 n = Vec3::UnitY();
+    return std::make_pair(PatchContact{Vec3(-0.02 + 1e-5 * i, 0.05, 0.003), n, -0.001}, Vec3(0.002, -0.005, 0.0));
   };
   for (int i = 0; i < 200; ++i) {  // warm-up: the cache reaches its size
     const auto [c, v] = contact(i);
-    computePatch(sphere, c, v, s, p, &cache);
+    computePatch(box, c, v, s, p, &cache);
   }
   const long before = gf::test::allocations(), carried = cache.warm_walks;
   for (int i = 200; i < 2200; ++i) {
     const auto [c, v] = contact(i);
-    computePatch(sphere, c, v, s, p, &cache);
+    computePatch(box, c, v, s, p, &cache);
   }
   EXPECT_EQ(gf::test::allocations() - before, 0);
   EXPECT_GT(cache.warm_walks - carried, 2000 * 16 / 2) << "most walks carried";

@@ -324,7 +324,7 @@ void expectSweepHolds(std::uint32_t seed, long patches, bool warm_vs_cold) {
               sweep.failures);
   if (!warm_vs_cold) return;
   // Most walks carried, not redone: the comparison is not vacuous.
-  EXPECT_GT(sweep.warm_walks, 5 * sweep.patches);
+  EXPECT_GT(sweep.warm_walks, 3 * sweep.patches);
   std::printf("warm against cold: %ld walks carried, largest difference %.3g m\n", sweep.warm_walks, sweep.warm_error);
 }
 

@@ -33,7 +33,7 @@ PropertySweep sweepPatchProperties(std::uint32_t seed, long patches, bool warm_v
 
 /// Runs the sweep as a gtest check: all `patches` computed, none broken, and most of them carrying
 /// points (at least 10 per patch on average); prints what it checked.
-/// With `warm_vs_cold`, also most walks (5 per patch on average) carried.
+/// With `warm_vs_cold`, also walks carried (3 per patch on average; only face hits carry).
 void expectSweepHolds(std::uint32_t seed, long patches, bool warm_vs_cold = false);
 
 }  // namespace gf::sim::testing
