@@ -59,8 +59,8 @@ TEST(WarmWalks, EveryBundledSceneAgreesWithWalksFromTheContact) {
     }
   }
   // The comparison is not vacuous: most walks of the scenes were carried. (A walk stopped short
-  // at a threshold, as on the puck's rim, and a contact moving to another face, as on the
-  // tessellated sphere, are walked from the contact.)
+  // at a threshold, as on the puck's rim, a contact moving to another face, as on the
+  // tessellated sphere, and edge and vertex contacts are walked from the contact.)
   EXPECT_GT(checked, 10'000) << "the scenes computed patches";
   EXPECT_GT(carried, 4 * cold);
 }
