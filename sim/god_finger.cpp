@@ -1,5 +1,7 @@
 #include "sim/god_finger.hpp"
 
+#include "sim/warm_walk.hpp"
+
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <array>
@@ -49,6 +51,18 @@ void tangentBasis(const Vec3& n, Vec3& t1, Vec3& t2) {
   const double b = n.x() * n.y() * a;
   t1 = Vec3(1.0 + sign * n.x() * n.x() * a, sign * b, -sign * n.x());
   t2 = Vec3(b, sign + n.y() * n.y() * a, -n.y());
+}
+
+// The ring's in-plane axes for unit normal n: t1 along the reference's part in the tangent
+// plane when it keeps enough of its length there, else a fixed basis of n.
+void ringAxes(const Vec3& ref, const Vec3& n, Vec3& t1, Vec3& t2) {
+  const Vec3 ref_t = ref - ref.dot(n) * n;
+  if (ref_t.norm() > kMinReferenceFraction * ref.norm() && ref_t.norm() > kDegenerateLength) {
+    t1 = ref_t.normalized();
+    t2 = n.cross(t1);
+  } else {
+    tangentBasis(n, t1, t2);
+  }
 }
 
 // Rotates x by the smallest rotation taking unit a onto unit b; projects when a = -b.
@@ -190,21 +204,29 @@ bool inPlane(const Vec3& nf, Vec3& dir) {
   return true;
 }
 
+// The edge crossings a walk of length d from face f may make.
+long walkBudget(const WalkContext& ctx, int f, double d) {
+  const double extra = std::min(kMaxCrossings, std::ceil(kCrossingsPerEdgeLength * d / ctx.mesh.meanEdge(f)));
+  return ctx.s.max_face_crossings + static_cast<long>(extra);
+}
+
 // Algorithm 1: walks distance d from the hit along dir, crossing edges while the next face stays
-// within the angular limit. Appends the path; returns the SGO.
-Sgo walk(const WalkContext& ctx, const Start& start, const Vec3& from, double d, Patch& out) {
+// within the angular limit. Appends the path; returns the SGO. With a cache, records the path
+// of radial i in it.
+Sgo walk(const WalkContext& ctx, const Start& start, const Vec3& from, double d, Patch& out,
+         WalkCache* cache = nullptr, int i = 0) {
   const Mesh& m = ctx.mesh;
   Sgo sgo{from, start.face, -1, 0.0, WalkStop::kDistance, 0.0};
   Vec3 dir = start.dir;
   double side = start.side, remaining = d;
-  const double extra = std::min(kMaxCrossings, std::ceil(kCrossingsPerEdgeLength * d / m.meanEdge(start.face)));
-  const long budget = ctx.s.max_face_crossings + static_cast<long>(extra);
+  const long budget = walkBudget(ctx, start.face, d);
   out.path_points.push_back(from);
   // r_i <- projection of r_i on f (Alg. 1, line 3), kept unit length. Carried over an edge
   // below, a unit direction in f's plane stays unit and in the neighbour's plane (its parts
   // along the edge and across it, on orthonormal in-plane axes), so only the start projects.
   if (!inPlane(m.faceNormal(sgo.face), dir)) return sgo.stop = WalkStop::kDegenerate, sgo;
   if (remaining <= 0.0) return sgo;
+  WalkRecorder record(cache, i, m, start.face, start.side, from, dir);
   for (long crossings = 0;; ++crossings) {
     // Does d_i * r_i cross an edge of f? First edge the ray leaves through: the smallest
     // gap / speed, compared as products (speeds are positive) with one division at the end.
@@ -223,6 +245,7 @@ Sgo walk(const WalkContext& ctx, const Start& start, const Vec3& from, double d,
       sgo.position += remaining * dir;
       sgo.walked += remaining;
       out.path_points.push_back(sgo.position);
+      record.end(m, side, dir, sgo.face, sgo.position, d);
       return sgo;
     }
     // Reached edge e: p_SGO on e, d_i reduced by the distance travelled. A direction nearly
@@ -237,6 +260,7 @@ Sgo walk(const WalkContext& ctx, const Start& start, const Vec3& from, double d,
     const double next_side = link.flipped ? -side : side;
     const Vec3 next_normal = next_side * m.faceNormal(link.face);
     if (!faceAllowed(ctx, next_normal)) return sgo.stop = stopReason(ctx, next_normal), sgo;
+    record.crossing(m, sgo.face, k_exit, side, dir, sgo.position, sgo.walked, next_normal);
     // Carry the direction over the edge: keep its component along the edge, turn the rest into
     // the neighbour (the unfolded straight line; equals the projection to first order).
     const Vec3& edge = m.edgeDirection(sgo.face, k_exit);
@@ -384,6 +408,23 @@ const RingAngles& ringAngles(int n) {
   return ring;
 }
 
+// One radial vector's walk: carried from the cache's path when it still holds, else Algorithm 1
+// from the contact (recorded in the cache when there is one).
+Sgo walkRadial(const WalkContext& ctx, const Start& start, const Vec3& from, double d, WalkCache* cache, int i,
+               Patch& out) {
+  if (!cache) return walk(ctx, start, from, d, out);
+  Vec3 dir = start.dir;
+  if (inPlane(ctx.mesh.faceNormal(start.face), dir) && d > 0.0) {
+    const WalkLimits limits{ctx.normal, ctx.cos_limit, ctx.has_limit, ctx.cos_facing};
+    const WalkStart ws{start.face, start.side, dir, from, d, walkBudget(ctx, start.face, d)};
+    Sgo sgo{from, start.face, -1, d, WalkStop::kDistance, 0.0};
+    if (carryWalk(ctx.mesh, limits, ws, i, *cache, out.path_points, sgo.position, sgo.face)) return sgo;
+  }
+  cache->paths[static_cast<std::size_t>(i)].cached = false;
+  ++cache->cold_walks;
+  return walk(ctx, start, from, d, out, cache, i);
+}
+
 }  // namespace
 
 void clearPatch(Patch& patch) { resetPatch(0, patch); }
@@ -453,6 +494,13 @@ SurfacePoint contactFeature(const Mesh& m, const PatchContact& c, double tol) {
 
 void computePatch(const Mesh& mesh, const PatchContact& contact, const Vec3& v,
                   const PatchSettings& s, Patch& out) {
+  computePatch(mesh, contact, v, s, out, nullptr);
+}
+
+void computePatch(const Mesh& mesh, const PatchContact& contact, const Vec3& v, const PatchSettings& s,
+                  Patch& out, WalkCache* warm) {
+  const bool was_valid = warm && warm->valid;
+  if (warm) warm->valid = false;  // until this patch's walks are in it
   resetPatch(s.n_sgo, out);
   // Step 1: reject what cannot be computed.
   const double nlen = contact.outward_normal_local.norm();
@@ -484,33 +532,38 @@ void computePatch(const Mesh& mesh, const PatchContact& contact, const Vec3& v,
   ctx.cos_start = cosWithTolerance(std::acos(std::clamp(best_align, -1.0, 1.0)));
   // The ring of radial vectors: radial 0 along the reference carried from the last step.
   Vec3 t1, t2;
-  const Vec3& ref = contact.ring_reference_local;
-  const Vec3 ref_t = ref - ref.dot(n) * n;
-  if (ref_t.norm() > kMinReferenceFraction * ref.norm() && ref_t.norm() > kDegenerateLength) {
-    t1 = ref_t.normalized();
-    t2 = n.cross(t1);
-  } else {
-    tangentBasis(n, t1, t2);
-  }
+  ringAxes(contact.ring_reference_local, n, t1, t2);
   out.ring_tangent = t1;
   // Eq. 2 reads the tangential part of v: pressing alone stretches nothing.
   const Vec3 v_t = v - v.dot(n) * n;
   const bool filled = s.fill == PatchFill::kFilled;
   const StretchLogs logs(s);
-  // Step 4: per radial vector, its start face (Fig. 3), Eq. 2 distance and the walk (Alg. 1).
+  // Step 4: per radial vector, its start face (Fig. 3), Eq. 2 distance and the walk (Alg. 1),
+  // carried from the last step's path when the cache holds this contact's.
+  // Walks carried on face hits only (edge and vertex scenes are sensitive to their rounding).
+  WalkCache* carry = warm && out.hit.feature == Feature::kFace ? warm : nullptr;
+  if (carry) keyWalkCache(&mesh, s.n_sgo, out.hit, was_valid, *carry);
   out.path_offsets.push_back(0);
   const RingAngles& ring = ringAngles(s.n_sgo);
+  // On a face hit every radial vector starts on the hit face, turned onto it by one rotation
+  // (linear: the face is within 90 degrees of n): the ring's axes turned once.
+  const bool face_hit = out.hit.feature == Feature::kFace;
+  const Vec3 hit_normal = side * mesh.faceNormal(out.hit.face);
+  const Vec3 f1 = face_hit ? rotateOnto(t1, n, hit_normal) : t1, f2 = face_hit ? rotateOnto(t2, n, hit_normal) : t2;
   for (int i = 0; i < s.n_sgo; ++i) {
-    const Vec3 r = ring.c[static_cast<std::size_t>(i)] * t1 + ring.s[static_cast<std::size_t>(i)] * t2;
-    const Start start = startFace(ctx, out.hit, side, r);
+    const double ci = ring.c[static_cast<std::size_t>(i)], si = ring.s[static_cast<std::size_t>(i)];
+    const Vec3 r = ci * t1 + si * t2;
+    const Start start = face_hit ? Start{out.hit.face, side, ci * f1 + si * f2, true} : startFace(ctx, out.hit, side, r);
     const bool usable = start.usable && start.dir.norm() > kDegenerateLength;
     out.radial.push_back(usable ? start.dir : r);
     out.d_i.push_back(usable ? stretched(out.radius, v_t, r, s, logs) : 0.0);
     if (!usable) {
+      if (carry) carry->paths[static_cast<std::size_t>(i)].cached = false;
       out.radial_stop.push_back(WalkStop::kDropped);
       continue;
     }
-    Sgo sgo = walk(ctx, start, out.hit.point, out.d_i.back(), out);
+    Sgo sgo = walkRadial(ctx, start, out.hit.point, out.d_i.back(), carry, i, out);
+    if (warm && !carry) ++warm->cold_walks;
     sgo.radial = i;
     if (filled) fillPath(s.rings, 2.0 * std::numbers::pi / s.n_sgo, sgo, out);
     out.radial_stop.push_back(sgo.stop);

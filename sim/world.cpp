@@ -218,6 +218,11 @@ void World::setPatchSettings(int finger, const PatchSettings& settings) {
   impl_->applySettings(impl_->fingers[finger], settings);
 }
 
+void World::checkWarmWalks(bool on) {
+  GF_ASSERT_OWNER();
+  impl_->check_walks = on;
+}
+
 void World::snapshot(Snapshot& out) const {
   GF_ASSERT_OWNER();
   const Impl& w = *impl_;

@@ -30,6 +30,12 @@ struct WorldCounters {
   long tunnelling_stops = 0;      ///< proxies stopped where their step's path entered a body
   long patch_calls = 0;           ///< patches computed (one per god-finger contact per step)
   double patch_seconds = 0.0;     ///< wall time spent computing them (steady clock)
+  long warm_walks = 0;            ///< radial walks carried from the last step's path
+  long cold_walks = 0;            ///< radial walks done from the contact point
+  /// With checkWarmWalks on: patches also computed from scratch, and the largest distance (m)
+  /// between a point (SGO or filled inner point) of the two, or +inf where their counts differ.
+  long walk_checks = 0;
+  double walk_check_error = 0.0;
 };
 
 class World {
@@ -99,6 +105,10 @@ class World {
   /// Sets the god-finger settings of finger i from the next step on (n_sgo 0: god-object).
   /// Throws DescriptionError naming the finger and the first setting that is not legal.
   void setPatchSettings(int finger, const PatchSettings& settings);
+  /// Test hook: from the next step on, every patch is also computed from scratch (no warm-
+  /// started walk) and compared with the one used (counters().walk_checks, walk_check_error).
+  /// Owner thread; does not allocate per step.
+  void checkWarmWalks(bool on);
 
   /// Two bodies whose shapes overlap: `depth` metres into each other (> 0).
   struct Overlap {

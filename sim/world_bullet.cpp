@@ -71,6 +71,9 @@ void World::Impl::addFinger(int index, const FingerDesc& d) {
   Finger& f = fingers[index];
   applySettings(f, d.patch);
   f.device = d.device.sample(0.0);
+  // Warm-started walks: every cache sized now, so no step allocates for them.
+  for (FingerContact& c : f.contacts) c.walks.reserve();
+  for (WalkCache& w : f.memory_walks) w.reserve();
   f.shape = std::make_unique<btSphereShape>(d.proxy.radius);
   btVector3 inertia(0, 0, 0);
   f.shape->calculateLocalInertia(d.proxy.mass, inertia);

@@ -5,6 +5,8 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <limits>
+#include <utility>
 
 #include "sim/assert.hpp"
 #include "sim/detail/world_impl.hpp"
@@ -90,11 +92,21 @@ void World::Impl::gatherProxyManifold(btPersistentManifold& m, const btCollision
 void World::Impl::handleContact(Finger& f, FingerContact& c) {
   const FingerDesc& fd = desc.fingers[&f - fingers.data()];
   const ContactMemory* mem = f.memoryOf(c.truth.object->getUserIndex());
+  // The walks carried from the body's last contact with this finger (swapped back after).
+  if (mem) {
+    std::swap(c.walks, f.memory_walks[static_cast<std::size_t>(mem - f.memory.data())]);
+  } else {
+    c.walks.valid = false;
+  }
   c.sgo_count = 0;
   recordContact(f, mem, c);
   const bool touching = c.truth.separation <= 0.0 ||
                         (mem && mem->had_patch && c.truth.separation <= kPatchReleaseGap);
-  if (f.model->wantsPatch() && touching) computeContactPatch(f, c, mem);
+  if (f.model->wantsPatch() && touching) {
+    computeContactPatch(f, c, mem);
+  } else {
+    c.walks.valid = false;
+  }
   f.model->addRows({c, mem, f.settings, f.proxy.get(), fd.proxy.contact_stiffness, fd.proxy.contact_damping},
                    rows);
   counters.sgos_injected += c.sgo_count;
@@ -121,14 +133,37 @@ void World::Impl::computeContactPatch(const Finger& f, FingerContact& c, const C
   ContactRecord& r = c.record;
   const Mesh& mesh = *bodies[r.body].shapes.walk_mesh;
   const auto start = std::chrono::steady_clock::now();
-  computePatch(mesh, r.contact, c.v_local, f.settings.patch, r.patch);
+  const long warm_before = c.walks.warm_walks, cold_before = c.walks.cold_walks;
+  computePatch(mesh, r.contact, c.v_local, f.settings.patch, r.patch, &c.walks);
   counters.patch_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   ++counters.patch_calls;
+  counters.warm_walks += c.walks.warm_walks - warm_before;
+  counters.cold_walks += c.walks.cold_walks - cold_before;
+  if (check_walks) checkWalks(mesh, f, c);
   if (!r.patch.valid) {
     ++counters.invalid_patches;
     return;
   }
   placePatchPoints(c, mem);
+}
+
+// checkWarmWalks: the contact's patch from scratch, and the largest distance between its points
+// and the patch's.
+void World::Impl::checkWalks(const Mesh& mesh, const Finger& f, const FingerContact& c) {
+  const Patch& warm = c.record.patch;
+  computePatch(mesh, c.record.contact, c.v_local, f.settings.patch, check_patch);
+  ++counters.walk_checks;
+  double& worst = counters.walk_check_error;
+  if (warm.sgos.size() != check_patch.sgos.size() || warm.inner.size() != check_patch.inner.size()) {
+    worst = std::numeric_limits<double>::infinity();
+    return;
+  }
+  for (std::size_t k = 0; k < warm.sgos.size(); ++k) {
+    worst = std::max(worst, (warm.sgos[k].position - check_patch.sgos[k].position).norm());
+  }
+  for (std::size_t k = 0; k < warm.inner.size(); ++k) {
+    worst = std::max(worst, (warm.inner[k].position - check_patch.inner[k].position).norm());
+  }
 }
 
 // A patch's points in the world and their depths. Every point has the contact's depth (the
@@ -168,6 +203,7 @@ void World::Impl::rememberImpulses(Finger& f) {
     mem.n_sgo = c.sgo_count > 0 && !c.aggregate ? s.n_sgo : 0;
     mem.ring_tangent_local = patch.ring_tangent;
     mem.pad_normal = c.pad_normal;
+    std::swap(f.memory_walks[static_cast<std::size_t>(k)], c.walks);
     // Only the radials of the layers this patch has are read back (warmStartByAngle).
     mem.layer_count = mem.n_sgo > 0 ? (s.fill == PatchFill::kFilled ? s.rings : 1) : 0;
     for (int l = 0; l < mem.layer_count; ++l) std::fill_n(mem.layers[l].begin(), mem.n_sgo, WarmStart{});

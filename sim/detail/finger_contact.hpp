@@ -6,6 +6,7 @@
 #include <array>
 
 #include "sim/contact_record.hpp"
+#include "sim/warm_walk.hpp"
 #include "sim/detail/contact_injection.hpp"
 
 namespace gf::sim {
@@ -31,6 +32,8 @@ struct FingerContact {
   int block = -1;          ///< its friction block this step (PatchFrictionSolver::block)
   bool aggregate = false;  ///< solved as one aggregate block (no injected points, no Bullet row)
   Vec3 pad_normal = Vec3::UnitY();  ///< the pad plane's normal (world)
+  /// Its walks, carried from the body's last contact with the finger (warm-started walks).
+  WalkCache walks;
 };
 
 /// What a finger's contact with one body leaves for the next step: the solved impulses (to

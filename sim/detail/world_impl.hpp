@@ -46,6 +46,8 @@ struct World::Impl final : SolveHooks {
     int contact_count = 0;
     std::array<ContactMemory, kMaxContactsPerFinger> memory;
     int memory_count = 0;
+    // memory[k]'s walks (warm_walk.hpp), swapped with its contact's during a step.
+    std::array<WalkCache, kMaxContactsPerFinger> memory_walks;
 
     const ContactMemory* memoryOf(int body) const {
       for (int k = 0; k < memory_count; ++k) {
@@ -89,6 +91,7 @@ struct World::Impl final : SolveHooks {
   void recordContact(const Finger& f, const ContactMemory* mem, FingerContact& c) const;
   void computeContactPatch(const Finger& f, FingerContact& c, const ContactMemory* mem);
   void placePatchPoints(FingerContact& c, const ContactMemory* mem);  ///< world points, depths
+  void checkWalks(const Mesh& mesh, const Finger& f, const FingerContact& c);  ///< checkWarmWalks
   void rememberImpulses(Finger& f);  ///< each contact's ContactMemory for the next step
 
   // Step safety (world_safety.cpp).
@@ -121,6 +124,8 @@ struct World::Impl final : SolveHooks {
   long steps_since_base = 0;
   std::size_t next_change = 0;  // desc.changes[next_change] is the first not yet applied
   WorldCounters counters;
+  bool check_walks = false;  // checkWarmWalks: each patch computed from scratch too, into check_patch
+  Patch check_patch;
 };
 
 }  // namespace gf::sim

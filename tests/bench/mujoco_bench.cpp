@@ -131,7 +131,7 @@ double swingAboutX(const sim::World& w, int body) {
   return std::abs(aa.angle() * aa.axis().x()) * kRadToDeg;
 }
 
-// Args: MuJoCo condim (3, 4), our n_SGO per finger (0 god-object, 8) and our contact solver
+// Args: MuJoCo condim (3, 4), our n_SGO per finger (0 god-object, 8, 64) and our contact solver
 // (0 points, 1 aggregate). Both run the scene's
 // 6 s (grasp, lift 5 cm, hold) untimed, recording the largest swing after 1 s; then blocks of
 // 100 held steps are timed alternately, ours first. Counters: medians of the per-step block
@@ -182,7 +182,7 @@ void BM_PeerPinch(benchmark::State& state) {
   state.counters["mujoco_contacts"] = peer.contacts();
 }
 BENCHMARK(BM_PeerPinch)
-    ->ArgsProduct({{3, 4}, {0, 8}, {0, 1}})
+    ->ArgsProduct({{3, 4}, {0, 8, 64}, {0, 1}})
     ->ArgNames({"condim", "n_sgo", "aggregate"})
     ->Unit(benchmark::kMillisecond)
     ->Iterations(200);

@@ -4,11 +4,13 @@
 
 #include <LinearMath/btAlignedAllocator.h>
 
+#include <cmath>
 #include <cstdlib>
 #include <random>
 
 #include "sim/god_finger.hpp"
 #include "sim/primitives.hpp"
+#include "sim/warm_walk.hpp"
 #include "sim/world.hpp"
 #include "tests/alloc_counter.hpp"
 #include "tests/sim/pressed_box.hpp"
@@ -47,6 +49,30 @@ TEST(PatchAllocation, NoHeapAllocationInSteadyState) {
   }
   EXPECT_EQ(gf::test::allocations() - before, 0);
   EXPECT_EQ(sgos, 2000u * 16u);
+}
+
+// Warm-started walks: a finger sliding over a box's top face, its walks carried between patches.
+TEST(PatchAllocation, WarmStartedWalksDoNotAllocateInSteadyState) {
+  const Mesh box = tessellateBox(Vec3(0.05, 0.05, 0.05), 4);
+  PatchSettings s;
+  s.n_sgo = 16;
+  Patch p;
+  WalkCache cache;
+  const auto contact = [](int i) {  // sliding 10 um a step, pressed 5 mm
+    const Vec3 n = Vec3::UnitY();
+    return std::make_pair(PatchContact{Vec3(-0.02 + 1e-5 * i, 0.05, 0.003), n, -0.001}, Vec3(0.002, -0.005, 0.0));
+  };
+  for (int i = 0; i < 200; ++i) {  // warm-up: the cache reaches its size
+    const auto [c, v] = contact(i);
+    computePatch(box, c, v, s, p, &cache);
+  }
+  const long before = gf::test::allocations(), carried = cache.warm_walks;
+  for (int i = 200; i < 2200; ++i) {
+    const auto [c, v] = contact(i);
+    computePatch(box, c, v, s, p, &cache);
+  }
+  EXPECT_EQ(gf::test::allocations() - before, 0);
+  EXPECT_GT(cache.warm_walks - carried, 2000 * 16 / 2) << "most walks carried";
 }
 
 // A box on a table pressed by one finger and turned by a torque beyond its torsion limit (the

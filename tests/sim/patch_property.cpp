@@ -13,6 +13,7 @@
 
 #include "sim/god_finger.hpp"
 #include "sim/primitives.hpp"
+#include "sim/warm_walk.hpp"
 
 namespace gf::sim::testing {
 namespace {
@@ -251,12 +252,37 @@ std::string checkPatch(const Mesh& mesh, double shortest_mean_edge, const PatchS
   return {};
 }
 
+// Warm against cold: the patch computed with its walks carried from the same contact a step
+// earlier (moved 1e-6 of the mesh's diagonal across the normal, the normal turned 1e-6 rad, the
+// press moved with it) must put every point within 1e-9 m of the one computed from scratch, `p`.
+std::string checkWarm(const Mesh& mesh, const PatchSettings& s, const PatchContact& c, const Vec3& v, const Patch& p,
+                      Patch& warm, WalkCache& cache, PropertySweep& sweep) {
+  const double nlen = c.outward_normal_local.norm();
+  const Vec3 n = std::isfinite(nlen) && nlen > 0.5 ? Vec3(c.outward_normal_local / nlen) : Vec3::UnitY();
+  const Vec3 t = n.unitOrthogonal(), step = 1e-6 * mesh.diagonal() * t;
+  PatchContact before = c;
+  before.point_local -= step;
+  before.outward_normal_local = c.outward_normal_local + 1e-6 * nlen * n.cross(t);
+  cache.valid = false;
+  computePatch(mesh, before, v + step, s, warm, &cache);
+  const long warm_before = cache.warm_walks;
+  computePatch(mesh, c, v, s, warm, &cache);
+  sweep.warm_walks += cache.warm_walks - warm_before;
+  if (warm.sgos.size() != p.sgos.size() || warm.inner.size() != p.inner.size()) return "warm patch has other points";
+  double worst = 0.0;
+  for (std::size_t k = 0; k < p.sgos.size(); ++k) worst = std::max(worst, (warm.sgos[k].position - p.sgos[k].position).norm());
+  for (std::size_t k = 0; k < p.inner.size(); ++k) worst = std::max(worst, (warm.inner[k].position - p.inner[k].position).norm());
+  sweep.warm_error = std::max(sweep.warm_error, worst);
+  return worst <= 1e-9 ? std::string() : "warm walk " + sci(worst) + " m from the cold one";
+}
+
 }  // namespace
 
-PropertySweep sweepPatchProperties(std::uint32_t seed, long patches) {
+PropertySweep sweepPatchProperties(std::uint32_t seed, long patches, bool warm_vs_cold) {
   PropertySweep sweep;
   Generator g{std::mt19937_64(seed)};
-  Patch p;
+  Patch p, warm;
+  WalkCache cache;
   while (sweep.patches < patches) {
     std::string kind;
     const Mesh mesh = makeMesh(g, kind);
@@ -271,7 +297,8 @@ PropertySweep sweepPatchProperties(std::uint32_t seed, long patches) {
       computePatch(mesh, c, v, s, p);
       ++sweep.patches;
       sweep.valid += p.valid;
-      const std::string broken = checkPatch(mesh, shortest, s, p, sweep.sgos);
+      std::string broken = checkPatch(mesh, shortest, s, p, sweep.sgos);
+      if (broken.empty() && warm_vs_cold) broken = checkWarm(mesh, s, c, v, p, warm, cache, sweep);
       if (broken.empty()) continue;
       if (++sweep.failures == 1) {
         std::ostringstream what;
@@ -287,14 +314,18 @@ PropertySweep sweepPatchProperties(std::uint32_t seed, long patches) {
   return sweep;
 }
 
-void expectSweepHolds(std::uint32_t seed, long patches) {
-  const PropertySweep sweep = sweepPatchProperties(seed, patches);
+void expectSweepHolds(std::uint32_t seed, long patches, bool warm_vs_cold) {
+  const PropertySweep sweep = sweepPatchProperties(seed, patches, warm_vs_cold);
   EXPECT_EQ(sweep.patches, patches);
   EXPECT_EQ(sweep.failures, 0) << sweep.first_failure;
   // The sweep must exercise the walk, not only reject or skip: most patches carry points.
   EXPECT_GT(sweep.sgos, 10 * sweep.patches);
   std::printf("%ld patches on %ld meshes, %ld points checked, %ld failures\n", sweep.patches, sweep.meshes, sweep.sgos,
               sweep.failures);
+  if (!warm_vs_cold) return;
+  // Most walks carried, not redone: the comparison is not vacuous.
+  EXPECT_GT(sweep.warm_walks, 3 * sweep.patches);
+  std::printf("warm against cold: %ld walks carried, largest difference %.3g m\n", sweep.warm_walks, sweep.warm_error);
 }
 
 }  // namespace gf::sim::testing
