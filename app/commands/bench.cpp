@@ -69,7 +69,7 @@ class BenchCommand final : public Command {
     realtime_->add_flag("--no-fifo", no_fifo_, "Do not ask for SCHED_FIFO (measure as an ordinary user does)");
     realtime_->add_flag("--no-short-slice", no_short_slice_,
                         "Do not ask the scheduler for a short slice for the haptic loop (to see what it gives)");
-    realtime_->add_flag("--no-pin", no_pin_, "Do not keep the haptic loop alone on one CPU");
+    realtime_->add_flag("--pin", pin_, "Keep the haptic loop alone on the last CPU, the rest on the others");
     realtime_->add_option("--out", out_, "Folder for the sessions' run folders and bench.json");
     return bench;
   }
@@ -94,7 +94,7 @@ class BenchCommand final : public Command {
       options.frames = !no_frames_;
       options.fifo = !no_fifo_;
       options.short_slice = !no_short_slice_;
-      options.pin_cpus = !no_pin_;
+      options.pin_cpus = pin_;
       options.command_line = command_line_;
       const sim::LoopStats stats = runSession(session, options);
       std::ifstream in(fs::path(options.out_dir) / "summary.json");
@@ -135,7 +135,7 @@ class BenchCommand final : public Command {
   std::string out_ = "bench-realtime";
   double duration_ = 10.0;
   int rounds_ = 2, load_ = 0;
-  bool no_frames_ = false, no_fifo_ = false, no_short_slice_ = false, no_pin_ = false;
+  bool no_frames_ = false, no_fifo_ = false, no_short_slice_ = false, pin_ = false;
   std::vector<std::string> command_line_;
 };
 

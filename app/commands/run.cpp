@@ -27,8 +27,8 @@ class RunCommand final : public Command {
                                          "without root or CAP_SYS_NICE does)");
     run->add_flag("--no-yield", no_yield_, "Realtime: keep the render thread and encoders at normal priority "
                                            "instead of nice 10");
-    run->add_flag("--no-pin", no_pin_, "Realtime: do not keep the haptic loop alone on one CPU (the renderer and "
-                                       "writers on the others)");
+    run->add_flag("--pin", pin_, "Realtime: keep the haptic loop alone on the last CPU and the renderer and "
+                                 "writers on the others (for a CPU kept free for the loop)");
     run->add_option("--spin-us", spin_us_, "Realtime: sleep until this long before each step's deadline, then "
                                            "spin (us; default 0: sleep)")
         ->check(CLI::Range(0.0, 1000.0));
@@ -70,7 +70,7 @@ class RunCommand final : public Command {
     o.stop_on_interrupt = true;
     o.fifo = !no_fifo_;
     o.yield_render = !no_yield_;
-    o.pin_cpus = !no_pin_;
+    o.pin_cpus = pin_;
     o.spin_us = spin_us_;
     o.command_line = command_line_;
     return o;
@@ -80,7 +80,7 @@ class RunCommand final : public Command {
   std::string out_ = "out";
   std::vector<std::string> overrides_;
   double duration_ = 0.0;
-  bool realtime_ = false, frames_ = false, no_fifo_ = false, no_yield_ = false, no_pin_ = false, quiet_ = false;
+  bool realtime_ = false, frames_ = false, no_fifo_ = false, no_yield_ = false, pin_ = false, quiet_ = false;
   std::string video_, camera_;
   std::string expectations_ = "check";
   double spin_us_ = 0.0;

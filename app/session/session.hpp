@@ -32,10 +32,11 @@ struct SessionOptions {
   double spin_us = 0.0;
   /// Realtime without SCHED_FIFO: the haptic loop asks for the scheduler's shortest slice.
   bool short_slice = true;
-  /// Realtime on two or more CPUs: the haptic loop runs alone on one CPU and every other thread
-  /// of the run (the renderer, llvmpipe's workers, encoders, ffmpeg, file writers) on the others,
-  /// so their CPU time is not charged to the loop's scheduling group on its CPU (`run --no-pin`).
-  bool pin_cpus = true;
+  /// Realtime on two or more CPUs: the haptic loop runs alone on the last CPU and every other
+  /// thread of the run (the renderer, llvmpipe's workers, encoders, ffmpeg, file writers) on the
+  /// others (`run --pin`): for a machine with a CPU kept free for the loop. Off by default: on a
+  /// shared machine it made late steps more frequent ([Performance](performance.md)).
+  bool pin_cpus = false;
   /// Realtime: the render thread, its encoders and llvmpipe's workers run at nice 10 so the
   /// haptic loop at nice 0 wins the cores even without root, while frames still get the rest
   /// (`run --no-yield` turns it off).
