@@ -73,9 +73,10 @@ struct ThreadUsage {
   static ThreadUsage now();
 };
 
-/// While alive, the process's memory is locked in RAM (mlockall, current and future pages) where
-/// that is allowed without failing later allocations (root, CAP_IPC_LOCK, or an unlimited
-/// RLIMIT_MEMLOCK); otherwise nothing is locked. Either way the calling thread's stack is touched
+/// While alive, the process's memory is locked in RAM (mlockall: current and future pages, each
+/// as it is first touched) where that is allowed without failing later allocations (root,
+/// CAP_IPC_LOCK, or an unlimited RLIMIT_MEMLOCK; not in sanitizer builds); otherwise nothing is
+/// locked. Either way the calling thread's stack is touched
 /// to `stack_bytes` first, so its first deep call takes no page fault. Unlocks when destroyed.
 class MemoryLock {
  public:
