@@ -17,6 +17,7 @@
 #include "app/scene/data_folder.hpp"
 #include "app/scene/input_error.hpp"
 #include "app/scene/scene_file.hpp"
+#include "app/session/interrupt.hpp"
 #include "app/session/session.hpp"
 #include "sim/realtime.hpp"
 
@@ -96,6 +97,7 @@ class BenchCommand final : public Command {
       options.short_slice = !no_short_slice_;
       options.pin_cpus = pin_;
       options.command_line = command_line_;
+      options.stop_on_interrupt = true;  // Ctrl-C: this round's run folder is finished for the time reached
       const sim::LoopStats stats = runSession(session, options);
       std::ifstream in(fs::path(options.out_dir) / "summary.json");
       const nlohmann::json summary = nlohmann::json::parse(in);
@@ -114,6 +116,7 @@ class BenchCommand final : public Command {
       sleeper_n += sleeper.wakeups;
       loop_late += stats.late_steps;
       loop_n += stats.steps;
+      if (stats.stopped || interruptSignal() != 0) break;  // Ctrl-C: bench.json of the rounds reached
     }
     const double floor = 100.0 * static_cast<double>(sleeper_late) / static_cast<double>(std::max(1L, sleeper_n));
     const double ours = 100.0 * static_cast<double>(loop_late) / static_cast<double>(std::max(1L, loop_n));
@@ -126,7 +129,7 @@ class BenchCommand final : public Command {
                                 {"provenance", provenanceJson(session, command_line_)}};
     writeFileAtomically((fs::path(out_) / "bench.json").string(), out.dump(2) + "\n");
     std::printf("wrote %s\n", (fs::path(out_) / "bench.json").c_str());
-    return 0;
+    return interruptSignal() != 0 ? interruptedStatus() : 0;
   }
 
  private:
