@@ -416,7 +416,10 @@ Sgo walkRadial(const WalkContext& ctx, const Start& start, const Vec3& from, dou
   Vec3 dir = start.dir;
   if (inPlane(ctx.mesh.faceNormal(start.face), dir) && d > 0.0) {
     const WalkLimits limits{ctx.normal, ctx.cos_limit, ctx.has_limit, ctx.cos_facing};
-    const WalkStart ws{start.face, start.side, dir, from, d, walkBudget(ctx, start.face, d)};
+    // The budget is at least max_face_crossings: worked out only for a path crossing more.
+    const int crossings = cache->paths[static_cast<std::size_t>(i)].crossings;
+    const long budget = crossings > ctx.s.max_face_crossings ? walkBudget(ctx, start.face, d) : ctx.s.max_face_crossings;
+    const WalkStart ws{start.face, start.side, dir, from, d, budget};
     Sgo sgo{from, start.face, -1, d, WalkStop::kDistance, 0.0};
     if (carryWalk(ctx.mesh, limits, ws, i, *cache, out.path_points, sgo.position, sgo.face)) return sgo;
   }

@@ -1,6 +1,8 @@
 #include "sim/warm_walk.hpp"
 
+#include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "sim/patch_settings.hpp"
 
@@ -13,6 +15,15 @@ constexpr double kCarryMargin = 1e-10;
 // A path meeting an edge at a sine below this is walked from the contact (the crossing point
 // would move far along the edge for a small turn).
 constexpr double kMinCrossingSine = 1e-6;
+// A full check leaves this fraction of each check's slack (whatever rounds in the checks is
+// then far from deciding: slacks of 1e-10 m and more against rounding of 1e-17 m).
+constexpr double kSlackFraction = 0.5;
+constexpr double kUnbounded = std::numeric_limits<double>::infinity();
+
+// A walk's line in the start face's plane: start, unit direction, length.
+struct Line {
+  double hx, hy, dx, dy, d;
+};
 
 // z of the cross product of two vectors of the start plane.
 double cross2(double ax, double ay, double bx, double by) { return ax * by - ay * bx; }
@@ -22,11 +33,87 @@ bool faceAllowed(const WalkLimits& l, const Vec3& oriented_normal) {
   return (!l.has_limit || c >= l.cos_limit) && c > l.cos_facing;
 }
 
-bool insideFace(const Mesh& m, int f, const Vec3& p) {
-  for (int k = 0; k < 3; ++k) {
-    if ((p - m.corner(f, k)).dot(m.edgeInwardNormal(f, k)) < kCarryMargin) return false;
+// How far a face entered is within the thresholds: the turn of the normal it allows.
+double allowedBy(const WalkLimits& l, const Vec3& oriented_normal) {
+  const double c = oriented_normal.dot(l.normal);
+  return std::min(l.has_limit ? c - l.cos_limit : kUnbounded, c - l.cos_facing);
+}
+
+// Distance of p from the nearest edge of face f, inwards (m).
+double insideBy(const Mesh& m, int f, const Vec3& p) {
+  double least = kUnbounded;
+  for (int k = 0; k < 3; ++k) least = std::min(least, (p - m.corner(f, k)).dot(m.edgeInwardNormal(f, k)));
+  return least;
+}
+
+// Whether line `a` and the limits moved less than path p's slack since its last full check.
+// Crossings then stay inside their edges (each moves along its edge by at most move / (sine -
+// turn), sine its line's sine to the edge there), in order and on faces within the thresholds,
+// and the end inside its face: every check of checkCrossings and the end holds.
+bool withinSlack(const WalkPath& p, const WalkLimits& l, const Line& a) {
+  if (!p.slack || l.cos_limit != p.ref_cos_limit || l.cos_facing != p.ref_cos_facing ||
+      l.has_limit != p.ref_has_limit) {
+    return false;
   }
+  const double tx = a.dx - p.ref_dx, ty = a.dy - p.ref_dy, mx = a.hx - p.ref_hx, my = a.hy - p.ref_hy;
+  const double turn = std::sqrt(tx * tx + ty * ty);
+  const double move = std::sqrt(mx * mx + my * my) + p.ref_d * turn;
+  return turn <= p.turn_slack && move <= p.move_slack && move + std::abs(a.d - p.ref_d) <= p.end_slack &&
+         (l.normal - p.ref_normal).norm() <= p.normal_slack;
+}
+
+// Within the slack: each crossing where line `a` meets its edge, unchecked, into `out`.
+void placeCrossings(const WalkPath& p, const WalkCrossing* first, const Line& a, Vec3* out) {
+  for (int j = 0; j < p.crossings; ++j) {
+    const WalkCrossing& c = first[j];
+    const double along = cross2(a.hx - c.x, a.hy - c.y, a.dx, a.dy) / cross2(c.ux, c.uy, a.dx, a.dy);
+    out[j] = c.point + along * c.edge;
+  }
+}
+
+// Each crossing: where line `a` meets the edge, X + along u; it must stay on the edge, in
+// order, short of d, into a face still within the thresholds. Moves the crossings there (and
+// into `out`) and leaves the path's slack for them; false when a check fails. A crossing moved
+// before a later check fails stays consistent (its point, unfolded point and edge ends move
+// together): the walk from the contact records the path anew anyway.
+bool checkCrossings(WalkPath& p, WalkCrossing* first, const WalkLimits& limits, const Line& a, Vec3* out) {
+  double last_t = 0.0, turn = kUnbounded, move = kUnbounded, allowed = kUnbounded;
+  for (int j = 0; j < p.crossings; ++j) {
+    WalkCrossing& c = first[j];
+    const double det = cross2(c.ux, c.uy, a.dx, a.dy);
+    if (std::abs(det) < kMinCrossingSine || !faceAllowed(limits, c.entered_normal)) return false;
+    const double wx = a.hx - c.x, wy = a.hy - c.y, inv = 1.0 / det;
+    const double along = cross2(wx, wy, a.dx, a.dy) * inv, t = cross2(wx, wy, c.ux, c.uy) * inv;
+    if (!(t > last_t) || !(t < a.d) || !(along > c.to_first + kCarryMargin) ||
+        !(along < c.to_second - kCarryMargin)) {
+      return false;
+    }
+    last_t = t;
+    c.point += along * c.edge;
+    c.to_first -= along;
+    c.to_second -= along;
+    c.x += along * c.ux;
+    c.y += along * c.uy;
+    out[j] = c.point;
+    // The slack: the sine kept above half its value and kMinCrossingSine, the crossing inside
+    // its edge, the start on its side of the first edge (t sine from it), the face allowed.
+    const double sine = std::abs(det);
+    turn = std::min(turn, std::min(kSlackFraction * sine, sine - kMinCrossingSine));
+    move = std::min(move, kSlackFraction * sine * (std::min(-c.to_first, c.to_second) - kCarryMargin));
+    if (j == 0) move = std::min(move, kSlackFraction * sine * t);
+    allowed = std::min(allowed, allowedBy(limits, c.entered_normal));
+  }
+  p.turn_slack = turn, p.move_slack = move, p.normal_slack = kSlackFraction * allowed;
   return true;
+}
+
+// A full check passed for line `a`: it is the path's reference.
+void renewReference(WalkPath& p, const WalkLimits& l, const Line& a, double end_inside) {
+  p.slack = true;
+  p.ref_hx = a.hx, p.ref_hy = a.hy, p.ref_dx = a.dx, p.ref_dy = a.dy, p.ref_d = a.d;
+  p.ref_normal = l.normal;
+  p.ref_cos_limit = l.cos_limit, p.ref_cos_facing = l.cos_facing, p.ref_has_limit = l.has_limit;
+  p.end_slack = kSlackFraction * (end_inside - kCarryMargin);
 }
 
 // A carried walk that does not hold: its path points taken back.
@@ -65,7 +152,9 @@ WalkRecorder::WalkRecorder(WalkCache* cache, int i, const Mesh& m, int face, dou
   if (!cache) return;
   path_ = &cache->paths[static_cast<std::size_t>(i)];
   crossings_ = cache->crossings.data() + static_cast<std::ptrdiff_t>(i) * kWarmCrossingsPerSgo;
-  *path_ = {false, face, side, -1, 0, Vec3::Zero(), 0.0, 0.0, Vec3::Zero(), Vec3::Zero()};
+  *path_ = WalkPath{};
+  path_->start_face = face;
+  path_->side = side;
   const StartPlane plane = startPlane(m, face, side);
   hx_ = (from - plane.origin).dot(plane.x_axis), hy_ = (from - plane.origin).dot(plane.y_axis);
   dx_ = dir.dot(plane.x_axis), dy_ = dir.dot(plane.y_axis);
@@ -107,45 +196,35 @@ bool carryWalk(const Mesh& m, const WalkLimits& limits, const WalkStart& s, int 
   }
   const StartPlane& plane = cache.plane;
   const Vec3 rel = s.from - plane.origin;
-  const double hx = rel.dot(plane.x_axis), hy = rel.dot(plane.y_axis);
-  const double dx = s.dir.dot(plane.x_axis), dy = s.dir.dot(plane.y_axis);
-  // Each crossing: where the moved line h + t dir meets the edge, X + along u; it must stay on
-  // the edge, in order, short of d, into a face still within the thresholds. A crossing moved
-  // before a later check fails stays consistent (its point, unfolded point and edge ends move
-  // together): the walk from the contact records the path anew anyway.
+  const Line a{rel.dot(plane.x_axis), rel.dot(plane.y_axis), s.dir.dot(plane.x_axis), s.dir.dot(plane.y_axis), s.d};
   WalkCrossing* first = cache.crossings.data() + static_cast<std::ptrdiff_t>(i) * kWarmCrossingsPerSgo;
+  // The path's points: from, the crossings, the end.
   const std::size_t mark = path_points.size();
-  path_points.push_back(s.from);
-  double last_t = 0.0;
-  for (int j = 0; j < p.crossings; ++j) {
-    WalkCrossing& c = first[j];
-    const double det = cross2(c.ux, c.uy, dx, dy);
-    if (std::abs(det) < kMinCrossingSine || !faceAllowed(limits, c.entered_normal)) return fail(path_points, mark);
-    const double wx = hx - c.x, wy = hy - c.y, inv = 1.0 / det;
-    const double along = cross2(wx, wy, dx, dy) * inv, t = cross2(wx, wy, c.ux, c.uy) * inv;
-    if (!(t > last_t) || !(t < s.d) || !(along > c.to_first + kCarryMargin) ||
-        !(along < c.to_second - kCarryMargin)) {
-      return fail(path_points, mark);
-    }
-    last_t = t;
-    c.point += along * c.edge;
-    c.to_first -= along;
-    c.to_second -= along;
-    c.x += along * c.ux;
-    c.y += along * c.uy;
-    path_points.push_back(c.point);
+  path_points.resize(mark + static_cast<std::size_t>(p.crossings) + 2);
+  Vec3* out = path_points.data() + mark;
+  out[0] = s.from;
+  const bool unchecked = withinSlack(p, limits, a);
+  if (unchecked) {
+    placeCrossings(p, first, a, out + 1);
+  } else if (!checkCrossings(p, first, limits, a, out + 1)) {
+    return fail(path_points, mark);
   }
   // The end: the last end moved by the difference, unfolded onto the end face.
-  const double ex = hx + s.d * dx, ey = hy + s.d * dy;
+  const double ex = a.hx + a.d * a.dx, ey = a.hy + a.d * a.dy;
   const Vec3 moved = p.end + (ex - p.end_x) * p.axis_x + (ey - p.end_y) * p.axis_y;
-  if (!insideFace(m, p.end_face, moved)) return fail(path_points, mark);
-  path_points.push_back(moved);
+  if (!unchecked) {
+    const double inside = insideBy(m, p.end_face, moved);
+    if (inside < kCarryMargin) return fail(path_points, mark);
+    renewReference(p, limits, a, inside);
+  }
+  out[p.crossings + 1] = moved;
   p.end = moved;
   p.end_x = ex;
   p.end_y = ey;
   end = moved;
   end_face = p.end_face;
   ++cache.warm_walks;
+  cache.slack_walks += unchecked;
   return true;
 }
 

@@ -4,7 +4,10 @@
 // the path's edge crossings and its end moved by the difference. A walk is redone from the
 // contact when the contact's face or feature or n_sgo changed, or when the carried path no longer
 // holds: a crossing left its edge, the end left its face, a face on the way left the thresholds,
-// or the walk had stopped short of d_i.
+// or the walk had stopped short of d_i. A full check of a carried path also leaves its slack:
+// while the line of the walk (start, direction, length) and the contact normal move less than
+// that from the line it checked, every check holds without being made, and the crossings are
+// only placed on their edges.
 #pragma once
 
 #include <cstdint>
@@ -40,6 +43,19 @@ struct WalkPath {
   /// Images on the end face of the start plane's axes: a start-plane offset (x, y) moves the
   /// end by x * axis_x + y * axis_y.
   Vec3 axis_x = Vec3::Zero(), axis_y = Vec3::Zero();
+  /// The line of the last full check (its reference) and how far the line may move from it with
+  /// every check still holding; `slack` false until a full check leaves one.
+  bool slack = false;
+  double ref_hx = 0.0, ref_hy = 0.0;  ///< its start in the start plane (m)
+  double ref_dx = 0.0, ref_dy = 0.0;  ///< its unit direction there
+  double ref_d = 0.0;                 ///< its length (m)
+  Vec3 ref_normal = Vec3::Zero();     ///< the contact normal it was checked against
+  double ref_cos_limit = 0.0, ref_cos_facing = 0.0;  ///< and the thresholds (WalkLimits)
+  bool ref_has_limit = false;
+  double turn_slack = 0.0;    ///< largest turn of the direction (|difference of unit vectors|)
+  double move_slack = 0.0;    ///< largest |start moved| + ref_d * turn (m): crossings, start side
+  double end_slack = 0.0;     ///< largest move + |length changed| (m): the end in its face
+  double normal_slack = 0.0;  ///< largest |normal turned|: the faces on the way within thresholds
 };
 
 /// The start face's plane: origin at its corner 0, x along its edge 0, y = oriented normal x x.
@@ -64,6 +80,7 @@ struct WalkCache {
   double plane_side = 1.0;
   StartPlane plane;
   long warm_walks = 0;  ///< walks carried from the last step (cumulative)
+  long slack_walks = 0;  ///< of which carried within their slack, unchecked (cumulative)
   long cold_walks = 0;  ///< walks done from the contact (cumulative)
   /// Sizes the storage for kMaxSgo radial vectors. Allocates (once).
   void reserve();
@@ -87,7 +104,7 @@ struct WalkStart {
   Vec3 dir = Vec3::Zero();
   Vec3 from = Vec3::Zero();
   double d = 0.0;
-  long budget = 0;  ///< edge crossings allowed
+  long budget = 0;  ///< edge crossings allowed (or any bound below it the path keeps within)
 };
 
 /// Keys `cache` to a patch on `mesh` with n_sgo radial vectors and contact `hit` (face and
@@ -117,7 +134,9 @@ class WalkRecorder {
 /// Carries radial `i`'s path of `cache` to the start `s`: on success appends the path (from,
 /// crossings, end) to `path_points`, updates the cache and returns true with the end's face in
 /// `end_face`; on failure leaves `path_points` as it was (and the path to be walked from the
-/// contact). Any thread; no allocation once `path_points` has its capacity.
+/// contact). Within the path's slack its crossings are placed without checks (they hold), else
+/// each is checked and the slack renewed. Any thread; no allocation once `path_points` has its
+/// capacity.
 bool carryWalk(const Mesh& mesh, const WalkLimits& limits, const WalkStart& s, int i, WalkCache& cache,
                std::vector<Vec3>& path_points, Vec3& end, int& end_face);
 

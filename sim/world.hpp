@@ -32,8 +32,10 @@ struct WorldCounters {
   double patch_seconds = 0.0;     ///< wall time spent computing them (steady clock)
   long warm_walks = 0;            ///< radial walks carried from the last step's path
   long cold_walks = 0;            ///< radial walks done from the contact point
+  long slack_walks = 0;           ///< carried walks within their slack (crossings unchecked)
   /// With checkWarmWalks on: patches also computed from scratch, and the largest distance (m)
-  /// between a point (SGO or filled inner point) of the two, or +inf where their counts differ.
+  /// between a point (SGO, filled inner point or path point) of the two, or +inf where their
+  /// counts differ.
   long walk_checks = 0;
   double walk_check_error = 0.0;
 };

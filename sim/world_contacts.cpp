@@ -133,12 +133,13 @@ void World::Impl::computeContactPatch(const Finger& f, FingerContact& c, const C
   ContactRecord& r = c.record;
   const Mesh& mesh = *bodies[r.body].shapes.walk_mesh;
   const auto start = std::chrono::steady_clock::now();
-  const long warm_before = c.walks.warm_walks, cold_before = c.walks.cold_walks;
+  const long warm_before = c.walks.warm_walks, cold_before = c.walks.cold_walks, slack_before = c.walks.slack_walks;
   computePatch(mesh, r.contact, c.v_local, f.settings.patch, r.patch, &c.walks);
   counters.patch_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   ++counters.patch_calls;
   counters.warm_walks += c.walks.warm_walks - warm_before;
   counters.cold_walks += c.walks.cold_walks - cold_before;
+  counters.slack_walks += c.walks.slack_walks - slack_before;
   if (check_walks) checkWalks(mesh, f, c);
   if (!r.patch.valid) {
     ++counters.invalid_patches;
@@ -148,13 +149,14 @@ void World::Impl::computeContactPatch(const Finger& f, FingerContact& c, const C
 }
 
 // checkWarmWalks: the contact's patch from scratch, and the largest distance between its points
-// and the patch's.
+// (SGOs, filled points and the walks' path points) and the patch's.
 void World::Impl::checkWalks(const Mesh& mesh, const Finger& f, const FingerContact& c) {
   const Patch& warm = c.record.patch;
   computePatch(mesh, c.record.contact, c.v_local, f.settings.patch, check_patch);
   ++counters.walk_checks;
   double& worst = counters.walk_check_error;
-  if (warm.sgos.size() != check_patch.sgos.size() || warm.inner.size() != check_patch.inner.size()) {
+  if (warm.sgos.size() != check_patch.sgos.size() || warm.inner.size() != check_patch.inner.size() ||
+      warm.path_points.size() != check_patch.path_points.size()) {
     worst = std::numeric_limits<double>::infinity();
     return;
   }
@@ -163,6 +165,9 @@ void World::Impl::checkWalks(const Mesh& mesh, const Finger& f, const FingerCont
   }
   for (std::size_t k = 0; k < warm.inner.size(); ++k) {
     worst = std::max(worst, (warm.inner[k].position - check_patch.inner[k].position).norm());
+  }
+  for (std::size_t k = 0; k < warm.path_points.size(); ++k) {
+    worst = std::max(worst, (warm.path_points[k] - check_patch.path_points[k]).norm());
   }
 }
 

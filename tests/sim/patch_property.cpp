@@ -252,26 +252,35 @@ std::string checkPatch(const Mesh& mesh, double shortest_mean_edge, const PatchS
   return {};
 }
 
-// Warm against cold: the patch computed with its walks carried from the same contact a step
-// earlier (moved 1e-6 of the mesh's diagonal across the normal, the normal turned 1e-6 rad, the
-// press moved with it) must put every point within 1e-9 m of the one computed from scratch, `p`.
+// Warm against cold: the patch computed with its walks carried from the same contact two steps
+// and a step earlier (each step moving it 1e-6 of the mesh's diagonal across the normal, turning
+// the normal 1e-6 rad, the press moved with it: the first walks from the contact, the second
+// checks the carried paths and leaves their slack, this one carries them within it where it
+// holds) must put every point and path point within 1e-9 m of the one computed from scratch, `p`.
 std::string checkWarm(const Mesh& mesh, const PatchSettings& s, const PatchContact& c, const Vec3& v, const Patch& p,
                       Patch& warm, WalkCache& cache, PropertySweep& sweep) {
   const double nlen = c.outward_normal_local.norm();
   const Vec3 n = std::isfinite(nlen) && nlen > 0.5 ? Vec3(c.outward_normal_local / nlen) : Vec3::UnitY();
   const Vec3 t = n.unitOrthogonal(), step = 1e-6 * mesh.diagonal() * t;
-  PatchContact before = c;
-  before.point_local -= step;
-  before.outward_normal_local = c.outward_normal_local + 1e-6 * nlen * n.cross(t);
   cache.valid = false;
-  computePatch(mesh, before, v + step, s, warm, &cache);
-  const long warm_before = cache.warm_walks;
+  for (const double back : {2.0, 1.0}) {
+    PatchContact before = c;
+    before.point_local -= back * step;
+    before.outward_normal_local = c.outward_normal_local + back * 1e-6 * nlen * n.cross(t);
+    computePatch(mesh, before, v + back * step, s, warm, &cache);
+  }
+  const long warm_before = cache.warm_walks, slack_before = cache.slack_walks;
   computePatch(mesh, c, v, s, warm, &cache);
   sweep.warm_walks += cache.warm_walks - warm_before;
-  if (warm.sgos.size() != p.sgos.size() || warm.inner.size() != p.inner.size()) return "warm patch has other points";
+  sweep.slack_walks += cache.slack_walks - slack_before;
+  if (warm.sgos.size() != p.sgos.size() || warm.inner.size() != p.inner.size() ||
+      warm.path_points.size() != p.path_points.size()) {
+    return "warm patch has other points";
+  }
   double worst = 0.0;
   for (std::size_t k = 0; k < p.sgos.size(); ++k) worst = std::max(worst, (warm.sgos[k].position - p.sgos[k].position).norm());
   for (std::size_t k = 0; k < p.inner.size(); ++k) worst = std::max(worst, (warm.inner[k].position - p.inner[k].position).norm());
+  for (std::size_t k = 0; k < p.path_points.size(); ++k) worst = std::max(worst, (warm.path_points[k] - p.path_points[k]).norm());
   sweep.warm_error = std::max(sweep.warm_error, worst);
   return worst <= 1e-9 ? std::string() : "warm walk " + sci(worst) + " m from the cold one";
 }
@@ -323,9 +332,12 @@ void expectSweepHolds(std::uint32_t seed, long patches, bool warm_vs_cold) {
   std::printf("%ld patches on %ld meshes, %ld points checked, %ld failures\n", sweep.patches, sweep.meshes, sweep.sgos,
               sweep.failures);
   if (!warm_vs_cold) return;
-  // Most walks carried, not redone: the comparison is not vacuous.
+  // Most walks carried, not redone, and many of them within their slack: the comparison is not
+  // vacuous for either way of carrying.
   EXPECT_GT(sweep.warm_walks, 3 * sweep.patches);
-  std::printf("warm against cold: %ld walks carried, largest difference %.3g m\n", sweep.warm_walks, sweep.warm_error);
+  EXPECT_GT(sweep.slack_walks, sweep.patches);
+  std::printf("warm against cold: %ld walks carried (%ld within their slack), largest difference %.3g m\n",
+              sweep.warm_walks, sweep.slack_walks, sweep.warm_error);
 }
 
 }  // namespace gf::sim::testing

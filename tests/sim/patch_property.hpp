@@ -15,6 +15,7 @@ struct PropertySweep {
   long meshes = 0;          ///< meshes generated
   long failures = 0;        ///< broken properties (each patch counts once)
   long warm_walks = 0;      ///< warm against cold: walks carried from the primed cache
+  long slack_walks = 0;     ///< of them, carried within their slack (crossings unchecked)
   double warm_error = 0.0;  ///< and the largest distance of a carried point from its cold one (m)
   std::string first_failure;  ///< what broke first, with the mesh kind, seed and inputs
 };
@@ -26,14 +27,15 @@ struct PropertySweep {
 /// patch has a finite radius within r_max, at most n_sgo SGOs, every SGO and inner point finite
 /// and on the surface (within 1e-9 of the mesh's diagonal), every walk no longer than its d_i and
 /// within its crossing budget, and load shares summing to 1. With `warm_vs_cold`, each patch is
-/// also computed with warm-started walks carried from the same contact moved by 1e-6 of the
-/// mesh's diagonal (and its normal turned 1e-6 rad), and every point must lie within 1e-9 m of
-/// the cold patch's.
+/// also computed with warm-started walks carried from the same contact moved twice by 1e-6 of
+/// the mesh's diagonal (and its normal turned 1e-6 rad each time), and every point and path
+/// point must lie within 1e-9 m of the cold patch's.
 PropertySweep sweepPatchProperties(std::uint32_t seed, long patches, bool warm_vs_cold = false);
 
 /// Runs the sweep as a gtest check: all `patches` computed, none broken, and most of them carrying
 /// points (at least 10 per patch on average); prints what it checked.
-/// With `warm_vs_cold`, also walks carried (3 per patch on average; only face hits carry).
+/// With `warm_vs_cold`, also walks carried (3 per patch on average; only face hits carry) and
+/// more than one per patch within its slack.
 void expectSweepHolds(std::uint32_t seed, long patches, bool warm_vs_cold = false);
 
 }  // namespace gf::sim::testing

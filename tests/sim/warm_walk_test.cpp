@@ -1,6 +1,7 @@
 // Warm-started walks (sim/warm_walk.hpp) against walks from the contact point: every bundled
 // scene run with World::checkWarmWalks, which computes each step's patches from scratch too;
-// every SGO and filled point within 1e-9 m of the from-scratch one, and most walks carried.
+// every SGO, filled point and path point within 1e-9 m of the from-scratch one, and most walks
+// carried, most of them within their slack (no crossing checked).
 // Lives in tests/sim: the scene files are read by gf_scene, which the sim tests link.
 #include <gtest/gtest.h>
 
@@ -39,8 +40,9 @@ sim::WorldCounters runChecked(const sim::SceneDesc& scene) {
 }
 
 void expectAgreement(const std::string& what, const sim::WorldCounters& c) {
-  std::printf("%s: %ld patches checked, %ld walks carried, %ld from the contact, largest difference %.3g m\n",
-              what.c_str(), c.walk_checks, c.warm_walks, c.cold_walks, c.walk_check_error);
+  std::printf("%s: %ld patches checked, %ld walks carried (%ld within their slack), %ld from the contact, largest "
+              "difference %.3g m\n",
+              what.c_str(), c.walk_checks, c.warm_walks, c.slack_walks, c.cold_walks, c.walk_check_error);
   EXPECT_EQ(c.walk_checks, c.patch_calls) << what << ": every patch checked";
   EXPECT_LE(c.walk_check_error, kAgreement) << what;
 }
@@ -53,9 +55,12 @@ TEST(WarmWalks, EveryBundledSceneAgreesWithWalksFromTheContact) {
     const sim::WorldCounters c = runChecked(TestContext::load(name, kSceneSgo, {}));
     expectAgreement(name, c);
     checked += c.walk_checks, carried += c.warm_walks, cold += c.cold_walks;
-    // The held pinch carries nearly every walk (its contact stays on one face).
+    // The held pinch carries nearly every walk (its contact stays on one face), most of them
+    // within their slack: both ways of carrying are compared.
     if (name == "fig8-pinch-oscillation") {
       EXPECT_GT(c.warm_walks, 99 * c.cold_walks) << name;
+      EXPECT_GT(c.slack_walks, c.warm_walks / 2) << name;
+      EXPECT_GT(c.warm_walks - c.slack_walks, c.cold_walks) << name;
     }
   }
   // The comparison is not vacuous: most walks of the scenes were carried. (A walk stopped short
@@ -72,7 +77,9 @@ TEST(WarmWalks, FilledPinchAtSixtyFourSgosAgrees) {
         TestContext::load("fig8-pinch-oscillation", 64, {std::string("world.contact_solver=") + solver});
     scene.duration = 8.0;
     for (sim::FingerDesc& f : scene.fingers) f.patch.fill = sim::PatchFill::kFilled;
-    expectAgreement(std::string("fig8 filled 64 ") + solver, runChecked(scene));
+    const sim::WorldCounters c = runChecked(scene);
+    expectAgreement(std::string("fig8 filled 64 ") + solver, c);
+    EXPECT_GT(c.slack_walks, c.warm_walks / 2) << solver;
   }
 }
 
