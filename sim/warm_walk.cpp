@@ -141,7 +141,7 @@ void keyWalkCache(const Mesh* mesh, int n_sgo, const SurfacePoint& hit, bool was
   if (!same) {
     cache.mesh = mesh, cache.n_sgo = n_sgo, cache.hit_face = hit.face;
     cache.feature = hit.feature, cache.feature_index = hit.feature_index;
-    for (WalkPath& p : cache.paths) p.cached = false;
+    for (int i = 0; i < kMaxSgo; ++i) uncachePath(cache, i);
   }
   cache.plane_face = -1;
   cache.valid = true;
@@ -204,7 +204,10 @@ bool carryWalk(const Mesh& m, const WalkLimits& limits, const WalkStart& s, int 
   Vec3* out = path_points.data() + mark;
   out[0] = s.from;
   const bool unchecked = withinSlack(p, limits, a);
-  if (unchecked) {
+  p.pending = unchecked && !s.place;
+  if (p.pending) {
+    p.line_hx = a.hx, p.line_hy = a.hy, p.line_dx = a.dx, p.line_dy = a.dy;
+  } else if (unchecked) {
     placeCrossings(p, first, a, out + 1);
   } else if (!checkCrossings(p, first, limits, a, out + 1)) {
     return fail(path_points, mark);
@@ -225,6 +228,14 @@ bool carryWalk(const Mesh& m, const WalkLimits& limits, const WalkStart& s, int 
   end_face = p.end_face;
   ++cache.warm_walks;
   cache.slack_walks += unchecked;
+  return true;
+}
+
+bool pendingCrossings(const WalkCache& cache, int i, Vec3* out) {
+  const WalkPath& p = cache.paths[static_cast<std::size_t>(i)];
+  if (!p.pending) return false;
+  const WalkCrossing* first = cache.crossings.data() + static_cast<std::ptrdiff_t>(i) * kWarmCrossingsPerSgo;
+  placeCrossings(p, first, {p.line_hx, p.line_hy, p.line_dx, p.line_dy, 0.0}, out);
   return true;
 }
 
