@@ -42,6 +42,7 @@ struct WalkContext {
   bool has_limit;
   double cos_facing;  // a face with cos(angle to normal) <= this faces away from the press
   double cos_start;   // at an edge or vertex hit, faces this well aligned are start faces
+  WalkLimits limits{normal, cos_limit, has_limit, cos_facing};  // the above, for carried walks
 };
 
 // Orthonormal tangent basis of a unit normal (Duff et al., JCGT 2017, branchless form).
@@ -416,14 +417,13 @@ Sgo walkRadial(const WalkContext& ctx, const Start& start, const Vec3& from, dou
   if (!cache) return walk(ctx, start, from, d, out);
   Vec3 dir = start.dir;
   if (inPlane(ctx.mesh.faceNormal(start.face), dir) && d > 0.0) {
-    const WalkLimits limits{ctx.normal, ctx.cos_limit, ctx.has_limit, ctx.cos_facing};
     // The budget is at least max_face_crossings: worked out only for a path crossing more.
     const int crossings = cache->paths[static_cast<std::size_t>(i)].crossings;
     const long budget = crossings > ctx.s.max_face_crossings ? walkBudget(ctx, start.face, d) : ctx.s.max_face_crossings;
     // A ring's crossings within the slack are left pending (the SGOs do not read them).
     const WalkStart ws{start.face, start.side, dir, from, d, budget, ctx.s.fill == PatchFill::kFilled};
     Sgo sgo{from, start.face, -1, d, WalkStop::kDistance, 0.0};
-    if (carryWalk(ctx.mesh, limits, ws, i, *cache, out.path_points, sgo.position, sgo.face)) return sgo;
+    if (carryWalk(ctx.mesh, ctx.limits, ws, i, *cache, out.path_points, sgo.position, sgo.face)) return sgo;
   }
   uncachePath(*cache, i);
   ++cache->cold_walks;

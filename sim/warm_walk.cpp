@@ -189,14 +189,15 @@ bool carryWalk(const Mesh& m, const WalkLimits& limits, const WalkStart& s, int 
                std::vector<Vec3>& path_points, Vec3& end, int& end_face) {
   WalkPath& p = cache.paths[static_cast<std::size_t>(i)];
   if (!p.cached || p.start_face != s.face || p.side != s.side || p.crossings > s.budget) return false;
-  // The start and direction in the start face's plane.
+  // The start and direction in the start face's plane (the start once a patch: the contact).
   if (cache.plane_face != s.face || cache.plane_side != s.side) {
     cache.plane = startPlane(m, s.face, s.side);
     cache.plane_face = s.face, cache.plane_side = s.side;
+    const Vec3 rel = s.from - cache.plane.origin;
+    cache.from_x = rel.dot(cache.plane.x_axis), cache.from_y = rel.dot(cache.plane.y_axis);
   }
   const StartPlane& plane = cache.plane;
-  const Vec3 rel = s.from - plane.origin;
-  const Line a{rel.dot(plane.x_axis), rel.dot(plane.y_axis), s.dir.dot(plane.x_axis), s.dir.dot(plane.y_axis), s.d};
+  const Line a{cache.from_x, cache.from_y, s.dir.dot(plane.x_axis), s.dir.dot(plane.y_axis), s.d};
   WalkCrossing* first = cache.crossings.data() + static_cast<std::ptrdiff_t>(i) * kWarmCrossingsPerSgo;
   // The path's points: from, the crossings, the end.
   const std::size_t mark = path_points.size();

@@ -83,6 +83,7 @@ struct WalkCache {
   int plane_face = -1;
   double plane_side = 1.0;
   StartPlane plane;
+  double from_x = 0.0, from_y = 0.0;  ///< the walks' start (the contact) in that plane (m)
   long warm_walks = 0;  ///< walks carried from the last step (cumulative)
   long slack_walks = 0;  ///< of which carried within their slack, unchecked (cumulative)
   long cold_walks = 0;  ///< walks done from the contact (cumulative)
@@ -106,7 +107,7 @@ struct WalkStart {
   int face = -1;
   double side = 1.0;
   Vec3 dir = Vec3::Zero();
-  Vec3 from = Vec3::Zero();
+  Vec3 from = Vec3::Zero();  ///< the same for every walk of a patch (the contact)
   double d = 0.0;
   long budget = 0;  ///< edge crossings allowed (or any bound below it the path keeps within)
   /// Within the slack, place the crossings into the path points; false: leave them pending
