@@ -70,7 +70,7 @@ const TiltDirections kTiltDirectionTable = makeTiltDirections();
 
 void aggregatePatch(const btVector3* points, const double* shares, const double* separations, int count,
                     const btVector3& n, const btVector3& on_plane, double stiffness, double damping,
-                    btVector3& centre, PressRows& out) {
+                    btVector3& centre, PressRows& out, double* lever_lengths) {
   btVector3 c(0, 0, 0);
   double depth = 0.0;
   for (int i = 0; i < count; ++i) {
@@ -87,13 +87,16 @@ void aggregatePatch(const btVector3* points, const double* shares, const double*
   btPlaneSpace1(n, t1, t2);
   std::array<btVector3, kStoredLevers> levers;
   double sxx = 0.0, sxy = 0.0, syy = 0.0, lever = 0.0;
+  // Copies the stores to lever_lengths cannot alias (so they stay in registers).
+  const btVector3 at = centre, across = n;
   for (int i = 0; i < count; ++i) {
     double length = 0.0;
-    const btVector3 u = leverOf(points[i], centre, n, &length);
+    const btVector3 u = leverOf(points[i], at, across, &length);
     if (i < kStoredLevers) levers[static_cast<std::size_t>(i)] = u;
     const double x = u.dot(t1), y = u.dot(t2), w = shares[i];
     sxx += w * x * x, sxy += w * x * y, syy += w * y * y;
     lever += w * length;
+    lever_lengths[i] = length;
   }
   const double phi = 0.5 * std::atan2(2.0 * sxy, sxx - syy);
   const double cp = std::cos(phi), sp = std::sin(phi);

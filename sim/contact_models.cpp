@@ -58,10 +58,14 @@ btVector3 onTangentPlane(const btVector3& centre, const TrueContact& truth) {
 
 // The points an aggregate block stands for, into `out` (the true contact first): as in the
 // points solver only the points that press (depth <= 0) push; while none presses (within the
-// release gap) all of them do, speculatively. Returns how many and the sum of their shares.
+// release gap) all of them do, speculatively. Returns how many and the sum of their shares,
+// and where the rim's SGOs among them are.
 struct Pressing {
   int count = 0;
   double share = 0.0;
+  bool all = false;    // none pressed: all points are in
+  int first_sgo = 0;   // the first SGO's index (1 when the true contact is in)
+  int rim = 0;         // rim SGOs in (they come first among the SGOs)
 };
 Pressing pressingPoints(const FingerContact& c, double truth_share, AggregateScratch& out) {
   Pressing p;
@@ -76,10 +80,14 @@ Pressing pressingPoints(const FingerContact& c, double truth_share, AggregateScr
   for (int pass = 0; pass < 2 && !(p.share > 0.0); ++pass) {
     const bool all = pass == 1;
     p = {};
+    p.all = all;
     if (all || c.truth.separation <= 0.0) add(c.truth.point_world, truth_share, c.truth.separation);
+    p.first_sgo = p.count;
+    const int rim = static_cast<int>(c.record.patch.sgos.size());
     for (int i = 0; i < c.sgo_count; ++i) {
       if (all || c.sgo_separation[i] <= 0.0) {
         add(c.sgo_world[i], injectedPoint(c.record.patch, i).load_share, c.sgo_separation[i]);
+        p.rim += i < rim;
       }
     }
   }
@@ -132,6 +140,13 @@ double patchRolling(const FingerContact& c, const FrictionBlock& block) {
   return 0.0;
 }
 
+// The mean of x[0 .. count), summed in order.
+double meanOf(const double* x, int count) {
+  double sum = 0.0;
+  for (int i = 0; i < count; ++i) sum += x[i];
+  return sum / count;
+}
+
 // Points solver: the true contact and the patch's points are contact rows of Bullet's solver,
 // each with its share of the stiffness and damping (by load share) and no friction of its own;
 // the contact's friction is one block at the load's centre with the model's `torsion` limit,
@@ -171,9 +186,10 @@ void addAggregateRows(const ContactToSolve& in, SolveRows& out) {
   block.aggregate = true;
   aggregatePatch(s.points.data(), s.shares.data(), s.separations.data(), p.count, block.normal,
                  c.truth.point_world, in.stiffness * p.share, in.damping * p.share, block.centre,
-                 block.press);
+                 block.press, s.levers.data());
   block.torsion = block.friction * block.press.mean_lever;
-  block.rolling = patchRolling(c, block);
+  // The rim's pressing SGOs' levers are patchRolling's (the same points, centre and normal).
+  block.rolling = !p.all && p.rim > 0 ? meanOf(s.levers.data() + p.first_sgo, p.rim) : patchRolling(c, block);
   if (in.memory) {
     block.press.warm_normal = in.memory->normal_impulse;
     block.press.warm_tilt = in.memory->tilt_impulse;

@@ -1,8 +1,14 @@
 #include "sim/contact_record.hpp"
 
+#include <array>
+
+#include "sim/assert.hpp"
+#include "sim/warm_walk.hpp"
+
 namespace gf::sim {
 
-void toContactSnapshot(const ContactRecord& record, const Pose& body_frame, ContactSnapshot& out) {
+void toContactSnapshot(const ContactRecord& record, const Pose& body_frame, ContactSnapshot& out,
+                       const WalkCache* walks) {
   const Patch& p = record.patch;
   out.body = record.body;
   out.point_world = body_frame.toWorld(record.contact.point_local);
@@ -17,7 +23,18 @@ void toContactSnapshot(const ContactRecord& record, const Pose& body_frame, Cont
   if (p.sgos.empty()) return;
   for (const Sgo& s : p.sgos) out.sgos_world.push_back(body_frame.toWorld(s.position));
   for (const Sgo& s : p.inner) out.sgos_world.push_back(body_frame.toWorld(s.position));
-  for (const Vec3& q : p.path_points) out.path_points_world.push_back(body_frame.toWorld(q));
+  GF_ASSERT((walks || !p.crossings_pending) && "a patch with pending crossings needs its walk cache");
+  for (std::size_t k = 0; k < p.sgos.size(); ++k) {
+    // A carried walk's crossings left pending are placed from the walk cache.
+    std::array<Vec3, kWarmCrossingsPerSgo> pending;
+    const bool placed = p.crossings_pending && pendingCrossings(*walks, p.sgos[k].radial, pending.data());
+    const std::int32_t first = p.path_offsets[k], last = p.path_offsets[k + 1];
+    for (std::int32_t j = first; j < last; ++j) {
+      const bool crossing = placed && j > first && j + 1 < last;
+      out.path_points_world.push_back(body_frame.toWorld(crossing ? pending[static_cast<std::size_t>(j - first - 1)]
+                                                                  : p.path_points[static_cast<std::size_t>(j)]));
+    }
+  }
   out.path_offsets.assign(p.path_offsets.begin(), p.path_offsets.end());
 }
 

@@ -18,7 +18,9 @@ struct ContactRecord {
 
 /// `record` at `body_frame`, the pose of the frame it is local to: point, normal, SGOs and paths
 /// transformed to the world frame with that one pose. Reuses the storage of `out`; does not
-/// allocate once it has held as many SGOs and path points. Any thread.
-void toContactSnapshot(const ContactRecord& record, const Pose& body_frame, ContactSnapshot& out);
+/// allocate once it has held as many SGOs and path points. A patch whose crossings are pending
+/// (Patch::crossings_pending) takes them from `walks`, the cache it was computed with. Any thread.
+void toContactSnapshot(const ContactRecord& record, const Pose& body_frame, ContactSnapshot& out,
+                       const WalkCache* walks = nullptr);
 
 }  // namespace gf::sim

@@ -42,6 +42,7 @@ struct WalkContext {
   bool has_limit;
   double cos_facing;  // a face with cos(angle to normal) <= this faces away from the press
   double cos_start;   // at an edge or vertex hit, faces this well aligned are start faces
+  WalkLimits limits{normal, cos_limit, has_limit, cos_facing};  // the above, for carried walks
 };
 
 // Orthonormal tangent basis of a unit normal (Duff et al., JCGT 2017, branchless form).
@@ -348,6 +349,7 @@ void resetPatch(int n, Patch& out) {
   out.centre_area = 0.0;
   out.path_points.clear();
   out.path_offsets.clear();
+  out.crossings_pending = false;
   if (out.radial.capacity() < static_cast<std::size_t>(n)) {
     out.radial.reserve(kMaxSgo);
     out.d_i.reserve(kMaxSgo);
@@ -415,15 +417,15 @@ Sgo walkRadial(const WalkContext& ctx, const Start& start, const Vec3& from, dou
   if (!cache) return walk(ctx, start, from, d, out);
   Vec3 dir = start.dir;
   if (inPlane(ctx.mesh.faceNormal(start.face), dir) && d > 0.0) {
-    const WalkLimits limits{ctx.normal, ctx.cos_limit, ctx.has_limit, ctx.cos_facing};
     // The budget is at least max_face_crossings: worked out only for a path crossing more.
     const int crossings = cache->paths[static_cast<std::size_t>(i)].crossings;
     const long budget = crossings > ctx.s.max_face_crossings ? walkBudget(ctx, start.face, d) : ctx.s.max_face_crossings;
-    const WalkStart ws{start.face, start.side, dir, from, d, budget};
+    // A ring's crossings within the slack are left pending (the SGOs do not read them).
+    const WalkStart ws{start.face, start.side, dir, from, d, budget, ctx.s.fill == PatchFill::kFilled};
     Sgo sgo{from, start.face, -1, d, WalkStop::kDistance, 0.0};
-    if (carryWalk(ctx.mesh, limits, ws, i, *cache, out.path_points, sgo.position, sgo.face)) return sgo;
+    if (carryWalk(ctx.mesh, ctx.limits, ws, i, *cache, out.path_points, sgo.position, sgo.face)) return sgo;
   }
-  cache->paths[static_cast<std::size_t>(i)].cached = false;
+  uncachePath(*cache, i);
   ++cache->cold_walks;
   return walk(ctx, start, from, d, out, cache, i);
 }
@@ -541,11 +543,11 @@ void computePatch(const Mesh& mesh, const PatchContact& contact, const Vec3& v, 
   const Vec3 v_t = v - v.dot(n) * n;
   const bool filled = s.fill == PatchFill::kFilled;
   const StretchLogs logs(s);
-  // Step 4: per radial vector, its start face (Fig. 3), Eq. 2 distance and the walk (Alg. 1),
-  // carried from the last step's path when the cache holds this contact's.
-  // Walks carried on face hits only (edge and vertex scenes are sensitive to their rounding).
+  // Step 4: per radial vector, its start face (Fig. 3), Eq. 2 distance and the walk (Alg. 1), carried
+  // from the cache on face hits only (edge and vertex scenes are sensitive to rounding), crossings pending.
   WalkCache* carry = warm && out.hit.feature == Feature::kFace ? warm : nullptr;
   if (carry) keyWalkCache(&mesh, s.n_sgo, out.hit, was_valid, *carry);
+  out.crossings_pending = carry && !filled;
   out.path_offsets.push_back(0);
   const RingAngles& ring = ringAngles(s.n_sgo);
   // On a face hit every radial vector starts on the hit face, turned onto it by one rotation
@@ -561,7 +563,7 @@ void computePatch(const Mesh& mesh, const PatchContact& contact, const Vec3& v, 
     out.radial.push_back(usable ? start.dir : r);
     out.d_i.push_back(usable ? stretched(out.radius, v_t, r, s, logs) : 0.0);
     if (!usable) {
-      if (carry) carry->paths[static_cast<std::size_t>(i)].cached = false;
+      if (carry) uncachePath(*carry, i);
       out.radial_stop.push_back(WalkStop::kDropped);
       continue;
     }
@@ -579,6 +581,14 @@ void computePatch(const Mesh& mesh, const PatchContact& contact, const Vec3& v, 
   } else {
     shareRingLoad(out.hit.point, n, out.radius, out);
   }
+}
+
+void placePendingCrossings(const WalkCache& warm, Patch& patch) {
+  if (!patch.crossings_pending) return;
+  for (std::size_t k = 0; k < patch.sgos.size(); ++k) {
+    pendingCrossings(warm, patch.sgos[k].radial, patch.path_points.data() + patch.path_offsets[k] + 1);
+  }
+  patch.crossings_pending = false;
 }
 
 }  // namespace gf::sim

@@ -84,6 +84,9 @@ struct Patch {
   double centre_area = 0.0;
   std::vector<Vec3> path_points;           ///< walked paths, concatenated (m)
   std::vector<std::int32_t> path_offsets;  ///< SGO k's path: [offsets[k], offsets[k+1])
+  /// A ring computed with a WalkCache: the crossings of the walks carried within their slack
+  /// are not in `path_points` (their slots unset) until placePendingCrossings places them.
+  bool crossings_pending = false;
 };
 
 /// Tolerance (rad) of every angle comparison of the patch: threshold ties and whether a normal
@@ -136,10 +139,16 @@ struct WalkCache;
 /// computePatch with warm-started walks (warm_walk.hpp): on a face hit, each radial vector's
 /// walk is carried from the path `warm` holds from the last call for the same finger and body
 /// when that path still holds, else walked from the contact; `warm` then holds this patch's
-/// paths. Edge and vertex hits walk from the contact. SGOs agree
+/// paths. Edge and vertex hits walk from the contact. A ring's path points may be left pending
+/// (Patch::crossings_pending). SGOs agree
 /// with computePatch's to rounding (tests: 1e-9 m). Null `warm`: computePatch. Any thread;
 /// allocates only the first time a cache is used.
 void computePatch(const Mesh& mesh, const PatchContact& contact, const Vec3& v, const PatchSettings& settings,
                   Patch& out, WalkCache* warm);
+
+/// Places the crossings `patch` left pending (Patch::crossings_pending) from `warm`, the cache
+/// it was computed with, before that cache computes another patch: bitwise the points placed at
+/// once. Any thread; no allocation.
+void placePendingCrossings(const WalkCache& warm, Patch& patch);
 
 }  // namespace gf::sim

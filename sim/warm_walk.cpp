@@ -141,7 +141,7 @@ void keyWalkCache(const Mesh* mesh, int n_sgo, const SurfacePoint& hit, bool was
   if (!same) {
     cache.mesh = mesh, cache.n_sgo = n_sgo, cache.hit_face = hit.face;
     cache.feature = hit.feature, cache.feature_index = hit.feature_index;
-    for (WalkPath& p : cache.paths) p.cached = false;
+    for (int i = 0; i < kMaxSgo; ++i) uncachePath(cache, i);
   }
   cache.plane_face = -1;
   cache.valid = true;
@@ -189,14 +189,15 @@ bool carryWalk(const Mesh& m, const WalkLimits& limits, const WalkStart& s, int 
                std::vector<Vec3>& path_points, Vec3& end, int& end_face) {
   WalkPath& p = cache.paths[static_cast<std::size_t>(i)];
   if (!p.cached || p.start_face != s.face || p.side != s.side || p.crossings > s.budget) return false;
-  // The start and direction in the start face's plane.
+  // The start and direction in the start face's plane (the start once a patch: the contact).
   if (cache.plane_face != s.face || cache.plane_side != s.side) {
     cache.plane = startPlane(m, s.face, s.side);
     cache.plane_face = s.face, cache.plane_side = s.side;
+    const Vec3 rel = s.from - cache.plane.origin;
+    cache.from_x = rel.dot(cache.plane.x_axis), cache.from_y = rel.dot(cache.plane.y_axis);
   }
   const StartPlane& plane = cache.plane;
-  const Vec3 rel = s.from - plane.origin;
-  const Line a{rel.dot(plane.x_axis), rel.dot(plane.y_axis), s.dir.dot(plane.x_axis), s.dir.dot(plane.y_axis), s.d};
+  const Line a{cache.from_x, cache.from_y, s.dir.dot(plane.x_axis), s.dir.dot(plane.y_axis), s.d};
   WalkCrossing* first = cache.crossings.data() + static_cast<std::ptrdiff_t>(i) * kWarmCrossingsPerSgo;
   // The path's points: from, the crossings, the end.
   const std::size_t mark = path_points.size();
@@ -204,7 +205,10 @@ bool carryWalk(const Mesh& m, const WalkLimits& limits, const WalkStart& s, int 
   Vec3* out = path_points.data() + mark;
   out[0] = s.from;
   const bool unchecked = withinSlack(p, limits, a);
-  if (unchecked) {
+  p.pending = unchecked && !s.place;
+  if (p.pending) {
+    p.line_hx = a.hx, p.line_hy = a.hy, p.line_dx = a.dx, p.line_dy = a.dy;
+  } else if (unchecked) {
     placeCrossings(p, first, a, out + 1);
   } else if (!checkCrossings(p, first, limits, a, out + 1)) {
     return fail(path_points, mark);
@@ -225,6 +229,14 @@ bool carryWalk(const Mesh& m, const WalkLimits& limits, const WalkStart& s, int 
   end_face = p.end_face;
   ++cache.warm_walks;
   cache.slack_walks += unchecked;
+  return true;
+}
+
+bool pendingCrossings(const WalkCache& cache, int i, Vec3* out) {
+  const WalkPath& p = cache.paths[static_cast<std::size_t>(i)];
+  if (!p.pending) return false;
+  const WalkCrossing* first = cache.crossings.data() + static_cast<std::ptrdiff_t>(i) * kWarmCrossingsPerSgo;
+  placeCrossings(p, first, {p.line_hx, p.line_hy, p.line_dx, p.line_dy, 0.0}, out);
   return true;
 }
 

@@ -56,6 +56,10 @@ struct WalkPath {
   double move_slack = 0.0;    ///< largest |start moved| + ref_d * turn (m): crossings, start side
   double end_slack = 0.0;     ///< largest move + |length changed| (m): the end in its face
   double normal_slack = 0.0;  ///< largest |normal turned|: the faces on the way within thresholds
+  /// The last carry was within the slack and left its crossings unplaced (WalkStart::place);
+  /// they lie where this line (start, unit direction in the start plane, m) meets their edges.
+  bool pending = false;
+  double line_hx = 0.0, line_hy = 0.0, line_dx = 0.0, line_dy = 0.0;
 };
 
 /// The start face's plane: origin at its corner 0, x along its edge 0, y = oriented normal x x.
@@ -79,6 +83,7 @@ struct WalkCache {
   int plane_face = -1;
   double plane_side = 1.0;
   StartPlane plane;
+  double from_x = 0.0, from_y = 0.0;  ///< the walks' start (the contact) in that plane (m)
   long warm_walks = 0;  ///< walks carried from the last step (cumulative)
   long slack_walks = 0;  ///< of which carried within their slack, unchecked (cumulative)
   long cold_walks = 0;  ///< walks done from the contact (cumulative)
@@ -102,15 +107,24 @@ struct WalkStart {
   int face = -1;
   double side = 1.0;
   Vec3 dir = Vec3::Zero();
-  Vec3 from = Vec3::Zero();
+  Vec3 from = Vec3::Zero();  ///< the same for every walk of a patch (the contact)
   double d = 0.0;
   long budget = 0;  ///< edge crossings allowed (or any bound below it the path keeps within)
+  /// Within the slack, place the crossings into the path points; false: leave them pending
+  /// (pendingCrossings places them when they are read).
+  bool place = true;
 };
 
 /// Keys `cache` to a patch on `mesh` with n_sgo radial vectors and contact `hit` (face and
 /// feature): its paths stay if `was_valid` and the key is the same, else they start uncached.
 /// Sizes its storage on first use (allocates once).
 void keyWalkCache(const Mesh* mesh, int n_sgo, const SurfacePoint& hit, bool was_valid, WalkCache& cache);
+
+/// Radial i's path is not carried (nor its crossings pending) until a walk records it again.
+inline void uncachePath(WalkCache& cache, int i) {
+  WalkPath& p = cache.paths[static_cast<std::size_t>(i)];
+  p.cached = p.pending = false;
+}
 
 /// Records one walk from the contact into a cache as it goes: its crossings and end unfolded
 /// into the start face's plane, so the next step can carry it. Null cache: records nothing.
@@ -134,10 +148,16 @@ class WalkRecorder {
 /// Carries radial `i`'s path of `cache` to the start `s`: on success appends the path (from,
 /// crossings, end) to `path_points`, updates the cache and returns true with the end's face in
 /// `end_face`; on failure leaves `path_points` as it was (and the path to be walked from the
-/// contact). Within the path's slack its crossings are placed without checks (they hold), else
-/// each is checked and the slack renewed. Any thread; no allocation once `path_points` has its
+/// contact). Within the path's slack its crossings are placed without checks (they hold), or
+/// with `s.place` false left pending (their points unset), else each is checked and the slack
+/// renewed. Any thread; no allocation once `path_points` has its
 /// capacity.
 bool carryWalk(const Mesh& mesh, const WalkLimits& limits, const WalkStart& s, int i, WalkCache& cache,
                std::vector<Vec3>& path_points, Vec3& end, int& end_face);
+
+/// Radial i's crossings its last carried walk left pending, placed into out[0 .. crossings)
+/// (body frame, m), bitwise where carryWalk would have placed them; false (out untouched) when
+/// none are pending. Any thread; no allocation.
+bool pendingCrossings(const WalkCache& cache, int i, Vec3* out);
 
 }  // namespace gf::sim

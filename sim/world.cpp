@@ -244,7 +244,8 @@ void World::snapshot(Snapshot& out) const {
     // One pose per contact: the body's now, after the step that computed its patch.
     for (int k = 0; k < f.contact_count; ++k) {
       const ContactRecord& r = f.contacts[k].record;
-      toContactSnapshot(r, w.bodyFrame(r.body), fs.contacts[k]);
+      // Contact k's walks are memory k's since the step (rememberImpulses).
+      toContactSnapshot(r, w.bodyFrame(r.body), fs.contacts[k], &f.memory_walks[static_cast<std::size_t>(k)]);
     }
   }
 }

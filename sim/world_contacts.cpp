@@ -150,7 +150,8 @@ void World::Impl::computeContactPatch(const Finger& f, FingerContact& c, const C
 
 // checkWarmWalks: the contact's patch from scratch, and the largest distance between its points
 // (SGOs, filled points and the walks' path points) and the patch's.
-void World::Impl::checkWalks(const Mesh& mesh, const Finger& f, const FingerContact& c) {
+void World::Impl::checkWalks(const Mesh& mesh, const Finger& f, FingerContact& c) {
+  placePendingCrossings(c.walks, c.record.patch);
   const Patch& warm = c.record.patch;
   computePatch(mesh, c.record.contact, c.v_local, f.settings.patch, check_patch);
   ++counters.walk_checks;

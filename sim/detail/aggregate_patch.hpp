@@ -39,10 +39,11 @@ struct PressRows {
 /// The load centre and pressing rows of a patch: `count` points (world), their load shares
 /// (summing to 1) and separations (m, negative when penetrating), with the contact's outward
 /// normal (unit) and total stiffness and damping. The centre is the share-weighted centroid
-/// moved along `normal` onto the plane through `on_plane`. Does not allocate.
+/// moved along `normal` onto the plane through `on_plane`; each point's distance from the
+/// centre across the normal (m) into lever_lengths[0 .. count). Does not allocate.
 void aggregatePatch(const btVector3* points, const double* shares, const double* separations, int count,
                     const btVector3& normal, const btVector3& on_plane, double stiffness, double damping,
-                    btVector3& centre, PressRows& out);
+                    btVector3& centre, PressRows& out, double* lever_lengths);
 
 /// cos and sin of the tilt limit's directions d_j at 2 pi j / kTiltDirections, the quarter
 /// turns exact (cos(pi / 2) would be 6e-17, and on a flat patch a ratio of two such rounding

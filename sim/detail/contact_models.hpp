@@ -32,6 +32,7 @@ struct AggregateScratch {
   std::array<btVector3, kMaxPatchPoints + 1> points;    ///< world (m)
   std::array<double, kMaxPatchPoints + 1> shares;       ///< of the load; sum to 1 once scaled
   std::array<double, kMaxPatchPoints + 1> separations;  ///< m, negative when pressing
+  std::array<double, kMaxPatchPoints + 1> levers;       ///< m, from the load's centre across the normal
 };
 
 /// Where models put the rows of this step's contacts (the World's, valid during beforeSolve).

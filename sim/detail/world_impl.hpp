@@ -91,7 +91,7 @@ struct World::Impl final : SolveHooks {
   void recordContact(const Finger& f, const ContactMemory* mem, FingerContact& c) const;
   void computeContactPatch(const Finger& f, FingerContact& c, const ContactMemory* mem);
   void placePatchPoints(FingerContact& c, const ContactMemory* mem);  ///< world points, depths
-  void checkWalks(const Mesh& mesh, const Finger& f, const FingerContact& c);  ///< checkWarmWalks
+  void checkWalks(const Mesh& mesh, const Finger& f, FingerContact& c);  ///< checkWarmWalks
   void rememberImpulses(Finger& f);  ///< each contact's ContactMemory for the next step
 
   // Step safety (world_safety.cpp).

@@ -43,8 +43,9 @@ struct HandPatch {
   }
   PressRows rows(btVector3& centre) const {
     PressRows out;
+    std::vector<double> levers(points.size());
     aggregatePatch(points.data(), shares.data(), depths.data(), static_cast<int>(points.size()), n, origin, 800.0, 4.0,
-                   centre, out);
+                   centre, out, levers.data());
     return out;
   }
 };

@@ -271,6 +271,7 @@ std::string checkWarm(const Mesh& mesh, const PatchSettings& s, const PatchConta
   }
   const long warm_before = cache.warm_walks, slack_before = cache.slack_walks;
   computePatch(mesh, c, v, s, warm, &cache);
+  placePendingCrossings(cache, warm);
   sweep.warm_walks += cache.warm_walks - warm_before;
   sweep.slack_walks += cache.slack_walks - slack_before;
   if (warm.sgos.size() != p.sgos.size() || warm.inner.size() != p.inner.size() ||
