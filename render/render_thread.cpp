@@ -141,6 +141,9 @@ void drawCloseUps(Gpu& gpu, const sim::SceneDesc& desc, const sim::Snapshot& sna
   settings.ground = false;   // a camera under a lifted body is under the ground
   settings.patch_highlight = true;
   gpu.scene.setSettings(settings);
+  // Close-ups draw a shadow map of their own (no fingers cast shadows) and leave none behind: the
+  // frame of the same instant, drawn after them, draws its own.
+  gpu.scene.redrawShadows();
   sim::Snapshot only;
   sim::Camera camera;
   for (std::size_t f = 0; f < snap.fingers.size(); ++f) {
@@ -152,6 +155,7 @@ void drawCloseUps(Gpu& gpu, const sim::SceneDesc& desc, const sim::Snapshot& sna
     writePng(closeUpPath(prefix, desc.fingers[f].name), image);
   }
   gpu.scene.setSettings(saved);
+  gpu.scene.redrawShadows();
 }
 
 void drawChartFile(const ChartSpec& chart, const std::string& path) {

@@ -467,6 +467,8 @@ void SceneRenderer::setSettings(const RenderSettings& settings) {
 
 const RenderSettings& SceneRenderer::settings() const { return impl_->settings; }
 
+void SceneRenderer::redrawShadows() { impl_->shadow_step = -1; }
+
 PixelRect SceneRenderer::draw(const sim::Snapshot& snapshot, const sim::Camera& camera, int width, int height) {
   GF_ASSERT_GL_THREAD();
   GLint target = 0;

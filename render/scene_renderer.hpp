@@ -43,6 +43,10 @@ class SceneRenderer {
   PixelRect draw(const sim::Snapshot& snapshot, const sim::Camera& camera, int width, int height);
   /// Changes the switches for the next draw (close-ups hide the fingers).
   void setSettings(const RenderSettings& settings);
+  /// The next draw draws the shadow map again, even for the instant it was last drawn for: a
+  /// view whose map differs from the frame's (a close-up's, without the fingers) neither reuses
+  /// nor leaves one for a frame of the same instant.
+  void redrawShadows();
   const RenderSettings& settings() const;
 
  private:

@@ -189,6 +189,34 @@ TEST(Session, WritesEveryFrameAndAppliesScriptedInput) {
   EXPECT_NEAR(summary["overlay_changes"][0]["t"].get<double>(), 20.0 / 60.0, 1e-3);
 }
 
+// The files of a folder by name, with their bytes.
+std::map<std::string, std::string> filesIn(const fs::path& folder) {
+  std::map<std::string, std::string> files;
+  for (const auto& e : fs::directory_iterator(folder)) files[e.path().filename().string()] = readFile(e.path());
+  return files;
+}
+
+// A contact close-up at a frame's instant (t = 0.8 s: frame 48) draws its own shadow map, without
+// the fingers, and leaves none behind: the frame of that instant keeps the fingers' shadows, so the
+// frames are the files of a run without close-ups, byte for byte.
+TEST(Session, ACloseUpLeavesTheFrameOfItsInstantItsShadows) {
+  std::map<std::string, std::string> frames[2];
+  for (int run = 0; run < 2; ++run) {
+    SessionOptions options = freshOutput("gf_session_close_up_" + std::to_string(run));
+    options.frames = true;
+    const std::vector<std::string> set = {"duration=1.0", "render.width=320", "render.height=180",
+                                          run == 0 ? "record.contacts=[0.8]" : "record.contacts=[]"};
+    runSession(loadSceneFile(resolveScenePath("fig8-pinch-oscillation"), set), options);
+    const fs::path out(options.out_dir);
+    frames[run] = filesIn(out / "frames");
+    if (run == 0) {
+      EXPECT_TRUE(fs::exists(out / "contacts" / "t0.800-left.png"));
+    }
+  }
+  ASSERT_EQ(frames[0].size(), 61u);
+  EXPECT_TRUE(frames[0] == frames[1]) << "a close-up changed the frame of its instant";
+}
+
 // A realtime run records how its deadlines were kept: the haptic thread's policy (normal when
 // SCHED_FIFO is not asked for, as for a user without privileges), the spin, the late steps per
 // second of the run, and the renderer lowered to nice 10 (any user may choose it). Wall-clock
