@@ -9,8 +9,10 @@
 
 #include "app/commands/commands.hpp"
 #include "app/session/console.hpp"
+#include "render/render_thread.hpp"
 
 int main(int argc, char** argv) {
+  gf::render::keepFreedMemory();  // before any thread: every thread then shares one malloc arena
   CLI::App app{"godfinger: god-finger contact areas for haptic interaction on Bullet", "godfinger"};
   app.require_subcommand(1);
   app.set_version_flag("--version", gf::app::versionText,

@@ -91,6 +91,14 @@ class RenderThread {
   std::unique_ptr<Impl> impl_;
 };
 
+/// Keeps the memory a renderer frees in the process (glibc: one malloc arena for all threads,
+/// freed memory kept up to 256 MB, blocks under 32 MB from the heap), so frames stop giving pages
+/// back and faulting them in again: each page fault costs CPU, and on a virtual machine can stall
+/// the other CPU's timers (a 1 kHz loop woken late). Every RenderThread calls it; a program that
+/// draws should call it first thing in main(), before it starts threads, as `godfinger` does:
+/// threads that already have an arena of their own keep it. Process-wide, idempotent; any thread.
+void keepFreedMemory();
+
 /// Close-up file of finger `finger` (its scene name) for a snapshot written under `prefix`.
 std::string closeUpPath(const std::string& prefix, const std::string& finger);
 
