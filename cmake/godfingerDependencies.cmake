@@ -24,4 +24,6 @@ if("render" IN_LIST godfinger_FIND_COMPONENTS)
   # PNG frames are deflated by libdeflate (zlib streams, level 1 for frames).
   pkg_check_modules(DEFLATE REQUIRED IMPORTED_TARGET libdeflate)
   pkg_check_modules(IMGUI REQUIRED IMPORTED_TARGET imgui)
+  # The browser view's frames are JPEGs encoded by libjpeg-turbo.
+  pkg_check_modules(TURBOJPEG REQUIRED IMPORTED_TARGET libturbojpeg)
 endif()

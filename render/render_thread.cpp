@@ -229,6 +229,7 @@ struct RenderThread::Impl {
     Image image = png ? png->spare() : Image{};
     gpu.frame.read(image);
     frame_ms.push_back(std::chrono::duration<float, std::milli>(Clock::now() - begin).count());
+    if (settings.tap) settings.tap->frame(image, snap, frame_ms.back());
     if (video) video->push(image);
     if (png) png->push(std::move(image));
     return made;

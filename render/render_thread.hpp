@@ -22,6 +22,15 @@ namespace gf::render {
 /// higher yields more).
 constexpr int kBackgroundNice = 10;
 
+/// Receives every frame of the stream as it is drawn, with the Snapshot it shows (a browser
+/// view, app/serve/). Called on the render thread right after the read-back: keep it short
+/// (copy what is needed and return); it must not throw.
+class FrameTap {
+ public:
+  virtual ~FrameTap() = default;
+  virtual void frame(const Image& image, const sim::Snapshot& snapshot, float frame_ms) noexcept = 0;
+};
+
 /// What the render thread draws and where it writes it.
 struct FrameOutputSettings {
   int width = 1280;               ///< pixels (1..1920 wide, 1..1080 high)
@@ -42,6 +51,7 @@ struct FrameOutputSettings {
   /// the thread lowered itself) at nice kBackgroundNice: a realtime haptic loop at nice 0 without
   /// root wins the cores when it wakes, and the frames still get what it leaves.
   bool background_priority = false;
+  FrameTap* tap = nullptr;        ///< also hands each frame of the stream here (not owned)
 };
 
 /// What the render thread did.

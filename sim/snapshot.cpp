@@ -14,6 +14,10 @@ void interpolateSnapshot(const Snapshot& a, const Snapshot& b, double time, Snap
     o.position = (1 - w) * a.bodies[i].position + w * b.bodies[i].position;
     o.orientation = a.bodies[i].orientation.slerp(w, b.bodies[i].orientation);
   }
+  for (std::size_t i = 0; i < out.body_velocities.size() && i < a.body_velocities.size(); ++i) {
+    out.body_velocities[i].first = (1 - w) * a.body_velocities[i].first + w * b.body_velocities[i].first;
+    out.body_velocities[i].second = (1 - w) * a.body_velocities[i].second + w * b.body_velocities[i].second;
+  }
   for (std::size_t f = 0; f < out.fingers.size() && f < a.fingers.size(); ++f) {
     FingerSnapshot& o = out.fingers[f];
     const FingerSnapshot &fa = a.fingers[f], &fb = b.fingers[f];

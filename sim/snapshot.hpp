@@ -4,10 +4,12 @@
 #pragma once
 
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "sim/math.hpp"
 #include "sim/mesh.hpp"
+#include "sim/patch_settings.hpp"
 
 namespace gf::sim {
 
@@ -32,6 +34,7 @@ struct FingerSnapshot {
   Vec3 coupling_force = Vec3::Zero();  ///< force of the coupling on the proxy (N)
   Vec3 feedback_force = Vec3::Zero();  ///< force rendered to the device: -coupling (N)
   int sgo_count = 0;                   ///< SGOs injected this step, over all contacts
+  PatchSettings patch;                 ///< the finger's god-finger settings as given (live ones may change)
   std::vector<ContactSnapshot> contacts;
 };
 
@@ -48,6 +51,8 @@ struct Snapshot {
   long step = 0;
   long nan_recoveries = 0;            ///< steps so far whose result was not finite and was rolled back
   std::vector<Pose> bodies;           ///< each body's description frame
+  /// Each body's linear (m/s) and angular (rad/s) velocity, in the world frame.
+  std::vector<std::pair<Vec3, Vec3>> body_velocities;
   std::vector<FingerSnapshot> fingers;
   HapticTimings timings;
 };

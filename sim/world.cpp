@@ -230,7 +230,12 @@ void World::snapshot(Snapshot& out) const {
   out.step = w.counters.steps;
   out.nan_recoveries = w.counters.nan_recoveries;
   out.bodies.resize(w.bodies.size());
-  for (std::size_t i = 0; i < w.bodies.size(); ++i) out.bodies[i] = bodyPose(static_cast<int>(i));
+  out.body_velocities.resize(w.bodies.size());
+  for (std::size_t i = 0; i < w.bodies.size(); ++i) {
+    const int b = static_cast<int>(i);
+    out.bodies[i] = bodyPose(b);
+    out.body_velocities[i] = {bodyLinearVelocity(b), bodyAngularVelocity(b)};
+  }
   out.fingers.resize(w.fingers.size());
   for (std::size_t i = 0; i < w.fingers.size(); ++i) {
     const Impl::Finger& f = w.fingers[i];
@@ -240,6 +245,7 @@ void World::snapshot(Snapshot& out) const {
     fs.coupling_force = f.force;
     fs.feedback_force = feedbackForce(static_cast<int>(i));
     fs.sgo_count = sgoCount(static_cast<int>(i));
+    fs.patch = f.given;
     fs.contacts.resize(f.contact_count);
     // One pose per contact: the body's now, after the step that computed its patch.
     for (int k = 0; k < f.contact_count; ++k) {

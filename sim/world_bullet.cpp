@@ -91,6 +91,7 @@ void World::Impl::addFinger(int index, const FingerDesc& d) {
 
 // The finger's settings from now on: the scene's effects applied and its model chosen, once.
 void World::Impl::applySettings(Finger& f, const PatchSettings& patch) const {
+  f.given = patch;
   f.settings = effectiveSettings(patch, desc.effects, desc.world.contact_solver);
   f.model = &fingerModel(f.settings.patch.model);
 }

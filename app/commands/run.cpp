@@ -35,6 +35,10 @@ class RunCommand final : public Command {
     run->add_flag("--quiet", quiet_, "No progress lines on stderr");
     run->add_flag("--frames", frames_, "Write frames/000000.png ... at 60 frames per simulated second");
     run->add_option("--video", video_, "Write an MP4 of the frames (H.264, via ffmpeg)");
+    run->add_option("--serve", serve_, "Realtime: serve the browser view on [HOST:]PORT (default host 127.0.0.1; "
+                                       "0: any free port): the frames, the state and live commands");
+    run->add_option("--token", token_, "--serve: require this token from every request (one is generated when "
+                                       "HOST is not loopback)");
     run->add_option("--camera", camera_, "Camera of the scene to render (default: its first)");
     run->add_option("--expectations", expectations_, "check: exit 3 when an [expect] of the scene fails (default); "
                                                      "report: only print them and write them into summary.json")
@@ -73,6 +77,8 @@ class RunCommand final : public Command {
     o.pin_cpus = pin_;
     o.spin_us = spin_us_;
     o.command_line = command_line_;
+    if (!serve_.empty()) o.serve = parseServe(serve_, token_);
+    else if (!token_.empty()) throw InputError("command line", 0, 0, "--token", "goes with --serve");
     return o;
   }
 
@@ -81,7 +87,7 @@ class RunCommand final : public Command {
   std::vector<std::string> overrides_;
   double duration_ = 0.0;
   bool realtime_ = false, frames_ = false, no_fifo_ = false, no_yield_ = false, pin_ = false, quiet_ = false;
-  std::string video_, camera_;
+  std::string video_, camera_, serve_, token_;
   std::string expectations_ = "check";
   double spin_us_ = 0.0;
   std::vector<std::string> command_line_;

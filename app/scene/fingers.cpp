@@ -85,16 +85,47 @@ UdpDeviceDesc readUdpDevice(Reader& r) {
   return u;
 }
 
-// A finger's device: keyframes, a recorded CSV, or a live UDP device (then `udp` is set and
-// the track holds the device at its start, where the proxy starts).
-sim::DeviceTrack readDevice(Reader& parent, const std::string& base_dir, std::optional<UdpDeviceDesc>& udp) {
+// `web = true` with an optional `start`: the browser view's pointer drives the finger.
+WebDeviceDesc readWebDevice(Reader& r, sim::Vec3& start) {
+  const toml::node* n = r.find("web");
+  if (!n->is_boolean() || !n->as_boolean()->get()) {
+    r.fail(n, "web", "expected true: the finger follows the pointer of `--serve`'s page");
+  }
+  for (const char* key : kUdpFields) {
+    if (std::string_view(key) != "start" && r.has(key)) r.fail(r.nodeOf(key), key, "belongs to a UDP device (udp = ...)");
+  }
+  start = r.vec3("start", sim::Vec3::Zero());
+  if (start.cwiseAbs().maxCoeff() > sim::kMaxSceneCoordinate) {
+    r.fail(r.nodeOf("start"), "start", "each coordinate must be in [-1000, 1000] m");
+  }
+  WebDeviceDesc w;
+  w.file = sourceOf(*n, r.file());
+  w.line = static_cast<int>(n->source().begin.line);
+  w.column = static_cast<int>(n->source().begin.column);
+  return w;
+}
+
+// A finger's device: keyframes, a recorded CSV, a live UDP device (then `udp` is set) or the
+// browser's pointer (then `web` is set); a live device's track holds it at its start, where
+// the proxy starts.
+sim::DeviceTrack readDevice(Reader& parent, const std::string& base_dir, std::optional<UdpDeviceDesc>& udp,
+                            std::optional<WebDeviceDesc>& web) {
   const toml::node* n = parent.find("device");
-  if (!n) parent.fail(nullptr, "device", "missing: the finger needs a device (keyframes, csv or udp)");
+  if (!n) parent.fail(nullptr, "device", "missing: the finger needs a device (keyframes, csv, udp or web)");
   if (!n->is_table()) parent.fail(n, "device", "expected a table");
   Reader r(*n->as_table(), parent.field("device"), parent.file());
   sim::DeviceTrack d;
-  if (static_cast<int>(r.has("csv")) + static_cast<int>(r.has("keyframes")) + static_cast<int>(r.has("udp")) != 1) {
-    r.fail(nullptr, "keyframes", "give exactly one of keyframes, csv and udp");
+  if (static_cast<int>(r.has("csv")) + static_cast<int>(r.has("keyframes")) + static_cast<int>(r.has("udp")) +
+          static_cast<int>(r.has("web")) != 1) {
+    r.fail(nullptr, "keyframes", "give exactly one of keyframes, csv, udp and web");
+  }
+  if (r.has("web")) {
+    if (r.has("interpolation")) r.fail(r.find("interpolation"), "interpolation", "a live device is not interpolated");
+    sim::Vec3 start;
+    web = readWebDevice(r, start);
+    d.keyframes.push_back({0.0, start});
+    r.finish();
+    return d;
   }
   if (!r.has("udp")) {
     for (const char* key : kUdpFields) {
@@ -122,12 +153,13 @@ sim::DeviceTrack readDevice(Reader& parent, const std::string& base_dir, std::op
 }  // namespace
 
 sim::FingerDesc readFinger(const std::string& name, const toml::table& t, const Reader& parent,
-                           const std::string& base_dir, double haptic_rate_hz, std::optional<UdpDeviceDesc>& udp) {
+                           const std::string& base_dir, double haptic_rate_hz, std::optional<UdpDeviceDesc>& udp,
+                           std::optional<WebDeviceDesc>& web) {
   Reader r(t, parent.field("fingers." + name), parent.file());
   sim::FingerDesc f;
   f.name = name;
   for (const sim::Setting<sim::FingerDesc>& s : sim::fingerSettings()) r.setting(s, f, std::string(s.name));
-  f.device = readDevice(r, base_dir, udp);
+  f.device = readDevice(r, base_dir, udp, web);
   // A live device's force ramp sets how fast its force may change unless the finger says.
   if (udp && !r.has("max_force_rate")) f.coupling.max_force_rate = f.coupling.max_force / udp->force_ramp;
   r.failOn(sim::validateFinger(f));

@@ -60,10 +60,16 @@ SessionDesc readSession(toml::table& root, const std::string& source, const std:
   for (const auto& [name, t] : r.namedTables("fingers")) {
     checkName("fingers", name, t);
     std::optional<UdpDeviceDesc> udp;
-    s.scene.fingers.push_back(readFinger(name, *t, r, base_dir, s.scene.world.haptic_rate_hz, udp));
+    std::optional<WebDeviceDesc> web;
+    s.scene.fingers.push_back(readFinger(name, *t, r, base_dir, s.scene.world.haptic_rate_hz, udp, web));
+    const int finger = static_cast<int>(s.scene.fingers.size()) - 1;
     if (udp) {
-      udp->finger = static_cast<int>(s.scene.fingers.size()) - 1;
+      udp->finger = finger;
       s.udp_devices.push_back(*udp);
+    }
+    if (web) {
+      web->finger = finger;
+      s.web_devices.push_back(*web);
     }
   }
   checkMassRatios(r, s.scene);

@@ -92,7 +92,10 @@ json deviceSchema() {
       {"force_ramp", numberSchema(0.005, 10.0, "s for the force to ramp from zero to full")},
       {"velocity_smoothing", numberSchema(0.0, 0.1, "s: low-pass time constant of the velocity")}};
   static_assert(std::size(kUdpFields) == 8, "every UDP field has its schema above");
-  return {{"oneOf", {keyframes, csv, object(udp_fields, "a live UDP device", {"udp"})}}};
+  json web = object({{"web", {{"const", true}, {"description", "the pointer of the browser view (`--serve`) drives it"}}},
+                     {"start", vec3Schema("scene position held until the page moves it (m)", 1e3)}},
+                    "the browser view's pointer", {"web"});
+  return {{"oneOf", {keyframes, csv, object(udp_fields, "a live UDP device", {"udp"}), web}}};
 }
 
 json bodySchema() {

@@ -48,9 +48,11 @@ sim::BodyDesc readBody(const std::string& name, const toml::table& t, const Read
 /// Rejects a dynamic body lighter than 1/100 of the heaviest proxy, naming its mass or density.
 void checkMassRatios(Reader& r, const sim::SceneDesc& scene);
 
-/// [fingers.NAME]: settings and device; `udp` is set when a live UDP device drives it.
+/// [fingers.NAME]: settings and device; `udp` is set when a live UDP device drives it, `web`
+/// when the browser view's pointer does.
 sim::FingerDesc readFinger(const std::string& name, const toml::table& t, const Reader& parent,
-                           const std::string& base_dir, double haptic_rate_hz, std::optional<UdpDeviceDesc>& udp);
+                           const std::string& base_dir, double haptic_rate_hz, std::optional<UdpDeviceDesc>& udp,
+                           std::optional<WebDeviceDesc>& web);
 
 /// `[[loads]]`: known external loads, named `loads.INDEX` in errors and --set.
 void readLoads(Reader& parent, sim::SceneDesc& scene);

@@ -55,6 +55,14 @@ struct UdpDeviceDesc {
   int line = 0, column = 0;
 };
 
+/// A finger whose device is the browser view's pointer (`[fingers.NAME.device] web = true`): its
+/// sim track holds the device at `start` until the page moves it (app/serve/).
+struct WebDeviceDesc {
+  int finger = 0;        ///< index into scene.fingers
+  std::string file;      ///< where `web` was given, for errors
+  int line = 0, column = 0;
+};
+
 /// A loaded scene file: the physics description plus what to record and how to look at it.
 struct SessionDesc {
   sim::SceneDesc scene;
@@ -66,6 +74,7 @@ struct SessionDesc {
   ViewSettings view;
   std::vector<sim::Camera> cameras;  ///< [cameras.NAME]: one is rendered per output stream
   std::vector<UdpDeviceDesc> udp_devices;  ///< fingers with a live UDP device
+  std::vector<WebDeviceDesc> web_devices;  ///< fingers the browser view's pointer drives
 };
 
 }  // namespace gf::app

@@ -1,35 +1,34 @@
-#include "app/runs/run_folder.hpp"
 #include "app/session/live.hpp"
 
 #include <nlohmann/json.hpp>
 
-#include <charconv>
+#include <condition_variable>
 #include <csignal>
-#include <optional>
-#include <cmath>
-#include <filesystem>
+#include <deque>
+#include <future>
+#include <memory>
 #include <istream>
+#include <mutex>
+#include <optional>
 #include <ostream>
-#include <sstream>
+#include <thread>
 #include <vector>
 
-#include "app/runs/contacts.hpp"
-#include "app/runs/files.hpp"
-#include "app/runs/trace.hpp"
 #include "app/scene/scene_file.hpp"
+#include "app/serve/live_view.hpp"
 #include "app/session/interrupt.hpp"
-#include "sim/settings.hpp"
+#include "app/session/live_command.hpp"
+#include "app/session/session.hpp"
 #include "sim/world.hpp"
 
 namespace gf::app {
 namespace {
 
-namespace fs = std::filesystem;
+using K = LiveCommand::Kind;
 
 class Live {
  public:
-  Live(const LiveOptions& o, std::ostream& out)
-      : options_(o), out_(out), session_(loadSceneFile(o.scene_path, o.overrides)), world_(session_.scene) {
+  explicit Live(const LiveOptions& o) : options_(o), session_(loadSceneFile(o.scene_path, o.overrides)), world_(session_.scene) {
     // Live steps when told to; a UDP device's packets come in wall-clock time.
     if (!session_.udp_devices.empty()) {
       const UdpDeviceDesc& d = session_.udp_devices.front();
@@ -41,71 +40,48 @@ class Live {
     samples_.resize(devices_.size());
   }
 
-  // Executes one line; returns false on quit. Every word is read and checked before anything
-  // runs: a bad line changes nothing and gets one error reply.
-  bool execute(const std::string& line) {
-    std::istringstream split(line);
-    std::vector<std::string> w;
-    for (std::string word; split >> word;) w.push_back(word);
-    if (w.empty() || w[0][0] == '#') return true;
-    const std::string& command = w[0];
-    const auto arguments = [&](std::size_t lo, std::size_t hi, const char* usage) {
-      if (w.size() - 1 < lo || w.size() - 1 > hi) throw std::invalid_argument(command + ": expected " + usage);
-    };
-    if (command == "quit" || command == "exit") {
-      arguments(0, 0, "no argument");
-      out_ << "ok bye\n";
-      return false;
-    }
-    if (command == "help") {
-      arguments(0, 0, "no argument");
-      out_ << "ok commands: move FINGER X Y Z [SECONDS] | set fingers.NAME.FIELD=VALUE | step [N] | "
-              "state | snapshot [NAME] | quit\n";
-    } else if (command == "step") {
-      arguments(0, 1, "step [N]");
-      const long n = w.size() > 1 ? wholeNumber(w[1], 1, 10000000, "step: N") : 1;
-      for (long i = 0; i < n && !(options_.stop_on_interrupt && interruptSignal() != 0); ++i) step();
-      answerState();
-    } else if (command == "state") {
-      arguments(0, 0, "no argument");
-      answerState();
-    } else if (command == "move") {
-      arguments(4, 5, "FINGER X Y Z [SECONDS]");
-      move(w);
-    } else if (command == "set") {
-      arguments(1, 1, "fingers.NAME.FIELD=VALUE");
-      set(w[1]);
-    } else if (command == "snapshot") {
-      arguments(0, 1, "snapshot [NAME]");
-      const std::string name = w.size() > 1 ? w[1] : "live_" + std::to_string(world_.counters().steps);
-      if (name.find('/') != std::string::npos) throw std::invalid_argument("snapshot: NAME must not contain '/'");
-      snapshot(name);
-    } else {
-      throw std::invalid_argument("unknown command '" + command + "' (try help)");
-    }
-    return true;
-  }
-
+  const SessionDesc& session() const { return session_; }
   double time() const { return world_.time(); }
-
-  // `text` as a whole number in lo..hi, or throws naming `what`.
-  static long wholeNumber(const std::string& text, long lo, long hi, const std::string& what) {
-    long v = 0;
-    const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), v);
-    if (ec != std::errc() || end != text.data() + text.size() || v < lo || v > hi) {
-      throw std::invalid_argument(what + " must be a whole number in " + std::to_string(lo) + ".." + std::to_string(hi) +
-                                  ", got '" + text + "'");
-    }
-    return v;
+  /// --serve: the frames go to `renderer` after every command, and `record` to `view`.
+  void show(render::RenderThread* renderer, LiveView* view) {
+    renderer_ = renderer;
+    view_ = view;
+    publish();
   }
-  // `text` as a finite number, or throws naming `what`.
-  static double finiteNumber(const std::string& text, const std::string& what) {
-    double v = 0.0;
-    const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), v);
-    if (ec != std::errc() || end != text.data() + text.size() || !std::isfinite(v)) {
-      throw std::invalid_argument(what + " must be a finite number, got '" + text + "'");
+
+  // One line, checked whole before anything runs; the answer goes into `answer`. Returns false
+  // on quit. Throws std::invalid_argument (or runtime_error) with the error's text.
+  bool execute(const std::string& line, std::string& answer) {
+    const LiveCommand c = parseLiveCommand(line, session_.scene);
+    switch (c.kind) {
+      case K::kNone: return true;
+      case K::kQuit: answer = "ok bye"; return false;
+      case K::kHelp: answer = std::string("ok ") + kLiveHelp; return true;
+      case K::kStep:
+        for (long i = 0; i < c.steps && !(options_.stop_on_interrupt && interruptSignal() != 0); ++i) step();
+        answer = state();
+        break;
+      case K::kState: answer = state(); return true;
+      case K::kMove: answer = move(c); break;
+      case K::kSet: {
+        sim::FingerDesc& f = session_.scene.fingers[static_cast<std::size_t>(c.finger)];
+        const sim::PatchSettings next = applySet(c, f.patch);
+        world_.setPatchSettings(c.finger, next);
+        f.patch = next;
+        answer = "ok " + c.text;
+        break;
+      }
+      case K::kSnapshot:
+        world_.snapshot(snap_);
+        answer = writeSnapshot(c, snap_, session_.scene, options_.out_dir);
+        return true;
+      case K::kRecord:
+        if (!view_) throw std::invalid_argument("record: only with --serve (the frames are the browser view's)");
+        answer = view_->record(c.on);
+        return true;
     }
-    return v;
+    publish();
+    return true;
   }
 
  private:
@@ -115,134 +91,187 @@ class Live {
     world_.step(1.0 / session_.scene.world.haptic_rate_hz, samples_);
   }
 
-  int fingerIndex(const std::string& name) const {
-    for (std::size_t i = 0; i < session_.scene.fingers.size(); ++i) {
-      if (session_.scene.fingers[i].name == name) return static_cast<int>(i);
-    }
-    throw std::invalid_argument("no finger called '" + name + "'");
-  }
-
-  void move(const std::vector<std::string>& w) {
-    const std::string& finger = w[1];
-    const double x = finiteNumber(w[2], "move: X"), y = finiteNumber(w[3], "move: Y"), z = finiteNumber(w[4], "move: Z");
-    const double seconds = w.size() > 5 ? finiteNumber(w[5], "move: SECONDS") : 0.0;
-    const sim::Vec3 target(x, y, z);
-    if (!target.allFinite() || !std::isfinite(seconds) || seconds < 0.0) {
-      throw std::invalid_argument("move: position and SECONDS must be finite, SECONDS >= 0");
-    }
-    const int f = fingerIndex(finger);
+  std::string move(const LiveCommand& c) {
     const double t = world_.time();
     sim::DeviceTrack track;
     track.interpolation = sim::Interpolation::kLinear;
-    track.keyframes.push_back({t, devices_[f].sample(t).position});
-    if (seconds > 0.0) track.keyframes.push_back({t + seconds, target});
-    else track.keyframes.back().position = target;
+    track.keyframes.push_back({t, devices_[static_cast<std::size_t>(c.finger)].sample(t).position});
+    if (c.seconds > 0.0) track.keyframes.push_back({t + c.seconds, c.target});
+    else track.keyframes.back().position = c.target;
     if (const std::optional<sim::FieldError> e = sim::validateTrack(track)) {
       throw std::invalid_argument("move: " + e->reason);
     }
-    devices_[f] = track;
-    out_ << "ok " << finger << " to " << x << ' ' << y << ' ' << z << " by t=" << t + seconds << '\n';
+    devices_[static_cast<std::size_t>(c.finger)] = track;
+    return moveAnswer(c, session_.scene, t + c.seconds);
   }
 
-  // fingers.NAME.FIELD=VALUE: a live finger setting, checked by its validator, applied from
-  // the next step.
-  void set(const std::string& assignment) {
-    const std::size_t eq = assignment.find('=');
-    const std::string key = assignment.substr(0, eq);
-    const std::size_t dot = key.rfind('.');
-    const bool finger_field = key.rfind("fingers.", 0) == 0 && dot != std::string::npos && dot > 8;
-    const sim::Setting<sim::FingerDesc>* s =
-        finger_field ? sim::findSetting(sim::fingerSettings(), std::string_view(key).substr(dot + 1)) : nullptr;
-    if (eq == std::string::npos || !s || !s->live) {
-      throw std::invalid_argument("set: expected fingers.NAME.FIELD=VALUE with FIELD one of " + sim::liveFingerSettingNames());
-    }
-    const int f = fingerIndex(key.substr(8, dot - 8));
-    const std::string text = assignment.substr(eq + 1);
-    char* end = nullptr;
-    const double value = std::strtod(text.c_str(), &end);
-    if (text.empty() || *end != '\0') throw std::invalid_argument(key + ": expected a number, got '" + text + "'");
-    if (const std::optional<std::string> why = sim::checkGiven(*s, value)) throw std::invalid_argument(key + ": " + *why);
-    sim::FingerDesc next = session_.scene.fingers[f];
-    sim::setGiven(*s, next, value);
-    world_.setPatchSettings(f, next.patch);
-    session_.scene.fingers[f].patch = next.patch;
-    out_ << "ok " << assignment << '\n';
+  std::string state() {
+    world_.snapshot(snap_);
+    return "ok " + stateJson(snap_, session_.scene).dump();
   }
 
-  void snapshot(const std::string& name) {
-    sim::Snapshot snap;
-    world_.snapshot(snap);
-    const fs::path dir = fs::path(options_.out_dir) / kContactsFolder;
-    std::error_code ec;
-    fs::create_directories(dir, ec);
-    if (ec) throw std::runtime_error(dir.string() + ": cannot create folder: " + ec.message());
-    const std::string path = (dir / (name + ".json")).string();
-    writeFileAtomically(path, contactsJson(snap, session_.scene).dump(1) + "\n");
-    out_ << "ok " << path << '\n';
-  }
-
-  void answerState() {
-    nlohmann::json fingers = nlohmann::json::array();
-    for (std::size_t i = 0; i < session_.scene.fingers.size(); ++i) {
-      const int f = static_cast<int>(i);
-      const sim::Vec3 p = world_.proxyPosition(f), force = world_.couplingForce(f);
-      fingers.push_back({{"name", session_.scene.fingers[i].name},
-                         {"proxy", {p.x(), p.y(), p.z()}},
-                         {"force_n", {force.x(), force.y(), force.z()}},
-                         {"n_sgo", world_.sgoCount(f)}});
-    }
-    // Every dynamic body: pose (position m, orientation quaternion x y z w), velocities.
-    nlohmann::json bodies = nlohmann::json::array();
-    for (std::size_t i = 0; i < session_.scene.bodies.size(); ++i) {
-      if (session_.scene.bodies[i].mass <= 0.0) continue;
-      const int b = static_cast<int>(i);
-      const sim::Pose pose = world_.bodyPose(b);
-      const sim::Vec3 v = world_.bodyLinearVelocity(b), w = world_.bodyAngularVelocity(b);
-      const sim::Quat& q = pose.orientation;
-      bodies.push_back({{"name", session_.scene.bodies[i].name},
-                        {"position", {pose.position.x(), pose.position.y(), pose.position.z()}},
-                        {"orientation", {q.x(), q.y(), q.z(), q.w()}},
-                        {"velocity", {v.x(), v.y(), v.z()}},
-                        {"angular_velocity", {w.x(), w.y(), w.z()}}});
-    }
-    out_ << "ok " << nlohmann::json{{"t", world_.time()}, {"fingers", fingers}, {"bodies", bodies}}.dump() << '\n';
+  // --serve: the world as it is now, for the next frame.
+  void publish() {
+    if (renderer_) renderer_->publishLatest([&](sim::Snapshot& slot) { world_.snapshot(slot); });
   }
 
   const LiveOptions& options_;
-  std::ostream& out_;
   SessionDesc session_;
   sim::World world_;
   std::vector<sim::DeviceTrack> devices_;
   std::vector<sim::DeviceSample> samples_;
+  sim::Snapshot snap_;
+  render::RenderThread* renderer_ = nullptr;
+  LiveView* view_ = nullptr;
 };
+
+// Runs one line for `input`:`number`; writes the answer or the error. False on quit.
+bool answerLine(Live& live, const std::string& line, const std::string& where, std::string& answer, int& failures) {
+  bool go_on = true;
+  try {
+    go_on = live.execute(line, answer);
+  } catch (const std::exception& e) {
+    ++failures;
+    answer = "error: " + where + e.what();
+  }
+  return go_on;
+}
+
+int interruptedEnd(const Live& live, std::ostream& out) {
+  out << "error: interrupted by " << (interruptSignal() == SIGTERM ? "SIGTERM" : "SIGINT") << " at t = " << live.time()
+      << " s; the session ends" << std::endl;
+  return interruptedStatus();
+}
+
+}  // namespace
+
+// Lines from standard input and from the server, taken in turn by the session's thread.
+class LiveQueue {
+ public:
+  struct Item {
+    std::string line;
+    int number = 0;                        // standard input's line number; 0: from the server
+    std::promise<std::string>* reply = nullptr;  // the server's request
+    bool end = false;                      // standard input ended
+  };
+  void push(Item item) {
+    std::lock_guard lock(mutex_);
+    items_.push_back(std::move(item));
+    changed_.notify_all();
+  }
+  std::optional<Item> pop(std::chrono::milliseconds wait) {
+    std::unique_lock lock(mutex_);
+    if (!changed_.wait_for(lock, wait, [&] { return !items_.empty(); })) return std::nullopt;
+    Item item = std::move(items_.front());
+    items_.pop_front();
+    return item;
+  }
+  // Answers every request still queued (the session ended).
+  void drain() {
+    std::lock_guard lock(mutex_);
+    for (Item& i : items_) {
+      if (i.reply) i.reply->set_value("error: the session has ended");
+    }
+    items_.clear();
+  }
+
+ private:
+  std::mutex mutex_;
+  std::condition_variable changed_;
+  std::deque<Item> items_;
+};
+
+namespace {
+
+// A posted command, answered once the session's thread has run it.
+std::string postAndWait(LiveQueue& queue, const std::string& line) {
+  if (line.find_first_not_of(" \t") != std::string::npos) {
+    const std::string word = line.substr(line.find_first_not_of(" \t"), 4);
+    if (word == "quit" || word == "exit") return "error: quit: only on the session's standard input (or Ctrl-C)";
+  }
+  std::promise<std::string> reply;
+  std::future<std::string> answer = reply.get_future();
+  queue.push({line, 0, &reply, false});
+  return answer.get();
+}
+
+int runServed(Live& live, const LiveOptions& options, std::istream& in, std::ostream& out) {
+  const SessionDesc& session = live.session();
+  SessionOptions so;
+  so.out_dir = options.out_dir;
+  so.realtime = true;
+  so.camera = options.camera;
+  LiveView view(session, sessionCamera(session, options.camera), "live", options.out_dir, false);
+  render::FrameOutputSettings fo = frameSettings(session, so);
+  fo.background_priority = false;
+  fo.tap = &view;
+  render::RenderThread renderer(session.scene, fo);
+  live.show(&renderer, &view);
+  // Shared with the reader thread, which may outlive the session while standard input stays open.
+  const auto queue_ptr = std::make_shared<LiveQueue>();
+  LiveQueue& queue = *queue_ptr;
+  WebServer server(*options.serve, view, [&](const std::string& line) { return postAndWait(queue, line); },
+                   [&] {
+                     sim::Snapshot snap;
+                     if (!view.latest(snap)) return std::string("{}");
+                     nlohmann::json j = stateJson(snap, session.scene);
+                     j["view"] = view.statsJson();
+                     return j.dump();
+                   });
+  out << "ok ready, serving " << server.url() << " (help lists the commands)" << std::endl;
+  std::thread reader([queue_ptr, &in] {
+    int number = 0;
+    for (std::string line; std::getline(in, line);) queue_ptr->push({line, ++number, nullptr, false});
+    queue_ptr->push({"", 0, nullptr, true});
+  });
+  int failures = 0;
+  bool go_on = true, input_ended = false;
+  while (go_on && !(options.stop_on_interrupt && interruptSignal() != 0)) {
+    std::optional<LiveQueue::Item> item = queue.pop(std::chrono::milliseconds(100));
+    if (!item) continue;
+    if (item->end) {
+      input_ended = true;
+      out << "ok input ended; serving until Ctrl-C" << std::endl;
+      continue;
+    }
+    std::string answer;
+    int posted_failures = 0;  // a page's bad request is answered to it; the exit status is standard input's
+    go_on = answerLine(live, item->line, item->reply ? "" : options.input_name + ':' + std::to_string(item->number) + ": ",
+                       answer, item->reply ? posted_failures : failures);
+    if (item->reply) item->reply->set_value(answer);
+    else if (!answer.empty()) out << answer << std::endl;
+  }
+  server.stop();
+  queue.drain();
+  view.finish();
+  renderer.finish();
+  // Standard input may stay open (the session ended by `quit` or Ctrl-C): the reader is left to
+  // the process's end, holding its share of the queue.
+  if (input_ended) reader.join();
+  else reader.detach();
+  if (options.stop_on_interrupt && interruptSignal() != 0) return interruptedEnd(live, out);
+  return failures == 0 ? 0 : 1;
+}
 
 }  // namespace
 
 int runLive(const LiveOptions& options, std::istream& in, std::ostream& out) {
-  Live live(options, out);
+  Live live(options);
   std::optional<InterruptScope> interrupt;
   if (options.stop_on_interrupt) interrupt.emplace();
+  if (options.serve) return runServed(live, options, in, out);
   out << "ok ready (help lists the commands)" << std::endl;
   int failures = 0, number = 0;
   std::string line;
   const auto interrupted = [&] { return interrupt && interruptSignal() != 0; };
   while (!interrupted() && std::getline(in, line)) {
-    ++number;
-    bool go_on = true;
-    try {
-      go_on = live.execute(line);
-    } catch (const std::exception& e) {
-      ++failures;
-      out << "error: " << options.input_name << ':' << number << ": " << e.what() << '\n';
-    }
+    std::string answer;
+    const bool go_on = answerLine(live, line, options.input_name + ':' + std::to_string(++number) + ": ", answer, failures);
+    if (!answer.empty()) out << answer << '\n';
     out.flush();
     if (!go_on) break;
   }
-  if (interrupted()) {
-    out << "error: interrupted by " << (interruptSignal() == SIGTERM ? "SIGTERM" : "SIGINT") << " at t = "
-        << live.time() << " s; the session ends" << std::endl;
-    return interruptedStatus();
-  }
+  if (interrupted()) return interruptedEnd(live, out);
   return failures == 0 ? 0 : 1;
 }
 

@@ -2,10 +2,12 @@
 #pragma once
 
 #include <iosfwd>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "app/scene/session_desc.hpp"
+#include "app/serve/web_server.hpp"
 
 namespace gf::app {
 
@@ -19,6 +21,11 @@ struct LiveOptions {
   /// answers, then the session ends with status 130 (143 for SIGTERM). The command line sets
   /// it; tests and embedding keep their own signal handling.
   bool stop_on_interrupt = false;
+  /// Serve the browser view (`live --serve`): frames drawn after every command, the state, and
+  /// commands posted to /command, taken in turn with standard input's. End of input then does
+  /// not end the session: `quit` on standard input or Ctrl-C does.
+  std::optional<ServeOptions> serve{};
+  std::string camera;  ///< --serve: the camera of the frames (empty: the scene's first)
 };
 
 /// Runs commands from `in` until `quit` or end of input, answering each on `out`:
@@ -31,6 +38,7 @@ struct LiveOptions {
 ///                                 dynamic body position, orientation (x y z w), velocity and
 ///                                 angular velocity (world frame)
 ///   snapshot [NAME]               contacts JSON to out_dir/contacts/NAME.json
+///   record start|stop             --serve: frames of the view to out_dir/frames/
 ///   help, quit
 /// Answers start with "ok" or "error: INPUT:LINE: ...". Returns 0 when every command
 /// succeeded, 1 otherwise, 130 / 143 when interrupted (see stop_on_interrupt). Throws InputError when the scene itself cannot be loaded.

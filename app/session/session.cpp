@@ -23,6 +23,7 @@
 #include "app/runs/summary.hpp"
 #include "app/runs/trace.hpp"
 #include "app/scene/input_error.hpp"
+#include "app/serve/served_run.hpp"
 #include "app/session/frame_driver.hpp"
 #include "app/session/interrupt.hpp"
 #include "app/session/udp_device.hpp"
@@ -168,7 +169,12 @@ std::vector<std::string> requestWarnings(const SessionDesc& session, const Sessi
       warnings.emplace_back(text);
     }
   }
-  if (!options.camera.empty() && !options.frames && options.video_path.empty()) {
+  for (const WebDeviceDesc& d : session.web_devices) {
+    if (options.serve) continue;
+    warnings.push_back("fingers." + scene.fingers[static_cast<std::size_t>(d.finger)].name +
+                       ".device.web: no --serve, so no page moves this finger: it stays at its start");
+  }
+  if (!options.camera.empty() && !options.frames && options.video_path.empty() && !options.serve) {
     warnings.push_back("--camera " + options.camera + ": no --frames or --video, so nothing is drawn with it");
   }
   return warnings;
@@ -195,8 +201,12 @@ void addOverlapWarnings(const sim::World& world, std::vector<std::string>& warni
   }
 }
 
-// A live device's packets arrive in wall-clock time: it needs the realtime clock.
+// A live device's packets arrive in wall-clock time: it needs the realtime clock; so does a page.
 void requireRealtimeForLiveDevices(const SessionDesc& session, const SessionOptions& options) {
+  if (options.serve && !options.realtime) {
+    throw InputError("command line", 0, 0, "--serve",
+                     "the browser view follows a run in real time: add --realtime (or use `godfinger live --serve`)");
+  }
   if (session.udp_devices.empty() || options.realtime) return;
   const UdpDeviceDesc& d = session.udp_devices.front();
   throw InputError(d.file, d.line, d.column,
@@ -235,6 +245,7 @@ class SessionRun {
   const long steps_;
   sim::CpuSplit cpus_;  // realtime, pinned: the loop's CPU and the others'
   std::optional<UdpDeviceBridge> udp_;
+  std::unique_ptr<ServedRun> served_;  // --serve: the browser view
   std::optional<InterruptScope> interrupt_;
   std::optional<SignalsBlocked> quiet_threads_;
   std::optional<RunFolder> folder_;
@@ -261,6 +272,13 @@ class SessionRun {
 // with nothing written).
 void SessionRun::bindDevices() {
   requireRealtimeForLiveDevices(session_, options_);
+  if (options_.serve) {
+    served_ = std::make_unique<ServedRun>(session_, *options_.serve, sessionCamera(session_, options_.camera),
+                                          options_.out_dir, options_.yield_render);
+    const WebServer& server = served_->server();
+    std::fprintf(stderr, "%s: serving %s%s\n", scene_.name.c_str(), server.url().c_str(),
+                 server.loopback() ? "" : "  (beyond loopback: every request needs this token)");
+  }
   if (session_.udp_devices.empty()) return;
   udp_.emplace(session_);
   for (const UdpDeviceDesc& d : session_.udp_devices) {
@@ -300,11 +318,12 @@ void SessionRun::startThreads() {
   if (options_.realtime && options_.pin_cpus) cpus_ = sim::splitCpus();
   std::optional<sim::CpuPin> elsewhere;
   if (cpus_.haptic >= 0) elsewhere.emplace(cpus_.others);
-  const bool stream = options_.frames || !options_.video_path.empty();
+  const bool stream = options_.frames || !options_.video_path.empty() || served_;
   closeups_ = options_.close_ups && !pending_.empty();
   if (stream || closeups_ || session_.record.force_chart) {
     render::FrameOutputSettings fo = frameSettings(session_, options_);
     if (!stream) fo.overlay = fo.patch_insets = false;
+    if (served_) fo.tap = served_->tap();
     renderer_ = std::make_unique<render::RenderThread>(scene_, fo);
   }
   clearRunOutputs(dir_);
@@ -328,6 +347,7 @@ sim::LoopStats SessionRun::loop() {
   loop.cpu = cpus_.haptic;
   loop.stop = &halt_;
   if (udp_) loop.sources = udp_->sources();
+  if (served_) loop.sources = served_->sources(loop.sources);
   Progress progress(scene_.name, scene_.duration, steps_, options_.progress);
   const sim::LoopStats stats = sim::runHapticLoop(*world_, sim::deviceTracks(scene_), loop, [&](const sim::World& w) {
     afterStep(w);
@@ -354,6 +374,7 @@ void SessionRun::failedOutput(const std::exception& e) {
 void SessionRun::afterStep(const sim::World& w) {
   if (interrupt_ && interruptSignal() != 0) halt_.store(true, std::memory_order_relaxed);
   expect_->afterStep(w);
+  if (served_) served_->afterStep(*world_);
   try {
     if (trace_) trace_->record(w);
     if (!forces_->empty()) forces_->record(w, dt_);
@@ -398,8 +419,11 @@ void SessionRun::finish(Write&& write) {
 // Each output is finished on its own: one that fails does not cost the others. summary.json is
 // last, so it can say what failed.
 void SessionRun::finishOutputs(const sim::LoopStats& stats) {
+  nlohmann::json served;
+  if (served_) finish([&] { served = served_->finish(); });
   finishFiles(stats);
   nlohmann::json out = summary(stats);
+  if (served_) out["serve"] = served;
   addRenderSummary(out);
   if (udp_) out["udp_devices"] = udp_->json();
   if (!failure_.empty()) out["error"] = failure_;

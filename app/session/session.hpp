@@ -1,10 +1,12 @@
 // A recorded session: run a scene through the haptic loop and write what it asks to record.
 #pragma once
 
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "app/scene/session_desc.hpp"
+#include "app/serve/web_server.hpp"
 #include "app/session/expectations.hpp"
 #include "render/render_thread.hpp"
 #include "sim/haptic_loop.hpp"
@@ -41,6 +43,9 @@ struct SessionOptions {
   /// haptic loop at nice 0 wins the cores even without root, while frames still get the rest
   /// (`run --no-yield` turns it off).
   bool yield_render = true;
+  /// Realtime: serve the browser view (`run --serve`): the frames, the state and `live`
+  /// commands over HTTP (app/serve/web_server.hpp), frames drawn whatever else is written.
+  std::optional<ServeOptions> serve{};
   /// The command line that started the run, recorded in summary.json (empty: not recorded).
   std::vector<std::string> command_line{};
 };

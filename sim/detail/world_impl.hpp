@@ -37,6 +37,7 @@ struct World::Impl final : SolveHooks {
     std::unique_ptr<btSphereShape> shape;
     std::unique_ptr<btRigidBody> proxy;
     EffectiveSettings settings;          // after the scene's effect switches (applySettings)
+    PatchSettings given;                 // as given (applySettings), for snapshots
     const FingerModel* model = nullptr;  // the model of settings.patch.model
     DeviceSample device;
     Vec3 force = Vec3::Zero();  // coupling force on the proxy (N)

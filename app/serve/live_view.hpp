@@ -1,0 +1,66 @@
+// What the browser view shows of a running session: the render thread hands it every frame of
+// the stream (render::FrameTap), and it keeps the newest Snapshot, the newest JPEG (encoded on
+// a thread of its own, only while someone watches) and, while recording, the frames as PNGs.
+// The HTTP server reads it; the haptic thread never touches it.
+#pragma once
+
+#include <nlohmann/json.hpp>
+
+#include <functional>
+#include <memory>
+#include <mutex>
+#include <string>
+
+#include "app/scene/session_desc.hpp"
+#include "render/frame_sinks.hpp"
+#include "render/jpeg_stream.hpp"
+#include "render/render_thread.hpp"
+
+namespace gf::app {
+
+class LiveView final : public render::FrameTap {
+ public:
+  /// `mode`: "realtime" (a `run --realtime`) or "live" (`godfinger live`, stepped on command).
+  /// Recordings go to out_dir/frames/. `background`: the JPEG encoder runs at nice 10.
+  LiveView(const SessionDesc& session, const sim::Camera& camera, std::string mode, std::string out_dir, bool background);
+  ~LiveView() override;
+
+  /// Render thread: keeps the snapshot, hands the image to the JPEG encoder and the recording.
+  void frame(const render::Image& image, const sim::Snapshot& snapshot, float frame_ms) noexcept override;
+
+  render::JpegStream& jpeg() { return jpeg_; }
+  /// The newest snapshot drawn into `out`; false before the first frame. Any thread.
+  bool latest(sim::Snapshot& out) const;
+  /// What the page needs once: the scene's name, mode, frame size, camera, fingers (name,
+  /// colour, web or not), bodies and the live settings' widgets (sim/view_desc.hpp). Any thread.
+  const nlohmann::json& sceneJson() const { return scene_json_; }
+  /// Frames drawn, the JPEG encoder's counts, the recording. Any thread.
+  nlohmann::json statsJson() const;
+  /// A provider of the device links' state (packets, stale, ramp) for /state.json; set before
+  /// the server starts.
+  void setDeviceState(std::function<nlohmann::json()> devices) { devices_ = std::move(devices); }
+  nlohmann::json deviceState() const { return devices_ ? devices_() : nlohmann::json::array(); }
+
+  /// `record start` / `record stop`: the answer ("ok ..."). Frames of the stream from then on
+  /// go to out_dir/frames/NNNNNN.png, numbered on across recordings. Throws std::runtime_error
+  /// when the folder cannot be made. Any thread.
+  std::string record(bool on);
+  /// Stops the encoder and finishes the recording (rethrows a PNG writer's error).
+  void finish();
+
+ private:
+  const std::string out_dir_;
+  nlohmann::json scene_json_;
+  render::JpegStream jpeg_;
+  std::function<nlohmann::json()> devices_;
+  mutable std::mutex mutex_;
+  sim::Snapshot latest_;
+  bool has_latest_ = false;
+  long frames_ = 0;
+  double frame_ms_sum_ = 0.0;
+  std::unique_ptr<render::PngSequenceWriter> recorder_;
+  bool recording_ = false;
+  long recorded_ = 0;
+};
+
+}  // namespace gf::app

@@ -1,0 +1,284 @@
+// The browser view's page: one HTML document with its style and script inline, served from
+// memory (no file from disk, nothing from the network), so it works offline and on any browser.
+#include "app/serve/web_server.hpp"
+
+namespace gf::app {
+namespace {
+
+// The page talks to the server only through GET /scene.json, GET /state.json, GET /stream.mjpg
+// and POST /command (the `live` commands), each with the token it was opened with.
+constexpr char kPage[] = R"PAGE(<!doctype html>
+<html lang="en"><head><meta charset="utf-8"><title>godfinger</title>
+<meta name="viewport" content="width=device-width, initial-scale=1">
+<style>
+body{margin:0;font:14px/1.35 system-ui,sans-serif;background:#1d1f23;color:#e4e6ea;display:flex;height:100vh}
+#left{flex:1;display:flex;flex-direction:column;min-width:0}
+#top{padding:6px 10px;background:#26292e;display:flex;gap:14px;align-items:center;flex-wrap:wrap}
+#top b{font-size:16px}
+#view{flex:1;display:flex;align-items:center;justify-content:center;overflow:hidden;position:relative}
+#frame{max-width:100%;max-height:100%;cursor:crosshair;user-select:none;-webkit-user-drag:none;background:#000}
+#hint{position:absolute;bottom:6px;left:10px;color:#aab;font-size:12px}
+#side{width:380px;overflow-y:auto;background:#24272c;padding:8px 10px;border-left:1px solid #333}
+h3{margin:10px 0 4px;font-size:13px;text-transform:uppercase;color:#9ab;letter-spacing:.05em}
+table{border-collapse:collapse;width:100%}td,th{padding:2px 4px;text-align:right;font-variant-numeric:tabular-nums}
+th{color:#9ab;font-weight:normal}td:first-child,th:first-child{text-align:left}
+.bar{height:8px;background:#333;border-radius:4px;overflow:hidden;min-width:60px}.bar i{display:block;height:100%}
+.settings{margin:4px 0 8px;display:grid;grid-template-columns:auto 1fr;gap:2px 8px;align-items:center}
+.settings input[type=number]{width:90px;background:#1b1d21;color:#e4e6ea;border:1px solid #444;border-radius:3px}
+button,select{background:#354;color:#eee;border:1px solid #576;border-radius:4px;padding:3px 8px;cursor:pointer}
+button.on{background:#a33;border-color:#c55}
+#chart{width:100%;height:150px;background:#1b1d21;border-radius:4px}
+#answer{font-family:monospace;font-size:12px;color:#9c9;white-space:pre-wrap;word-break:break-all;min-height:1.3em}
+#answer.err{color:#e88}.dot{display:inline-block;width:10px;height:10px;border-radius:5px;margin-right:4px}
+</style></head><body>
+<div id="left">
+ <div id="top"><b id="scene">godfinger</b><span id="clock">t = –</span><span id="mode"></span>
+  <label>pointer drives <select id="web-finger"></select></label>
+  <button id="record">record frames</button><span id="live-controls" hidden>
+  <button id="run">run</button><button id="step">step 1</button></span><span id="status"></span></div>
+ <div id="view"><img id="frame" alt="the session's frames" draggable="false">
+  <div id="hint">drag: move the finger in the plane facing the camera · wheel or W/S: nearer / further</div></div>
+</div>
+<div id="side">
+ <h3>Fingers</h3><table id="fingers"><tr><th>finger</th><th>model</th><th>n_SGO</th><th>r (mm)</th><th>|F| (N)</th><th>force</th></tr></table>
+ <h3>Coupling force |F| (N), last 10 s</h3><canvas id="chart" width="360" height="150"></canvas>
+ <h3>Devices</h3><table id="devices"></table>
+ <h3>Live settings</h3><div id="settings"></div>
+ <h3>Last answer</h3><div id="answer"></div>
+</div>
+<script>
+"use strict";
+const token = new URLSearchParams(location.search).get("token");
+const withToken = u => token ? u + (u.includes("?") ? "&" : "?") + "token=" + encodeURIComponent(token) : u;
+const $ = s => document.querySelector(s);
+const gf = window.gf = {scene: null, state: null, history: [], depth: null, last_n_sgo: {}};
+const sub = (a, b) => [a[0]-b[0], a[1]-b[1], a[2]-b[2]];
+const dot = (a, b) => a[0]*b[0] + a[1]*b[1] + a[2]*b[2];
+const cross = (a, b) => [a[1]*b[2]-a[2]*b[1], a[2]*b[0]-a[0]*b[2], a[0]*b[1]-a[1]*b[0]];
+const norm = a => { const l = Math.hypot(a[0], a[1], a[2]); return [a[0]/l, a[1]/l, a[2]/l]; };
+const colour = c => "rgb(" + c.map(v => Math.round(255 * Math.min(1, v))).join(",") + ")";
+
+// The frame's camera, as the renderer builds it (render/camera.cpp: lookAt, perspective).
+function basis() {
+  const c = gf.scene.camera, f = norm(sub(c.target, c.position)), s = norm(cross(f, c.up));
+  return {eye: c.position, f, s, u: cross(s, f), k: 1 / Math.tan(c.fov_deg * Math.PI / 360),
+          aspect: gf.scene.width / gf.scene.height};
+}
+gf.project = p => {
+  const b = basis(), d = sub(p, b.eye), z = dot(d, b.f), r = $("#frame").getBoundingClientRect();
+  const x = b.k / b.aspect * dot(d, b.s) / z, y = b.k * dot(d, b.u) / z;
+  return [r.left + (x + 1) / 2 * r.width, r.top + (1 - y) / 2 * r.height];
+};
+// The scene point under viewport pixel (px, py) at `depth` metres in front of the camera.
+function unproject(px, py, depth) {
+  const b = basis(), r = $("#frame").getBoundingClientRect();
+  const x = (px - r.left) / r.width * 2 - 1, y = 1 - (py - r.top) / r.height * 2;
+  const xs = x * depth * b.aspect / b.k, ys = y * depth / b.k;
+  return [0, 1, 2].map(i => b.eye[i] + depth * b.f[i] + xs * b.s[i] + ys * b.u[i]);
+}
+
+async function command(line) {
+  const res = await fetch(withToken("command"), {method: "POST", body: line});
+  const text = (await res.text()).trim();
+  const a = $("#answer");
+  a.textContent = line + "\n→ " + (text.length > 300 ? text.slice(0, 300) + "…" : text);
+  a.className = text.startsWith("ok") ? "" : "err";
+  return text;
+}
+
+function fingerState(name) { return gf.state && gf.state.fingers.find(f => f.name === name); }
+
+function buildSettings() {
+  const box = $("#settings");
+  for (const f of gf.scene.fingers) {
+    const h = document.createElement("div");
+    h.innerHTML = '<span class="dot" style="background:' + colour(f.colour) + '"></span><b>' + f.name + "</b> (" + f.device + ")";
+    box.appendChild(h);
+    const g = document.createElement("div");
+    g.className = "settings";
+    for (const w of gf.scene.widgets) {
+      const label = document.createElement("label"), input = document.createElement("input");
+      label.textContent = w.label;
+      input.dataset.finger = f.name;
+      input.dataset.field = w.field;
+      if (w.field === "god_finger") {
+        input.type = "checkbox";
+        input.addEventListener("change", () => {
+          const n = input.checked ? (gf.last_n_sgo[f.name] || 8) : 0;
+          command("set fingers." + f.name + ".n_sgo=" + n);
+        });
+      } else {
+        input.type = "number";
+        input.min = w.lo; input.max = w.hi;
+        input.step = w.integer ? 1 : (w.hi - w.lo) / 100;
+        input.addEventListener("change", () =>
+          command("set fingers." + f.name + "." + w.field + "=" + (Number(input.value) / w.shown_per_unit)));
+      }
+      g.append(label, input);
+    }
+    box.appendChild(g);
+  }
+}
+
+function showSettings(f) {
+  for (const w of gf.scene.widgets) {
+    const input = document.querySelector('input[data-finger="' + f.name + '"][data-field="' + w.field + '"]');
+    if (!input || document.activeElement === input) continue;
+    if (w.field === "god_finger") { input.checked = f.settings.n_sgo > 0; continue; }
+    const v = f.settings[w.key] * w.shown_per_unit;
+    input.value = w.integer ? Math.round(v) : Number(v.toPrecision(4));
+  }
+  if (f.settings.n_sgo > 0) gf.last_n_sgo[f.name] = f.settings.n_sgo;
+}
+
+function showFingers(s) {
+  const table = $("#fingers");
+  for (const f of s.fingers) {
+    const desc = gf.scene.fingers.find(d => d.name === f.name);
+    let row = table.querySelector('tr[data-finger="' + f.name + '"]');
+    if (!row) {
+      row = table.insertRow();
+      row.dataset.finger = f.name;
+      row.innerHTML = '<td><span class="dot" style="background:' + colour(desc.colour) + '"></span>' + f.name +
+        '</td><td class="model"></td><td class="n_sgo"></td><td class="radius"></td><td class="force"></td>' +
+        '<td><div class="bar"><i style="background:' + colour(desc.colour) + '"></i></div></td>';
+    }
+    const force = Math.hypot(...f.force_n), r = f.contacts.length ? f.contacts[0].radius_m * 1e3 : 0;
+    row.querySelector(".model").textContent = f.model;
+    row.querySelector(".n_sgo").textContent = f.n_sgo;
+    row.querySelector(".radius").textContent = r.toFixed(1);
+    row.querySelector(".force").textContent = force.toFixed(2);
+    row.querySelector(".bar i").style.width = Math.min(100, 100 * force / desc.max_force_n) + "%";
+    showSettings(f);
+  }
+}
+
+function showDevices(s) {
+  const t = $("#devices");
+  const rows = gf.scene.fingers.filter(f => f.device !== "track").map(f => {
+    const d = (s.devices || []).find(x => x.finger === f.name);
+    if (f.device === "web") return "<tr><td>" + f.name + "</td><td>web pointer</td><td></td></tr>";
+    return "<tr><td>" + f.name + "</td><td>udp " + (d ? d.address : "") + "</td><td>" + (d ? d.packets + " packets" +
+      (d.stale ? ", stale" : "") + (d.ramping ? ", ramping " + (100 * d.gain).toFixed(0) + "%" : "") : "") + "</td></tr>";
+  });
+  t.innerHTML = rows.length ? rows.join("") : "<tr><td>every finger follows its scripted track</td></tr>";
+}
+
+function drawChart() {
+  const c = $("#chart"), g = c.getContext("2d"), h = gf.history, w = c.width, ht = c.height;
+  g.clearRect(0, 0, w, ht);
+  if (h.length < 2) return;
+  const t1 = h[h.length - 1].t, t0 = t1 - 10;
+  let top = 1;
+  for (const p of h) for (const f of p.f) top = Math.max(top, f);
+  top = Math.ceil(top);
+  g.fillStyle = "#889"; g.font = "11px sans-serif";
+  g.fillText(top + " N", 4, 12); g.fillText("t = " + t1.toFixed(1) + " s", w - 70, ht - 4);
+  gf.scene.fingers.forEach((f, i) => {
+    g.strokeStyle = colour(f.colour); g.lineWidth = 1.5; g.beginPath();
+    h.forEach((p, k) => {
+      const x = (p.t - t0) / 10 * w, y = ht - 4 - p.f[i] / top * (ht - 20);
+      k ? g.lineTo(x, y) : g.moveTo(x, y);
+    });
+    g.stroke();
+  });
+}
+
+async function poll() {
+  try {
+    const s = await (await fetch(withToken("state.json"))).json();
+    if (s.fingers) {
+      gf.state = s;
+      $("#clock").textContent = "t = " + s.t.toFixed(3) + " s";
+      const h = gf.history;
+      if (h.length && s.t < h[h.length - 1].t) h.length = 0;
+      if (!h.length || s.t > h[h.length - 1].t) h.push({t: s.t, f: s.fingers.map(f => Math.hypot(...f.force_n))});
+      while (h.length && h[0].t < s.t - 10) h.shift();
+      showFingers(s); showDevices(s); drawChart();
+      $("#record").classList.toggle("on", !!(s.view && s.view.recording));
+      $("#record").textContent = s.view && s.view.recording ? "stop recording (" + s.view.frames_recorded + ")" : "record frames";
+    }
+    $("#status").textContent = "";
+  } catch (e) { $("#status").textContent = "no answer from the session"; }
+  setTimeout(poll, 100);
+}
+
+// The pointer drives the chosen web finger: pressed, it follows the pointer at its depth.
+let dragging = false, lastSent = 0, pending = null;
+function send(p) {
+  const now = performance.now(), finger = $("#web-finger").value;
+  if (!finger) return;
+  pending = p;
+  if (now - lastSent < 30) return;
+  lastSent = now;
+  command("move " + finger + " " + p.map(v => v.toFixed(5)).join(" ") + " 0.03");
+  pending = null;
+}
+function fingerDepth() {
+  const f = fingerState($("#web-finger").value), b = basis();
+  return f ? dot(sub(f.device, b.eye), b.f) : dot(sub(gf.scene.camera.target, b.eye), b.f);
+}
+function pointerMove(e) {
+  if (!dragging || gf.depth === null) return;
+  send(unproject(e.clientX, e.clientY, gf.depth));
+}
+function nearer(metres) {
+  const f = fingerState($("#web-finger").value);
+  if (!f) return;
+  const b = basis();
+  gf.depth = (gf.depth === null ? fingerDepth() : gf.depth) + metres;
+  const at = f.device.map((v, i) => v + metres * b.f[i]);
+  send(at);
+}
+
+async function start() {
+  gf.scene = await (await fetch(withToken("scene.json"))).json();
+  $("#scene").textContent = gf.scene.scene;
+  $("#mode").textContent = gf.scene.mode === "live" ? "live: steps on command" : "realtime";
+  const img = $("#frame");
+  img.src = withToken("stream.mjpg");
+  const select = $("#web-finger");
+  for (const f of gf.scene.fingers.filter(f => f.device === "web")) select.add(new Option(f.name, f.name));
+  if (!select.options.length) select.add(new Option("(no web finger)", ""));
+  buildSettings();
+  img.addEventListener("pointerdown", e => {
+    e.preventDefault(); img.setPointerCapture(e.pointerId); dragging = true;
+    gf.depth = fingerDepth(); pointerMove(e);
+  });
+  img.addEventListener("pointermove", pointerMove);
+  const release = e => { dragging = false; if (pending) { lastSent = 0; send(pending); } };
+  img.addEventListener("pointerup", release);
+  img.addEventListener("pointercancel", release);
+  img.addEventListener("wheel", e => { e.preventDefault(); nearer(e.deltaY > 0 ? 0.005 : -0.005); }, {passive: false});
+  document.addEventListener("keydown", e => {
+    if (e.target.tagName === "INPUT") return;
+    if (e.key === "w" || e.key === "W") nearer(-0.005);
+    if (e.key === "s" || e.key === "S") nearer(0.005);
+  });
+  $("#record").addEventListener("click", () =>
+    command(gf.state && gf.state.view && gf.state.view.recording ? "record stop" : "record start"));
+  if (gf.scene.mode === "live") {
+    $("#live-controls").hidden = false;
+    let running = null;
+    const steps = Math.max(1, Math.round(gf.scene.haptic_rate_hz / 30));
+    $("#step").addEventListener("click", () => command("step 1"));
+    $("#run").addEventListener("click", () => {
+      if (running) { clearInterval(running); running = null; $("#run").textContent = "run"; return; }
+      running = setInterval(() => command("step " + steps), 33);
+      $("#run").textContent = "pause";
+    });
+  }
+  poll();
+}
+start();
+</script></body></html>
+)PAGE";
+
+}  // namespace
+
+const std::string& webPage() {
+  static const std::string page(kPage);
+  return page;
+}
+
+}  // namespace gf::app

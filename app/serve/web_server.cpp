@@ -1,0 +1,261 @@
+#include "app/serve/web_server.hpp"
+
+#include <httplib.h>
+
+#include <arpa/inet.h>
+
+#include <atomic>
+#include <charconv>
+#include <chrono>
+#include <cstdio>
+#include <map>
+#include <mutex>
+#include <random>
+#include <thread>
+
+#include "app/scene/input_error.hpp"
+
+namespace gf::app {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+constexpr char kBoundary[] = "gfframe";
+// A stream with no new frame for this long writes nothing and checks its client again.
+constexpr std::chrono::milliseconds kStreamPoll{500};
+
+bool isLoopback(const std::string& host) { return host == "localhost" || host.rfind("127.", 0) == 0; }
+
+std::string generatedToken() {
+  std::random_device random;
+  char text[33];
+  for (int i = 0; i < 4; ++i) std::snprintf(text + 8 * i, 9, "%08x", random());
+  return text;
+}
+
+// Token buckets per client address: kRequestsPerSecond, bursts of kRequestBurst.
+class RateLimit {
+ public:
+  bool allow(const std::string& client) {
+    std::lock_guard lock(mutex_);
+    if (buckets_.size() > 256) buckets_.clear();  // many addresses: start again rather than grow
+    const Clock::time_point now = Clock::now();
+    auto [it, fresh] = buckets_.try_emplace(client, Bucket{kRequestBurst, now});
+    Bucket& b = it->second;
+    if (!fresh) {
+      b.tokens = std::min(kRequestBurst, b.tokens + kRequestsPerSecond * std::chrono::duration<double>(now - b.at).count());
+      b.at = now;
+    }
+    if (b.tokens < 1.0) return false;
+    b.tokens -= 1.0;
+    return true;
+  }
+
+ private:
+  struct Bucket {
+    double tokens;
+    Clock::time_point at;
+  };
+  std::mutex mutex_;
+  std::map<std::string, Bucket> buckets_;
+};
+
+}  // namespace
+
+ServeOptions parseServe(const std::string& serve, const std::string& token) {
+  ServeOptions o;
+  const std::size_t colon = serve.rfind(':');
+  const std::string port_text = colon == std::string::npos ? serve : serve.substr(colon + 1);
+  if (colon != std::string::npos) o.host = serve.substr(0, colon);
+  if (o.host == "localhost") o.host = "127.0.0.1";
+  in_addr address{};
+  if (inet_pton(AF_INET, o.host.c_str(), &address) != 1) {
+    throw InputError("command line", 0, 0, "--serve",
+                     "'" + o.host + "' is not an IPv4 address (such as 127.0.0.1, or 0.0.0.0 for every interface)");
+  }
+  int port = -1;
+  const auto [end, error] = std::from_chars(port_text.data(), port_text.data() + port_text.size(), port);
+  if (error != std::errc() || end != port_text.data() + port_text.size() || port < 0 || port > 65535) {
+    throw InputError("command line", 0, 0, "--serve",
+                     "expected [HOST:]PORT with PORT a whole number in 0..65535 (0: any free port), got '" + serve + "'");
+  }
+  o.port = port;
+  for (char c : token) {
+    if (!std::isalnum(static_cast<unsigned char>(c)) && c != '-' && c != '_' && c != '.') {
+      throw InputError("command line", 0, 0, "--token", "use letters, digits, '-', '_' and '.' only");
+    }
+  }
+  o.token = token;
+  return o;
+}
+
+struct WebServer::Impl {
+  ServeOptions options;
+  LiveView& view;
+  CommandHandler command;
+  StateHandler state;
+  bool generated = false;
+  httplib::Server server;
+  std::thread thread;
+  RateLimit limit;
+  std::atomic<int> streams{0};
+  std::atomic<long> served{0}, unauthorized{0}, limited{0}, busy{0}, stream_frames{0};
+  std::atomic<bool> stopping{false};
+
+  Impl(const ServeOptions& o, LiveView& v, CommandHandler c, StateHandler s)
+      : options(o), view(v), command(std::move(c)), state(std::move(s)) {}
+
+  bool authorized(const httplib::Request& req) const {
+    if (options.token.empty()) return true;
+    if (req.has_param("token") && req.get_param_value("token") == options.token) return true;
+    return req.get_header_value("Authorization") == "Bearer " + options.token;
+  }
+
+  httplib::Server::HandlerResponse gate(const httplib::Request& req, httplib::Response& res) {
+    ++served;
+    if (!authorized(req)) {
+      ++unauthorized;
+      res.status = 401;
+      res.set_content("401: this server needs its token (?token=... or Authorization: Bearer ...)\n", "text/plain");
+      return httplib::Server::HandlerResponse::Handled;
+    }
+    if (!limit.allow(req.remote_addr)) {
+      ++limited;
+      res.status = 429;
+      res.set_content("429: too many requests\n", "text/plain");
+      return httplib::Server::HandlerResponse::Handled;
+    }
+    res.set_header("Cache-Control", "no-store");
+    return httplib::Server::HandlerResponse::Unhandled;
+  }
+
+  // One part of the MJPEG stream: the newest frame after `last`, or nothing after kStreamPoll.
+  bool streamPart(long& last, httplib::DataSink& sink) {
+    const render::JpegFrame f = view.jpeg().waitNewer(last, kStreamPoll);
+    if (stopping.load() || view.jpeg().closed()) return false;
+    if (f.number <= last || !f.bytes) return sink.is_writable();
+    last = f.number;
+    char head[200];
+    const int n = std::snprintf(head, sizeof head,
+                                "--%s\r\nContent-Type: image/jpeg\r\nContent-Length: %zu\r\nX-Frame: %ld\r\n"
+                                "X-Sim-Time: %.4f\r\n\r\n",
+                                kBoundary, f.bytes->size(), f.number, f.time);
+    if (!sink.write(head, static_cast<std::size_t>(n))) return false;
+    if (!sink.write(reinterpret_cast<const char*>(f.bytes->data()), f.bytes->size())) return false;
+    ++stream_frames;
+    return sink.write("\r\n", 2);
+  }
+
+  void stream(httplib::Response& res) {
+    if (streams.fetch_add(1) >= kMaxStreams) {
+      --streams;
+      ++busy;
+      res.status = 503;
+      res.set_content("503: " + std::to_string(kMaxStreams) + " streams are open already\n", "text/plain");
+      return;
+    }
+    auto last = std::make_shared<long>(0);
+    res.set_content_provider(
+        std::string("multipart/x-mixed-replace; boundary=") + kBoundary,
+        [this, last](std::size_t, httplib::DataSink& sink) { return streamPart(*last, sink); },
+        [this](bool) { --streams; });
+  }
+
+  void frame(httplib::Response& res) {
+    // A frame drawn after the request (the encoder skips frames nobody waits for).
+    const render::JpegFrame before = view.jpeg().newest();
+    render::JpegFrame f = view.jpeg().waitNewer(before.number, std::chrono::milliseconds(500));
+    if (f.number == before.number) f = view.jpeg().waitNewer(0, std::chrono::milliseconds(2000));
+    if (!f.bytes) {
+      res.status = 503;
+      res.set_content("503: no frame drawn yet\n", "text/plain");
+      return;
+    }
+    res.set_content(reinterpret_cast<const char*>(f.bytes->data()), f.bytes->size(), "image/jpeg");
+  }
+
+  void routes() {
+    server.set_pre_routing_handler([this](const httplib::Request& req, httplib::Response& res) { return gate(req, res); });
+    server.Get("/", [](const httplib::Request&, httplib::Response& res) { res.set_content(webPage(), "text/html; charset=utf-8"); });
+    server.Get("/scene.json", [this](const httplib::Request&, httplib::Response& res) {
+      res.set_content(view.sceneJson().dump(), "application/json");
+    });
+    server.Get("/state.json", [this](const httplib::Request&, httplib::Response& res) {
+      res.set_content(state(), "application/json");
+    });
+    server.Get("/stream.mjpg", [this](const httplib::Request&, httplib::Response& res) { stream(res); });
+    server.Get("/frame.jpg", [this](const httplib::Request&, httplib::Response& res) { frame(res); });
+    server.Post("/command", [this](const httplib::Request& req, httplib::Response& res) {
+      if (req.body.find('\n') != std::string::npos && req.body.find('\n') + 1 < req.body.size()) {
+        res.status = 400;
+        res.set_content("error: one command per request\n", "text/plain");
+        return;
+      }
+      std::string line = req.body;
+      while (!line.empty() && (line.back() == '\n' || line.back() == '\r')) line.pop_back();
+      const std::string answer = command(line);
+      if (answer.rfind("error", 0) == 0) res.status = 400;
+      res.set_content(answer + "\n", "text/plain");
+    });
+  }
+};
+
+WebServer::WebServer(const ServeOptions& options, LiveView& view, CommandHandler command, StateHandler state)
+    : impl_(std::make_unique<Impl>(options, view, std::move(command), std::move(state))) {
+  Impl& s = *impl_;
+  if (!isLoopback(s.options.host) && s.options.token.empty()) {
+    s.options.token = generatedToken();
+    s.generated = true;
+  }
+  s.server.set_payload_max_length(kMaxRequestBytes);
+  s.server.set_read_timeout(5, 0);
+  s.server.set_write_timeout(5, 0);
+  s.server.set_keep_alive_timeout(5);
+  s.routes();
+  if (s.options.port == 0) {
+    s.options.port = s.server.bind_to_any_port(s.options.host);
+    if (s.options.port < 0) s.options.port = 0;
+  } else if (!s.server.bind_to_port(s.options.host, s.options.port)) {
+    s.options.port = 0;
+  }
+  if (s.options.port <= 0) {
+    throw std::runtime_error("--serve: cannot listen on " + options.host + ":" + std::to_string(options.port) +
+                             " (in use, or not an address of this machine)");
+  }
+  s.thread = std::thread([&s] {
+    pthread_setname_np(pthread_self(), "gf-http");
+    s.server.listen_after_bind();
+  });
+}
+
+WebServer::~WebServer() { stop(); }
+
+std::string WebServer::url() const {
+  const Impl& s = *impl_;
+  std::string u = "http://" + s.options.host + ":" + std::to_string(s.options.port) + "/";
+  return s.options.token.empty() ? u : u + "?token=" + s.options.token;
+}
+
+bool WebServer::loopback() const { return isLoopback(impl_->options.host); }
+
+bool WebServer::tokenGenerated() const { return impl_->generated; }
+
+void WebServer::stop() {
+  Impl& s = *impl_;
+  if (s.stopping.exchange(true)) return;
+  s.view.jpeg().close();  // wakes every stream, which then ends
+  s.server.stop();
+  if (s.thread.joinable()) s.thread.join();
+}
+
+nlohmann::json WebServer::statsJson() const {
+  const Impl& s = *impl_;
+  return {{"url", "http://" + s.options.host + ":" + std::to_string(s.options.port) + "/"},
+          {"token", !s.options.token.empty()},
+          {"requests", s.served.load()},
+          {"unauthorized", s.unauthorized.load()},
+          {"rate_limited", s.limited.load()},
+          {"streams_refused", s.busy.load()},
+          {"stream_frames_sent", s.stream_frames.load()}};
+}
+
+}  // namespace gf::app

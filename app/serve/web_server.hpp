@@ -1,0 +1,69 @@
+// The browser view's HTTP server (cpp-httplib, threads of its own): the page, the frames as
+// MJPEG, the newest state, and `live` commands. It reads a LiveView and hands command lines to
+// the session's handler; it never touches the haptic thread. Loopback unless a host is given;
+// any other address needs a token. No file is served from disk.
+#pragma once
+
+#include <functional>
+#include <memory>
+#include <string>
+
+#include "app/serve/live_view.hpp"
+
+namespace gf::app {
+
+/// Where and how `--serve [HOST:]PORT` listens.
+struct ServeOptions {
+  std::string host = "127.0.0.1";  ///< IPv4 address, or "localhost"
+  int port = 0;                    ///< 0: any free port (the bound one is printed)
+  /// Required from every request (`?token=` or `Authorization: Bearer`) when not empty. A bind
+  /// beyond loopback without one gets a generated token.
+  std::string token;
+};
+
+/// Parses `--serve`'s value ("8080", "127.0.0.1:8080", "0.0.0.0:8080") and `--token`. Throws
+/// InputError naming the option when it is not legal.
+ServeOptions parseServe(const std::string& serve, const std::string& token);
+
+/// Requests one client may make a second, and in a burst, before it gets 429.
+inline constexpr double kRequestsPerSecond = 300.0, kRequestBurst = 600.0;
+/// Streams open at once (a fifth gets 503), and the largest request body taken (bytes).
+inline constexpr int kMaxStreams = 4;
+inline constexpr std::size_t kMaxRequestBytes = 4096;
+
+class WebServer {
+ public:
+  /// Answers one `live` command line exactly as standard input would ("ok ..." or "error:
+  /// ..."), from a server thread.
+  using CommandHandler = std::function<std::string(const std::string& line)>;
+  /// The newest state as JSON text (the `state` answer's JSON), from a server thread.
+  using StateHandler = std::function<std::string()>;
+
+  /// Binds now (throws std::runtime_error naming the address when it cannot) and serves on a
+  /// thread of its own until stop().
+  WebServer(const ServeOptions& options, LiveView& view, CommandHandler command, StateHandler state);
+  ~WebServer();
+  WebServer(const WebServer&) = delete;
+  WebServer& operator=(const WebServer&) = delete;
+
+  /// "http://HOST:PORT/", with "?token=..." when a token is required.
+  std::string url() const;
+  bool loopback() const;
+  /// Generated (not given) token, printed once at the start.
+  bool tokenGenerated() const;
+  /// Ends every stream, stops listening, joins the threads. Idempotent; never waits on the
+  /// haptic thread.
+  void stop();
+  /// Requests served, refused (401, 429, 503) and stream frames sent, for summary.json.
+  nlohmann::json statsJson() const;
+
+  struct Impl;
+
+ private:
+  std::unique_ptr<Impl> impl_;
+};
+
+/// The page: one self-contained HTML document (no file from disk or the network).
+const std::string& webPage();
+
+}  // namespace gf::app
