@@ -4,7 +4,8 @@
 #   P/lib/cmake/godfinger/                         find_package(godfinger [COMPONENTS ...])
 #   P/lib/pkgconfig/godfinger-{sim,scene,render}.pc
 #   P/share/godfinger/                             bundled scenes, studies, meshes, hard cases
-# and, with GF_BUILD_APP, P/bin/godfinger. Each library has an export set of its own, so an
+# and, with GF_BUILD_APP, P/bin/godfinger and, for device authors, P/share/doc/godfinger/
+# device-protocol.md and P/share/doc/godfinger/examples/device-udp/client.py. Each library has an export set of its own, so an
 # application asking for sim alone needs only sim's dependencies.
 include(GNUInstallDirs)
 include(CMakePackageConfigHelpers)

@@ -286,6 +286,9 @@ void SessionRun::bindDevices() {
     std::fprintf(stderr, "%s: fingers.%s.device: listening on %s, channel %d\n", scene_.name.c_str(), name.c_str(),
                  udp_->address(d.finger).c_str(), d.channel);
   }
+  for (const std::string& w : udp_->bindWarnings()) {
+    std::fprintf(stderr, "%s: warning: %s\n", scene_.name.c_str(), w.c_str());
+  }
 }
 
 // The folder is this run's before anything in it is touched; room and writability are proven
@@ -425,7 +428,14 @@ void SessionRun::finishOutputs(const sim::LoopStats& stats) {
   nlohmann::json out = summary(stats);
   if (served_) out["serve"] = served;
   addRenderSummary(out);
-  if (udp_) out["udp_devices"] = udp_->json();
+  if (udp_) {  // what each device sent, and loud warnings when one sent nothing usable
+    out["udp_devices"] = udp_->json();
+    for (const std::string& line : udp_->report()) std::fprintf(stderr, "%s: %s\n", scene_.name.c_str(), line.c_str());
+    const std::vector<std::string> bound = udp_->bindWarnings(), silent = udp_->runWarnings();
+    for (const std::string& w : silent) std::fprintf(stderr, "%s: warning: %s\n", scene_.name.c_str(), w.c_str());
+    warnings_.insert(warnings_.end(), bound.begin(), bound.end());
+    warnings_.insert(warnings_.end(), silent.begin(), silent.end());
+  }
   if (!failure_.empty()) out["error"] = failure_;
   out["warnings"] = warnings_;
   finish([&] {

@@ -4,8 +4,10 @@
 #include <array>
 #include <cerrno>
 #include <cmath>
+#include <cstdio>
 #include <cstring>
 #include <limits>
+#include <utility>
 
 #include <arpa/inet.h>
 #include <netinet/in.h>
@@ -18,6 +20,38 @@
 #include "app/session/device_protocol.hpp"
 
 namespace gf::app {
+namespace {
+
+// "1 packet", "2 packets" (`plural`: when adding an s will not do).
+std::string counted(long n, const std::string& noun, const std::string& plural = "") {
+  return std::to_string(n) + " " + (n == 1 ? noun : plural.empty() ? noun + "s" : plural);
+}
+
+// Counts of things by kind: {2, "wrong size"}.
+using Counts = std::vector<std::pair<long, const char*>>;
+
+// The counts that are not zero, "2 wrong size, 1 bad magic"; `none` when all are.
+std::string nonZero(const Counts& counts, const char* none = "none") {
+  std::string out;
+  for (const auto& [n, kind] : counts) {
+    if (n != 0) out.append(out.empty() ? "" : ", ").append(std::to_string(n)).append(" ").append(kind);
+  }
+  return out.empty() ? none : out;
+}
+
+std::string seconds(double s) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.3f s", s);
+  return text;
+}
+
+// 127.x.x.x: only programs on this machine can reach it.
+bool isLoopback(const std::string& host) {
+  in_addr a{};
+  return inet_pton(AF_INET, host.c_str(), &a) == 1 && (ntohl(a.s_addr) >> 24) == 127;
+}
+
+}  // namespace
 
 struct UdpDeviceBridge::Socket {
   int fd = -1;
@@ -34,6 +68,12 @@ struct UdpDeviceBridge::Socket {
   }
   // Reads what has arrived (at most kMaxDatagramsPerStep datagrams), once per step time t.
   void poll(double t);
+  std::string address() const { return host + ":" + std::to_string(port); }
+  // The datagrams rejected before their channel was known, by kind.
+  Counts rejected() const {
+    return {{wrong_size, "wrong size"}, {bad_magic, "bad magic"}, {bad_value, "bad value"},
+            {unknown_channel, "for a channel no finger reads"}};
+  }
 };
 
 class UdpDeviceBridge::Device final : public sim::DeviceSource {
@@ -65,6 +105,12 @@ class UdpDeviceBridge::Device final : public sim::DeviceSource {
   }
 
   const Socket& socket() const { return socket_; }
+  const DeviceLink& link() const { return link_; }
+  const std::string& finger() const { return finger_; }
+  int channel() const { return channel_; }
+  long replies() const { return replies_; }
+  long sendErrors() const { return send_errors_; }
+  std::string field() const { return "fingers." + finger_ + ".device"; }
 
   nlohmann::json json(const std::string& address, double dt) const {
     const DeviceLink::Counters& c = link_.counters();
@@ -223,6 +269,81 @@ nlohmann::json UdpDeviceBridge::json() const {
     fingers.push_back(d->json(d->socket().host + ":" + std::to_string(d->socket().port), dt_));
   }
   return {{"sockets", sockets}, {"fingers", fingers}};
+}
+
+std::vector<std::string> UdpDeviceBridge::bindWarnings() const {
+  std::vector<std::string> warnings;
+  for (const std::unique_ptr<Socket>& s : sockets_) {
+    if (isLoopback(s->host)) continue;
+    std::string fingers;
+    int count = 0;
+    for (const std::unique_ptr<Device>& d : devices_) {
+      if (&d->socket() == s.get()) fingers.append(count++ == 0 ? "" : ", ").append(d->field());
+    }
+    const bool one = count == 1;
+    const std::string where =
+        s->host == "0.0.0.0" ? "every interface (" + s->address() + ")" : s->address() + ", beyond loopback";
+    warnings.push_back(fingers + (one ? " listens on " : " listen on ") + where +
+                       ": anyone who can reach this machine on UDP port " + std::to_string(s->port) +
+                       (one ? " can drive the finger and is sent its" : " can drive the fingers and is sent their") +
+                       " forces; give 127.0.0.1 unless the device program runs on another machine");
+  }
+  return warnings;
+}
+
+std::vector<std::string> UdpDeviceBridge::report() const {
+  std::vector<std::string> lines;
+  for (const std::unique_ptr<Device>& d : devices_) {
+    const Socket& s = d->socket();
+    const DeviceLink::Counters& c = d->link().counters();
+    // Taken, and what became of the others: this channel's, then the whole socket's.
+    std::string line = d->field() + " (" + s.address() + ", channel " + std::to_string(d->channel()) + "): " +
+                       counted(c.taken, "packet") + " taken";
+    const std::string taken =
+        nonZero({{c.lost, "lost"}, {c.superseded, "superseded"}, {c.takeovers, "from a new sender"}}, "");
+    if (!taken.empty()) line += " (" + taken + ")";
+    line += "; rejected on its channel: " + nonZero({{c.out_of_order, "out of order"}, {c.out_of_range, "out of range"}});
+    line += "; its socket read " + counted(s.datagrams, "datagram") + ", rejected: " + nonZero(s.rejected());
+    const std::string lost =
+        nonZero({{s.kernel_drops, "dropped by the kernel (buffer full)"}, {s.receive_errors, "receive errors"}}, "");
+    if (!lost.empty()) line += ", " + lost;
+    // Then how long it was stale, and what was sent back.
+    line += "; stale " + seconds(static_cast<double>(c.stale_steps) * dt_) + " (" +
+            counted(c.stale_periods, "dropout") + "); " + counted(d->replies(), "reply", "replies") + " sent";
+    if (d->sendErrors() > 0) line += ", " + counted(d->sendErrors(), "send error");
+    lines.push_back(std::move(line));
+  }
+  return lines;
+}
+
+std::vector<std::string> UdpDeviceBridge::runWarnings() const {
+  std::vector<std::string> warnings;
+  for (const std::unique_ptr<Device>& d : devices_) {
+    const Socket& s = d->socket();
+    const DeviceLink::Counters& c = d->link().counters();
+    if (c.taken > 0) continue;
+    const std::string at = s.address() + ", channel " + std::to_string(d->channel());
+    if (s.datagrams == 0) {  // never heard: stale at every step, so its stale time is the run's
+      warnings.push_back(d->field() + ": no packet came to " + s.address() + " in the run's " +
+                         seconds(static_cast<double>(c.stale_steps) * dt_) +
+                         ": the finger stayed at its start; is the device program running and sending to " + at + "?");
+      continue;
+    }
+    // Datagrams came and none was taken for this finger: what became of them.
+    Counts why = s.rejected();
+    why.emplace_back(c.out_of_range, "out of range");
+    long others = 0;  // valid packets of the other fingers' channels on this socket
+    for (const std::unique_ptr<Device>& o : devices_) {
+      const DeviceLink::Counters& oc = o->link().counters();
+      if (o != d && &o->socket() == &s) others += oc.taken + oc.out_of_order + oc.out_of_range;
+    }
+    why.emplace_back(others, "for the other fingers' channels");
+    warnings.push_back(d->field() + ": took none of the " + counted(s.datagrams, "datagram") + " read on " + s.address() +
+                       " (channel " + std::to_string(d->channel()) + "): " + nonZero(why) +
+                       (s.bad_magic > 0 ? " (packets of this protocol start with the bytes \"GFD1\")" : "") +
+                       "; the finger stayed at its start");
+  }
+  return warnings;
 }
 
 }  // namespace gf::app

@@ -43,6 +43,16 @@ class UdpDeviceBridge {
   std::string address(int finger) const;
   /// What each device and socket received and sent, for summary.json (after the run).
   nlohmann::json json() const;
+  /// One warning per socket bound beyond loopback (any host but 127.x.x.x): anyone who can
+  /// reach that address can drive its fingers. After construction, any thread; allocates.
+  std::vector<std::string> bindWarnings() const;
+  /// One line per UDP finger for stderr after the run: its address and channel, the packets
+  /// taken, those rejected by kind (its channel's and its socket's), the simulated seconds
+  /// stale and the replies sent. After the run (not during it); allocates.
+  std::vector<std::string> report() const;
+  /// After the run: one warning per finger that took no packet, saying whether nothing came to
+  /// its socket or what every datagram was rejected for. Allocates.
+  std::vector<std::string> runWarnings() const;
 
   struct Socket;
   class Device;

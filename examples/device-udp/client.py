@@ -33,7 +33,12 @@ REPLY_MAGIC = 0x31524647                 # "GFR1"
 STALE, TOUCHING, RAMPING = 1, 2, 4
 
 HERE = os.path.dirname(os.path.abspath(__file__))
-DEFAULT_SCENE = os.path.join(HERE, "..", "..", "assets", "scenes", "fig8-pinch-oscillation.toml")
+# The Fig. 8 scene in the source tree (examples/device-udp/), or installed: this file in
+# <prefix>/share/doc/godfinger/examples/device-udp/, the scenes in <prefix>/share/godfinger/scenes/.
+SCENE_PLACES = [os.path.join(HERE, "..", "..", "assets", "scenes"),
+                os.path.join(HERE, "..", "..", "..", "..", "godfinger", "scenes")]
+DEFAULT_SCENE = next((p for p in (os.path.join(d, "fig8-pinch-oscillation.toml") for d in SCENE_PLACES)
+                      if os.path.exists(p)), os.path.join(SCENE_PLACES[0], "fig8-pinch-oscillation.toml"))
 
 
 def load_tracks(path):

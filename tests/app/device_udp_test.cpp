@@ -30,6 +30,7 @@ namespace {
 
 using namespace test;
 using gf::test::loopback;
+using gf::test::packetBytes;
 using gf::test::portOf;
 using sim::Vec3;
 
@@ -160,16 +161,6 @@ class Device {
   std::array<bool, 100000> answered_{};
   std::vector<double> rtt_us_;
 };
-
-std::vector<std::uint8_t> packetBytes(std::uint32_t seq, std::uint32_t channel, const Vec3& p) {
-  DevicePacket packet;
-  packet.seq = seq;
-  packet.channel = channel;
-  packet.position = p;
-  std::array<std::uint8_t, DevicePacket::kSize> bytes;
-  encodeDevicePacket(packet, bytes);
-  return {bytes.begin(), bytes.end()};
-}
 
 TEST(UdpDevice, ADeviceDrivesARealtimeRunThroughLoopback) {
   const fs::path dir = freshFolder("gf_udp_loopback");

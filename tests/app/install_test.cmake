@@ -1,7 +1,9 @@
 # Installed and moved copies of godfinger find their bundled data beside themselves:
-#   cmake -DBINARY_DIR=<build> -DWORK=<scratch folder> -P install_test.cmake
+#   cmake -DBINARY_DIR=<build> -DWORK=<scratch folder> -DPYTHON3=<python3> -P install_test.cmake
 # 1. `cmake --install` into a temporary prefix; a scene added to the installed data only is
 #    listed, and a bundled scene with a mesh (concave-mesh: the bunny) runs from another folder.
+#    The device protocol and the example device program are installed where the installed
+#    device-udp scene says, and the program finds its default scene (the Fig. 8 pinch) there.
 # 2. The executable and its share/ folder copied elsewhere (a moved build tree): the same.
 # GODFINGER_DATA and GODFINGER_SCENES are cleared, so only the executable's place can tell.
 unset(ENV{GODFINGER_DATA})
@@ -38,6 +40,26 @@ if(failed)
   message(FATAL_ERROR "cmake --install failed (${failed})")
 endif()
 check_copy(installed "${WORK}/prefix/bin/godfinger" "${WORK}/prefix/share/godfinger")
+
+set(doc "${WORK}/prefix/share/doc/godfinger")
+file(READ "${WORK}/prefix/share/godfinger/scenes/device-udp.toml" scene)
+foreach(file device-protocol.md examples/device-udp/client.py)
+  if(NOT EXISTS "${doc}/${file}")
+    message(FATAL_ERROR "cmake --install did not install ${doc}/${file}")
+  endif()
+  string(FIND "${scene}" "share/doc/godfinger/${file}" named)
+  if(named LESS 0)
+    message(FATAL_ERROR "the installed device-udp scene does not say where ${file} is installed")
+  endif()
+endforeach()
+# The client run for no time: one packet per finger to loopback's discard port, where nothing
+# answers (so it exits 1); its JSON line counts the fingers of the scene it found.
+execute_process(COMMAND "${PYTHON3}" "${doc}/examples/device-udp/client.py" --port 9 --seconds 0 --rate 1
+                WORKING_DIRECTORY "${WORK}" OUTPUT_VARIABLE said ERROR_VARIABLE complained)
+string(FIND "${said}" "\"channels\": 2" found)
+if(found LESS 0)
+  message(FATAL_ERROR "the installed client.py did not load its default scene:\n${said}${complained}")
+endif()
 
 file(MAKE_DIRECTORY "${WORK}/moved")
 file(COPY "${BINARY_DIR}/godfinger" DESTINATION "${WORK}/moved")

@@ -2,12 +2,16 @@
 // one (docs/device-protocol.md).
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <cstdlib>
 #include <string>
+#include <vector>
 
 #include <arpa/inet.h>
 #include <netinet/in.h>
+
+#include "app/session/device_protocol.hpp"
 
 namespace gf::test {
 
@@ -25,6 +29,17 @@ inline sockaddr_in loopback(int port) {
   a.sin_port = htons(static_cast<std::uint16_t>(port));
   a.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
   return a;
+}
+
+/// The bytes of a device packet with this seq, channel and position (m); time 0, no buttons.
+inline std::vector<std::uint8_t> packetBytes(std::uint32_t seq, std::uint32_t channel, const sim::Vec3& p) {
+  app::DevicePacket packet;
+  packet.seq = seq;
+  packet.channel = channel;
+  packet.position = p;
+  std::array<std::uint8_t, app::DevicePacket::kSize> bytes;
+  app::encodeDevicePacket(packet, bytes);
+  return {bytes.begin(), bytes.end()};
 }
 
 }  // namespace gf::test

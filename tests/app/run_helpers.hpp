@@ -11,6 +11,7 @@
 #include <fstream>
 #include <sstream>
 #include <string>
+#include <vector>
 
 #include <csignal>
 
@@ -103,15 +104,23 @@ inline bool waitForLine(std::FILE* lines, const std::string& text) {
   return false;
 }
 
-// Reads the rest and returns the exit status (128 + signal when one ended it).
-inline int finish(Child& c) {
+// The rest of a child's output, line by line, and its exit status (128 + signal when one ended it).
+struct Ended {
+  std::vector<std::string> lines;
+  int status = -1;
+};
+
+inline Ended finishLines(Child& c) {
+  Ended e;
   char line[4096];
-  while (std::fgets(line, sizeof line, c.lines)) {
-  }
+  while (std::fgets(line, sizeof line, c.lines)) e.lines.emplace_back(line);
   const int status = pclose(c.lines);
-  if (WIFSIGNALED(status)) return 128 + WTERMSIG(status);
-  return WEXITSTATUS(status);
+  e.status = WIFSIGNALED(status) ? 128 + WTERMSIG(status) : WEXITSTATUS(status);
+  return e;
 }
+
+// Reads the rest and returns the exit status (128 + signal when one ended it).
+inline int finish(Child& c) { return finishLines(c).status; }
 
 // Reads lines until one contains `text` and returns it; empty at end of output.
 inline std::string lineWith(std::FILE* lines, const std::string& text) {
