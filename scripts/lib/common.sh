@@ -15,6 +15,7 @@ GF_PACKAGES=(
   parallel
   python3 python3-jsonschema  # examples/device-udp/client.py, the scene schema's test
   mkdocs                      # the manual (docs/), built with --strict by ctest Docs.*
+  chromium                    # headless, for the browser tests (tests/browser/, ctest Browser.*)
 )
 
 gf_log() { printf '[godfinger] %s\n' "$*" >&2; }
