@@ -69,18 +69,21 @@ namespace {
 std::vector<std::string> offlineScenes(const CheckOptions& options, int& live) {
   std::vector<std::string> scenes;
   for (const std::string& s : checkedScenes(options.paths)) {
-    bool udp = false;
+    bool udp = false, web = false;
     try {
-      udp = !loadSceneFile(s, options.overrides).udp_devices.empty();
+      const SessionDesc session = loadSceneFile(s, options.overrides);
+      udp = !session.udp_devices.empty();
+      web = !session.web_devices.empty();
     } catch (const std::exception&) {
       // the run reports why it does not load
     }
-    if (!udp) {
+    if (!udp && !web) {
       scenes.push_back(s);
       continue;
     }
-    std::printf("%-5s %-40s a live UDP device drives it: run it with --realtime and a device program\n", "SKIP",
-                fs::path(s).stem().string().c_str());
+    std::printf("%-5s %-40s %s\n", "SKIP", fs::path(s).stem().string().c_str(),
+                udp ? "a live UDP device drives it: run it with --realtime and a device program"
+                    : "the browser view's pointer drives it: run it with --realtime --serve PORT");
     ++live;
   }
   return scenes;

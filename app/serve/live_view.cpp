@@ -98,6 +98,16 @@ bool LiveView::latest(sim::Snapshot& out) const {
   return has_latest_;
 }
 
+void LiveView::setDeviceState(std::function<nlohmann::json()> devices) {
+  std::lock_guard lock(mutex_);
+  devices_ = std::move(devices);
+}
+
+nlohmann::json LiveView::deviceState() const {
+  std::lock_guard lock(mutex_);
+  return devices_ ? devices_() : nlohmann::json::array();
+}
+
 nlohmann::json LiveView::statsJson() const {
   const render::JpegStats j = jpeg_.stats();
   std::lock_guard lock(mutex_);

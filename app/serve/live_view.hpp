@@ -36,10 +36,9 @@ class LiveView final : public render::FrameTap {
   const nlohmann::json& sceneJson() const { return scene_json_; }
   /// Frames drawn, the JPEG encoder's counts, the recording. Any thread.
   nlohmann::json statsJson() const;
-  /// A provider of the device links' state (packets, stale, ramp) for /state.json; set before
-  /// the server starts.
-  void setDeviceState(std::function<nlohmann::json()> devices) { devices_ = std::move(devices); }
-  nlohmann::json deviceState() const { return devices_ ? devices_() : nlohmann::json::array(); }
+  /// A provider of the device links' state (packets, stale, ramp) for /state.json. Any thread.
+  void setDeviceState(std::function<nlohmann::json()> devices);
+  nlohmann::json deviceState() const;
 
   /// `record start` / `record stop`: the answer ("ok ..."). Frames of the stream from then on
   /// go to out_dir/frames/NNNNNN.png, numbered on across recordings. Throws std::runtime_error

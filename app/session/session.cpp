@@ -350,7 +350,10 @@ sim::LoopStats SessionRun::loop() {
   loop.cpu = cpus_.haptic;
   loop.stop = &halt_;
   if (udp_) loop.sources = udp_->sources();
-  if (served_) loop.sources = served_->sources(loop.sources);
+  if (served_) {
+    loop.sources = served_->sources(loop.sources);
+    if (udp_) served_->setDeviceState([this] { return udp_->liveJson(); });
+  }
   Progress progress(scene_.name, scene_.duration, steps_, options_.progress);
   const sim::LoopStats stats = sim::runHapticLoop(*world_, sim::deviceTracks(scene_), loop, [&](const sim::World& w) {
     afterStep(w);

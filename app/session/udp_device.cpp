@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <array>
+#include <atomic>
 #include <cerrno>
 #include <cmath>
 #include <cstdio>
@@ -88,6 +89,9 @@ class UdpDeviceBridge::Device final : public sim::DeviceSource {
 
   void feedback(double t, const sim::DeviceFeedback& f) override {
     const DeviceReply r = link_.reply(t, f);
+    live_taken_.store(link_.counters().taken, std::memory_order_relaxed);
+    live_flags_.store((link_.stale() ? 1 : 0) | (link_.ramping() ? 2 : 0), std::memory_order_relaxed);
+    live_gain_.store(static_cast<float>(link_.gain()), std::memory_order_relaxed);
     if (!link_.heard()) return;  // no one to answer yet
     std::array<std::uint8_t, DeviceReply::kSize> bytes;
     encodeDeviceReply(r, bytes);
@@ -111,6 +115,17 @@ class UdpDeviceBridge::Device final : public sim::DeviceSource {
   long replies() const { return replies_; }
   long sendErrors() const { return send_errors_; }
   std::string field() const { return "fingers." + finger_ + ".device"; }
+  // The link as of the last step, for a watcher on another thread.
+  nlohmann::json liveJson() const {
+    const int flags = live_flags_.load(std::memory_order_relaxed);
+    return {{"finger", finger_},
+            {"address", socket_.address()},
+            {"channel", channel_},
+            {"packets", live_taken_.load(std::memory_order_relaxed)},
+            {"stale", (flags & 1) != 0},
+            {"ramping", (flags & 2) != 0},
+            {"gain", live_gain_.load(std::memory_order_relaxed)}};
+  }
 
   nlohmann::json json(const std::string& address, double dt) const {
     const DeviceLink::Counters& c = link_.counters();
@@ -135,6 +150,9 @@ class UdpDeviceBridge::Device final : public sim::DeviceSource {
 
  private:
   DeviceLink link_;
+  std::atomic<long> live_taken_{0};
+  std::atomic<int> live_flags_{1};  // bit 0 stale, bit 1 ramping
+  std::atomic<float> live_gain_{0.0f};
   const int channel_;
   const std::string finger_;
   Socket& socket_;
@@ -251,6 +269,12 @@ std::string UdpDeviceBridge::address(int finger) const {
     if (d.get() == sources_[static_cast<std::size_t>(finger)]) return d->socket().host + ":" + std::to_string(d->socket().port);
   }
   return "";
+}
+
+nlohmann::json UdpDeviceBridge::liveJson() const {
+  nlohmann::json out = nlohmann::json::array();
+  for (const std::unique_ptr<Device>& d : devices_) out.push_back(d->liveJson());
+  return out;
 }
 
 nlohmann::json UdpDeviceBridge::json() const {

@@ -43,6 +43,9 @@ class UdpDeviceBridge {
   std::string address(int finger) const;
   /// What each device and socket received and sent, for summary.json (after the run).
   nlohmann::json json() const;
+  /// Each device's link as of the last step: packets taken, stale, ramping and the ramp's gain.
+  /// Any thread (the browser view reads it while the loop runs).
+  nlohmann::json liveJson() const;
   /// One warning per socket bound beyond loopback (any host but 127.x.x.x): anyone who can
   /// reach that address can drive its fingers. After construction, any thread; allocates.
   std::vector<std::string> bindWarnings() const;

@@ -111,10 +111,15 @@ class Served:
         return json.loads(reply.body)
 
     def command(self, line: str) -> str:
-        """POSTs one `live` command line to /command; returns the answer's text (`ok ...` or `error: ...`)."""
+        """POSTs one `live` command line to /command; returns the answer's text (`ok ...` or `error: ...`).
+
+        The server answers 200 with `ok ...` and 400 with `error: ...`; anything else fails."""
         reply = request(self.url("/command", self.token), data=line.encode(), headers={"Content-Type": "text/plain"})
-        assert reply.status == 200, f"POST /command {line!r}: {reply.status} {reply.text()[:200]}"
-        return reply.text().strip()
+        text = reply.text().strip()
+        want = 200 if text.startswith("ok") else 400
+        assert reply.status == want and (text.startswith("ok") or text.startswith("error: ")), \
+            f"POST /command {line!r}: {reply.status} {text[:200]}"
+        return text
 
     def stop(self, timeout_s: float = 10.0) -> None:
         """SIGTERM, then SIGKILL to the whole process group after `timeout_s`. Safe to call twice."""
