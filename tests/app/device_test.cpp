@@ -477,7 +477,7 @@ velocity_smoothing = 0)"), "scene.toml", "");
   EXPECT_EQ(field("udp = 5\nvelocity_smoothing = 1").field(), "fingers.a.device.velocity_smoothing");
   EXPECT_EQ(field("udp = 5\ninterpolation = \"linear\"").field(), "fingers.a.device.interpolation");
   const InputError both = field("udp = 5\nkeyframes = [ { t = 0.0, p = [0, 0.1, 0] } ]");
-  EXPECT_NE(std::string(both.what()).find("exactly one of keyframes, csv and udp"), std::string::npos) << both.what();
+  EXPECT_NE(std::string(both.what()).find("exactly one of keyframes, csv, udp and web"), std::string::npos) << both.what();
   const InputError stray = field("keyframes = [ { t = 0.0, p = [0, 0.1, 0] } ]\nchannel = 2");
   EXPECT_EQ(stray.field(), "fingers.a.device.channel");
   EXPECT_NE(std::string(stray.what()).find("belongs to a UDP device"), std::string::npos) << stray.what();

@@ -1,0 +1,328 @@
+// The browser view's server in-process, without GL: a LiveView fed frames by a thread standing in
+// for the render thread, and the HTTP server in front of it, talked to over loopback with
+// cpp-httplib's client. What the server promises: the token off loopback, bounded requests, a
+// stream that drops frames for a slow reader and ends when the server stops, and commands
+// answered as `live` answers them. The command parsing, the steered device and the scene's
+// `web` devices are checked here too; the page in a browser is tests/browser/page_test.py.
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include <atomic>
+#include <chrono>
+#include <filesystem>
+#include <fstream>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "app/scene/data_folder.hpp"
+#include "app/scene/input_error.hpp"
+#include "app/scene/scene_file.hpp"
+#include "app/serve/live_view.hpp"
+#include "app/serve/steered_device.hpp"
+#include "app/serve/web_server.hpp"
+#include "app/session/live_command.hpp"
+#include "app/session/session.hpp"
+#include "tests/scratch.hpp"
+
+// After Eigen: httplib.h brings <resolv.h>, whose `_res` macro breaks Eigen's headers after it.
+#include <httplib.h>
+
+namespace gf::app {
+namespace {
+
+namespace fs = std::filesystem;
+
+// A LiveView of live-view fed frames (a flat grey changing each time) by a thread standing in for
+// the render thread, as fast as it goes, until it is destroyed.
+class FedView {
+ public:
+  explicit FedView(const std::string& out) : session_(loadSceneFile(resolveScenePath("live-view"))),
+        view_(session_, sessionCamera(session_, ""), "realtime", out, false) {
+    feeder_ = std::thread([this] {
+      render::Image image{64, 36, std::vector<std::uint8_t>(64 * 36 * 3)};
+      sim::Snapshot snap;
+      for (int k = 0; !stop_.load(); ++k) {
+        std::fill(image.rgb.begin(), image.rgb.end(), static_cast<std::uint8_t>(k));
+        snap.time = 0.001 * k;
+        snap.step = k;
+        view_.frame(image, snap, 1.0f);
+        std::this_thread::yield();
+      }
+    });
+  }
+  ~FedView() {
+    stop_.store(true);
+    feeder_.join();
+  }
+  LiveView& view() { return view_; }
+  const SessionDesc& session() const { return session_; }
+
+ private:
+  SessionDesc session_;
+  LiveView view_;
+  std::atomic<bool> stop_{false};
+  std::thread feeder_;
+};
+
+// A server on `host`:0 in front of `view`: commands echoed as "ok LINE", the state "{}".
+std::unique_ptr<WebServer> serve(LiveView& view, const std::string& host, const std::string& token = "") {
+  ServeOptions o;
+  o.host = host;
+  o.token = token;
+  return std::make_unique<WebServer>(o, view, [](const std::string& line) { return "ok " + line; },
+                                     [] { return std::string("{}"); });
+}
+
+int portOf(const WebServer& server) {
+  const std::string url = server.url();
+  return std::stoi(url.substr(url.rfind(':') + 1));
+}
+
+std::string out(const std::string& name) {
+  const fs::path dir = gf::test::scratchRoot() / name;
+  fs::remove_all(dir);
+  return dir.string();
+}
+
+TEST(Serve, ParsesPortsAndHostsAndNamesTheOptionItRefuses) {
+  EXPECT_EQ(parseServe("8080", "").host, "127.0.0.1");
+  EXPECT_EQ(parseServe("8080", "").port, 8080);
+  EXPECT_EQ(parseServe("localhost:0", "").host, "127.0.0.1");
+  EXPECT_EQ(parseServe("0.0.0.0:9000", "abc").token, "abc");
+  for (const char* bad : {"", "x", "70000", "1.2.3:80", "host:80", "80:", "-1"}) {
+    try {
+      parseServe(bad, "");
+      ADD_FAILURE() << bad << " was taken";
+    } catch (const InputError& e) {
+      EXPECT_NE(std::string(e.what()).find("--serve"), std::string::npos) << e.what();
+    }
+  }
+  EXPECT_THROW(parseServe("80", "a b"), InputError);
+}
+
+// Beyond loopback every request needs the token: one is made when none is given, and a request
+// without it, or with another, gets 401 (the test talks to 127.0.0.1 only).
+TEST(Serve, AServerBeyondLoopbackRefusesEveryRequestWithoutItsToken) {
+  FedView fed(out("gf_serve_token"));
+  std::unique_ptr<WebServer> server = serve(fed.view(), "0.0.0.0");
+  EXPECT_TRUE(server->tokenGenerated());
+  EXPECT_FALSE(server->loopback());
+  const std::string url = server->url();
+  const std::string token = url.substr(url.find("?token=") + 7);
+  ASSERT_GE(token.size(), 32u);
+  httplib::Client client("127.0.0.1", portOf(*server));
+  for (const char* path : {"/", "/state.json", "/scene.json", "/frame.jpg", "/stream.mjpg"}) {
+    EXPECT_EQ(client.Get(path)->status, 401) << path;
+    EXPECT_EQ(client.Get(std::string(path) + "?token=wrong")->status, 401) << path;
+  }
+  EXPECT_EQ(client.Post("/command", "state", "text/plain")->status, 401);
+  EXPECT_EQ(client.Get("/scene.json?token=" + token)->status, 200);
+  EXPECT_EQ(client.Get("/", {{"Authorization", "Bearer " + token}})->status, 200);
+  const auto answer = client.Post("/command?token=" + token, "move index 0 0.1 0", "text/plain");
+  EXPECT_EQ(answer->body, "ok move index 0 0.1 0\n");
+  EXPECT_GE(server->statsJson()["unauthorized"].get<long>(), 11);
+}
+
+// The page is one document: nothing from disk or the network (no src= or href= of another host).
+TEST(Serve, ThePageIsSelfContained) {
+  const std::string& page = webPage();
+  EXPECT_NE(page.find("<img id=\"frame\""), std::string::npos);
+  for (const char* outside : {"http://", "https://", "src=\"/", "<link ", "import "}) {
+    EXPECT_EQ(page.find(outside), std::string::npos) << outside;
+  }
+  FedView fed(out("gf_serve_page"));
+  std::unique_ptr<WebServer> server = serve(fed.view(), "127.0.0.1");
+  httplib::Client client("127.0.0.1", portOf(*server));
+  const auto res = client.Get("/");
+  ASSERT_TRUE(res);
+  EXPECT_EQ(res->status, 200);
+  EXPECT_EQ(res->body, page);
+  EXPECT_EQ(client.Get("/etc/passwd")->status, 404);
+  EXPECT_EQ(client.Get("/../CMakeLists.txt")->status, 404);
+}
+
+// Requests are bounded: a body over kMaxRequestBytes is refused, one command per request, and a
+// burst beyond kRequestBurst from one client gets 429.
+TEST(Serve, RequestsAreBoundedInSizeAndRate) {
+  FedView fed(out("gf_serve_bounds"));
+  std::unique_ptr<WebServer> server = serve(fed.view(), "127.0.0.1");
+  httplib::Client client("127.0.0.1", portOf(*server));
+  EXPECT_EQ(client.Post("/command", std::string(kMaxRequestBytes + 1, 'x'), "text/plain")->status, 413);
+  EXPECT_EQ(client.Post("/command", "state\nstate\n", "text/plain")->status, 400);
+  EXPECT_EQ(client.Post("/command", "state\n", "text/plain")->status, 200);
+  int limited = 0;
+  for (int i = 0; i < static_cast<int>(kRequestBurst) + 200; ++i) limited += client.Get("/scene.json")->status == 429;
+  EXPECT_GT(limited, 0);
+  EXPECT_EQ(server->statsJson()["rate_limited"].get<long>(), limited);
+}
+
+// Reads `parts` JPEG parts of /stream.mjpg; returns their X-Frame numbers.
+std::vector<long> readStream(httplib::Client& client, int parts) {
+  std::vector<long> frames;
+  std::string buffer;
+  client.Get("/stream.mjpg", [&](const char* data, std::size_t n) {
+    buffer.append(data, n);
+    for (std::size_t at; (at = buffer.find("X-Frame: ")) != std::string::npos;) {
+      const std::size_t end = buffer.find("\r\n", at);
+      if (end == std::string::npos) break;
+      frames.push_back(std::stol(buffer.substr(at + 9, end - at - 9)));
+      buffer.erase(0, end);
+    }
+    return static_cast<int>(frames.size()) < parts;  // false: the client hangs up mid-stream
+  });
+  return frames;
+}
+
+// The stream sends each frame once, newest first; at most kMaxStreams at once, and a client that
+// hangs up mid-stream gives its place back.
+TEST(Serve, StreamsSendNewerFramesAndFreeTheirPlaceWhenTheClientLeaves) {
+  FedView fed(out("gf_serve_stream"));
+  std::unique_ptr<WebServer> server = serve(fed.view(), "127.0.0.1");
+  for (int round = 0; round < 3; ++round) {  // more clients than places, one after the other
+    std::vector<std::thread> readers;
+    std::vector<std::vector<long>> got(kMaxStreams);
+    for (int i = 0; i < kMaxStreams; ++i) {
+      readers.emplace_back([&, i] {
+        httplib::Client client("127.0.0.1", portOf(*server));
+        got[static_cast<std::size_t>(i)] = readStream(client, 3);
+      });
+    }
+    for (std::thread& t : readers) t.join();
+    for (const std::vector<long>& frames : got) {
+      ASSERT_EQ(frames.size(), 3u);
+      EXPECT_LT(frames[0], frames[1]);
+      EXPECT_LT(frames[1], frames[2]);
+    }
+  }
+  const render::JpegStats stats = fed.view().jpeg().stats();
+  EXPECT_LT(stats.encoded, stats.pushed) << "frames nobody waited for are not encoded";
+  EXPECT_EQ(server->statsJson()["streams_refused"].get<long>(), 0);
+}
+
+// Stopping the server ends open streams at once: stop() returns, and so do the readers.
+TEST(Serve, StoppingTheServerEndsOpenStreams) {
+  FedView fed(out("gf_serve_stop"));
+  std::unique_ptr<WebServer> server = serve(fed.view(), "127.0.0.1");
+  const int port = portOf(*server);
+  std::atomic<int> parts{0};
+  std::vector<std::thread> readers;
+  for (int i = 0; i < kMaxStreams; ++i) {
+    readers.emplace_back([&] {
+      httplib::Client client("127.0.0.1", port);
+      client.Get("/stream.mjpg", [&](const char*, std::size_t) {
+        ++parts;
+        return true;  // never hangs up on its own
+      });
+    });
+  }
+  httplib::Client extra("127.0.0.1", port);
+  while (parts.load() < 4 * kMaxStreams) {
+    std::this_thread::yield();
+  }
+  // Every place is taken (the readers above run until the server stops).
+  const auto refused = extra.Get("/stream.mjpg");
+  ASSERT_TRUE(refused);
+  EXPECT_EQ(refused->status, 503);
+  server->stop();
+  for (std::thread& t : readers) t.join();
+  EXPECT_FALSE(extra.Get("/scene.json")) << "the server no longer listens";
+}
+
+// Recording writes the frames drawn from `record start` to `record stop` as PNGs, numbered on.
+TEST(Serve, RecordingWritesTheFramesBetweenStartAndStop) {
+  const std::string dir = out("gf_serve_record");
+  {
+    FedView fed(dir);
+    EXPECT_EQ(fed.view().record(true).rfind("ok recording frames to ", 0), 0u);
+    while (fed.view().statsJson()["frames_recorded"].get<long>() < 5) std::this_thread::yield();
+    EXPECT_EQ(fed.view().record(false).rfind("ok recording stopped: ", 0), 0u);
+    fed.view().finish();
+  }
+  long pngs = 0;
+  for (const auto& e : fs::directory_iterator(fs::path(dir) / "frames")) pngs += e.path().extension() == ".png";
+  EXPECT_GE(pngs, 5);
+  EXPECT_TRUE(fs::exists(fs::path(dir) / "frames" / "000000.png"));
+}
+
+// A steered device follows its track until the first move, then goes straight to each target
+// over the time given, from where it was.
+TEST(Serve, ASteeredDeviceGoesStraightToEachTargetFromWhereItIs) {
+  sim::DeviceTrack track;
+  track.keyframes = {{0.0, sim::Vec3(0, 0.1, 0)}, {1.0, sim::Vec3(0.1, 0.1, 0)}};
+  track.interpolation = sim::Interpolation::kLinear;
+  SteeredDevice d(track, true);
+  EXPECT_NEAR(d.sample(0.5).position.x(), 0.05, 1e-12);
+  d.moveTo(sim::Vec3(0.05, 0.0, 0.0), 0.1);
+  const sim::DeviceSample at_start = d.sample(0.6);  // taken now, from where its track is: (0.06, 0.1, 0)
+  EXPECT_NEAR((at_start.position - sim::Vec3(0.06, 0.1, 0)).norm(), 0.0, 1e-12);
+  EXPECT_NEAR((at_start.velocity - sim::Vec3(-0.1, -1.0, 0)).norm(), 0.0, 1e-9);
+  EXPECT_NEAR(d.sample(0.65).position.y(), 0.05, 1e-12);
+  EXPECT_NEAR((d.sample(0.8).position - sim::Vec3(0.05, 0, 0)).norm(), 0.0, 1e-12);
+  EXPECT_EQ(d.sample(0.8).velocity, sim::Vec3::Zero());
+  d.moveTo(sim::Vec3(0, 0, 0), 0.0);
+  EXPECT_EQ(d.sample(0.801).position, sim::Vec3::Zero());
+  EXPECT_EQ(d.moves(), 2);
+}
+
+// The live protocol's lines: each checked whole, with the error's words.
+TEST(Serve, LiveCommandsAreCheckedWhole) {
+  const SessionDesc s = loadSceneFile(resolveScenePath("live-view"));
+  using K = LiveCommand::Kind;
+  EXPECT_EQ(parseLiveCommand("record start", s.scene).kind, K::kRecord);
+  EXPECT_FALSE(parseLiveCommand("record stop", s.scene).on);
+  EXPECT_EQ(parseLiveCommand("  # a comment", s.scene).kind, K::kNone);
+  const LiveCommand m = parseLiveCommand("move thumb 0 0.1 0.02 0.5", s.scene);
+  EXPECT_EQ(m.finger, 1);
+  EXPECT_EQ(m.seconds, 0.5);
+  const auto error = [&](const std::string& line) {
+    try {
+      parseLiveCommand(line, s.scene);
+    } catch (const std::invalid_argument& e) {
+      return std::string(e.what());
+    }
+    return std::string("taken");
+  };
+  EXPECT_EQ(error("record pause"), "record: expected start or stop, got 'pause'");
+  EXPECT_EQ(error("move index 0 0 2000"), "move: each coordinate must be within ±1000.000000 m");
+  EXPECT_EQ(error("move index 0 0 0 -1"), "move: SECONDS must be in 0..1e6");
+  EXPECT_EQ(error("snapshot .."), "snapshot: NAME must not contain '/'");
+  EXPECT_NE(error("set fingers.index.n_sgo=1000").find("fingers.index.n_sgo"), std::string::npos);
+  EXPECT_EQ(error("set fingers.pinky.n_sgo=4"), "no finger called 'pinky'");
+}
+
+// `web = true` is a device of its own: alone, true, with `start` only; a run needs --serve to
+// follow it (without, it warns and the finger stays), and --serve needs --realtime.
+TEST(Serve, AWebDeviceIsCheckedInTheSceneAndTheRunSaysWhatItNeeds) {
+  const std::string base = std::string(GF_SOURCE_DIR) + "/assets/scenes/live-view.toml";
+  const SessionDesc s = loadSceneFile(base);
+  ASSERT_EQ(s.web_devices.size(), 2u);
+  EXPECT_EQ(s.scene.fingers[static_cast<std::size_t>(s.web_devices[0].finger)].device.sample(3.0).position,
+            sim::Vec3(-0.1, 0.11, 0.0));
+  const auto refused = [&](const std::string& set) {
+    try {
+      loadSceneFile(base, std::vector<std::string>{set});
+    } catch (const InputError& e) {
+      return std::string(e.what());
+    }
+    return std::string("taken");
+  };
+  EXPECT_NE(refused("fingers.index.device.web=false").find("expected true"), std::string::npos);
+  EXPECT_NE(refused("fingers.index.device.channel=1").find("belongs to a UDP device"), std::string::npos);
+  EXPECT_NE(refused("fingers.index.device.udp=0").find("give exactly one of keyframes, csv, udp and web"),
+            std::string::npos);
+  SessionOptions o;
+  o.out_dir = out("gf_serve_needs_realtime");
+  o.progress = false;
+  o.serve = parseServe("0", "");
+  try {
+    runSession(s, o);
+    ADD_FAILURE() << "--serve without --realtime ran";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("--realtime"), std::string::npos) << e.what();
+  }
+  EXPECT_FALSE(fs::exists(fs::path(o.out_dir) / "summary.json")) << "refused before anything is written";
+}
+
+}  // namespace
+}  // namespace gf::app
