@@ -190,9 +190,8 @@ TEST(Serve, StreamsSendNewerFramesAndFreeTheirPlaceWhenTheClientLeaves) {
     }
     for (std::thread& t : readers) t.join();
     for (const std::vector<long>& frames : got) {
-      ASSERT_EQ(frames.size(), 3u);
-      EXPECT_LT(frames[0], frames[1]);
-      EXPECT_LT(frames[1], frames[2]);
+      ASSERT_GE(frames.size(), 3u);  // a chunk may carry more than the parts asked for
+      for (std::size_t k = 1; k < frames.size(); ++k) EXPECT_LT(frames[k - 1], frames[k]);
     }
   }
   const render::JpegStats stats = fed.view().jpeg().stats();
