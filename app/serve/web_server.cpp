@@ -255,6 +255,7 @@ nlohmann::json WebServer::statsJson() const {
           {"unauthorized", s.unauthorized.load()},
           {"rate_limited", s.limited.load()},
           {"streams_refused", s.busy.load()},
+          {"streams_open", s.streams.load()},
           {"stream_frames_sent", s.stream_frames.load()}};
 }
 

@@ -54,7 +54,8 @@ class WebServer {
   /// Ends every stream, stops listening, joins the threads. Idempotent; never waits on the
   /// haptic thread.
   void stop();
-  /// Requests served, refused (401, 429, 503) and stream frames sent, for summary.json.
+  /// Requests served, refused (401, 429, 503), streams open and stream frames sent, for
+  /// summary.json. Any thread.
   nlohmann::json statsJson() const;
 
   struct Impl;
