@@ -48,7 +48,7 @@ JpegStream::JpegStream(int quality, bool background) : quality_(quality), backgr
 
 JpegStream::~JpegStream() { close(); }
 
-void JpegStream::push(const Image& image, double time) {
+void JpegStream::push(const Image& image, long number, double time) {
   std::lock_guard lock(mutex_);
   ++stats_.pushed;
   if (closing_ || (waiting_ == 0 && newest_.number > 0)) return;
@@ -56,6 +56,7 @@ void JpegStream::push(const Image& image, double time) {
   pending_.height = image.height;
   pending_.rgb.assign(image.rgb.begin(), image.rgb.end());
   pending_time_ = time;
+  pending_number_ = number;
   has_pending_ = true;
   changed_.notify_all();
 }
@@ -100,12 +101,14 @@ void JpegStream::run() {
   std::vector<std::uint8_t> bytes;
   for (;;) {
     double time = 0.0;
+    long number = 0;
     {
       std::unique_lock lock(mutex_);
       changed_.wait(lock, [&] { return has_pending_ || closing_; });
       if (closing_) return;
       std::swap(frame, pending_);
       time = pending_time_;
+      number = pending_number_;
       has_pending_ = false;
     }
     const auto begin = Clock::now();
@@ -117,7 +120,7 @@ void JpegStream::run() {
     auto shared = std::make_shared<const std::vector<std::uint8_t>>(bytes);
     const double seconds = std::chrono::duration<double>(Clock::now() - begin).count();
     std::lock_guard lock(mutex_);
-    newest_ = {std::move(shared), newest_.number + 1, time};
+    newest_ = {std::move(shared), number, time};
     ++stats_.encoded;
     stats_.encode_seconds += seconds;
     stats_.bytes += static_cast<long>(newest_.bytes->size());

@@ -19,7 +19,7 @@ namespace gf::render {
 /// One encoded frame; `bytes` is shared by every reader and never changes.
 struct JpegFrame {
   std::shared_ptr<const std::vector<std::uint8_t>> bytes;
-  long number = 0;     ///< frames encoded before it plus one (0: none yet)
+  long number = 0;     ///< the frame's number as pushed (increasing; 0: none yet)
   double time = 0.0;   ///< s: simulated time of the frame
 };
 
@@ -40,9 +40,10 @@ class JpegStream {
   JpegStream(const JpegStream&) = delete;
   JpegStream& operator=(const JpegStream&) = delete;
 
-  /// The newest frame at simulated time `time` (copied when a reader is waiting for a newer one
-  /// or none has been encoded yet; otherwise dropped). Any one thread (the render thread).
-  void push(const Image& image, double time);
+  /// The newest frame, number `number` (greater than every number pushed before) at simulated
+  /// time `time`: copied when a reader is waiting for a newer one or none has been encoded yet,
+  /// otherwise dropped. Any one thread (the render thread).
+  void push(const Image& image, long number, double time);
   /// The newest encoded frame (number 0 when none yet). Any thread.
   JpegFrame newest() const;
   /// Waits until a frame newer than `after` is encoded, the stream closes or `timeout` passes;
@@ -61,6 +62,7 @@ class JpegStream {
   std::condition_variable changed_;
   Image pending_;           // the newest frame pushed, not yet encoded
   double pending_time_ = 0.0;
+  long pending_number_ = 0;
   bool has_pending_ = false;
   int waiting_ = 0;         // readers in waitNewer
   bool closing_ = false;

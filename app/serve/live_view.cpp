@@ -3,6 +3,7 @@
 #include <filesystem>
 
 #include "app/runs/run_folder.hpp"
+#include "app/session/live_command.hpp"
 #include "render/camera.hpp"
 #include "render/draw_list.hpp"
 
@@ -60,7 +61,7 @@ nlohmann::json describeScene(const SessionDesc& session, const sim::Camera& came
 
 LiveView::LiveView(const SessionDesc& session, const sim::Camera& camera, std::string mode, std::string out_dir,
                    bool background)
-    : out_dir_(std::move(out_dir)), scene_json_(describeScene(session, camera, mode)), jpeg_(80, background) {}
+    : scene_(session.scene), out_dir_(std::move(out_dir)), scene_json_(describeScene(session, camera, mode)), jpeg_(80, background) {}
 
 LiveView::~LiveView() {
   try {
@@ -72,11 +73,15 @@ LiveView::~LiveView() {
 
 void LiveView::frame(const render::Image& image, const sim::Snapshot& snapshot, float frame_ms) noexcept {
   try {
-    jpeg_.push(image, snapshot.time);
+    long number = 0;
+    {
+      std::lock_guard lock(mutex_);
+      latest_ = snapshot;
+      has_latest_ = true;
+      number = ++frames_;
+    }
+    jpeg_.push(image, number, snapshot.time);
     std::lock_guard lock(mutex_);
-    latest_ = snapshot;
-    has_latest_ = true;
-    ++frames_;
     frame_ms_sum_ += frame_ms;
     if (recording_ && recorder_) {
       render::Image copy = recorder_->spare();
@@ -92,9 +97,10 @@ void LiveView::frame(const render::Image& image, const sim::Snapshot& snapshot, 
   }
 }
 
-bool LiveView::latest(sim::Snapshot& out) const {
+bool LiveView::latest(sim::Snapshot& out, long* frame) const {
   std::lock_guard lock(mutex_);
   if (has_latest_) out = latest_;
+  if (frame) *frame = frames_;
   return has_latest_;
 }
 
@@ -106,6 +112,17 @@ void LiveView::setDeviceState(std::function<nlohmann::json()> devices) {
 nlohmann::json LiveView::deviceState() const {
   std::lock_guard lock(mutex_);
   return devices_ ? devices_() : nlohmann::json::array();
+}
+
+std::string LiveView::stateText() const {
+  sim::Snapshot snap;
+  long frame = 0;
+  if (!latest(snap, &frame)) return "{}";
+  nlohmann::json j = stateJson(snap, scene_);
+  j["frame"] = frame;
+  j["devices"] = deviceState();
+  j["view"] = statsJson();
+  return j.dump();
 }
 
 nlohmann::json LiveView::statsJson() const {

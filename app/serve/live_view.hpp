@@ -29,8 +29,13 @@ class LiveView final : public render::FrameTap {
   void frame(const render::Image& image, const sim::Snapshot& snapshot, float frame_ms) noexcept override;
 
   render::JpegStream& jpeg() { return jpeg_; }
-  /// The newest snapshot drawn into `out`; false before the first frame. Any thread.
-  bool latest(sim::Snapshot& out) const;
+  /// The newest snapshot drawn into `out` (and its frame's number, as on the stream, into
+  /// `frame`); false before the first frame. Any thread.
+  bool latest(sim::Snapshot& out, long* frame = nullptr) const;
+  /// /state.json: the `state` answer's JSON of the newest snapshot drawn, with its frame's
+  /// number (`frame`), the device links (`devices`) and statsJson() (`view`); "{}" before the
+  /// first frame. Any thread.
+  std::string stateText() const;
   /// What the page needs once: the scene's name, mode, frame size, camera, fingers (name,
   /// colour, web or not), bodies and the live settings' widgets (sim/view_desc.hpp). Any thread.
   const nlohmann::json& sceneJson() const { return scene_json_; }
@@ -48,6 +53,7 @@ class LiveView final : public render::FrameTap {
   void finish();
 
  private:
+  const sim::SceneDesc& scene_;
   const std::string out_dir_;
   nlohmann::json scene_json_;
   render::JpegStream jpeg_;

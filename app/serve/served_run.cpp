@@ -19,7 +19,7 @@ ServedRun::ServedRun(const SessionDesc& session, const ServeOptions& options, co
   posted_.reserve(64);
   taking_.reserve(64);
   server_ = std::make_unique<WebServer>(
-      options, view_, [this](const std::string& line) { return answer(line); }, [this] { return state(); });
+      options, view_, [this](const std::string& line) { return answer(line); });
 }
 
 ServedRun::~ServedRun() {
@@ -50,15 +50,6 @@ void ServedRun::afterStep(sim::World& world) {
   for (const sim::SettingsCommand& c : taking_) world.setPatchSettings(c.finger, c.patch);
   settings_applied_.fetch_add(static_cast<long>(taking_.size()), std::memory_order_relaxed);
   taking_.clear();
-}
-
-std::string ServedRun::state() {
-  sim::Snapshot snap;
-  if (!view_.latest(snap)) return "{}";
-  nlohmann::json j = stateJson(snap, session_.scene);
-  j["devices"] = view_.deviceState();
-  j["view"] = view_.statsJson();
-  return j.dump();
 }
 
 // One `live` command, answered as `godfinger live` answers it on standard input.

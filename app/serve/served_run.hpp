@@ -43,7 +43,6 @@ class ServedRun {
 
  private:
   std::string answer(const std::string& line);
-  std::string state();
 
   const SessionDesc& session_;
   const std::string out_dir_;

@@ -92,7 +92,6 @@ struct WebServer::Impl {
   ServeOptions options;
   LiveView& view;
   CommandHandler command;
-  StateHandler state;
   bool generated = false;
   httplib::Server server;
   std::thread thread;
@@ -101,8 +100,7 @@ struct WebServer::Impl {
   std::atomic<long> served{0}, unauthorized{0}, limited{0}, busy{0}, stream_frames{0};
   std::atomic<bool> stopping{false};
 
-  Impl(const ServeOptions& o, LiveView& v, CommandHandler c, StateHandler s)
-      : options(o), view(v), command(std::move(c)), state(std::move(s)) {}
+  Impl(const ServeOptions& o, LiveView& v, CommandHandler c) : options(o), view(v), command(std::move(c)) {}
 
   bool authorized(const httplib::Request& req) const {
     if (options.token.empty()) return true;
@@ -180,7 +178,7 @@ struct WebServer::Impl {
       res.set_content(view.sceneJson().dump(), "application/json");
     });
     server.Get("/state.json", [this](const httplib::Request&, httplib::Response& res) {
-      res.set_content(state(), "application/json");
+      res.set_content(view.stateText(), "application/json");
     });
     server.Get("/stream.mjpg", [this](const httplib::Request&, httplib::Response& res) { stream(res); });
     server.Get("/frame.jpg", [this](const httplib::Request&, httplib::Response& res) { frame(res); });
@@ -199,8 +197,8 @@ struct WebServer::Impl {
   }
 };
 
-WebServer::WebServer(const ServeOptions& options, LiveView& view, CommandHandler command, StateHandler state)
-    : impl_(std::make_unique<Impl>(options, view, std::move(command), std::move(state))) {
+WebServer::WebServer(const ServeOptions& options, LiveView& view, CommandHandler command)
+    : impl_(std::make_unique<Impl>(options, view, std::move(command))) {
   Impl& s = *impl_;
   if (!isLoopback(s.options.host) && s.options.token.empty()) {
     s.options.token = generatedToken();

@@ -36,12 +36,9 @@ class WebServer {
   /// Answers one `live` command line exactly as standard input would ("ok ..." or "error:
   /// ..."), from a server thread.
   using CommandHandler = std::function<std::string(const std::string& line)>;
-  /// The newest state as JSON text (the `state` answer's JSON), from a server thread.
-  using StateHandler = std::function<std::string()>;
-
   /// Binds now (throws std::runtime_error naming the address when it cannot) and serves on a
   /// thread of its own until stop().
-  WebServer(const ServeOptions& options, LiveView& view, CommandHandler command, StateHandler state);
+  WebServer(const ServeOptions& options, LiveView& view, CommandHandler command);
   ~WebServer();
   WebServer(const WebServer&) = delete;
   WebServer& operator=(const WebServer&) = delete;

@@ -210,14 +210,7 @@ int runServed(Live& live, const LiveOptions& options, std::istream& in, std::ost
   // Shared with the reader thread, which may outlive the session while standard input stays open.
   const auto queue_ptr = std::make_shared<LiveQueue>();
   LiveQueue& queue = *queue_ptr;
-  WebServer server(*options.serve, view, [&](const std::string& line) { return postAndWait(queue, line); },
-                   [&] {
-                     sim::Snapshot snap;
-                     if (!view.latest(snap)) return std::string("{}");
-                     nlohmann::json j = stateJson(snap, session.scene);
-                     j["view"] = view.statsJson();
-                     return j.dump();
-                   });
+  WebServer server(*options.serve, view, [&](const std::string& line) { return postAndWait(queue, line); });
   out << "ok ready, serving " << server.url() << " (help lists the commands)" << std::endl;
   std::thread reader([queue_ptr, &in] {
     int number = 0;

@@ -7,7 +7,11 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include <sys/stat.h>
+
 #include <atomic>
+#include <csignal>
+#include <cstdio>
 #include <chrono>
 #include <filesystem>
 #include <fstream>
@@ -23,6 +27,7 @@
 #include "app/serve/web_server.hpp"
 #include "app/session/live_command.hpp"
 #include "app/session/session.hpp"
+#include "tests/app/run_helpers.hpp"
 #include "tests/scratch.hpp"
 
 // After Eigen: httplib.h brings <resolv.h>, whose `_res` macro breaks Eigen's headers after it.
@@ -65,13 +70,12 @@ class FedView {
   std::thread feeder_;
 };
 
-// A server on `host`:0 in front of `view`: commands echoed as "ok LINE", the state "{}".
+// A server on `host`:0 in front of `view`: commands echoed as "ok LINE".
 std::unique_ptr<WebServer> serve(LiveView& view, const std::string& host, const std::string& token = "") {
   ServeOptions o;
   o.host = host;
   o.token = token;
-  return std::make_unique<WebServer>(o, view, [](const std::string& line) { return "ok " + line; },
-                                     [] { return std::string("{}"); });
+  return std::make_unique<WebServer>(o, view, [](const std::string& line) { return "ok " + line; });
 }
 
 int portOf(const WebServer& server) {
@@ -323,6 +327,52 @@ TEST(Serve, AWebDeviceIsCheckedInTheSceneAndTheRunSaysWhatItNeeds) {
     EXPECT_NE(std::string(e.what()).find("--realtime"), std::string::npos) << e.what();
   }
   EXPECT_FALSE(fs::exists(fs::path(o.out_dir) / "summary.json")) << "refused before anything is written";
+}
+
+// `live --serve`: the page's commands and standard input's run in turn on one session; `quit`
+// comes only from standard input; the end of input does not end the session, Ctrl-C does.
+TEST(Serve, LiveTakesThePagesCommandsInTurnWithStandardInput) {
+  const fs::path dir = out("gf_serve_live");
+  fs::create_directories(dir);
+  const fs::path fifo = dir / "stdin";
+  ASSERT_EQ(mkfifo(fifo.c_str(), 0600), 0);
+  // Both of its outputs come back on the pipe (stdout to /dev/stderr, which is the pipe).
+  test::Child child = test::start(test::kBin + " live live-view --serve 127.0.0.1:0 --out " + (dir / "out").string() +
+                                      " < " + fifo.string(),
+                                  "/dev/stderr");
+  test::KillGroupOnExit guard{child.pid};
+  std::FILE* input = std::fopen(fifo.c_str(), "w");  // opens once the child's shell opens it
+  ASSERT_NE(input, nullptr);
+  const std::string ready = test::lineWith(child.lines, "ok ready, serving http://127.0.0.1:");
+  ASSERT_FALSE(ready.empty());
+  const int port = std::stoi(ready.substr(ready.find("127.0.0.1:") + 10));
+  httplib::Client client("127.0.0.1", port);
+  const auto stepped = client.Post("/command", "step 100", "text/plain");
+  ASSERT_TRUE(stepped);
+  EXPECT_EQ(stepped->status, 200);
+  EXPECT_NE(stepped->body.find("\"t\":0.1"), std::string::npos) << stepped->body;
+  const auto quit = client.Post("/command", "quit", "text/plain");
+  EXPECT_EQ(quit->status, 400);
+  EXPECT_EQ(quit->body.rfind("error: quit: only on the session's standard input", 0), 0u) << quit->body;
+  std::fputs("step 50\n", input);
+  std::fflush(input);
+  const std::string answer = test::lineWith(child.lines, "ok {");
+  EXPECT_NE(answer.find("\"t\":0.15"), std::string::npos) << "stdin's step follows the page's: " << answer;
+  // A frame of t = 0.15 s is drawn and its state served.
+  for (;;) {
+    const auto state = client.Get("/state.json");
+    ASSERT_TRUE(state);
+    if (state->status == 429) continue;  // polled faster than the server takes
+    const nlohmann::json j = nlohmann::json::parse(state->body);
+    if (j.contains("t") && j["t"].get<double>() > 0.149) break;
+  }
+  std::fclose(input);  // end of input: the session goes on for the page
+  EXPECT_FALSE(test::lineWith(child.lines, "ok input ended; serving until Ctrl-C").empty());
+  EXPECT_EQ(client.Post("/command", "state", "text/plain")->status, 200);
+  kill(-child.pid, SIGINT);
+  const test::Ended ended = test::finishLines(child);
+  guard.done = true;
+  EXPECT_EQ(ended.status, 130);
 }
 
 }  // namespace
