@@ -21,7 +21,7 @@ body{margin:0;font:14px/1.35 system-ui,sans-serif;background:#1d1f23;color:#e4e6
 #side{width:380px;overflow-y:auto;background:#24272c;padding:8px 10px;border-left:1px solid #333}
 h3{margin:10px 0 4px;font-size:13px;text-transform:uppercase;color:#9ab;letter-spacing:.05em}
 table{border-collapse:collapse;width:100%}td,th{padding:2px 4px;text-align:right;font-variant-numeric:tabular-nums}
-th{color:#9ab;font-weight:normal}td:first-child,th:first-child{text-align:left}
+th{color:#9ab;font-weight:normal}td,th{white-space:nowrap}td:first-child,th:first-child{text-align:left}
 .bar{height:8px;background:#333;border-radius:4px;overflow:hidden;min-width:60px}.bar i{display:block;height:100%}
 .settings{margin:4px 0 8px;display:grid;grid-template-columns:auto 1fr;gap:2px 8px;align-items:center}
 .settings input[type=number]{width:90px;background:#1b1d21;color:#e4e6ea;border:1px solid #444;border-radius:3px}

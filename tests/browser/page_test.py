@@ -283,7 +283,7 @@ def main(binary: Path, out_dir: Path) -> int:
     try:
         served = Served.start(serve_command(binary, out_dir / "run", "127.0.0.1:0"), out_dir / "godfinger.log")
         browser = Browser.launch(out_dir / "chromium.log")
-        ctx = Context(served, browser.new_page(width=1600, height=1200), out_dir)
+        ctx = Context(served, browser.new_page(width=1600, height=900), out_dir)
         tests = [test_page_shows_the_stream, test_drag_presses_index_on_the_cylinder,
                  test_n_sgo_control_sets_the_setting, test_commands_answer_ok_or_error]
         passed = [run(t.__name__, lambda t=t: t(ctx), ctx) for t in tests]
