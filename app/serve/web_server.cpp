@@ -8,7 +8,6 @@
 #include <charconv>
 #include <chrono>
 #include <cstdio>
-#include <map>
 #include <mutex>
 #include <random>
 #include <thread>
@@ -32,34 +31,21 @@ std::string generatedToken() {
   return text;
 }
 
-// Token buckets per client address: kRequestsPerSecond, bursts of kRequestBurst.
-class RateLimit {
- public:
-  bool allow(const std::string& client) {
-    std::lock_guard lock(mutex_);
-    if (buckets_.size() > 256) buckets_.clear();  // many addresses: start again rather than grow
-    const Clock::time_point now = Clock::now();
-    auto [it, fresh] = buckets_.try_emplace(client, Bucket{kRequestBurst, now});
-    Bucket& b = it->second;
-    if (!fresh) {
-      b.tokens = std::min(kRequestBurst, b.tokens + kRequestsPerSecond * std::chrono::duration<double>(now - b.at).count());
-      b.at = now;
-    }
-    if (b.tokens < 1.0) return false;
-    b.tokens -= 1.0;
-    return true;
-  }
-
- private:
-  struct Bucket {
-    double tokens;
-    Clock::time_point at;
-  };
-  std::mutex mutex_;
-  std::map<std::string, Bucket> buckets_;
-};
-
 }  // namespace
+
+bool RequestRate::allow(const std::string& client, Clock::time_point now) {
+  std::lock_guard lock(mutex_);
+  if (buckets_.size() > 256) buckets_.clear();  // many addresses: start again rather than grow
+  auto [it, fresh] = buckets_.try_emplace(client, Bucket{kRequestBurst, now});
+  Bucket& b = it->second;
+  if (!fresh && now > b.at) {
+    b.tokens = std::min(kRequestBurst, b.tokens + kRequestsPerSecond * std::chrono::duration<double>(now - b.at).count());
+    b.at = now;
+  }
+  if (b.tokens < 1.0) return false;
+  b.tokens -= 1.0;
+  return true;
+}
 
 ServeOptions parseServe(const std::string& serve, const std::string& token) {
   ServeOptions o;
@@ -95,7 +81,7 @@ struct WebServer::Impl {
   bool generated = false;
   httplib::Server server;
   std::thread thread;
-  RateLimit limit;
+  RequestRate limit;
   std::atomic<int> streams{0};
   std::atomic<long> served{0}, unauthorized{0}, limited{0}, busy{0}, stream_frames{0};
   std::atomic<bool> stopping{false};
@@ -116,7 +102,7 @@ struct WebServer::Impl {
       res.set_content("401: this server needs its token (?token=... or Authorization: Bearer ...)\n", "text/plain");
       return httplib::Server::HandlerResponse::Handled;
     }
-    if (!limit.allow(req.remote_addr)) {
+    if (!limit.allow(req.remote_addr, Clock::now())) {
       ++limited;
       res.status = 429;
       res.set_content("429: too many requests\n", "text/plain");

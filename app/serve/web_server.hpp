@@ -4,8 +4,11 @@
 // any other address needs a token. No file is served from disk.
 #pragma once
 
+#include <chrono>
 #include <functional>
+#include <map>
 #include <memory>
+#include <mutex>
 #include <string>
 
 #include "app/serve/live_view.hpp"
@@ -30,6 +33,22 @@ inline constexpr double kRequestsPerSecond = 300.0, kRequestBurst = 600.0;
 /// Streams open at once (a fifth gets 503), and the largest request body taken (bytes).
 inline constexpr int kMaxStreams = 4;
 inline constexpr std::size_t kMaxRequestBytes = 4096;
+
+/// Token buckets per client address: kRequestsPerSecond, in bursts of kRequestBurst. Any thread.
+class RequestRate {
+ public:
+  using Clock = std::chrono::steady_clock;
+  /// Whether `client` may make a request at `now` (it then takes one token).
+  bool allow(const std::string& client, Clock::time_point now);
+
+ private:
+  struct Bucket {
+    double tokens;
+    Clock::time_point at;
+  };
+  std::mutex mutex_;
+  std::map<std::string, Bucket> buckets_;
+};
 
 class WebServer {
  public:
