@@ -200,10 +200,26 @@ def part_digest(part: tuple[dict[str, str], bytes]) -> str:
     return hashlib.sha256(body).hexdigest()
 
 
+# Pixels of a fresh frame (/frame.jpg, decoded by the page's browser) in its bottom-right quarter
+# that are light blue: the patch highlight in `index`'s inset (the insets sit in that corner; the
+# blue bodies and fingers stand in the left half; the inset's blue frame alone is about 1 700).
+BLUE_IN_INSETS_JS = """(async () => {
+  const bitmap = await createImageBitmap(await (await fetch(withToken("frame.jpg"))).blob());
+  const canvas = new OffscreenCanvas(bitmap.width, bitmap.height), g = canvas.getContext("2d");
+  g.drawImage(bitmap, 0, 0);
+  const d = g.getImageData(bitmap.width / 2, bitmap.height / 2, bitmap.width / 2, bitmap.height / 2).data;
+  let n = 0;
+  for (let i = 0; i < d.length; i += 4) n += d[i + 2] > 150 && d[i + 2] - d[i] > 40;
+  return n;
+})()"""
+
+
 def test_drag_presses_index_on_the_cylinder(ctx: Context) -> None:
     """(b) With the pointer only (drag, wheel for depth), `index` is brought 3 cm above the top of
-    the cylinder and dragged 2 cm into it: /state.json shows its contact on the cylinder."""
+    the cylinder and dragged 2 cm into it: /state.json shows its contact on the cylinder, and the
+    frame its highlighted patch (light blue pixels in the insets' corner, beyond those before)."""
     set_control(ctx.page, "select#web-finger", "index")
+    blue_before = ctx.page.evaluate(BLUE_IN_INSETS_JS)
     half_height = tomllib.loads(SCENE.read_text())["bodies"]["cylinder"]["half_height"]
     # The cylinder stands upright (axis y, up): its top is half its height above its centre.
     top = add(body(ctx.served.state(), "cylinder")["position"], [0.0, half_height, 0.0])
@@ -216,8 +232,10 @@ def test_drag_presses_index_on_the_cylinder(ctx: Context) -> None:
         return [c for c in contacts if c["body"] == "cylinder" and c["radius_m"] > 0 and c["sgos"] > 0]
 
     contact = poll(touching, "index's contact on the cylinder")[0]
+    blue_after = poll(lambda: (n := ctx.page.evaluate(BLUE_IN_INSETS_JS)) > blue_before + 5000 and n,
+                      f"the patch in the frame's inset (light blue pixels before: {blue_before})")
     shot = save_screenshot(ctx, "live-view.png")
-    print(f"  contact {contact}; screenshot {shot}")
+    print(f"  contact {contact}; light blue pixels in the insets {blue_before} -> {blue_after}; screenshot {shot}")
 
 
 def test_n_sgo_control_sets_the_setting(ctx: Context) -> None:
