@@ -13,8 +13,11 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
-// libjpeg-turbo's compressor, released with the thread that made it.
-class Compressor {
+}  // namespace
+
+// libjpeg-turbo's compressor: made by the constructor (which throws when it cannot), used by the
+// encoder thread only.
+class JpegStream::Compressor {
  public:
   Compressor() : handle_(tjInitCompress()) {
     if (!handle_) throw ImageError(std::string("libjpeg-turbo: ") + tjGetErrorStr2(nullptr));
@@ -39,10 +42,9 @@ class Compressor {
   tjhandle handle_;
 };
 
-}  // namespace
-
 JpegStream::JpegStream(int quality, bool background) : quality_(quality), background_(background) {
   if (quality < 1 || quality > 100) throw ImageError("JPEG quality must be 1..100");
+  compressor_ = std::make_unique<Compressor>();
   thread_ = std::thread([this] { run(); });
 }
 
@@ -83,6 +85,11 @@ void JpegStream::close() {
   if (thread_.joinable()) thread_.join();
 }
 
+int JpegStream::waiting() const {
+  std::lock_guard lock(mutex_);
+  return waiting_;
+}
+
 bool JpegStream::closed() const {
   std::lock_guard lock(mutex_);
   return closing_;
@@ -96,7 +103,6 @@ JpegStats JpegStream::stats() const {
 void JpegStream::run() {
   pthread_setname_np(pthread_self(), "gf-jpeg");
   if (background_) setpriority(PRIO_PROCESS, static_cast<id_t>(gettid()), kBackgroundNice);
-  Compressor compressor;
   Image frame;
   std::vector<std::uint8_t> bytes;
   for (;;) {
@@ -113,7 +119,7 @@ void JpegStream::run() {
     }
     const auto begin = Clock::now();
     try {
-      compressor.encode(frame, quality_, bytes);
+      compressor_->encode(frame, quality_, bytes);
     } catch (const ImageError&) {
       continue;  // a frame that does not encode is skipped; the next one may
     }

@@ -49,6 +49,8 @@ class JpegStream {
   /// Waits until a frame newer than `after` is encoded, the stream closes or `timeout` passes;
   /// returns the newest (check `number > after`). Any thread.
   JpegFrame waitNewer(long after, std::chrono::milliseconds timeout);
+  /// Readers waiting in waitNewer now (for tests). Any thread.
+  int waiting() const;
   /// Wakes every waiting reader and stops the encoder; newest() still answers. Idempotent.
   void close();
   bool closed() const;
@@ -56,6 +58,8 @@ class JpegStream {
 
  private:
   void run();
+  class Compressor;
+  std::unique_ptr<Compressor> compressor_;
   int quality_;
   bool background_;
   mutable std::mutex mutex_;

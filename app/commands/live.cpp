@@ -27,7 +27,7 @@ class LiveCommand final : public Command {
   int run() override {
     options_.scene_path = resolveScenePath(options_.scene_path);
     options_.stop_on_interrupt = true;
-    if (!serve_.empty()) options_.serve = parseServe(serve_, token_);
+    if (!serve_.empty()) options_.serve = parseServe(serve_, tokenOrEnvironment(token_));
     else if (!token_.empty()) throw InputError("command line", 0, 0, "--token", "goes with --serve");
     return runLive(options_, std::cin, std::cout);
   }

@@ -76,8 +76,8 @@ class RunCommand final : public Command {
     o.yield_render = !no_yield_;
     o.pin_cpus = pin_;
     o.spin_us = spin_us_;
-    o.command_line = command_line_;
-    if (!serve_.empty()) o.serve = parseServe(serve_, token_);
+    o.command_line = redactedToken(command_line_);
+    if (!serve_.empty()) o.serve = parseServe(serve_, tokenOrEnvironment(token_));
     else if (!token_.empty()) throw InputError("command line", 0, 0, "--token", "goes with --serve");
     return o;
   }

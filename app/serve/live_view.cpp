@@ -74,21 +74,23 @@ LiveView::~LiveView() {
 void LiveView::frame(const render::Image& image, const sim::Snapshot& snapshot, float frame_ms) noexcept {
   try {
     long number = 0;
+    std::shared_ptr<render::PngSequenceWriter> recorder;
     {
       std::lock_guard lock(mutex_);
       latest_ = snapshot;
       has_latest_ = true;
       number = ++frames_;
+      frame_ms_sum_ += frame_ms;
+      if (recording_) recorder = recorder_;
     }
     jpeg_.push(image, number, snapshot.time);
-    std::lock_guard lock(mutex_);
-    frame_ms_sum_ += frame_ms;
-    if (recording_ && recorder_) {
-      render::Image copy = recorder_->spare();
+    if (recorder) {  // outside the lock: push waits while the writer's queue is full
+      render::Image copy = recorder->spare();
       copy.width = image.width;
       copy.height = image.height;
       copy.rgb.assign(image.rgb.begin(), image.rgb.end());
-      recorder_->push(std::move(copy));
+      recorder->push(std::move(copy));
+      std::lock_guard lock(mutex_);
       ++recorded_;
     }
   } catch (const std::exception&) {
@@ -140,7 +142,7 @@ nlohmann::json LiveView::statsJson() const {
 std::string LiveView::record(bool on) {
   const std::string folder = (std::filesystem::path(out_dir_) / kFramesFolder).string();
   std::lock_guard lock(mutex_);
-  if (on && !recorder_) recorder_ = std::make_unique<render::PngSequenceWriter>(folder);
+  if (on && !recorder_) recorder_ = std::make_shared<render::PngSequenceWriter>(folder);
   recording_ = on && recorder_;
   if (on) return "ok recording frames to " + folder + "/ (" + std::to_string(recorded_) + " so far)";
   return "ok recording stopped: " + std::to_string(recorded_) + " frames in " + folder + "/";
@@ -148,13 +150,13 @@ std::string LiveView::record(bool on) {
 
 void LiveView::finish() {
   jpeg_.close();
-  std::unique_ptr<render::PngSequenceWriter> recorder;
+  std::shared_ptr<render::PngSequenceWriter> recorder;
   {
     std::lock_guard lock(mutex_);
     recording_ = false;
     recorder.swap(recorder_);
   }
-  if (recorder) recorder->finish();
+  if (recorder) recorder->finish();  // a frame() holding it meanwhile gets the writer's error
 }
 
 }  // namespace gf::app

@@ -63,7 +63,7 @@ class LiveView final : public render::FrameTap {
   bool has_latest_ = false;
   long frames_ = 0;
   double frame_ms_sum_ = 0.0;
-  std::unique_ptr<render::PngSequenceWriter> recorder_;
+  std::shared_ptr<render::PngSequenceWriter> recorder_;  // pushed to outside the lock
   bool recording_ = false;
   long recorded_ = 0;
 };

@@ -88,11 +88,20 @@ async function command(line) {
 
 function fingerState(name) { return gf.state && gf.state.fingers.find(f => f.name === name); }
 
+// An element with a class and text (never HTML: names come from scene files).
+function element(tag, text, cls) {
+  const e = document.createElement(tag);
+  if (text !== undefined) e.textContent = text;
+  if (cls) e.className = cls;
+  return e;
+}
+function swatch(c) { const d = element("span", undefined, "dot"); d.style.background = colour(c); return d; }
+
 function buildSettings() {
   const box = $("#settings");
   for (const f of gf.scene.fingers) {
-    const h = document.createElement("div");
-    h.innerHTML = '<span class="dot" style="background:' + colour(f.colour) + '"></span><b>' + f.name + "</b> (" + f.device + ")";
+    const h = element("div");
+    h.append(swatch(f.colour), element("b", f.name), " (" + f.device + ")");
     box.appendChild(h);
     const g = document.createElement("div");
     g.className = "settings";
@@ -139,9 +148,15 @@ function showFingers(s) {
     if (!row) {
       row = table.insertRow();
       row.dataset.finger = f.name;
-      row.innerHTML = '<td><span class="dot" style="background:' + colour(desc.colour) + '"></span>' + f.name +
-        '</td><td class="model"></td><td class="n_sgo"></td><td class="radius"></td><td class="force"></td>' +
-        '<td><div class="bar"><i style="background:' + colour(desc.colour) + '"></i></div></td>';
+      const name = element("td");
+      name.append(swatch(desc.colour), f.name);
+      const bar = element("div", undefined, "bar"), fill = element("i");
+      fill.style.background = colour(desc.colour);
+      bar.appendChild(fill);
+      const cell = element("td");
+      cell.appendChild(bar);
+      row.append(name, element("td", "", "model"), element("td", "", "n_sgo"), element("td", "", "radius"),
+                 element("td", "", "force"), cell);
     }
     const force = Math.hypot(...f.force_n), r = f.contacts.length ? f.contacts[0].radius_m * 1e3 : 0;
     row.querySelector(".model").textContent = f.model;
@@ -155,13 +170,16 @@ function showFingers(s) {
 
 function showDevices(s) {
   const t = $("#devices");
-  const rows = gf.scene.fingers.filter(f => f.device !== "track").map(f => {
-    const d = (s.devices || []).find(x => x.finger === f.name);
-    if (f.device === "web") return "<tr><td>" + f.name + "</td><td>web pointer</td><td></td></tr>";
-    return "<tr><td>" + f.name + "</td><td>udp " + (d ? d.address : "") + "</td><td>" + (d ? d.packets + " packets" +
-      (d.stale ? ", stale" : "") + (d.ramping ? ", ramping " + (100 * d.gain).toFixed(0) + "%" : "") : "") + "</td></tr>";
-  });
-  t.innerHTML = rows.length ? rows.join("") : "<tr><td>every finger follows its scripted track</td></tr>";
+  t.replaceChildren();
+  const live = gf.scene.fingers.filter(f => f.device !== "track");
+  for (const f of live) {
+    const d = (s.devices || []).find(x => x.finger === f.name), row = t.insertRow();
+    const what = f.device === "web" ? "web pointer" : "udp " + (d ? d.address : "");
+    const how = f.device === "web" || !d ? "" : d.packets + " packets" + (d.stale ? ", stale" : "") +
+      (d.ramping ? ", ramping " + (100 * d.gain).toFixed(0) + "%" : "");
+    row.append(element("td", f.name), element("td", what), element("td", how));
+  }
+  if (!live.length) t.insertRow().append(element("td", "every finger follows its scripted track"));
 }
 
 function drawChart() {
@@ -203,15 +221,19 @@ async function poll() {
   setTimeout(poll, 100);
 }
 
-// The pointer drives the chosen web finger: pressed, it follows the pointer at its depth.
-let dragging = false, lastSent = 0, pending = null;
+// The pointer drives the chosen web finger: pressed, it follows the pointer at its depth. A
+// move goes out at most every 30 ms (the device goes straight there in 30 ms); the last one of
+// a burst goes out when its 30 ms are up.
+let dragging = false, lastSent = 0, pending = null, timer = null, lastTarget = null;
 function send(p) {
-  const now = performance.now(), finger = $("#web-finger").value;
+  const finger = $("#web-finger").value;
   if (!finger) return;
   pending = p;
-  if (now - lastSent < 30) return;
-  lastSent = now;
-  command("move " + finger + " " + p.map(v => v.toFixed(5)).join(" ") + " 0.03");
+  lastTarget = {finger, p, at: performance.now()};
+  const wait = 30 - (performance.now() - lastSent);
+  if (wait > 0) { if (!timer) timer = setTimeout(() => { timer = null; if (pending) send(pending); }, wait); return; }
+  lastSent = performance.now();
+  command("move " + finger + " " + pending.map(v => v.toFixed(5)).join(" ") + " 0.03");
   pending = null;
 }
 function fingerDepth() {
@@ -222,13 +244,14 @@ function pointerMove(e) {
   if (!dragging || gf.depth === null) return;
   send(unproject(e.clientX, e.clientY, gf.depth));
 }
+// Nearer (negative) or further along the view, from the last target sent (notches add up).
 function nearer(metres) {
-  const f = fingerState($("#web-finger").value);
+  const name = $("#web-finger").value, f = fingerState(name);
   if (!f) return;
   const b = basis();
-  gf.depth = (gf.depth === null ? fingerDepth() : gf.depth) + metres;
-  const at = f.device.map((v, i) => v + metres * b.f[i]);
-  send(at);
+  const from = lastTarget && lastTarget.finger === name && performance.now() - lastTarget.at < 1000 ? lastTarget.p : f.device;
+  gf.depth = dot(sub(from, b.eye), b.f) + metres;
+  send(from.map((v, i) => v + metres * b.f[i]));
 }
 
 async function start() {
@@ -246,7 +269,7 @@ async function start() {
     gf.depth = fingerDepth(); pointerMove(e);
   });
   img.addEventListener("pointermove", pointerMove);
-  const release = e => { dragging = false; if (pending) { lastSent = 0; send(pending); } };
+  const release = () => { dragging = false; };
   img.addEventListener("pointerup", release);
   img.addEventListener("pointercancel", release);
   img.addEventListener("wheel", e => { e.preventDefault(); nearer(e.deltaY > 0 ? 0.005 : -0.005); }, {passive: false});
@@ -259,13 +282,20 @@ async function start() {
     command(gf.state && gf.state.view && gf.state.view.recording ? "record stop" : "record start"));
   if (gf.scene.mode === "live") {
     $("#live-controls").hidden = false;
-    let running = null;
+    // Run: the next `step` goes out once the last is answered, at most 30 a second.
+    let running = false;
     const steps = Math.max(1, Math.round(gf.scene.haptic_rate_hz / 30));
+    const tick = async () => {
+      if (!running) return;
+      const started = performance.now();
+      await command("step " + steps);
+      setTimeout(tick, Math.max(0, 33 - (performance.now() - started)));
+    };
     $("#step").addEventListener("click", () => command("step 1"));
     $("#run").addEventListener("click", () => {
-      if (running) { clearInterval(running); running = null; $("#run").textContent = "run"; return; }
-      running = setInterval(() => command("step " + steps), 33);
-      $("#run").textContent = "pause";
+      running = !running;
+      $("#run").textContent = running ? "pause" : "run";
+      tick();
     });
   }
   poll();

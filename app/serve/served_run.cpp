@@ -47,7 +47,13 @@ void ServedRun::afterStep(sim::World& world) {
     taking_.swap(posted_);
     has_posted_.store(false, std::memory_order_relaxed);
   }
-  for (const sim::SettingsCommand& c : taking_) world.setPatchSettings(c.finger, c.patch);
+  for (const sim::SettingsCommand& c : taking_) {
+    try {
+      world.setPatchSettings(c.finger, c.patch);  // checked when posted: the World agrees
+    } catch (const std::exception&) {
+      settings_refused_.fetch_add(1, std::memory_order_relaxed);
+    }
+  }
   settings_applied_.fetch_add(static_cast<long>(taking_.size()), std::memory_order_relaxed);
   taking_.clear();
 }
@@ -81,7 +87,11 @@ std::string ServedRun::answer(const std::string& line) {
       case K::kSet: {
         std::lock_guard lock(mutex_);
         sim::PatchSettings& p = settings_[static_cast<std::size_t>(c.finger)];
-        p = applySet(c, p);
+        const sim::PatchSettings next = applySet(c, p);
+        if (const std::optional<sim::FieldError> e = sim::validatePatch(next)) {
+          return "error: " + c.text + ": " + e->reason;  // as the World would refuse it
+        }
+        p = next;
         posted_.push_back({c.finger, p});
         has_posted_.store(true, std::memory_order_release);
         return "ok " + c.text;
@@ -98,7 +108,8 @@ nlohmann::json ServedRun::finish() {
   view_.finish();
   nlohmann::json out = server_->statsJson();
   out["view"] = view_.statsJson();
-  out["settings_applied"] = settings_applied_.load();
+  out["settings_applied"] = settings_applied_.load() - settings_refused_.load();
+  out["settings_refused"] = settings_refused_.load();
   long moves = 0;
   for (const auto& d : devices_) moves += d->moves();
   out["moves_taken"] = moves;

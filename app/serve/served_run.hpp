@@ -36,7 +36,8 @@ class ServedRun {
   /// A provider of the UDP links' state for /state.json (set before the loop).
   void setDeviceState(std::function<nlohmann::json()> devices) { view_.setDeviceState(std::move(devices)); }
   /// Haptic thread, after each step: applies the settings posted since (never waits; allocates
-  /// only when there is one).
+  /// only when there is one). The page's settings are the base of its next `set`: changes made
+  /// meanwhile by a scene's `[[changes]]` or the overlay are not merged into them.
   void afterStep(sim::World& world);
   /// Stops the server and the recording; returns what they did, for summary.json.
   nlohmann::json finish();
@@ -54,7 +55,7 @@ class ServedRun {
   std::vector<sim::PatchSettings> settings_;  // each finger's, as the page last set them
   std::vector<sim::SettingsCommand> posted_, taking_;
   std::atomic<bool> has_posted_{false};
-  std::atomic<long> settings_applied_{0};
+  std::atomic<long> settings_applied_{0}, settings_refused_{0};
   std::unique_ptr<WebServer> server_;  // started last, stopped first
 };
 

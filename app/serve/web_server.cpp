@@ -8,6 +8,7 @@
 #include <charconv>
 #include <chrono>
 #include <cstdio>
+#include <cstdlib>
 #include <mutex>
 #include <random>
 #include <thread>
@@ -19,8 +20,18 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 constexpr char kBoundary[] = "gfframe";
-// A stream with no new frame for this long writes nothing and checks its client again.
+// A stream with no new frame for this long writes nothing and checks its client again; after
+// kStreamResend without a frame it sends the newest again, so a client that hung up is found
+// (an idle `live` session draws nothing) and its place freed.
 constexpr std::chrono::milliseconds kStreamPoll{500};
+constexpr std::chrono::seconds kStreamResend{2};
+
+// Equal strings, in a time that does not depend on where they differ.
+bool sameSecret(const std::string& a, const std::string& b) {
+  unsigned char diff = a.size() == b.size() ? 0 : 1;
+  for (std::size_t i = 0; i < a.size(); ++i) diff |= static_cast<unsigned char>(a[i] ^ b[i % std::max<std::size_t>(1, b.size())]);
+  return diff == 0;
+}
 
 bool isLoopback(const std::string& host) { return host == "localhost" || host.rfind("127.", 0) == 0; }
 
@@ -45,6 +56,19 @@ bool RequestRate::allow(const std::string& client, Clock::time_point now) {
   if (b.tokens < 1.0) return false;
   b.tokens -= 1.0;
   return true;
+}
+
+std::string tokenOrEnvironment(const std::string& given) {
+  const char* environment = std::getenv("GODFINGER_TOKEN");
+  return given.empty() && environment ? environment : given;
+}
+
+std::vector<std::string> redactedToken(std::vector<std::string> argv) {
+  for (std::size_t i = 0; i < argv.size(); ++i) {
+    if (argv[i] == "--token" && i + 1 < argv.size()) argv[i + 1] = "***";
+    if (argv[i].rfind("--token=", 0) == 0) argv[i] = "--token=***";
+  }
+  return argv;
 }
 
 ServeOptions parseServe(const std::string& serve, const std::string& token) {
@@ -83,41 +107,58 @@ struct WebServer::Impl {
   std::thread thread;
   RequestRate limit;
   std::atomic<int> streams{0};
-  std::atomic<long> served{0}, unauthorized{0}, limited{0}, busy{0}, stream_frames{0};
+  std::atomic<long> served{0}, unauthorized{0}, limited{0}, foreign{0}, busy{0}, stream_frames{0};
   std::atomic<bool> stopping{false};
 
   Impl(const ServeOptions& o, LiveView& v, CommandHandler c) : options(o), view(v), command(std::move(c)) {}
 
   bool authorized(const httplib::Request& req) const {
     if (options.token.empty()) return true;
-    if (req.has_param("token") && req.get_param_value("token") == options.token) return true;
-    return req.get_header_value("Authorization") == "Bearer " + options.token;
+    if (req.has_param("token") && sameSecret(req.get_param_value("token"), options.token)) return true;
+    return sameSecret(req.get_header_value("Authorization"), "Bearer " + options.token);
+  }
+
+  // A page of another site must not steer or read a session on loopback through the visitor's
+  // browser: on loopback the Host must be this server's (no DNS rebinding), and a request a page
+  // sends with an Origin must come from this server's own.
+  bool sameSite(const httplib::Request& req) const {
+    const std::string port = std::string(":").append(std::to_string(options.port));  // (GCC 12: no ":" + s)
+    const std::string host = req.get_header_value("Host");
+    if (isLoopback(options.host) && host != options.host + port && host != std::string("localhost").append(port)) {
+      return false;
+    }
+    const std::string origin = req.get_header_value("Origin");
+    return origin.empty() || origin == std::string("http://").append(host);
+  }
+
+  httplib::Server::HandlerResponse refuse(httplib::Response& res, int status, const char* text, std::atomic<long>& count) {
+    ++count;
+    res.status = status;
+    res.set_content(text, "text/plain");
+    return httplib::Server::HandlerResponse::Handled;
   }
 
   httplib::Server::HandlerResponse gate(const httplib::Request& req, httplib::Response& res) {
     ++served;
+    if (!limit.allow(req.remote_addr, Clock::now())) return refuse(res, 429, "429: too many requests\n", limited);
     if (!authorized(req)) {
-      ++unauthorized;
-      res.status = 401;
-      res.set_content("401: this server needs its token (?token=... or Authorization: Bearer ...)\n", "text/plain");
-      return httplib::Server::HandlerResponse::Handled;
+      return refuse(res, 401, "401: this server needs its token (?token=... or Authorization: Bearer ...)\n",
+                    unauthorized);
     }
-    if (!limit.allow(req.remote_addr, Clock::now())) {
-      ++limited;
-      res.status = 429;
-      res.set_content("429: too many requests\n", "text/plain");
-      return httplib::Server::HandlerResponse::Handled;
-    }
+    if (!sameSite(req)) return refuse(res, 403, "403: not from this server's own page or address\n", foreign);
     res.set_header("Cache-Control", "no-store");
     return httplib::Server::HandlerResponse::Unhandled;
   }
 
-  // One part of the MJPEG stream: the newest frame after `last`, or nothing after kStreamPoll.
-  bool streamPart(long& last, httplib::DataSink& sink) {
+  // One part of the MJPEG stream: the newest frame after `last`, or nothing after kStreamPoll
+  // (the newest again after kStreamResend without one).
+  bool streamPart(long& last, Clock::time_point& sent, httplib::DataSink& sink) {
     const render::JpegFrame f = view.jpeg().waitNewer(last, kStreamPoll);
     if (stopping.load() || view.jpeg().closed()) return false;
-    if (f.number <= last || !f.bytes) return sink.is_writable();
+    if (!f.bytes) return sink.is_writable();
+    if (f.number <= last && Clock::now() - sent < kStreamResend) return sink.is_writable();
     last = f.number;
+    sent = Clock::now();
     char head[200];
     const int n = std::snprintf(head, sizeof head,
                                 "--%s\r\nContent-Type: image/jpeg\r\nContent-Length: %zu\r\nX-Frame: %ld\r\n"
@@ -137,10 +178,10 @@ struct WebServer::Impl {
       res.set_content("503: " + std::to_string(kMaxStreams) + " streams are open already\n", "text/plain");
       return;
     }
-    auto last = std::make_shared<long>(0);
+    auto last = std::make_shared<std::pair<long, Clock::time_point>>(0, Clock::now());
     res.set_content_provider(
         std::string("multipart/x-mixed-replace; boundary=") + kBoundary,
-        [this, last](std::size_t, httplib::DataSink& sink) { return streamPart(*last, sink); },
+        [this, last](std::size_t, httplib::DataSink& sink) { return streamPart(last->first, last->second, sink); },
         [this](bool) { --streams; });
   }
 
@@ -193,7 +234,7 @@ WebServer::WebServer(const ServeOptions& options, LiveView& view, CommandHandler
   s.server.set_payload_max_length(kMaxRequestBytes);
   s.server.set_read_timeout(5, 0);
   s.server.set_write_timeout(5, 0);
-  s.server.set_keep_alive_timeout(5);
+  s.server.set_keep_alive_timeout(2);  // an idle browser connection holds stop() up to this long
   s.routes();
   if (s.options.port == 0) {
     s.options.port = s.server.bind_to_any_port(s.options.host);
@@ -209,6 +250,9 @@ WebServer::WebServer(const ServeOptions& options, LiveView& view, CommandHandler
     pthread_setname_np(pthread_self(), "gf-http");
     s.server.listen_after_bind();
   });
+  // httplib's stop() does nothing before its loop runs: wait for it (bounded), so a server
+  // stopped at once (a later start-up step failing) stops.
+  for (int i = 0; i < 5000 && !s.server.is_running(); ++i) std::this_thread::sleep_for(std::chrono::milliseconds(1));
 }
 
 WebServer::~WebServer() { stop(); }
@@ -238,6 +282,7 @@ nlohmann::json WebServer::statsJson() const {
           {"requests", s.served.load()},
           {"unauthorized", s.unauthorized.load()},
           {"rate_limited", s.limited.load()},
+          {"foreign", s.foreign.load()},
           {"streams_refused", s.busy.load()},
           {"streams_open", s.streams.load()},
           {"stream_frames_sent", s.stream_frames.load()}};

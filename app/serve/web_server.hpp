@@ -10,6 +10,7 @@
 #include <memory>
 #include <mutex>
 #include <string>
+#include <vector>
 
 #include "app/serve/live_view.hpp"
 
@@ -27,6 +28,12 @@ struct ServeOptions {
 /// Parses `--serve`'s value ("8080", "127.0.0.1:8080", "0.0.0.0:8080") and `--token`. Throws
 /// InputError naming the option when it is not legal.
 ServeOptions parseServe(const std::string& serve, const std::string& token);
+
+/// `--token`'s value, or $GODFINGER_TOKEN when it is empty (a token in the environment is not
+/// shown by `ps` to other users).
+std::string tokenOrEnvironment(const std::string& given);
+/// The command line with `--token`'s value replaced by "***" (summary.json records it).
+std::vector<std::string> redactedToken(std::vector<std::string> argv);
 
 /// Requests one client may make a second, and in a burst, before it gets 429.
 inline constexpr double kRequestsPerSecond = 300.0, kRequestBurst = 600.0;

@@ -51,8 +51,11 @@ class Live {
 
   // One line, checked whole before anything runs; the answer goes into `answer`. Returns false
   // on quit. Throws std::invalid_argument (or runtime_error) with the error's text.
-  bool execute(const std::string& line, std::string& answer) {
+  bool execute(const std::string& line, std::string& answer, bool posted = false) {
     const LiveCommand c = parseLiveCommand(line, session_.scene);
+    if (posted && c.kind == K::kQuit) {
+      throw std::invalid_argument("quit: only on the session's standard input (or Ctrl-C)");
+    }
     switch (c.kind) {
       case K::kNone: return true;
       case K::kQuit: answer = "ok bye"; return false;
@@ -126,10 +129,11 @@ class Live {
 };
 
 // Runs one line for `input`:`number`; writes the answer or the error. False on quit.
-bool answerLine(Live& live, const std::string& line, const std::string& where, std::string& answer, int& failures) {
+bool answerLine(Live& live, const std::string& line, const std::string& where, std::string& answer, int& failures,
+                bool posted = false) {
   bool go_on = true;
   try {
-    go_on = live.execute(line, answer);
+    go_on = live.execute(line, answer, posted);
   } catch (const std::exception& e) {
     ++failures;
     answer = "error: " + where + e.what();
@@ -156,6 +160,10 @@ class LiveQueue {
   };
   void push(Item item) {
     std::lock_guard lock(mutex_);
+    if (closed_) {  // the session has ended: answered at once, never queued
+      if (item.reply) item.reply->set_value("error: the session has ended");
+      return;
+    }
     items_.push_back(std::move(item));
     changed_.notify_all();
   }
@@ -166,9 +174,11 @@ class LiveQueue {
     items_.pop_front();
     return item;
   }
-  // Answers every request still queued (the session ended).
-  void drain() {
+  // The session has ended: every request still queued, and every one pushed from now on, is
+  // answered so (before the server stops: its threads wait for their answers).
+  void close() {
     std::lock_guard lock(mutex_);
+    closed_ = true;
     for (Item& i : items_) {
       if (i.reply) i.reply->set_value("error: the session has ended");
     }
@@ -176,6 +186,7 @@ class LiveQueue {
   }
 
  private:
+  bool closed_ = false;
   std::mutex mutex_;
   std::condition_variable changed_;
   std::deque<Item> items_;
@@ -185,10 +196,6 @@ namespace {
 
 // A posted command, answered once the session's thread has run it.
 std::string postAndWait(LiveQueue& queue, const std::string& line) {
-  if (line.find_first_not_of(" \t") != std::string::npos) {
-    const std::string word = line.substr(line.find_first_not_of(" \t"), 4);
-    if (word == "quit" || word == "exit") return "error: quit: only on the session's standard input (or Ctrl-C)";
-  }
   std::promise<std::string> reply;
   std::future<std::string> answer = reply.get_future();
   queue.push({line, 0, &reply, false});
@@ -230,12 +237,12 @@ int runServed(Live& live, const LiveOptions& options, std::istream& in, std::ost
     std::string answer;
     int posted_failures = 0;  // a page's bad request is answered to it; the exit status is standard input's
     go_on = answerLine(live, item->line, item->reply ? "" : options.input_name + ':' + std::to_string(item->number) + ": ",
-                       answer, item->reply ? posted_failures : failures);
+                       answer, item->reply ? posted_failures : failures, item->reply != nullptr);
     if (item->reply) item->reply->set_value(answer);
     else if (!answer.empty()) out << answer << std::endl;
   }
+  queue.close();
   server.stop();
-  queue.drain();
   view.finish();
   renderer.finish();
   // Standard input may stay open (the session ended by `quit` or Ctrl-C): the reader is left to

@@ -27,6 +27,7 @@
 #include "app/serve/web_server.hpp"
 #include "app/session/live_command.hpp"
 #include "app/session/session.hpp"
+#include "render/jpeg_stream.hpp"
 #include "tests/app/run_helpers.hpp"
 #include "tests/scratch.hpp"
 
@@ -116,7 +117,7 @@ TEST(Serve, AServerBeyondLoopbackRefusesEveryRequestWithoutItsToken) {
   const std::string token = url.substr(url.find("?token=") + 7);
   ASSERT_GE(token.size(), 32u);
   httplib::Client client("127.0.0.1", portOf(*server));
-  for (const char* path : {"/", "/state.json", "/scene.json", "/frame.jpg", "/stream.mjpg"}) {
+  for (const char* path : {"/", "/state.json", "/scene.json", "/frame.jpg", "/stream.mjpg", "/no-such-page"}) {
     EXPECT_EQ(client.Get(path)->status, 401) << path;
     EXPECT_EQ(client.Get(std::string(path) + "?token=wrong")->status, 401) << path;
   }
@@ -125,7 +126,41 @@ TEST(Serve, AServerBeyondLoopbackRefusesEveryRequestWithoutItsToken) {
   EXPECT_EQ(client.Get("/", {{"Authorization", "Bearer " + token}})->status, 200);
   const auto answer = client.Post("/command?token=" + token, "move index 0 0.1 0", "text/plain");
   EXPECT_EQ(answer->body, "ok move index 0 0.1 0\n");
-  EXPECT_GE(server->statsJson()["unauthorized"].get<long>(), 11);
+  EXPECT_GE(server->statsJson()["unauthorized"].get<long>(), 13);
+}
+
+// On loopback without a token, another site's page cannot use the visitor's browser: a request
+// naming another host (DNS rebinding) or sent from another origin is refused.
+TEST(Serve, ALoopbackServerRefusesOtherSitesPages) {
+  FedView fed(out("gf_serve_csrf"));
+  std::unique_ptr<WebServer> server = serve(fed.view(), "127.0.0.1");
+  const int port = portOf(*server);
+  httplib::Client client("127.0.0.1", port);
+  EXPECT_EQ(client.Get("/scene.json")->status, 200);
+  EXPECT_EQ(client.Get("/scene.json", {{"Host", "localhost:" + std::to_string(port)}})->status, 200);
+  EXPECT_EQ(client.Get("/scene.json", {{"Host", "evil.example:" + std::to_string(port)}})->status, 403);
+  const std::string own = "http://127.0.0.1:" + std::to_string(port);
+  EXPECT_EQ(client.Post("/command", {{"Origin", own}}, "state", "text/plain")->status, 200);
+  EXPECT_EQ(client.Post("/command", {{"Origin", "http://evil.example"}}, "record start", "text/plain")->status, 403);
+  EXPECT_EQ(server->statsJson()["foreign"].get<long>(), 2);
+}
+
+// A reader that does not wait gets no backlog: frames pushed meanwhile are dropped, and the next
+// reader to wait gets the newest frame pushed after it began to wait.
+TEST(Serve, ASlowReaderGetsTheNewestFrameNeverABacklog) {
+  render::JpegStream stream;
+  const render::Image image{16, 16, std::vector<std::uint8_t>(16 * 16 * 3, 100)};
+  stream.push(image, 1, 0.001);  // the first frame is encoded whoever waits
+  EXPECT_EQ(stream.waitNewer(0, std::chrono::seconds(30)).number, 1);
+  for (long k = 2; k <= 10; ++k) stream.push(image, k, 0.001 * static_cast<double>(k));  // nobody waits
+  long got = 0;
+  std::thread reader([&] { got = stream.waitNewer(1, std::chrono::seconds(30)).number; });
+  while (stream.waiting() == 0) std::this_thread::yield();
+  stream.push(image, 11, 0.011);
+  reader.join();
+  EXPECT_EQ(got, 11) << "frames 2..10, pushed while nobody waited, were not kept for the reader";
+  EXPECT_EQ(stream.stats().encoded, 2);
+  EXPECT_EQ(stream.stats().pushed, 11);
 }
 
 // The page is one document: nothing from disk or the network (no src= or href= of another host).
@@ -368,6 +403,7 @@ TEST(Serve, LiveTakesThePagesCommandsInTurnWithStandardInput) {
   const auto quit = client.Post("/command", "quit", "text/plain");
   EXPECT_EQ(quit->status, 400);
   EXPECT_EQ(quit->body.rfind("error: quit: only on the session's standard input", 0), 0u) << quit->body;
+  EXPECT_EQ(client.Post("/command", "\rquit", "text/plain")->status, 400) << "any whitespace before it";
   std::fputs("step 50\n", input);
   std::fflush(input);
   const std::string answer = test::lineWith(child.lines, "ok {");
@@ -385,10 +421,35 @@ TEST(Serve, LiveTakesThePagesCommandsInTurnWithStandardInput) {
   int status = 429;  // the polling above may have used this client's burst: it is back within ms
   while (status == 429) status = client.Post("/command", "state", "text/plain")->status;
   EXPECT_EQ(status, 200);
+  // Ctrl-C while the page has a long step running and another command waiting: the step stops,
+  // both are answered, and the session ends (it used to wait for ever on the waiting one).
+  std::string long_step, waiting;
+  std::atomic<int> sent{0};
+  std::thread first([&] {
+    httplib::Client c("127.0.0.1", port);
+    c.set_read_timeout(120, 0);
+    ++sent;
+    long_step = c.Post("/command", "step 10000000", "text/plain")->body;
+  });
+  std::thread second([&] {
+    httplib::Client c("127.0.0.1", port);
+    c.set_read_timeout(120, 0);
+    while (sent.load() == 0) std::this_thread::yield();
+    ++sent;
+    const auto res = c.Post("/command", "state", "text/plain");
+    waiting = res ? res->body : "no answer";
+  });
+  while (sent.load() < 2) std::this_thread::yield();
   kill(-child.pid, SIGINT);
+  first.join();
+  second.join();
   const test::Ended ended = test::finishLines(child);
   guard.done = true;
   EXPECT_EQ(ended.status, 130);
+  // Each is answered: run (the step stopped at the signal) or refused as the session ended.
+  for (const std::string& a : {long_step, waiting}) {
+    EXPECT_TRUE(a.rfind("ok {", 0) == 0 || a.rfind("error: the session has ended", 0) == 0) << a;
+  }
 }
 
 }  // namespace

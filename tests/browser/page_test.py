@@ -51,7 +51,7 @@ class Context:
 def serve_command(binary: Path, out_dir: Path, serve: str, *extra: str) -> list[str]:
     """The godfinger command line of the tests: live-view in real time, served at `serve`."""
     return [str(binary), "run", "live-view", "--realtime", "--serve", serve, "--out", str(out_dir),
-            "--set", "duration=60", "--no-fifo", *extra]
+            "--set", "duration=600", "--no-fifo", *extra]
 
 
 # Vectors and the state ------------------------------------------------------------------------
@@ -188,9 +188,6 @@ def test_page_shows_the_stream(ctx: Context) -> None:
         assert answer.startswith("ok"), f"move thumb: {answer}"
         while len(seen) < 3:
             seen.add(part_digest(next(parts)))
-    shown = ctx.page.evaluate("window.gf.framesShown")
-    if shown is not None:
-        ctx.page.wait_for(f"window.gf.framesShown >= {shown + 3}", "the page to show three more frames")
 
 
 def part_digest(part: tuple[dict[str, str], bytes]) -> str:
