@@ -179,7 +179,8 @@ def test_page_shows_the_stream(ctx: Context) -> None:
         for selector in [f"#fingers tr[data-finger={name}]", f"input[data-finger={name}][data-field=god_finger]",
                          *(f"input[data-finger={name}][data-field={field}]" for field in FIELDS),
                          f"select#web-finger option[value={name}]"]:
-            assert ctx.page.evaluate(f"!!document.querySelector('{selector}')"), f"no {selector} on the page"
+            # The finger rows come with the first state the page reads: waited for, as every control.
+            ctx.page.wait_for(f"!!document.querySelector('{selector}')", f"{selector} on the page")
     assert ctx.page.evaluate("!!document.querySelector('button#record')"), "no button#record on the page"
     with closing(mjpeg_parts(ctx.served.url("/stream.mjpg"))) as parts:
         seen = {part_digest(next(parts))}
