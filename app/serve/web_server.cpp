@@ -3,6 +3,7 @@
 #include <httplib.h>
 
 #include <arpa/inet.h>
+#include <sys/socket.h>
 
 #include <atomic>
 #include <charconv>
@@ -231,6 +232,12 @@ WebServer::WebServer(const ServeOptions& options, LiveView& view, CommandHandler
     s.options.token = generatedToken();
     s.generated = true;
   }
+  // SO_REUSEADDR only: httplib's default adds SO_REUSEPORT, with which a second run would share the
+  // port (the kernel splitting connections between them) instead of being told it is in use.
+  s.server.set_socket_options([](int sock) {
+    const int yes = 1;
+    setsockopt(sock, SOL_SOCKET, SO_REUSEADDR, &yes, sizeof yes);
+  });
   s.server.set_payload_max_length(kMaxRequestBytes);
   s.server.set_read_timeout(5, 0);
   s.server.set_write_timeout(5, 0);

@@ -163,6 +163,21 @@ TEST(Serve, ASlowReaderGetsTheNewestFrameNeverABacklog) {
   EXPECT_EQ(stream.stats().pushed, 11);
 }
 
+// A port in use is an error naming it, not a port shared with the other server.
+TEST(Serve, APortInUseIsRefused) {
+  FedView fed(out("gf_serve_port"));
+  std::unique_ptr<WebServer> first = serve(fed.view(), "127.0.0.1");
+  ServeOptions again;
+  again.port = portOf(*first);
+  try {
+    WebServer second(again, fed.view(), [](const std::string&) { return std::string("ok"); });
+    ADD_FAILURE() << "a second server listens on port " << again.port;
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find("cannot listen on 127.0.0.1:" + std::to_string(again.port)), std::string::npos)
+        << e.what();
+  }
+}
+
 // The page is one document: nothing from disk or the network (no src= or href= of another host).
 TEST(Serve, ThePageIsSelfContained) {
   const std::string& page = webPage();
