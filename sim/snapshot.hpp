@@ -13,6 +13,15 @@
 
 namespace gf::sim {
 
+/// The force one point of a contact puts on the touched body in a step (N, world frame): the
+/// solver's result, split over the contact's points. A contact's points' loads add up to its
+/// `force` (ContactSnapshot).
+struct PointLoad {
+  double normal = 0.0;             ///< pressing force along -outward_normal (N, >= 0)
+  Vec3 tangential = Vec3::Zero();  ///< friction on the body at the point, in the tangent plane (N)
+  bool slipping = false;           ///< the body's surface slides under the point, friction at its limit
+};
+
 /// One contact of one finger with one body, with its patch, in the world frame.
 struct ContactSnapshot {
   int body = -1;                             ///< index into SceneDesc::bodies
@@ -25,6 +34,12 @@ struct ContactSnapshot {
   std::vector<Vec3> sgos_world;              ///< SGO positions (m), then a filled patch's inner points
   std::vector<Vec3> path_points_world;       ///< walked paths, concatenated (m)
   std::vector<std::int32_t> path_offsets;    ///< SGO k's path: [offsets[k], offsets[k+1])
+  /// The contact's force on the body this step (N): the solver's normal and friction forces,
+  /// what `point_load` and `loads` add up to. Zero when the solver did not see the contact.
+  Vec3 force = Vec3::Zero();
+  PointLoad point_load;          ///< the true contact point's share (at point_world)
+  std::vector<PointLoad> loads;  ///< one per sgos_world; empty when the solver did not see them
+  bool sliding = false;          ///< the contact's friction is at its limit (it slides or spins)
 };
 
 /// One finger.
