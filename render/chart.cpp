@@ -351,17 +351,21 @@ std::vector<std::vector<ImVec2>> linePaths(const Canvas& c, const ChartSeries& s
   return paths;
 }
 
-// A line in its dash pattern (dots a little wider, to read as dots), then its markers along it.
+// A line in its dash pattern (dots a little wider, to read as dots).
 constexpr float kLineWidthPx = 1.6f, kDotWidthPx = 2.6f;
 
 void drawLines(const Canvas& c, const ChartSeries& s) {
-  const ImU32 colour = imguiColour(s.colour);
   const float width = s.dash == LineDash::kDotted ? kDotWidthPx : kLineWidthPx;
-  const std::vector<std::vector<ImVec2>> paths = linePaths(c, s);
-  for (const std::vector<ImVec2>& path : paths) chart_marks::strokePath(c.d, path, colour, width, s.dash);
-  if (s.style != SeriesStyle::kLine) return;
-  for (const std::vector<ImVec2>& path : paths) {
-    chart_marks::markersAlong(c.d, path, c.lo.x, s.marker_spacing_px, s.marker_phase, colour, s.marker);
+  for (const std::vector<ImVec2>& path : linePaths(c, s)) {
+    chart_marks::strokePath(c.d, path, imguiColour(s.colour), width, s.dash);
+  }
+}
+
+// A line's markers along it (after every line, so no line covers them).
+void drawLineMarkers(const Canvas& c, const ChartSeries& s) {
+  if (s.style != SeriesStyle::kLine || !(s.marker_spacing_px > 0.0f)) return;
+  for (const std::vector<ImVec2>& path : linePaths(c, s)) {
+    chart_marks::markersAlong(c.d, path, c.lo.x, s.marker_spacing_px, s.marker_phase, imguiColour(s.colour), s.marker);
   }
 }
 
@@ -470,12 +474,14 @@ bool markBeyondRange(const Canvas& c, const ChartSeries& s) {
 void drawBands(const Canvas& c, const ChartSpec& chart) {
   const float size = 0.8f * c.font;
   for (const ChartBand& b : chart.bands) {
-    const float lo = onAxis(b.y_lo, c.y.log) ? std::clamp(c.y.pixel(b.y_lo), c.lo.y, c.hi.y) : c.hi.y;
-    const float hi = onAxis(b.y_hi, c.y.log) ? std::clamp(c.y.pixel(b.y_hi), c.lo.y, c.hi.y) : c.lo.y;
+    // Inside the frame's pixels, which stay the frame's colour.
+    const float top = c.lo.y + 1.0f, bottom = c.hi.y - 1.0f;
+    const float lo = onAxis(b.y_lo, c.y.log) ? std::clamp(c.y.pixel(b.y_lo), top, bottom) : bottom;
+    const float hi = onAxis(b.y_hi, c.y.log) ? std::clamp(c.y.pixel(b.y_hi), top, bottom) : top;
     if (!(lo > hi)) continue;
     const Eigen::Vector3f& k = b.colour;
-    c.d.AddRectFilled(ImVec2(c.lo.x, hi), ImVec2(c.hi.x, lo), imguiColour(k, 0.22f));
-    c.d.AddLine(ImVec2(c.lo.x, hi), ImVec2(c.hi.x, hi), imguiColour(k, 0.8f), 1.0f);
+    c.d.AddRectFilled(ImVec2(c.lo.x + 1.0f, hi), ImVec2(c.hi.x - 1.0f, lo), imguiColour(k, 0.22f));
+    c.d.AddLine(ImVec2(c.lo.x + 1.0f, hi), ImVec2(c.hi.x - 1.0f, hi), imguiColour(k, 0.8f), 1.0f);
     if (!b.label.empty()) {
       c.d.AddText(ImGui::GetFont(), size, ImVec2(c.lo.x + 0.4f * c.font, hi + 0.15f * c.font), kInk, b.label.c_str());
     }
@@ -506,7 +512,6 @@ void addChart(ImDrawList& d, const ChartSpec& chart, float left, float top) {
   const float right = left + static_cast<float>(chart.width), bottom = top + static_cast<float>(chart.height);
   d.AddRectFilled(ImVec2(left, top), ImVec2(right, bottom), IM_COL32(255, 255, 255, 255));
   drawGrid(c);
-  d.AddRect(l.lo, l.hi, kInk);
   // Data, clipped to the plot: bands under everything, every series' lines (solid ones first),
   // then markers over them, then point labels.
   d.PushClipRect(l.lo, l.hi, true);
@@ -519,6 +524,7 @@ void addChart(ImDrawList& d, const ChartSpec& chart, float left, float top) {
     return chart_marks::drawOrder(a->dash) < chart_marks::drawOrder(b->dash);
   });
   for (const ChartSeries* s : lines) drawLines(c, *s);
+  for (const ChartSeries* s : lines) drawLineMarkers(c, *s);
   for (const ChartSeries& s : chart.series) {
     if (s.style != SeriesStyle::kLine) drawMarkers(c, s);
   }
@@ -527,6 +533,7 @@ void addChart(ImDrawList& d, const ChartSpec& chart, float left, float top) {
   for (const ChartSeries& s : chart.series) beyond = markBeyondRange(c, s) || beyond;
   drawCursor(c, chart);
   d.PopClipRect();
+  d.AddRect(l.lo, l.hi, kInk);  // the frame, over the bands
   // Title, axis labels, legend, notes.
   const float x_label_y = l.hi.y + 1.9f * font;
   d.AddText(l.title, kInk, chart.title.c_str());
