@@ -214,6 +214,14 @@ float legendSwatch(float font) { return 2.5f * font; }
 // Notes under the x axis's label: smaller text, one line each.
 float noteSize(float font) { return 0.85f * font; }
 float noteRowHeight(float font) { return 1.2f * noteSize(font); }
+// The notes' lines: each note wrapped at spaces to the chart's width.
+std::vector<std::string> noteLines(const ChartSpec& chart, float font) {
+  std::vector<std::string> out;
+  for (const std::string& note : chart.notes) {
+    chart_marks::wrapText(note, noteSize(font), static_cast<float>(chart.width) - 0.8f * font, out);
+  }
+  return out;
+}
 
 // `origin`: the chart's top-left corner in the frame (pixels).
 Layout layout(const ChartSpec& chart, float font, ImVec2 origin) {
@@ -221,7 +229,7 @@ Layout layout(const ChartSpec& chart, float font, ImVec2 origin) {
   l.lo = ImVec2(origin.x + 5.5f * font, origin.y + 2.5f * font);
   l.hi = ImVec2(origin.x + static_cast<float>(chart.width) - 1.5f * font,
                 origin.y + static_cast<float>(chart.height) - 3.5f * font -
-                    static_cast<float>(chart.notes.size()) * noteRowHeight(font));
+                    static_cast<float>(noteLines(chart, font).size()) * noteRowHeight(font));
   // A y label that would run into the title gets a line of its own above the plot.
   const float y_label_end = origin.x + 0.4f * font + ImGui::CalcTextSize(chart.y_label.c_str()).x;
   if (!chart.title.empty() && y_label_end > l.lo.x - 0.5f * font) l.lo.y += 1.4f * font;
@@ -545,9 +553,10 @@ void addChart(ImDrawList& d, const ChartSpec& chart, float left, float top) {
     const char* note = "triangles at the edges: values beyond the y axis";
     d.AddText(ImVec2(l.hi.x - ImGui::CalcTextSize(note).x, x_label_y), kInk, note);
   }
-  for (std::size_t k = 0; k < chart.notes.size(); ++k) {
+  const std::vector<std::string> notes = noteLines(chart, font);
+  for (std::size_t k = 0; k < notes.size(); ++k) {
     const float y = x_label_y + 1.3f * font + static_cast<float>(k) * noteRowHeight(font);
-    d.AddText(ImGui::GetFont(), noteSize(font), ImVec2(left + 0.4f * font, y), kInk, chart.notes[k].c_str());
+    d.AddText(ImGui::GetFont(), noteSize(font), ImVec2(left + 0.4f * font, y), kInk, notes[k].c_str());
   }
 }
 

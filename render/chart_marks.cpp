@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cfloat>
 #include <cmath>
 #include <optional>
 
@@ -104,6 +105,22 @@ void markersAlong(ImDrawList& d, const std::vector<ImVec2>& path, float x0, floa
       next += spacing;
     }
   }
+}
+
+void wrapText(const std::string& text, float size, float width, std::vector<std::string>& lines) {
+  const auto wide = [&](const std::string& s) { return ImGui::GetFont()->CalcTextSizeA(size, FLT_MAX, 0.0f, s.c_str()).x; };
+  std::string line;
+  for (std::size_t a = 0; a < text.size();) {
+    const std::size_t b = std::min(text.find(' ', a), text.size());
+    const std::string word = text.substr(a, b - a);
+    a = b + 1;
+    if (!line.empty() && wide(line + " " + word) > width) {
+      lines.push_back(line);
+      line.clear();
+    }
+    line += (line.empty() ? "" : " ") + word;
+  }
+  if (!line.empty()) lines.push_back(line);
 }
 
 Placed placeLabel(ImVec2 plot_lo, ImVec2 plot_hi, ImVec2 p, ImVec2 size, const std::vector<Box>& taken) {

@@ -4,6 +4,7 @@
 
 #include <imgui.h>
 
+#include <string>
 #include <vector>
 
 #include "render/chart.hpp"
@@ -41,6 +42,10 @@ struct Placed {
 /// off `taken`; else the same eight ways further out (1.5, 3 and 5 label heights: a leader line
 /// joins it to its marker); else the first place inside, on what it overlaps.
 Placed placeLabel(ImVec2 plot_lo, ImVec2 plot_hi, ImVec2 p, ImVec2 size, const std::vector<Box>& taken);
+
+/// Appends `text` to `lines` wrapped at spaces into lines of at most `width` pixels in text
+/// `size` pixels high (a word longer than that is a line of its own).
+void wrapText(const std::string& text, float size, float width, std::vector<std::string>& lines);
 
 /// The order lines are drawn in: solid first, then the broken patterns, sparsest last.
 int drawOrder(LineDash dash);

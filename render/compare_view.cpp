@@ -18,8 +18,16 @@
 namespace gf::render {
 namespace {
 
-constexpr float kFontPx = 17.0f;
+constexpr float kFontPx = 17.0f;         // text of a 1280-pixel-wide frame
+constexpr float kMinFontPx = 11.0f;      // the smallest text that stays readable
+constexpr float kFontFrameWidth = 1280.0f;
 constexpr double kMinChartShare = 0.3;  // of the frame's height
+constexpr int kMinGridChartPx = 220;    // a 2 x 2 grid's chart: legend, ticks and a plot still fit
+
+// The chart's text: 17 px in a 1280-pixel-wide frame, in proportion below, never under 11 px.
+float chartFontPx(int frame_width) {
+  return std::clamp(kFontPx * static_cast<float>(frame_width) / kFontFrameWidth, kMinFontPx, kFontPx);
+}
 
 // One panel's picture as a GL texture, re-filled from an Image each frame.
 class PanelTexture {
@@ -69,7 +77,8 @@ CompareLayout compareLayout(int width, int height, int panels) {
       l.panels.emplace_back(std::max(0, left), (i / 2) * l.panel_height);
     }
     l.chart_top = 2 * l.panel_height;
-    l.chart_height = l.panel_height + l.panel_height % 2;  // H.264's 4:2:0 needs an even height
+    l.chart_height = std::max(l.panel_height, kMinGridChartPx);
+    l.chart_height += l.chart_height % 2;  // H.264's 4:2:0 needs an even height
     l.height = l.chart_top + l.chart_height;
     return l;
   }
@@ -125,7 +134,7 @@ struct CompareCompositor::Impl {
         chart(std::move(c)),
         layout(compareLayout(w, h, static_cast<int>(panels.size()))),
         frame(layout.width, layout.height, sim::Antialiasing::kNone),
-        imgui(layout.width, layout.height, kFontPx) {
+        imgui(layout.width, layout.height, chartFontPx(layout.width)) {
     chart.width = layout.width;
     chart.height = layout.chart_height;
     for (std::size_t i = 0; i < panels.size(); ++i) textures.push_back(std::make_unique<PanelTexture>());
@@ -136,7 +145,7 @@ struct CompareCompositor::Impl {
   // Text scales with the panel: 17 px on a 640-pixel panel, no smaller than 11.
   void label(ImDrawList& d, const ComparePanel& p, ImVec2 corner) const {
     ImFont* font = ImGui::GetFont();
-    const float f = std::clamp(static_cast<float>(layout.panel_width) / 38.0f, 11.0f, kFontPx), pad = 0.4f * f;
+    const float f = std::clamp(static_cast<float>(layout.panel_width) / 38.0f, kMinFontPx, kFontPx), pad = 0.4f * f;
     const float swatch = f, panel_right = corner.x + static_cast<float>(layout.panel_width) - pad;
     const ImVec2 lo(corner.x + pad, corner.y + pad);
     const std::vector<std::string> lines = labelLines(p, f, panel_right - lo.x - 3 * pad - swatch);

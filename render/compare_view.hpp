@@ -34,9 +34,11 @@ struct CompareLayout {
 /// side by side over the chart, at the scene's aspect ratio, as large as leaves the chart at
 /// least 30 % of the height, in a width x height frame. Three or four in a 2 x 2 grid of
 /// half-size panels (a third alone in the middle of its row) over a chart of half the scene's
-/// height, in a frame half again as tall as the scene's (a third of it the chart; 1280 x 720:
-/// four 640 x 360 panels over a 1280 x 360 chart in a 1280 x 1080 frame), so that no panel is
-/// smaller than two models' are. Each panel is at least 16 x 16; the frame's height is even.
+/// height (at least 220 pixels), in a frame about half again as tall as the scene's (a third of
+/// it the chart; 1280 x 720: four 640 x 360 panels over a 1280 x 360 chart in a 1280 x 1080
+/// frame), so that no panel is smaller than two models' are. Each panel is at least 16 x 16;
+/// the frame's height is even. The chart's text is 17 px in a 1280-pixel-wide frame, in
+/// proportion below, never under 11 px.
 CompareLayout compareLayout(int width, int height, int panels);
 
 /// Draws comparison frames. Needs a current GL context (render thread); construction makes the

@@ -115,7 +115,7 @@ Quantity chartQuantity(const SessionDesc& session, const std::string& chart, con
            : chart == "height" ? Quantity::kHeight
                                : Quantity::kSpeed;
   q.label = q.kind == Quantity::kRotation ? q.body_name + ": angle turned since the start (deg)"
-            : q.kind == Quantity::kTilt   ? q.body_name + ": tilt, its axis from upright (deg)"
+            : q.kind == Quantity::kTilt   ? q.body_name + ": tilt from upright (deg)"
             : q.kind == Quantity::kHeight ? q.body_name + ": height (mm)"
                                           : q.body_name + ": speed (m/s)";
   return q;

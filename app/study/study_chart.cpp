@@ -27,6 +27,8 @@ const char* errorUnit(const StudyMeasure& m) {
 
 namespace {
 
+constexpr double kFrontGain = 0.99;  // a best point lowers the series' best |error| so far by 1 % or more
+
 // Rows of one series on the chart's cost axis, cheapest first.
 std::vector<const Row*> chartable(const std::vector<Row>& rows, const std::string& series, CostKind cost) {
   std::vector<const Row*> out;
@@ -114,8 +116,8 @@ std::vector<std::string> labelNotes(const render::ChartSpec& chart) {
   key(labelsUse(chart, "res", false), "res = walk resolution");
   std::vector<std::string> notes;
   if (!keys.empty()) {
-    notes.push_back("Point labels (" + keys + ") on each series' best points, the ones its line joins; every "
-                    "point is in report.md and results.csv.");
+    notes.push_back("Point labels (" + keys + ") on each series' best points, the ones its line joins, each 1 % "
+                    "better than any cheaper; every point is in report.md and results.csv.");
   }
   for (const render::ChartSeries& s : chart.series) {
     if (s.label.find("aggregate") == std::string::npos) continue;
@@ -180,7 +182,9 @@ render::ChartSpec workPrecisionChart(const StudyPlan& plan, const std::vector<Ro
     for (const Row* r : points) {
       markers.x.push_back(r->cost(plan.study.cost));
       markers.y.push_back(std::abs(r->error()));
-      const bool on_front = std::abs(r->error()) < best;  // the best error at this cost or less
+      // The best error at this cost or less, by a margin: a point 0.01 % better than a cheaper one
+      // is the same accuracy, and labelling it would crowd the labels that matter.
+      const bool on_front = std::abs(r->error()) < kFrontGain * best;
       markers.point_labels.push_back(on_front ? pointLabel(*r, varying) : "");
       if (on_front) {
         best = std::abs(r->error());

@@ -32,8 +32,9 @@ const char* errorUnit(const StudyMeasure& m);
 /// The cost axis' label.
 std::string costLabel(CostKind k);
 
-/// The study's chart: a marker series per study series (its best points labelled with every
-/// axis that varies within it, e.g. "n8 it20 2kHz") and a line through its best points, notes
+/// The study's chart: a marker series per study series (its best points, each 1 % better than
+/// any cheaper one, labelled with every axis that varies within it, e.g. "n8 it20 2kHz") and a
+/// line through its best points, notes
 /// for the abbreviations used, and a band up to the reference run's own value where the
 /// measure is one a perfect run makes zero (swing, force s.d.) and its reference is a run.
 render::ChartSpec workPrecisionChart(const StudyPlan& plan, const std::vector<StudyRow>& rows);

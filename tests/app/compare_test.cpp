@@ -58,7 +58,7 @@ TEST(Compare, PanelsKeepTheFrameAspectAndLeaveTheChartAThird) {
 
 // Three or four models: the same 640 x 360 panels as two, in a 2 x 2 grid (a third alone in the
 // middle of the second row) over a 360-pixel chart, a third of a 1280 x 1080 frame; a 640 x 360
-// scene gives 320 x 180 panels in a 640 x 540 frame.
+// scene gives 320 x 180 panels over a chart of at least 220 pixels.
 TEST(Compare, ThreeOrFourModelsGoInATwoByTwoGridOverAThirdOfTheFrame) {
   const render::CompareLayout three = render::compareLayout(1280, 720, 3);
   EXPECT_EQ(three.panel_width, 640);
@@ -74,7 +74,8 @@ TEST(Compare, ThreeOrFourModelsGoInATwoByTwoGridOverAThirdOfTheFrame) {
   const render::CompareLayout small = render::compareLayout(640, 360, 4);
   EXPECT_EQ(small.panel_width, 320);
   EXPECT_EQ(small.panel_height, 180);
-  EXPECT_EQ(small.height, 540);
+  EXPECT_EQ(small.chart_top, 360);
+  EXPECT_EQ(small.height, 580);
 }
 
 // The tilt is the angle of the body's y axis (a cylinder's) from up: a cylinder swung a whole
