@@ -402,8 +402,9 @@ std::vector<Box> markerBoxes(const Canvas& c, const ChartSpec& chart) {
 // Point labels in small dark text on a faint white backing, by their markers or, where those
 // places are taken, further out with a thin leader line; each kept off the markers and the
 // labels placed before it.
-void drawPointLabels(const Canvas& c, const ChartSpec& chart) {
+void drawPointLabels(const Canvas& c, const ChartSpec& chart, const std::vector<Box>& band_labels) {
   std::vector<Box> taken = markerBoxes(c, chart);
+  taken.insert(taken.end(), band_labels.begin(), band_labels.end());
   const float size = 0.8f * c.font;
   for (const ChartSeries& s : chart.series) {
     for (std::size_t i = 0; i < s.point_labels.size() && i < s.x.size() && i < s.y.size(); ++i) {
@@ -478,8 +479,10 @@ bool markBeyondRange(const Canvas& c, const ChartSeries& s) {
 
 
 // Each band: a translucent fill across the plot between its bounds (a bound the axis cannot
-// show is the plot's edge), its label in small text at its top-left.
-void drawBands(const Canvas& c, const ChartSpec& chart) {
+// show is the plot's edge), its label in small text inside it on the left.
+// Returns the boxes of their labels, which point labels keep off.
+std::vector<Box> drawBands(const Canvas& c, const ChartSpec& chart) {
+  std::vector<Box> labels;
   const float size = 0.8f * c.font;
   for (const ChartBand& b : chart.bands) {
     // Inside the frame's pixels, which stay the frame's colour.
@@ -491,9 +494,16 @@ void drawBands(const Canvas& c, const ChartSpec& chart) {
     c.d.AddRectFilled(ImVec2(c.lo.x + 1.0f, hi), ImVec2(c.hi.x - 1.0f, lo), imguiColour(k, 0.22f));
     c.d.AddLine(ImVec2(c.lo.x + 1.0f, hi), ImVec2(c.hi.x - 1.0f, hi), imguiColour(k, 0.8f), 1.0f);
     if (!b.label.empty()) {
-      c.d.AddText(ImGui::GetFont(), size, ImVec2(c.lo.x + 0.4f * c.font, hi + 0.15f * c.font), kInk, b.label.c_str());
+      // At the band's bottom-left when there is room under its top (points at the band's edge,
+      // e.g. at the floor itself, keep off it), else at its top-left.
+      const ImVec2 extent = ImGui::GetFont()->CalcTextSizeA(size, FLT_MAX, 0.0f, b.label.c_str());
+      const bool room = lo - hi > 2.0f * extent.y + 0.3f * c.font;
+      const ImVec2 at(c.lo.x + 0.4f * c.font, room ? lo - extent.y - 0.15f * c.font : hi + 0.15f * c.font);
+      c.d.AddText(ImGui::GetFont(), size, at, kInk, b.label.c_str());
+      labels.push_back({at, ImVec2(at.x + extent.x, at.y + extent.y)});
     }
   }
+  return labels;
 }
 
 // The cursor: a line across the plot at cursor_x, and its label beside it at the plot's top on
@@ -523,7 +533,7 @@ void addChart(ImDrawList& d, const ChartSpec& chart, float left, float top) {
   // Data, clipped to the plot: bands under everything, every series' lines (solid ones first),
   // then markers over them, then point labels.
   d.PushClipRect(l.lo, l.hi, true);
-  drawBands(c, chart);
+  const std::vector<Box> band_labels = drawBands(c, chart);
   std::vector<const ChartSeries*> lines;
   for (const ChartSeries& s : chart.series) {
     if (s.style != SeriesStyle::kMarkers) lines.push_back(&s);
@@ -536,7 +546,7 @@ void addChart(ImDrawList& d, const ChartSpec& chart, float left, float top) {
   for (const ChartSeries& s : chart.series) {
     if (s.style != SeriesStyle::kLine) drawMarkers(c, s);
   }
-  drawPointLabels(c, chart);
+  drawPointLabels(c, chart, band_labels);
   bool beyond = false;
   for (const ChartSeries& s : chart.series) beyond = markBeyondRange(c, s) || beyond;
   drawCursor(c, chart);

@@ -44,7 +44,8 @@ struct ChartSeries {
 };
 
 /// A horizontal band shaded across the plot (e.g. a reference's own noise floor), with its
-/// label in small text at its top-left inside the plot. A bound that cannot be drawn on the y
+/// label in small text inside it on the left (at its bottom when it has room for two lines, so
+/// points on its top edge keep off it); point labels keep off it. A bound that cannot be drawn on the y
 /// axis (not finite; not positive on a log axis) is the plot's edge. A log axis fitted to the
 /// data also spans the band's finite, positive bounds.
 struct ChartBand {
