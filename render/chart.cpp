@@ -10,18 +10,20 @@
 #include <string>
 #include <vector>
 
+#include "render/chart_marks.hpp"
 #include "render/context.hpp"
 #include "render/imgui_layer.hpp"
 
 namespace gf::render {
 namespace {
 
-constexpr float kMarkerRadiusPx = 4.5f;
+using chart_marks::Box;
+using chart_marks::kMarkerRadiusPx;
 constexpr double kLogPad = 0.04;         // share of a log axis's span (decades) added each side
 constexpr float kMinorDecadePx = 30.0f;  // minor log grid lines only on decades this wide
 constexpr int kMaxDecadeLabels = 12;
 constexpr ImU32 kInk = IM_COL32(30, 30, 30, 255), kGrid = IM_COL32(220, 220, 220, 255);
-constexpr ImU32 kMinorGrid = IM_COL32(238, 238, 238, 255), kOutline = IM_COL32(40, 40, 40, 255);
+constexpr ImU32 kMinorGrid = IM_COL32(238, 238, 238, 255);
 
 struct Range {
   double lo = 0.0, hi = 1.0;
@@ -207,13 +209,27 @@ struct Layout {
 };
 
 float legendRowHeight(float font) { return 1.3f * font; }
+// A legend entry's sample of line and marker: long enough for two dashes of a dashed line.
+float legendSwatch(float font) { return 2.5f * font; }
+// Notes under the x axis's label: smaller text, one line each.
+float noteSize(float font) { return 0.85f * font; }
+float noteRowHeight(float font) { return 1.2f * noteSize(font); }
+// The notes' lines: each note wrapped at spaces to the chart's width.
+std::vector<std::string> noteLines(const ChartSpec& chart, float font) {
+  std::vector<std::string> out;
+  for (const std::string& note : chart.notes) {
+    chart_marks::wrapText(note, noteSize(font), static_cast<float>(chart.width) - 0.8f * font, out);
+  }
+  return out;
+}
 
 // `origin`: the chart's top-left corner in the frame (pixels).
 Layout layout(const ChartSpec& chart, float font, ImVec2 origin) {
   Layout l;
   l.lo = ImVec2(origin.x + 5.5f * font, origin.y + 2.5f * font);
   l.hi = ImVec2(origin.x + static_cast<float>(chart.width) - 1.5f * font,
-                origin.y + static_cast<float>(chart.height) - 3.5f * font);
+                origin.y + static_cast<float>(chart.height) - 3.5f * font -
+                    static_cast<float>(noteLines(chart, font).size()) * noteRowHeight(font));
   // A y label that would run into the title gets a line of its own above the plot.
   const float y_label_end = origin.x + 0.4f * font + ImGui::CalcTextSize(chart.y_label.c_str()).x;
   if (!chart.title.empty() && y_label_end > l.lo.x - 0.5f * font) l.lo.y += 1.4f * font;
@@ -222,7 +238,7 @@ Layout layout(const ChartSpec& chart, float font, ImVec2 origin) {
   float used = 0.0f;
   for (const ChartSeries& s : chart.series) {
     if (s.label.empty()) continue;
-    const float width = 2.0f * font + 0.5f * font + ImGui::CalcTextSize(s.label.c_str()).x + 1.2f * font;
+    const float width = legendSwatch(font) + 0.5f * font + ImGui::CalcTextSize(s.label.c_str()).x + 1.2f * font;
     if (l.legend.empty() || (used + width > room && !l.legend.back().empty())) {
       l.legend.emplace_back();
       used = 0.0f;
@@ -260,7 +276,12 @@ struct Canvas {
 };
 
 Canvas canvas(ImDrawList& d, const ChartSpec& chart, const Layout& l, float font) {
-  const DrawnValues v = drawnValues(chart);
+  DrawnValues v = drawnValues(chart);
+  for (const ChartBand& b : chart.bands) {  // a log axis fitted to the data shows the bands too
+    for (double y : {b.y_lo, b.y_hi}) {
+      if (chart.log_y && onAxis(y, true) && !v.y.empty()) v.y.push_back(y);
+    }
+  }
   const Range xr = chart.log_x ? fitLog(v.x) : fitLinearX(v.x);
   return {d,
           {xr, chart.log_x, l.lo.x, l.hi.x},
@@ -299,18 +320,17 @@ void drawGrid(const Canvas& c) {
   }
 }
 
-// Segments between consecutive drawable points. A run of points within one pixel column is
-// drawn through its first, lowest, highest and last point in their order (what a 1-pixel line
-// shows of it), so a series of 25 000 samples costs a few thousand segments, not 25 000: the
-// renderer's memory and time stay bounded by the chart's width.
-void drawLines(const Canvas& c, const ChartSeries& s) {
-  const ImU32 colour = imguiColour(s.colour);
+// The series' polylines in pixels, broken where a point cannot be drawn. A run of points
+// within one pixel column is kept as its first, lowest, highest and last point in their order
+// (what a 1-pixel line shows of it), so a series of 25 000 samples costs a few thousand
+// segments, not 25 000: the renderer's memory and time stay bounded by the chart's width.
+std::vector<std::vector<ImVec2>> linePaths(const Canvas& c, const ChartSeries& s) {
+  std::vector<std::vector<ImVec2>> paths;
   const std::size_t n = std::min(s.x.size(), s.y.size());
   bool have = false;  // a drawn point to continue from
-  ImVec2 last;
   const auto to = [&](ImVec2 p) {
-    if (have) c.d.AddLine(last, p, colour, 1.6f);
-    last = p;
+    if (!have) paths.emplace_back();
+    paths.back().push_back(p);
     have = true;
   };
   for (std::size_t i = 0; i < n;) {
@@ -336,29 +356,33 @@ void drawLines(const Canvas& c, const ChartSeries& s) {
     if (j - 1 != b && j - 1 != i) to(c.at(s, j - 1));
     i = j;
   }
+  return paths;
 }
 
-void drawMarker(ImDrawList& d, ImVec2 centre, ImU32 colour) {
-  d.AddCircleFilled(centre, kMarkerRadiusPx, colour, 16);
-  d.AddCircle(centre, kMarkerRadiusPx, kOutline, 16, 1.0f);
+// A line in its dash pattern (dots a little wider, to read as dots).
+constexpr float kLineWidthPx = 1.6f, kDotWidthPx = 2.6f;
+
+void drawLines(const Canvas& c, const ChartSeries& s) {
+  const float width = s.dash == LineDash::kDotted ? kDotWidthPx : kLineWidthPx;
+  for (const std::vector<ImVec2>& path : linePaths(c, s)) {
+    chart_marks::strokePath(c.d, path, imguiColour(s.colour), width, s.dash);
+  }
+}
+
+// A line's markers along it (after every line, so no line covers them).
+void drawLineMarkers(const Canvas& c, const ChartSeries& s) {
+  if (s.style != SeriesStyle::kLine || !(s.marker_spacing_px > 0.0f)) return;
+  for (const std::vector<ImVec2>& path : linePaths(c, s)) {
+    chart_marks::markersAlong(c.d, path, c.lo.x, s.marker_spacing_px, s.marker_phase, imguiColour(s.colour), s.marker);
+  }
 }
 
 void drawMarkers(const Canvas& c, const ChartSeries& s) {
   const ImU32 colour = imguiColour(s.colour);
   for (std::size_t i = 0; i < s.x.size() && i < s.y.size(); ++i) {
-    if (c.drawable(s, i)) drawMarker(c.d, c.at(s, i), colour);
+    if (c.drawable(s, i)) chart_marks::drawMarker(c.d, c.at(s, i), colour, s.marker);
   }
 }
-
-struct Box {
-  ImVec2 lo, hi;
-  bool overlaps(const Box& o) const {
-    return lo.x < o.hi.x && o.lo.x < hi.x && lo.y < o.hi.y && o.lo.y < hi.y;
-  }
-  bool inside(ImVec2 a, ImVec2 b) const {
-    return lo.x >= a.x && lo.y >= a.y && hi.x <= b.x && hi.y <= b.y;
-  }
-};
 
 // The square inside each drawn marker: point labels keep off them.
 std::vector<Box> markerBoxes(const Canvas& c, const ChartSpec& chart) {
@@ -375,47 +399,27 @@ std::vector<Box> markerBoxes(const Canvas& c, const ChartSpec& chart) {
   return out;
 }
 
-// A label of `size` for the marker at `p`: up-right of it, else down-right, up-left,
-// down-left, right or left, whichever first lies inside the plot and off `taken`; else the
-// first inside.
-Box placeLabel(const Canvas& c, ImVec2 p, ImVec2 size, const std::vector<Box>& taken) {
-  const float r = 0.75f * kMarkerRadiusPx, right = p.x + r, left = p.x - r - size.x;
-  const float up = p.y - r - size.y, down = p.y + r, level = p.y - size.y / 2;
-  const std::array<ImVec2, 6> corners = {ImVec2(right, up),
-                                         ImVec2(right, down),
-                                         ImVec2(left, up),
-                                         ImVec2(left, down),
-                                         ImVec2(p.x + 1.5f * kMarkerRadiusPx, level),
-                                         ImVec2(p.x - 1.5f * kMarkerRadiusPx - size.x, level)};
-  const Box* fallback = nullptr;
-  std::array<Box, corners.size()> boxes;
-  for (std::size_t i = 0; i < corners.size(); ++i) {
-    boxes[i] = {corners[i], ImVec2(corners[i].x + size.x, corners[i].y + size.y)};
-    if (!boxes[i].inside(c.lo, c.hi)) continue;
-    if (std::none_of(taken.begin(), taken.end(),
-                     [&](const Box& b) { return b.overlaps(boxes[i]); }))
-      return boxes[i];
-    if (!fallback) fallback = &boxes[i];
-  }
-  if (fallback) return *fallback;
-  // Larger than the room left: pushed inside the plot from the up-right place.
-  const ImVec2 lo(std::clamp(right, c.lo.x, std::max(c.lo.x, c.hi.x - size.x)),
-                  std::clamp(up, c.lo.y, std::max(c.lo.y, c.hi.y - size.y)));
-  return {lo, ImVec2(lo.x + size.x, lo.y + size.y)};
-}
-
-// Point labels in small dark text by their markers, each kept off the markers and the labels
-// placed before it.
-void drawPointLabels(const Canvas& c, const ChartSpec& chart) {
+// Point labels in small dark text on a faint white backing, by their markers or, where those
+// places are taken, further out with a thin leader line; each kept off the markers and the
+// labels placed before it.
+void drawPointLabels(const Canvas& c, const ChartSpec& chart, const std::vector<Box>& band_labels) {
   std::vector<Box> taken = markerBoxes(c, chart);
+  taken.insert(taken.end(), band_labels.begin(), band_labels.end());
   const float size = 0.8f * c.font;
   for (const ChartSeries& s : chart.series) {
     for (std::size_t i = 0; i < s.point_labels.size() && i < s.x.size() && i < s.y.size(); ++i) {
       const char* text = s.point_labels[i].c_str();
       if (!*text || !c.drawable(s, i)) continue;
-      const Box box = placeLabel(c, c.at(s, i),
-                                 ImGui::GetFont()->CalcTextSizeA(size, FLT_MAX, 0.0f, text), taken);
+      const ImVec2 p = c.at(s, i);
+      const chart_marks::Placed placed = chart_marks::placeLabel(
+          c.lo, c.hi, p, ImGui::GetFont()->CalcTextSizeA(size, FLT_MAX, 0.0f, text), taken);
+      const Box& box = placed.box;
       taken.push_back(box);
+      if (placed.leader) {
+        const ImVec2 end(std::clamp(p.x, box.lo.x, box.hi.x), std::clamp(p.y, box.lo.y, box.hi.y));
+        c.d.AddLine(p, end, IM_COL32(90, 90, 90, 255), 1.0f);
+      }
+      c.d.AddRectFilled(box.lo, box.hi, IM_COL32(255, 255, 255, 170));
       c.d.AddText(ImGui::GetFont(), size, box.lo, kInk, text);
     }
   }
@@ -424,7 +428,7 @@ void drawPointLabels(const Canvas& c, const ChartSpec& chart) {
 // The legend's rows above the plot, right-aligned: per labelled series its line, marker or both,
 // then its label. Nothing of it lies on the data.
 void drawLegend(const Canvas& c, const Layout& l) {
-  const float f = c.font, swatch = 2.0f * f;
+  const float f = c.font, swatch = legendSwatch(f);
   float y = l.legend_top;
   for (const std::vector<LegendEntry>& row : l.legend) {
     float width = 0.0f;
@@ -433,9 +437,12 @@ void drawLegend(const Canvas& c, const Layout& l) {
     for (const LegendEntry& e : row) {
       const ChartSeries& s = *e.series;
       const float middle = y + f / 2;
-      if (s.style != SeriesStyle::kMarkers)
-        c.d.AddLine(ImVec2(x, middle), ImVec2(x + swatch, middle), imguiColour(s.colour), 3.0f);
-      if (s.style != SeriesStyle::kLine) drawMarker(c.d, ImVec2(x + swatch / 2, middle), imguiColour(s.colour));
+      if (s.style != SeriesStyle::kMarkers) {
+        chart_marks::strokePath(c.d, {ImVec2(x, middle), ImVec2(x + swatch, middle)}, imguiColour(s.colour),
+                                s.dash == LineDash::kDotted ? 3.4f : 3.0f, s.dash);
+      }
+      if (s.style != SeriesStyle::kLine || s.marker_spacing_px > 0.0f)
+        chart_marks::drawMarker(c.d, ImVec2(x + swatch / 2, middle), imguiColour(s.colour), s.marker);
       c.d.AddText(ImVec2(x + swatch + 0.5f * f, y), kInk, s.label.c_str());
       x += e.width;
     }
@@ -470,6 +477,50 @@ bool markBeyondRange(const Canvas& c, const ChartSeries& s) {
   return any;
 }
 
+
+// Each band: a translucent fill across the plot between its bounds (a bound the axis cannot
+// show is the plot's edge), its label in small text inside it on the left.
+// Returns the boxes of their labels, which point labels keep off.
+std::vector<Box> drawBands(const Canvas& c, const ChartSpec& chart) {
+  std::vector<Box> labels;
+  const float size = 0.8f * c.font;
+  for (const ChartBand& b : chart.bands) {
+    // Inside the frame's pixels, which stay the frame's colour.
+    const float top = c.lo.y + 1.0f, bottom = c.hi.y - 1.0f;
+    const float lo = onAxis(b.y_lo, c.y.log) ? std::clamp(c.y.pixel(b.y_lo), top, bottom) : bottom;
+    const float hi = onAxis(b.y_hi, c.y.log) ? std::clamp(c.y.pixel(b.y_hi), top, bottom) : top;
+    if (!(lo > hi)) continue;
+    const Eigen::Vector3f& k = b.colour;
+    c.d.AddRectFilled(ImVec2(c.lo.x + 1.0f, hi), ImVec2(c.hi.x - 1.0f, lo), imguiColour(k, 0.22f));
+    c.d.AddLine(ImVec2(c.lo.x + 1.0f, hi), ImVec2(c.hi.x - 1.0f, hi), imguiColour(k, 0.8f), 1.0f);
+    if (!b.label.empty()) {
+      // At the band's bottom-left when there is room under its top (points at the band's edge,
+      // e.g. at the floor itself, keep off it), else at its top-left.
+      const ImVec2 extent = ImGui::GetFont()->CalcTextSizeA(size, FLT_MAX, 0.0f, b.label.c_str());
+      const bool room = lo - hi > 2.0f * extent.y + 0.3f * c.font;
+      const ImVec2 at(c.lo.x + 0.4f * c.font, room ? lo - extent.y - 0.15f * c.font : hi + 0.15f * c.font);
+      c.d.AddText(ImGui::GetFont(), size, at, kInk, b.label.c_str());
+      labels.push_back({at, ImVec2(at.x + extent.x, at.y + extent.y)});
+    }
+  }
+  return labels;
+}
+
+// The cursor: a line across the plot at cursor_x, and its label beside it at the plot's top on
+// a white box (right of the line, or left of it where the right has no room).
+void drawCursor(const Canvas& c, const ChartSpec& chart) {
+  if (!std::isfinite(chart.cursor_x) || !onAxis(chart.cursor_x, chart.log_x)) return;
+  const float x = c.x.pixel(chart.cursor_x);
+  c.d.AddLine(ImVec2(x, c.lo.y), ImVec2(x, c.hi.y), kInk, 1.5f);
+  if (chart.cursor_label.empty()) return;
+  const ImVec2 size = ImGui::CalcTextSize(chart.cursor_label.c_str());
+  const float pad = 0.3f * c.font;
+  const bool right = x + 2 * pad + size.x <= c.hi.x;
+  const ImVec2 lo(right ? x + 1.0f : x - 1.0f - 2 * pad - size.x, c.lo.y + 1.0f);
+  c.d.AddRectFilled(lo, ImVec2(lo.x + 2 * pad + size.x, lo.y + size.y + pad), IM_COL32(255, 255, 255, 230));
+  c.d.AddText(ImVec2(lo.x + pad, lo.y + 0.5f * pad), kInk, chart.cursor_label.c_str());
+}
+
 }  // namespace
 
 void addChart(ImDrawList& d, const ChartSpec& chart, float left, float top) {
@@ -479,32 +530,43 @@ void addChart(ImDrawList& d, const ChartSpec& chart, float left, float top) {
   const float right = left + static_cast<float>(chart.width), bottom = top + static_cast<float>(chart.height);
   d.AddRectFilled(ImVec2(left, top), ImVec2(right, bottom), IM_COL32(255, 255, 255, 255));
   drawGrid(c);
-  d.AddRect(l.lo, l.hi, kInk);
-  // Data, clipped to the plot: every series' lines, then markers over them, then point labels.
+  // Data, clipped to the plot: bands under everything, every series' lines (solid ones first),
+  // then markers over them, then point labels.
   d.PushClipRect(l.lo, l.hi, true);
+  const std::vector<Box> band_labels = drawBands(c, chart);
+  std::vector<const ChartSeries*> lines;
   for (const ChartSeries& s : chart.series) {
-    if (s.style != SeriesStyle::kMarkers) drawLines(c, s);
+    if (s.style != SeriesStyle::kMarkers) lines.push_back(&s);
   }
+  std::stable_sort(lines.begin(), lines.end(), [](const ChartSeries* a, const ChartSeries* b) {
+    return chart_marks::drawOrder(a->dash) < chart_marks::drawOrder(b->dash);
+  });
+  for (const ChartSeries* s : lines) drawLines(c, *s);
+  for (const ChartSeries* s : lines) drawLineMarkers(c, *s);
   for (const ChartSeries& s : chart.series) {
     if (s.style != SeriesStyle::kLine) drawMarkers(c, s);
   }
-  drawPointLabels(c, chart);
+  drawPointLabels(c, chart, band_labels);
   bool beyond = false;
   for (const ChartSeries& s : chart.series) beyond = markBeyondRange(c, s) || beyond;
-  if (std::isfinite(chart.cursor_x) && onAxis(chart.cursor_x, chart.log_x)) {
-    const float x = c.x.pixel(chart.cursor_x);
-    d.AddLine(ImVec2(x, l.lo.y), ImVec2(x, l.hi.y), kInk, 1.5f);
-  }
+  drawCursor(c, chart);
   d.PopClipRect();
-  // Title, axis labels, legend.
+  d.AddRect(l.lo, l.hi, kInk);  // the frame, over the bands
+  // Title, axis labels, legend, notes.
+  const float x_label_y = l.hi.y + 1.9f * font;
   d.AddText(l.title, kInk, chart.title.c_str());
-  d.AddText(ImVec2((l.lo.x + l.hi.x - ImGui::CalcTextSize(chart.x_label.c_str()).x) / 2, bottom - 1.6f * font),
-            kInk, chart.x_label.c_str());
+  d.AddText(ImVec2((l.lo.x + l.hi.x - ImGui::CalcTextSize(chart.x_label.c_str()).x) / 2, x_label_y), kInk,
+            chart.x_label.c_str());
   d.AddText(l.y_label, kInk, chart.y_label.c_str());
   drawLegend(c, l);
   if (beyond) {  // say what the edge triangles mean, under the plot on the right
     const char* note = "triangles at the edges: values beyond the y axis";
-    d.AddText(ImVec2(l.hi.x - ImGui::CalcTextSize(note).x, bottom - 1.6f * font), kInk, note);
+    d.AddText(ImVec2(l.hi.x - ImGui::CalcTextSize(note).x, x_label_y), kInk, note);
+  }
+  const std::vector<std::string> notes = noteLines(chart, font);
+  for (std::size_t k = 0; k < notes.size(); ++k) {
+    const float y = x_label_y + 1.3f * font + static_cast<float>(k) * noteRowHeight(font);
+    d.AddText(ImGui::GetFont(), noteSize(font), ImVec2(left + 0.4f * font, y), kInk, notes[k].c_str());
   }
 }
 

@@ -18,6 +18,13 @@ enum class SeriesStyle {
   kLineAndMarkers,  ///< both
 };
 
+/// How a series' line is stroked. Solid lines are drawn first, then dashed, dash-dotted and
+/// dotted ones over them, so a broken curve lying on a solid one leaves both visible.
+enum class LineDash { kSolid, kDashed, kDashDot, kDotted };
+
+/// The shape of a series' markers (and of its legend swatch's).
+enum class MarkerShape { kCircle, kSquare, kTriangle, kDiamond };
+
 /// One curve or set of points. A point is drawn only when both its coordinates can be drawn
 /// on their axes (finite; positive on a log axis); a segment only when both its ends are.
 struct ChartSeries {
@@ -28,6 +35,23 @@ struct ChartSeries {
   /// Empty, or one per point (as many as x): small text up-right of each point's marker, kept
   /// inside the plot and off other labels and markers. Empty strings are not drawn.
   std::vector<std::string> point_labels = {};
+  LineDash dash = LineDash::kSolid;
+  MarkerShape marker = MarkerShape::kCircle;
+  /// A line's markers along its curve (kLine only): one every `marker_spacing_px` pixels along
+  /// x, shifted by `marker_phase` (a share of the spacing), so that curves lying on one another
+  /// keep their markers apart; 0: none.
+  float marker_spacing_px = 0.0f, marker_phase = 0.0f;
+};
+
+/// A horizontal band shaded across the plot (e.g. a reference's own noise floor), with its
+/// label in small text inside it on the left (at its bottom when it has room for two lines, so
+/// points on its top edge keep off it); point labels keep off it. A bound that cannot be drawn on the y
+/// axis (not finite; not positive on a log axis) is the plot's edge. A log axis fitted to the
+/// data also spans the band's finite, positive bounds.
+struct ChartBand {
+  double y_lo = 0.0, y_hi = 0.0;
+  std::string label;
+  Eigen::Vector3f colour = Eigen::Vector3f(0.5f, 0.5f, 0.5f);  ///< linear RGB, drawn translucent
 };
 
 /// A chart: axes fitted to the data, ticks, labels and a legend above the plot (right-aligned,
@@ -50,6 +74,13 @@ struct ChartSpec {
   /// A vertical line across the plot at this x (e.g. the time a video frame shows); none
   /// when not finite.
   double cursor_x = std::numeric_limits<double>::quiet_NaN();
+  /// Text beside the cursor at the plot's top (e.g. "t = 2.50 s"): right of the line, or left of
+  /// it near the plot's right edge.
+  std::string cursor_label;
+  std::vector<ChartBand> bands;
+  /// Lines of small text under the x axis's label, left-aligned (e.g. what the point labels
+  /// mean); the plot gives up their height.
+  std::vector<std::string> notes;
 };
 
 class ImGuiLayer;

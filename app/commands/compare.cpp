@@ -14,7 +14,8 @@ class CompareCommand final : public Command {
     o.jobs = defaultJobs();
     CLI::App* c = app.add_subcommand(
         "compare", "Run a scene once per contact model (offline, in parallel) and draw one video of the runs side "
-                   "by side over a chart of a trace quantity; compare.json holds their measures");
+                   "by side (3 or 4: a 2 x 2 grid, the frame half again as tall) over a chart of a trace quantity; "
+                   "compare.json holds their measures");
     c->add_option("scene", o.scene, "Scene file or bundled scene name")->required();
     c->add_option("--models", models_, "Contact models, comma-separated (1 to 4 of god_object, soft_finger, "
                                        "god_finger)")
@@ -26,9 +27,9 @@ class CompareCommand final : public Command {
     c->add_flag("--frames", o.frames, "Write the comparison's frames/000000.png ... (always without --video)");
     c->add_flag("--keep-run-frames", o.keep_run_frames, "Keep each run's own frames (MODEL/frames)");
     c->add_option("--camera", o.camera, "Camera of the scene (default: its first)");
-    c->add_option("--chart", o.chart, "Quantity charted: of --body, rotation (angle turned, deg), tilt (angle from "
-                                      "the start, deg), height (mm) or speed (m/s); or any trace.csv column "
-                                      "(default: rotation)");
+    c->add_option("--chart", o.chart, "Quantity charted: of --body, rotation (angle turned, deg), tilt (its axis "
+                                      "from upright, deg), height (mm) or speed (m/s); or any trace.csv column "
+                                      "(default: tilt; a sphere's rotation)");
     c->add_option("--body", o.body, "Body of the chart (default: the scene's first dynamic body)");
     c->add_option("--jobs", o.jobs, "Runs at a time (default: the number of cores; 1 for step times to publish)")
         ->check(CLI::Range(1, 256));

@@ -15,6 +15,7 @@ namespace gf::app {
 namespace {
 
 constexpr std::size_t kMaxChartPoints = 4000;  // per model: the chart is at most 1920 pixels wide
+constexpr float kModelMarkerSpacingPx = 90.0f;  // markers along a model's curve, this far apart in x
 
 }  // namespace
 
@@ -23,6 +24,27 @@ Eigen::Vector3f modelColour(const std::string& model, std::size_t index) {
   if (model == "soft_finger") return {0.05f, 0.55f, 0.25f};
   if (model == "god_finger") return {0.05f, 0.30f, 0.90f};
   return index % 2 ? Eigen::Vector3f(0.6f, 0.3f, 0.7f) : Eigen::Vector3f(0.3f, 0.3f, 0.3f);
+}
+
+void styleModelSeries(render::ChartSeries& s, const std::string& model, std::size_t index, std::size_t count) {
+  using render::LineDash;
+  using render::MarkerShape;
+  s.style = render::SeriesStyle::kLine;
+  if (model == "god_finger") {
+    s.dash = LineDash::kSolid;
+    s.marker = MarkerShape::kCircle;
+  } else if (model == "soft_finger") {
+    s.dash = LineDash::kDashed;
+    s.marker = MarkerShape::kSquare;
+  } else if (model == "god_object") {
+    s.dash = LineDash::kDashDot;
+    s.marker = MarkerShape::kTriangle;
+  } else {
+    s.dash = LineDash::kDotted;
+    s.marker = MarkerShape::kDiamond;
+  }
+  s.marker_spacing_px = kModelMarkerSpacingPx;
+  s.marker_phase = count > 0 ? static_cast<float>(index) / static_cast<float>(count) : 0.0f;
 }
 
 std::string modelTitle(const std::string& model) {
@@ -55,7 +77,7 @@ std::string modelDetail(const SessionDesc& session) {
 Quantity chartQuantity(const SessionDesc& session, const std::string& chart, const std::string& body) {
   Quantity q;
   const std::vector<sim::BodyDesc>& bodies = session.scene.bodies;
-  const bool of_body = chart == "rotation" || chart == "tilt" || chart == "height" || chart == "speed";
+  const bool of_body = chart.empty() || chart == "rotation" || chart == "tilt" || chart == "height" || chart == "speed";
   if (!of_body) {
     // A trace.csv column: checked against the columns the runs will write.
     const std::vector<std::string> columns = traceColumns(session.scene);
@@ -80,21 +102,34 @@ Quantity chartQuantity(const SessionDesc& session, const std::string& chart, con
   }
   if (q.body < 0 && body.empty()) {
     throw InputError("command line", 0, 0, "--chart",
-                     chart + " is of a dynamic body and the scene has none: chart a trace.csv column (e.g. a finger's .fy)");
+                     (chart.empty() ? std::string("the default chart (tilt or rotation)") : chart) +
+                         " is of a dynamic body and the scene has none: chart a trace.csv column (e.g. a finger's .fy)");
   }
   if (q.body < 0) {
     throw InputError("command line", 0, 0, "--body", "no dynamic body '" + body + "' (the scene's: " + dynamic + ")");
   }
   q.body_name = bodies[static_cast<std::size_t>(q.body)].name;
-  q.kind = chart == "rotation" ? Quantity::kRotation
-           : chart == "tilt"   ? Quantity::kTilt
+  const bool sphere = bodies[static_cast<std::size_t>(q.body)].shape == sim::ShapeKind::kSphere;
+  q.kind = chart == "rotation" || (chart.empty() && sphere) ? Quantity::kRotation
+           : chart == "tilt" || chart.empty() ? Quantity::kTilt
            : chart == "height" ? Quantity::kHeight
                                : Quantity::kSpeed;
-  q.label = chart == "rotation" ? q.body_name + ": angle turned since the start (deg)"
-            : chart == "tilt"   ? q.body_name + ": angle from its starting orientation (deg)"
-            : chart == "height" ? q.body_name + ": height (mm)"
-                                : q.body_name + ": speed (m/s)";
+  q.label = q.kind == Quantity::kRotation ? q.body_name + ": angle turned since the start (deg)"
+            : q.kind == Quantity::kTilt   ? q.body_name + ": tilt from upright (deg)"
+            : q.kind == Quantity::kHeight ? q.body_name + ": height (mm)"
+                                          : q.body_name + ": speed (m/s)";
   return q;
+}
+
+std::string quantityName(const Quantity& q) {
+  switch (q.kind) {
+    case Quantity::kRotation: return "rotation";
+    case Quantity::kTilt: return "tilt";
+    case Quantity::kHeight: return "height";
+    case Quantity::kSpeed: return "speed";
+    case Quantity::kColumn: break;
+  }
+  return q.column;
 }
 
 double QuantityTrack::next(double t, const sim::Pose& pose, const sim::Vec3& velocity,
@@ -104,8 +139,8 @@ double QuantityTrack::next(double t, const sim::Pose& pose, const sim::Vec3& vel
   switch (q_.kind) {
     case Quantity::kRotation: return turned_;
     case Quantity::kTilt: {
-      const sim::Quat d = start_.conjugate() * pose.orientation;
-      return 2.0 * std::atan2(d.vec().norm(), std::abs(d.w())) * 180.0 / std::numbers::pi;
+      const sim::Vec3 axis = pose.orientation * sim::Vec3::UnitY();
+      return std::atan2(axis.cross(sim::Vec3::UnitY()).norm(), axis.y()) * 180.0 / std::numbers::pi;
     }
     case Quantity::kHeight: return 1000.0 * pose.position.y();
     case Quantity::kSpeed: return velocity.norm();
@@ -115,9 +150,11 @@ double QuantityTrack::next(double t, const sim::Pose& pose, const sim::Vec3& vel
 }
 
 double QuantityTrack::atStart() const {
-  return q_.kind == Quantity::kRotation || q_.kind == Quantity::kTilt || q_.kind == Quantity::kSpeed
-             ? 0.0
-             : std::numeric_limits<double>::quiet_NaN();
+  if (q_.kind == Quantity::kTilt) {  // the starting orientation's
+    const sim::Vec3 axis = start_ * sim::Vec3::UnitY();
+    return std::atan2(axis.cross(sim::Vec3::UnitY()).norm(), axis.y()) * 180.0 / std::numbers::pi;
+  }
+  return q_.kind == Quantity::kRotation || q_.kind == Quantity::kSpeed ? 0.0 : std::numeric_limits<double>::quiet_NaN();
 }
 
 void thin(std::vector<double>& x, std::vector<double>& y) {

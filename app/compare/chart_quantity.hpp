@@ -1,5 +1,5 @@
-// What `godfinger compare` charts: a quantity of a body (the angle it turned, its tilt, height or
-// speed) or any trace.csv column, taken along a run from its trace or its states, thinned for
+// What `godfinger compare` charts: a quantity of a body (the angle it turned, its tilt from
+// upright, height or speed) or any trace.csv column, taken along a run from its trace or its states, thinned for
 // drawing; and how each contact model is named and coloured in the comparison.
 #pragma once
 
@@ -24,13 +24,19 @@ struct Quantity {
 };
 
 /// The quantity `chart` names ("rotation", "tilt", "height", "speed" of `body`, by default the
-/// scene's first dynamic body; or a trace.csv column of the scene). Throws InputError naming
-/// --chart or --body.
+/// scene's first dynamic body; or a trace.csv column of the scene). Empty: the body's tilt, or
+/// for a sphere (whose tilt says nothing) the angle it turned, how far it rolled. Throws
+/// InputError naming --chart or --body.
 Quantity chartQuantity(const SessionDesc& session, const std::string& chart, const std::string& body);
 
+/// The --chart name of `q` ("tilt", or its trace.csv column).
+std::string quantityName(const Quantity& q);
+
 /// The quantity along one run, fed each state in time order after the start: the angle turned
-/// (the integral of |angular velocity| over time, so a rolling ball's keeps growing), the angle
-/// from the starting orientation (at most 180 degrees), the centre's height or speed.
+/// (the integral of |angular velocity| over time, so a rolling ball's keeps growing), the tilt
+/// (the angle of the body's y axis, a cylinder's or capsule's axis, from the world's up, 0 to 180
+/// degrees: a body that spins over and comes upright again reads 0), the centre's height or
+/// speed.
 class QuantityTrack {
  public:
   /// `start`: the body's orientation at t = 0.
@@ -62,6 +68,10 @@ nlohmann::json seriesMeasures(const render::ChartSeries& s);
 
 /// Each model's colour in the chart and its panel's swatch (linear RGB); others by position.
 Eigen::Vector3f modelColour(const std::string& model, std::size_t index);
+/// Each model's line: the god-finger solid, the soft finger dashed, the god-object dash-dotted,
+/// each with its own marker shape every 90 px, the markers of model `index` of `count` shifted
+/// by index / count of that, so curves that coincide stay visible (in the legend too).
+void styleModelSeries(render::ChartSeries& s, const std::string& model, std::size_t index, std::size_t count);
 /// "god-object", "soft finger", "god-finger".
 std::string modelTitle(const std::string& model);
 /// The settings that make the model what it is, for its panel (the first finger's).

@@ -287,6 +287,7 @@ void CompareRun::measure() {
     thin(series.x, series.y);
     series.label = modelTitle(o_.models[i]);
     series.colour = modelColour(o_.models[i], i);
+    styleModelSeries(series, o_.models[i], i, o_.models.size());
     const nlohmann::json step = summaries_[i].value("step_time_us", nlohmann::json::object());
     char timing[96];
     std::snprintf(timing, sizeof timing, "haptic step %.1f us (median)", step.value("median", 0.0));
@@ -319,7 +320,9 @@ void CompareRun::compose() {
   std::unique_ptr<render::PngSequenceWriter> png;
   if (frames_) png = std::make_unique<render::PngSequenceWriter>((out_ / kFramesFolder).string());
   std::unique_ptr<render::VideoWriter> video;
-  if (!o_.video.empty()) video = std::make_unique<render::VideoWriter>(video_path_.string(), width_, height_, fps);
+  if (!o_.video.empty()) {
+    video = std::make_unique<render::VideoWriter>(video_path_.string(), layout_.width, layout_.height, fps);
+  }
   std::vector<render::Image> images(o_.models.size());
   std::vector<const render::Image*> pointers;
   for (const render::Image& image : images) pointers.push_back(&image);
@@ -349,7 +352,7 @@ void CompareRun::finish() {
       {"source", scene_path_},
       {"overrides", o_.overrides},
       {"duration_s", duration_},
-      {"chart", {{"quantity", o_.chart}, {"label", quantity_->label}, {"body", quantity_->body_name}}},
+      {"chart", {{"quantity", quantityName(*quantity_)}, {"label", quantity_->label}, {"body", quantity_->body_name}}},
       {"jobs", jobs_},
       {"step_time_note", jobs_ > 1 ? "runs shared the machine (--jobs > 1): step times are not for publication"
                                    : "one run at a time"},
@@ -383,7 +386,7 @@ render::Image renderCompareFrame(const std::string& scene, const std::vector<std
   checkModels(models);
   const std::string scene_path = resolveScenePath(scene);
   const SessionDesc base = loadSceneFile(scene_path, overrides);
-  const Quantity quantity = chartQuantity(base, "rotation", "");
+  const Quantity quantity = chartQuantity(base, "", "");
   std::vector<SessionDesc> sessions = modelSessions(scene_path, models, overrides, base);
   const render::CompareLayout layout = render::compareLayout(width, height, static_cast<int>(models.size()));
   render::ChartSpec chart = chartFor(quantity);
@@ -411,6 +414,7 @@ render::Image renderCompareFrame(const std::string& scene, const std::vector<std
     thin(series.x, series.y);
     series.label = modelTitle(models[i]);
     series.colour = modelColour(models[i], i);
+    styleModelSeries(series, models[i], i, models.size());
     panels.push_back({series.label, modelDetail(s), "", series.colour});
     chart.series.push_back(std::move(series));
     SessionOptions options;

@@ -1,7 +1,8 @@
 // `godfinger compare`: the same scene and device tracks run once per contact model (offline,
 // each a `godfinger run` process), then one video whose frames hold a panel per model (same
-// camera, labelled with the model, its settings and its step time) above a chart of a trace
-// quantity for every model, with a cursor at the frame's time; summary.json per model and one
+// camera, labelled with the model, its settings and its step time; three or four in a 2 x 2
+// grid) above a chart of a trace quantity for every model (a line style and marker per model),
+// with a cursor at the frame's time and that time beside it; summary.json per model and one
 // compare.json with the headline measures side by side.
 #pragma once
 
@@ -24,9 +25,9 @@ struct CompareOptions {
   bool keep_run_frames = false;        ///< keep each run's own frames (out/MODEL/frames)
   std::string camera;                  ///< the scene's camera (default its first)
   /// The chart's quantity: of `body`, "rotation" (the angle it turned since the start, deg: a
-  /// rolling ball's keeps growing), "tilt" (the angle from its starting orientation, at most 180
-  /// deg), "height" (mm) or "speed" (m/s); or any trace.csv column.
-  std::string chart = "rotation";
+  /// rolling ball's keeps growing), "tilt" (its y axis from upright, 0 to 180 deg), "height"
+  /// (mm) or "speed" (m/s); or any trace.csv column. Empty: the tilt, or a sphere's rotation.
+  std::string chart;
   std::string body;                    ///< default: the scene's first dynamic body
   int jobs = 1;                        ///< runs at a time
   std::string godfinger;               ///< the executable the runs are started with
@@ -38,8 +39,8 @@ struct CompareOptions {
 int runCompare(const CompareOptions& options);
 
 /// One comparison frame rendered in-process (no child processes, no step times): each model's
-/// run of `scene` with `overrides` up to `time` (s), its chart over [0, duration], at
-/// width x height. For the visual-regression goldens. Throws InputError, render::GlError.
+/// run of `scene` with `overrides` up to `time` (s), its chart (the default quantity) over
+/// [0, duration], for a width x height scene frame (compareLayout gives the picture's size). For the visual-regression goldens. Throws InputError, render::GlError.
 render::Image renderCompareFrame(const std::string& scene, const std::vector<std::string>& models,
                                  const std::vector<std::string>& overrides, double time, double duration, int width,
                                  int height, const std::string& camera);

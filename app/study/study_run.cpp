@@ -16,6 +16,7 @@
 #include "app/runs/trace.hpp"
 #include "app/scene/scene_file.hpp"
 #include "app/study/study.hpp"
+#include "app/study/study_chart.hpp"
 #include "app/study/study_measure.hpp"
 #include "render/render_thread.hpp"
 #include "sim/effective_settings.hpp"
@@ -25,19 +26,7 @@ namespace gf::app {
 namespace {
 
 namespace fs = std::filesystem;
-
-// One row of results.csv.
-struct Row {
-  const StudyRun* run = nullptr;
-  std::string series, model, patch, solver = "points";
-  int n_sgo = 0, rings = 0, iterations = 0, walk_resolution = 0;
-  double rate = 0.0;
-  std::vector<MeasureResult> measures;
-  double step_median = NAN, step_p99 = NAN, patch_mean = NAN;
-  std::string status = "ok";
-  double cost(CostKind k) const { return k == CostKind::kStep ? step_median : patch_mean; }
-  double error() const { return measures.empty() ? NAN : measures.front().error; }
-};
+using Row = StudyRow;
 
 std::string number(double x) {
   if (!std::isfinite(x)) return "nan";
@@ -155,20 +144,6 @@ std::string resultsCsv(const StudyPlan& plan, const std::vector<Row>& rows) {
   return out;
 }
 
-const char* errorUnit(const StudyMeasure& m) {
-  if (m.error != ErrorKind::kAbsolute) return "";
-  switch (m.kind) {
-    case MeasureKind::kSwing: return " deg";
-    case MeasureKind::kForceSd:
-    case MeasureKind::kFrictionForce: return " N";
-    case MeasureKind::kFrictionTorque: return " N m";
-    case MeasureKind::kGeodesicRadius:
-    case MeasureKind::kTrajectory: return " m";
-    case MeasureKind::kRollRatio: return "";
-  }
-  return "";
-}
-
 std::string errorText(const StudyMeasure& m, double e) {
   char b[48];
   if (!std::isfinite(e)) return "n/a";
@@ -181,80 +156,6 @@ std::string configurationText(const Row& r) {
   std::string s = r.series;
   for (const auto& [field, value] : r.run->axis_values) s += ", " + field.substr(field.rfind('.') + 1) + " " + value;
   return s;
-}
-
-// Rows of one series on the chart's cost axis, cheapest first.
-std::vector<const Row*> chartable(const std::vector<Row>& rows, const std::string& series, CostKind cost) {
-  std::vector<const Row*> out;
-  for (const Row& r : rows) {
-    if (r.series == series && r.status == "ok" && r.cost(cost) > 0.0 && std::isfinite(r.error())) out.push_back(&r);
-  }
-  std::sort(out.begin(), out.end(), [&](const Row* a, const Row* b) { return a->cost(cost) < b->cost(cost); });
-  return out;
-}
-
-// A chart point's label: the series' first axis, shortened ("n8" for n_SGO 8, "it10" for 10
-// solver iterations).
-std::string pointLabel(const Row& r) {
-  if (r.run->axis_values.empty()) return "";
-  const auto& [field, value] = r.run->axis_values.front();
-  const std::string name = field.substr(field.rfind('.') + 1);
-  if (name == "n_sgo") return "n" + value;
-  if (name == "solver_iterations") return "it" + value;
-  if (name == "haptic_rate") return value + " Hz";
-  if (name == "walk_resolution") return "res " + value;
-  return value;
-}
-
-std::string costLabel(CostKind k) { return k == CostKind::kStep ? "step time, median (us)" : "patch time per call, mean (us)"; }
-
-render::ChartSpec workPrecisionChart(const StudyPlan& plan, const std::vector<Row>& rows) {
-  const StudyMeasure& m = plan.study.series.front().measures.front();
-  render::ChartSpec chart;
-  chart.title = plan.study.name + ": error against cost (one line per series through its best points)";
-  chart.x_label = costLabel(plan.study.cost);
-  chart.y_label = m.error == ErrorKind::kRelative    ? "|error| = |" + m.name + " / reference - 1|"
-                  : m.error == ErrorKind::kDeviation ? "RMS deviation / RMS displacement of the reference"
-                                                     : "|error| = |" + m.name + " - reference|" + errorUnit(m);
-  for (const StudySeries& s : plan.study.series) {
-    if (s.measures.front().error != m.error || s.measures.front().kind != m.kind) {
-      chart.y_label = "|error| (each series in its own measure's terms: see report.md)";
-    }
-  }
-  chart.log_x = chart.log_y = true;
-  chart.width = 1280;
-  chart.height = 720;
-  static const Eigen::Vector3f kColours[] = {
-      {0.85f, 0.2f, 0.15f}, {0.95f, 0.6f, 0.1f}, {0.15f, 0.45f, 0.85f}, {0.1f, 0.6f, 0.3f},
-      {0.55f, 0.3f, 0.75f}, {0.4f, 0.4f, 0.4f},  {0.0f, 0.7f, 0.75f},   {0.75f, 0.45f, 0.3f},
-      {0.9f, 0.4f, 0.7f},   {0.6f, 0.75f, 0.1f}, {0.1f, 0.2f, 0.5f},    {0.5f, 0.1f, 0.1f}};
-  std::size_t colour = 0;
-  for (const StudySeries& s : plan.study.series) {
-    const std::vector<const Row*> points = chartable(rows, s.name, plan.study.cost);
-    if (points.empty()) continue;
-    const Eigen::Vector3f c = kColours[colour++ % std::size(kColours)];
-    render::ChartSeries markers{s.name, c, {}, {}};
-    markers.style = render::SeriesStyle::kMarkers;
-    render::ChartSeries front{"", c, {}, {}};
-    double best = HUGE_VAL;
-    for (const Row* r : points) {
-      markers.x.push_back(r->cost(plan.study.cost));
-      markers.y.push_back(std::abs(r->error()));
-      markers.point_labels.push_back(pointLabel(*r));
-      if (std::abs(r->error()) < best) {  // the best error at this cost or less
-        best = std::abs(r->error());
-        front.x.push_back(r->cost(plan.study.cost));
-        front.y.push_back(best);
-      }
-    }
-    // |error| 0 has no place on a log axis: say how many points that leaves out.
-    int zeros = 0;
-    for (const Row* r : points) zeros += r->error() == 0.0;
-    if (zeros > 0) markers.label += " (" + std::to_string(zeros) + " at error 0, not drawn)";
-    chart.series.push_back(std::move(front));
-    chart.series.push_back(std::move(markers));
-  }
-  return chart;
 }
 
 // True when a further measure is not the first one's quantity against another reference

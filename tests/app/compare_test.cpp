@@ -11,6 +11,8 @@
 #include <tuple>
 
 #include "app/commands/plot.hpp"
+#include "app/compare/chart_quantity.hpp"
+#include "app/scene/data_folder.hpp"
 #include "app/runs/run_reader.hpp"
 #include "app/scene/scene_file.hpp"
 #include "render/image.hpp"
@@ -28,16 +30,90 @@ using test::readFile;
 TEST(Compare, PanelsKeepTheFrameAspectAndLeaveTheChartAThird) {
   for (int n = 1; n <= 4; ++n) {
     const render::CompareLayout l = render::compareLayout(1280, 720, n);
-    EXPECT_LE(n * l.panel_width + l.panels_left, 1280) << n;
+    ASSERT_EQ(l.panels.size(), static_cast<std::size_t>(n));
+    EXPECT_EQ(l.width, 1280) << n;
     EXPECT_NEAR(double(l.panel_height) / l.panel_width, 720.0 / 1280.0, 0.01) << n;
-    EXPECT_GE(l.chart_height, 0.3 * 720 - 1) << n;
-    EXPECT_EQ(l.chart_top + l.chart_height, 720) << n;
+    EXPECT_GE(l.chart_height, 0.3 * l.height - 1) << n;
+    EXPECT_EQ(l.chart_top + l.chart_height, l.height) << n;
+    EXPECT_EQ(l.height % 2, 0) << n;
+    for (int i = 0; i < n; ++i) {  // inside the frame, above the chart, apart
+      EXPECT_GE(l.panels[i].x(), 0);
+      EXPECT_LE(l.panels[i].x() + l.panel_width, l.width);
+      EXPECT_LE(l.panels[i].y() + l.panel_height, l.chart_top);
+      for (int j = 0; j < i; ++j) {
+        const bool apart = l.panels[i].x() >= l.panels[j].x() + l.panel_width ||
+                           l.panels[j].x() >= l.panels[i].x() + l.panel_width ||
+                           l.panels[i].y() >= l.panels[j].y() + l.panel_height;
+        EXPECT_TRUE(apart) << n << " models: panels " << j << " and " << i;
+      }
+    }
   }
   // Two models at 1280 x 720: two 640 x 360 panels over a 360-pixel chart.
   const render::CompareLayout two = render::compareLayout(1280, 720, 2);
   EXPECT_EQ(two.panel_width, 640);
   EXPECT_EQ(two.panel_height, 360);
-  EXPECT_EQ(two.panels_left, 0);
+  EXPECT_EQ(two.panels[0], Eigen::Vector2i(0, 0));
+  EXPECT_EQ(two.height, 720);
+}
+
+// Three or four models: the same 640 x 360 panels as two, in a 2 x 2 grid (a third alone in the
+// middle of the second row) over a 360-pixel chart, a third of a 1280 x 1080 frame; a 640 x 360
+// scene gives 320 x 180 panels over a chart of at least 220 pixels.
+TEST(Compare, ThreeOrFourModelsGoInATwoByTwoGridOverAThirdOfTheFrame) {
+  const render::CompareLayout three = render::compareLayout(1280, 720, 3);
+  EXPECT_EQ(three.panel_width, 640);
+  EXPECT_EQ(three.panel_height, 360);
+  EXPECT_EQ(three.height, 1080);
+  EXPECT_EQ(three.chart_top, 720);
+  EXPECT_EQ(three.chart_height, 360);
+  EXPECT_EQ(three.panels[0], Eigen::Vector2i(0, 0));
+  EXPECT_EQ(three.panels[1], Eigen::Vector2i(640, 0));
+  EXPECT_EQ(three.panels[2], Eigen::Vector2i(320, 360));
+  const render::CompareLayout four = render::compareLayout(1280, 720, 4);
+  EXPECT_EQ(four.panels[3], Eigen::Vector2i(640, 360));
+  const render::CompareLayout small = render::compareLayout(640, 360, 4);
+  EXPECT_EQ(small.panel_width, 320);
+  EXPECT_EQ(small.panel_height, 180);
+  EXPECT_EQ(small.chart_top, 360);
+  EXPECT_EQ(small.height, 580);
+}
+
+// The tilt is the angle of the body's y axis (a cylinder's) from up: a cylinder swung a whole
+// turn about the pinch axis is upright again (tilt 0; the angle turned keeps 360), one spun about
+// its own axis does not tilt, one lying on its side reads 90.
+TEST(Compare, TiltIsTheAxisFromUprightNotTheAngleTurned) {
+  SessionDesc session = loadSceneFile(resolveScenePath("fig8-pinch-oscillation"), {});
+  const Quantity tilt = chartQuantity(session, "", "");
+  EXPECT_EQ(tilt.kind, Quantity::kTilt) << "a cylinder's default";
+  EXPECT_EQ(quantityName(tilt), "tilt");
+  const Quantity ball = chartQuantity(loadSceneFile(resolveScenePath("fig5-push-ball"), {}), "", "");
+  EXPECT_EQ(ball.kind, Quantity::kRotation) << "a sphere's default";
+  const sim::Quat start = sim::Quat::Identity();
+  QuantityTrack track(tilt, start);
+  Quantity turned_q = tilt;
+  turned_q.kind = Quantity::kRotation;
+  QuantityTrack turned(turned_q, start);
+  EXPECT_NEAR(track.atStart(), 0.0, 1e-9);
+  const double w = 2.0 * M_PI;  // rad/s about x: a whole turn in 1 s
+  double at_end = NAN, turned_end = NAN, most = 0.0;
+  for (int k = 1; k <= 1000; ++k) {
+    const double t = k / 1000.0;
+    const sim::Pose pose{sim::Vec3::Zero(), sim::Quat(Eigen::AngleAxisd(w * t, sim::Vec3::UnitX()))};
+    at_end = track.next(t, pose, sim::Vec3::Zero(), sim::Vec3(w, 0.0, 0.0));
+    turned_end = turned.next(t, pose, sim::Vec3::Zero(), sim::Vec3(w, 0.0, 0.0));
+    most = std::max(most, at_end);
+  }
+  EXPECT_NEAR(at_end, 0.0, 1e-6);
+  EXPECT_NEAR(turned_end, 360.0, 1e-6);
+  EXPECT_NEAR(most, 180.0, 0.5);
+  QuantityTrack spin(tilt, start);
+  EXPECT_NEAR(spin.next(0.1, {sim::Vec3::Zero(), sim::Quat(Eigen::AngleAxisd(1.0, sim::Vec3::UnitY()))}, sim::Vec3::Zero(),
+                        sim::Vec3::Zero()),
+              0.0, 1e-9);
+  QuantityTrack side(tilt, start);
+  EXPECT_NEAR(side.next(0.1, {sim::Vec3::Zero(), sim::Quat(Eigen::AngleAxisd(M_PI / 2, sim::Vec3::UnitZ()))},
+                        sim::Vec3::Zero(), sim::Vec3::Zero()),
+              90.0, 1e-9);
 }
 
 TEST(Compare, BadOptionsAreErrorsNamingTheOptionBeforeAnyRun) {

@@ -9,10 +9,12 @@
 #include <fstream>
 #include <numbers>
 #include <sstream>
+#include <tuple>
 
 #include "app/runs/run_reader.hpp"
 #include "app/scene/scene_file.hpp"
 #include "app/study/study.hpp"
+#include "app/study/study_chart.hpp"
 #include "app/study/study_measure.hpp"
 #include "sim/god_finger.hpp"
 #include "tests/scratch.hpp"
@@ -370,6 +372,63 @@ axes = [{ field = "fingers.index.n_sgo", values = [4, 8] }]
 
 // Emitting the command lines, running them with GNU parallel from another folder and collecting
 // gives the same results as a direct run (all but the step and patch times).
+// The pinch study's god-object runs differ in solver iterations and haptic rate: the chart
+// labels each best point with both (two runs at 10 iterations are not both "it10"), leaves the
+// other points unlabelled (report.md lists them), explains the abbreviations and "aggregate"
+// under the chart, and shades the reference run's own swing as its noise floor.
+TEST(StudyChart, LabelsTellPointsApartAndTheReferenceNoiseIsShaded) {
+  StudyPlan plan;
+  plan.study.name = "pinch";
+  StudyMeasure swing;
+  swing.name = "swing_deg";
+  swing.kind = MeasureKind::kSwing;
+  swing.reference = ReferenceKind::kRun;
+  swing.error = ErrorKind::kAbsolute;
+  for (const char* name : {"god_object", "god_finger ring aggregate"}) {
+    StudySeries series;
+    series.name = name;
+    series.measures = {swing};
+    series.has_reference_run = true;
+    plan.study.series.push_back(series);
+  }
+  const double reference = 1.4e-5;  // deg: the converged run's own swing
+  plan.runs.push_back({"000-reference", -1, "", {}, {}, -1, 0});
+  // (iterations, rate, step us, swing deg): the cheapest is not the most accurate.
+  const std::vector<std::tuple<const char*, const char*, double, double>> runs = {
+      {"10", "1000", 7.0, 180.0}, {"20", "1000", 9.0, 170.0}, {"10", "2000", 11.0, 100.0}, {"20", "2000", 13.0, 175.0}};
+  for (const auto& [it, rate, cost, value] : runs) {
+    plan.runs.push_back({"god_object", 0, "", {}, {{"world.solver_iterations", it}, {"haptic_rate", rate}}, 0, 0});
+  }
+  plan.runs.push_back({"aggregate", 1, "", {}, {{"fingers.left.n_sgo", "8"}}, 0, 1});
+  std::vector<StudyRow> rows(plan.runs.size());
+  for (std::size_t i = 0; i < rows.size(); ++i) {
+    rows[i].run = &plan.runs[i];
+    rows[i].series = i == 0 ? "reference" : i + 1 == rows.size() ? "god_finger ring aggregate" : "god_object";
+    const double value = i == 0 ? reference : i + 1 == rows.size() ? 3e-4 : std::get<3>(runs[i - 1]);
+    rows[i].step_median = i == 0 ? 90.0 : i + 1 == rows.size() ? 12.0 : std::get<2>(runs[i - 1]);
+    rows[i].measures = {{value, reference, value - reference, ""}};
+  }
+  const render::ChartSpec chart = workPrecisionChart(plan, rows);
+  std::vector<std::string> labels;
+  for (const render::ChartSeries& s : chart.series) {
+    if (s.label == "god_object") labels = s.point_labels;
+  }
+  // Cheapest first: 7, 9, 11, 13 us; the best so far at 7 (180), 9 (170) and 11 (100) us.
+  EXPECT_EQ(labels, (std::vector<std::string>{"it10 1kHz", "it20 1kHz", "it10 2kHz", ""}));
+  std::string notes;
+  for (const std::string& n : chart.notes) notes += n + "\n";
+  EXPECT_NE(notes.find("it = solver iterations"), std::string::npos) << notes;
+  EXPECT_NE(notes.find("kHz = haptic rate"), std::string::npos) << notes;
+  EXPECT_EQ(notes.find("n = n_SGO"), std::string::npos) << "no label uses n: " << notes;
+  EXPECT_NE(notes.find("aggregate"), std::string::npos) << notes;
+  ASSERT_EQ(chart.bands.size(), 1u);
+  EXPECT_DOUBLE_EQ(chart.bands[0].y_hi, reference);
+  EXPECT_NE(chart.bands[0].label.find("1.4e-05 deg"), std::string::npos) << chart.bands[0].label;
+  // An analytic reference has no run whose noise could be known: no band.
+  for (StudySeries& s : plan.study.series) s.measures.front().reference = ReferenceKind::kTwoThirdsMuFR;
+  EXPECT_TRUE(workPrecisionChart(plan, rows).bands.empty());
+}
+
 TEST(StudyJobs, EmitParallelCollectMatchesADirectRun) {
   ASSERT_EQ(std::system("command -v parallel > /dev/null"), 0) << "GNU parallel is needed (scripts/test installs it)";
   const fs::path direct = freshDir("gf_study_direct"), emitted = freshDir("gf_study_emitted");

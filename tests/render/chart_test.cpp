@@ -1,6 +1,6 @@
 // Charts drawn to PNG through writeChartPng: where points land on fitted log axes, what is not
-// drawn (values a log axis cannot show, unlabelled series in the legend, labels off the plot)
-// and fixed y ranges. Positions are found from the plot's frame in the image.
+// drawn (values a log axis cannot show, unlabelled series in the legend, labels off the plot),
+// fixed y ranges, coinciding curves, the cursor's label, bands and notes. Positions are found from the plot's frame in the image.
 #include "render/chart.hpp"
 
 #include <gtest/gtest.h>
@@ -301,6 +301,118 @@ TEST(Chart, AnOutlierBeyondTheFitIsMarkedAtTheEdge) {
   EXPECT_GT(countColour(image, kRed, plot.left, plot.bottom - plot.height() / 8, plot.right, plot.bottom - 3), 0);
   // The triangle under the top edge at t = 0.5: a few pixels wide and tall.
   EXPECT_GE(countColour(image, kRed, middle - 6, plot.top + 1, middle + 7, plot.top + 6), 12);
+}
+
+
+bool isDark(const Image& image, int x, int y) {
+  const std::uint8_t* p = pixel(image, x, y);
+  return p[0] < 90 && p[1] < 90 && p[2] < 90;
+}
+
+int countDark(const Image& image, int x0, int y0, int x1, int y1) {
+  int count = 0;
+  for (int y = std::max(y0, 0); y < std::min(y1, image.height); ++y) {
+    for (int x = std::max(x0, 0); x < std::min(x1, image.width); ++x) count += isDark(image, x, y);
+  }
+  return count;
+}
+
+// Two curves on one another: the dashed one is listed first, yet the solid one is drawn under
+// it, so both colours show along the curve; their markers (every 60 px, shifted by half of that)
+// stand off the line, and the legend draws each line with its marker.
+TEST(Chart, CoincidingCurvesBothStayVisible) {
+  ChartSpec chart;
+  chart.width = 800;
+  chart.height = 400;
+  const std::vector<double> t = {0.0, 1.0}, y = {0.0, 1.0};
+  chart.series = {{"dashed", kBlue, t, y}, {"solid", kRed, t, y}};
+  chart.series[0].dash = LineDash::kDashed;
+  chart.series[0].marker = MarkerShape::kSquare;
+  for (std::size_t k = 0; k < 2; ++k) {
+    chart.series[k].marker_spacing_px = 60.0f;
+    chart.series[k].marker_phase = 0.5f * static_cast<float>(k);
+  }
+  const Image image = drawChart(chart);
+  const Plot plot = findPlot(image);
+  const int red = countColour(image, kRed, plot.left + 2, plot.top + 2, plot.right - 1, plot.bottom - 1);
+  const int blue = countColour(image, kBlue, plot.left + 2, plot.top + 2, plot.right - 1, plot.bottom - 1);
+  RecordProperty("red_px", red);
+  RecordProperty("blue_px", blue);
+  // The diagonal is about 900 px long: each colour shows along a good part of it.
+  EXPECT_GT(red, 300);
+  EXPECT_GT(blue, 300);
+  // The line is under 3 px thick, a marker 9 px across: columns where a colour lies 3 px
+  // from the line's centre (the middle of the coloured pixels in the column) hold its markers.
+  const auto blobs = [&](const Eigen::Vector3f& colour) {
+    int n = 0;
+    for (int x = plot.left + 10; x < plot.right - 10; ++x) {
+      std::vector<int> rows;
+      for (int row = plot.top + 1; row < plot.bottom; ++row) {
+        if (hasColour(image, x, row, kRed) || hasColour(image, x, row, kBlue)) rows.push_back(row);
+      }
+      if (rows.empty()) continue;
+      const int centre = rows[rows.size() / 2];
+      for (int row : {centre - 3, centre + 3}) n += hasColour(image, x, row, colour);
+    }
+    return n;
+  };
+  EXPECT_GT(blobs(kRed), 0) << "red markers";
+  EXPECT_GT(blobs(kBlue), 0) << "blue markers";
+  // The legend, above the plot: both colours.
+  EXPECT_GT(countColour(image, kRed, plot.left, 0, plot.right, plot.top), 20);
+  EXPECT_GT(countColour(image, kBlue, plot.left, 0, plot.right, plot.top), 20);
+}
+
+// The cursor's label sits at the plot's top beside the line: right of it, or left of it near the
+// plot's right edge; without a label nothing dark is there.
+TEST(Chart, TheCursorsLabelSitsBesideIt) {
+  ChartSpec chart;
+  chart.width = 800;
+  chart.height = 400;
+  chart.series = {{"a", kRed, {0.0, 1.0}, {0.0, 0.0}}};
+  const auto inkRightAndLeft = [&](double at, const std::string& label) {
+    chart.cursor_x = at;
+    chart.cursor_label = label;
+    const Image image = drawChart(chart);
+    const Plot plot = findPlot(image);
+    const int x = plot.left + static_cast<int>(std::lround(at * plot.width()));
+    return std::pair{countDark(image, x + 3, plot.top + 2, x + 120, plot.top + 24),
+                     countDark(image, x - 120, plot.top + 2, x - 3, plot.top + 24)};
+  };
+  const auto [right, left] = inkRightAndLeft(0.5, "t = 0.50 s");
+  EXPECT_GT(right, 30);
+  EXPECT_EQ(left, 0);
+  const auto [right_edge, left_edge] = inkRightAndLeft(0.98, "t = 0.98 s");
+  EXPECT_EQ(right_edge, 0);
+  EXPECT_GT(left_edge, 30);
+  const auto [none_right, none_left] = inkRightAndLeft(0.5, "");
+  EXPECT_EQ(none_right + none_left, 0);
+}
+
+// A band from the plot's bottom to 1e-4 under data at 0.01 to 1: the log axis reaches down to
+// show it, the plot is shaded up to its top and white above; notes under the x label take rows
+// from the plot's height and are written there.
+TEST(Chart, ABandIsShadedAndTheAxisShowsItAndNotesGoUnderTheAxis) {
+  ChartSpec chart;
+  chart.width = 800;
+  chart.height = 400;
+  chart.log_x = chart.log_y = true;
+  chart.series = {{"a", kRed, {1.0, 10.0}, {1.0, 0.01}, SeriesStyle::kMarkers}};
+  const Plot plain = findPlot(drawChart(chart));
+  chart.bands = {{0.0, 1e-4, "", kBlue}};
+  chart.notes = {"first note", "second note"};
+  const Image image = drawChart(chart);
+  const Plot plot = findPlot(image);
+  EXPECT_LT(plot.height(), plain.height() - 20) << "two note rows";
+  EXPECT_GT(countDark(image, 0, plot.bottom + 40, 200, image.height), 20) << "the notes";
+  // The y axis spans 1e-4 .. 1 padded: the band's top at 4 of 4 decades plus padding.
+  const double decades = 4.0, pad = kLogPad * decades;
+  const int band_top = static_cast<int>(std::lround(plot.bottom - pad / (decades + 2 * pad) * plot.height()));
+  const int x = (plot.left + 2 * plot.right) / 3;  // away from the data's markers
+  const std::uint8_t* inside = pixel(image, x, (band_top + plot.bottom) / 2);
+  EXPECT_LT(inside[0], 245) << "shaded";
+  EXPECT_GT(inside[2], inside[0]) << "in the band's colour";
+  EXPECT_TRUE(isWhite(image, x, band_top - 8)) << "white above the band";
 }
 
 }  // namespace

@@ -1,0 +1,213 @@
+#include "app/study/study_chart.hpp"
+
+#include <algorithm>
+#include <cctype>
+#include <cstdio>
+#include <cstdlib>
+#include <map>
+#include <set>
+
+namespace gf::app {
+
+using Row = StudyRow;
+
+const char* errorUnit(const StudyMeasure& m) {
+  if (m.error != ErrorKind::kAbsolute) return "";
+  switch (m.kind) {
+    case MeasureKind::kSwing: return " deg";
+    case MeasureKind::kForceSd:
+    case MeasureKind::kFrictionForce: return " N";
+    case MeasureKind::kFrictionTorque: return " N m";
+    case MeasureKind::kGeodesicRadius:
+    case MeasureKind::kTrajectory: return " m";
+    case MeasureKind::kRollRatio: return "";
+  }
+  return "";
+}
+
+namespace {
+
+constexpr double kFrontGain = 0.99;  // a best point lowers the series' best |error| so far by 1 % or more
+
+// Rows of one series on the chart's cost axis, cheapest first.
+std::vector<const Row*> chartable(const std::vector<Row>& rows, const std::string& series, CostKind cost) {
+  std::vector<const Row*> out;
+  for (const Row& r : rows) {
+    if (r.series == series && r.status == "ok" && r.cost(cost) > 0.0 && std::isfinite(r.error())) out.push_back(&r);
+  }
+  std::sort(out.begin(), out.end(), [&](const Row* a, const Row* b) { return a->cost(cost) < b->cost(cost); });
+  return out;
+}
+
+// The axes whose value differs between the runs of `series`: what tells its points apart.
+std::vector<std::string> varyingAxes(const std::vector<Row>& rows, const std::string& series) {
+  std::map<std::string, std::set<std::string>> values;
+  std::vector<std::string> order;
+  for (const Row& r : rows) {
+    if (r.series != series) continue;
+    for (const auto& [field, value] : r.run->axis_values) {
+      if (values[field].empty()) order.push_back(field);
+      values[field].insert(value);
+    }
+  }
+  std::vector<std::string> out;
+  for (const std::string& f : order) {
+    if (values[f].size() > 1) out.push_back(f);
+  }
+  return out;
+}
+
+// One axis value in a point's label: "n8" for n_SGO 8, "it10" for 10 solver iterations, "2kHz"
+// for a haptic rate of 2000 Hz, "res4" for walk resolution 4; else the field's last name = value.
+std::string labelToken(const std::string& field, const std::string& value) {
+  const std::string name = field.substr(field.rfind('.') + 1);
+  if (name == "n_sgo") return "n" + value;
+  if (name == "solver_iterations") return "it" + value;
+  if (name == "walk_resolution") return "res" + value;
+  if (name == "haptic_rate") {
+    const double hz = std::atof(value.c_str());
+    if (hz >= 1000.0 && std::fmod(hz, 1000.0) == 0.0) return std::to_string(std::lround(hz / 1000.0)) + "kHz";
+    return value + "Hz";
+  }
+  return name + "=" + value;
+}
+
+// A chart point's label: every axis that varies within its series (two runs of a series never
+// share a label), e.g. "n8 it20 2kHz".
+std::string pointLabel(const Row& r, const std::vector<std::string>& varying) {
+  std::string out;
+  for (const auto& [field, value] : r.run->axis_values) {
+    if (std::find(varying.begin(), varying.end(), field) == varying.end()) continue;
+    out.append(out.empty() ? "" : " ").append(labelToken(field, value));
+  }
+  return out;
+}
+
+// Whether a point label of `chart` holds a token that starts with `prefix` and then a digit
+// ("n8"), or (digit_first) a number and then `prefix` ("2kHz").
+bool labelsUse(const render::ChartSpec& chart, const std::string& prefix, bool digit_first) {
+  for (const render::ChartSeries& s : chart.series) {
+    for (const std::string& label : s.point_labels) {
+      for (std::size_t a = 0; a < label.size();) {
+        const std::size_t b = std::min(label.find(' ', a), label.size());
+        const std::string token = label.substr(a, b - a);
+        a = b + 1;
+        if (token.size() <= prefix.size()) continue;
+        const bool hit = digit_first ? token.compare(token.size() - prefix.size(), prefix.size(), prefix) == 0 &&
+                                           std::isdigit(static_cast<unsigned char>(token.front()))
+                                     : token.rfind(prefix, 0) == 0 &&
+                                           std::isdigit(static_cast<unsigned char>(token[prefix.size()]));
+        if (hit) return true;
+      }
+    }
+  }
+  return false;
+}
+
+// What the chart's labels and series names abbreviate, as notes under it: only what it shows.
+std::vector<std::string> labelNotes(const render::ChartSpec& chart) {
+  std::string keys;
+  const auto key = [&](bool used, const char* meaning) {
+    if (used) keys.append(keys.empty() ? "" : "; ").append(meaning);
+  };
+  key(labelsUse(chart, "n", false), "n = n_SGO, SGOs per patch");
+  key(labelsUse(chart, "it", false), "it = solver iterations");
+  key(labelsUse(chart, "kHz", true) || labelsUse(chart, "Hz", true), "kHz = haptic rate");
+  key(labelsUse(chart, "res", false), "res = walk resolution");
+  std::vector<std::string> notes;
+  if (!keys.empty()) {
+    notes.push_back("Point labels (" + keys + ") on each series' best points, the ones its line joins, each 1 % "
+                    "better than any cheaper; every point is in report.md and results.csv.");
+  }
+  for (const render::ChartSeries& s : chart.series) {
+    if (s.label.find("aggregate") == std::string::npos) continue;
+    notes.push_back("\"aggregate\": the patch's SGOs solved as one block per contact (world.contact_solver = "
+                    "aggregate); the others solve each SGO as a point of its own.");
+    break;
+  }
+  return notes;
+}
+
+// The reference run's own noise, where the study knows it: a swing or force s.d. is zero for a
+// perfectly held body, so the converged reference's own value is what is left of its
+// discretisation, and an absolute error below it is within the reference's own error. Returns
+// the largest such value over the reference runs (NaN when there is none: an analytic
+// reference, or another measure).
+double referenceNoise(const StudyMeasure& m, const std::vector<Row>& rows) {
+  const bool zero_ideal = m.kind == MeasureKind::kSwing || m.kind == MeasureKind::kForceSd;
+  if (!zero_ideal || m.reference != ReferenceKind::kRun || m.error != ErrorKind::kAbsolute) return NAN;
+  double noise = NAN;
+  for (const Row& r : rows) {
+    if (r.run->series >= 0 || r.status != "ok" || r.measures.empty()) continue;
+    const double x = std::abs(r.measures.front().measure);
+    if (std::isfinite(x) && !(x <= noise)) noise = x;
+  }
+  return noise;
+}
+
+}  // namespace
+
+std::string costLabel(CostKind k) { return k == CostKind::kStep ? "step time, median (us)" : "patch time per call, mean (us)"; }
+
+render::ChartSpec workPrecisionChart(const StudyPlan& plan, const std::vector<Row>& rows) {
+  const StudyMeasure& m = plan.study.series.front().measures.front();
+  render::ChartSpec chart;
+  chart.title = plan.study.name + ": error against cost (one line per series through its best points)";
+  chart.x_label = costLabel(plan.study.cost);
+  chart.y_label = m.error == ErrorKind::kRelative    ? "|error| = |" + m.name + " / reference - 1|"
+                  : m.error == ErrorKind::kDeviation ? "RMS deviation / RMS displacement of the reference"
+                                                     : "|error| = |" + m.name + " - reference|" + errorUnit(m);
+  for (const StudySeries& s : plan.study.series) {
+    if (s.measures.front().error != m.error || s.measures.front().kind != m.kind) {
+      chart.y_label = "|error| (each series in its own measure's terms: see report.md)";
+    }
+  }
+  chart.log_x = chart.log_y = true;
+  chart.width = 1280;
+  chart.height = 720;
+  static const Eigen::Vector3f kColours[] = {
+      {0.85f, 0.2f, 0.15f}, {0.95f, 0.6f, 0.1f}, {0.15f, 0.45f, 0.85f}, {0.1f, 0.6f, 0.3f},
+      {0.55f, 0.3f, 0.75f}, {0.4f, 0.4f, 0.4f},  {0.0f, 0.7f, 0.75f},   {0.75f, 0.45f, 0.3f},
+      {0.9f, 0.4f, 0.7f},   {0.6f, 0.75f, 0.1f}, {0.1f, 0.2f, 0.5f},    {0.5f, 0.1f, 0.1f}};
+  std::size_t colour = 0;
+  for (const StudySeries& s : plan.study.series) {
+    const std::vector<const Row*> points = chartable(rows, s.name, plan.study.cost);
+    if (points.empty()) continue;
+    const Eigen::Vector3f c = kColours[colour++ % std::size(kColours)];
+    render::ChartSeries markers{s.name, c, {}, {}};
+    markers.style = render::SeriesStyle::kMarkers;
+    render::ChartSeries front{"", c, {}, {}};
+    const std::vector<std::string> varying = varyingAxes(rows, s.name);
+    double best = HUGE_VAL;
+    for (const Row* r : points) {
+      markers.x.push_back(r->cost(plan.study.cost));
+      markers.y.push_back(std::abs(r->error()));
+      // The best error at this cost or less, by a margin: a point 0.01 % better than a cheaper one
+      // is the same accuracy, and labelling it would crowd the labels that matter.
+      const bool on_front = std::abs(r->error()) < kFrontGain * best;
+      markers.point_labels.push_back(on_front ? pointLabel(*r, varying) : "");
+      if (on_front) {
+        best = std::abs(r->error());
+        front.x.push_back(r->cost(plan.study.cost));
+        front.y.push_back(best);
+      }
+    }
+    // |error| 0 has no place on a log axis: say how many points that leaves out.
+    int zeros = 0;
+    for (const Row* r : points) zeros += r->error() == 0.0;
+    if (zeros > 0) markers.label += " (" + std::to_string(zeros) + " at error 0, not drawn)";
+    chart.series.push_back(std::move(front));
+    chart.series.push_back(std::move(markers));
+  }
+  chart.notes = labelNotes(chart);
+  const double noise = referenceNoise(m, rows);
+  if (std::isfinite(noise) && noise > 0.0) {
+    char b[200];
+    std::snprintf(b, sizeof b, "the reference run's own %s, %.2g%s: an error below it is within the reference's noise",
+                  m.name.c_str(), noise, errorUnit(m));
+    chart.bands.push_back({0.0, noise, b, Eigen::Vector3f(0.55f, 0.55f, 0.6f)});
+  }
+  return chart;
+}
+
+}  // namespace gf::app
