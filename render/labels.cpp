@@ -242,7 +242,9 @@ void drawContactLabel(ImDrawList& d, ImFont* font, float px, const LabelBox& box
   d.PopClipRect();
 }
 
-void drawFrameStamp(ImDrawList& d, ImFont* font, float px, int height, double time, double arrow_m_per_n) {
+void drawFrameStamp(const ImGuiLayer& layer, float px, int height, double time, double arrow_m_per_n) {
+  ImDrawList& d = *ImGui::GetForegroundDrawList();
+  ImFont* font = layer.font(px);
   char lines[2][64];
   std::snprintf(lines[0], sizeof lines[0], "t = %.3f s", time);
   int count = 1;

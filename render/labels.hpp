@@ -12,6 +12,8 @@ struct ImFont;
 
 namespace gf::render {
 
+class ImGuiLayer;
+
 /// The smallest label text (pixels high): ImGui's built-in font is drawn at its own 13 px grid
 /// there, crisp; smaller it smears ("0.09" read as "0.89" at 6 px).
 inline constexpr float kMinLabelPx = 13.0f;
@@ -52,10 +54,11 @@ struct ContactLabel {
 /// inset's caption goes above the box (outside the picture); a close-up's inside its top.
 void drawContactLabel(ImDrawList& d, ImFont* font, float px, const LabelBox& box, const ContactLabel& label);
 
-/// Draws a frame's stamp in its bottom-left corner (a comparison labels its panels top left,
-/// the insets sit bottom right) with `font` at `px`: "t = 1.250 s" and, when `arrow_m_per_n` > 0,
-/// the force arrows' scale ("force arrow 1 cm = 1 N").
-void drawFrameStamp(ImDrawList& d, ImFont* font, float px, int height, double time, double arrow_m_per_n);
+/// Adds a frame's stamp to the frame of `layer` (of the frame's size, between its beginFrame()
+/// and render()) in its bottom-left corner (a comparison labels its panels top left, the insets
+/// sit bottom right), at `px`: "t = 1.250 s" and, when `arrow_m_per_n` > 0, the force arrows'
+/// scale ("force arrow 1 cm = 1 N").
+void drawFrameStamp(const ImGuiLayer& layer, float px, int height, double time, double arrow_m_per_n);
 
 /// The length (m) of a scale bar for a view `view_m` metres wide: the longest of 0.1, 0.2, 0.5,
 /// 1, 2, 5, ... mm that is at most 30 % of the view.

@@ -161,7 +161,7 @@ struct Gpu {
     if (insets) insets->drawLabels(*labels, snap);
     if (stamp) {
       const RenderSettings& r = scene.settings();
-      drawFrameStamp(*ImGui::GetForegroundDrawList(), labels->font(stamp_px), stamp_px, height, snap.time,
+      drawFrameStamp(*labels, stamp_px, height, snap.time,
                      r.patch_highlight && r.contact_arrows ? r.force_arrow_m_per_n : 0.0);
     }
     labels->render();

@@ -4,6 +4,8 @@
 
 #include <gtest/gtest.h>
 
+#include <filesystem>
+
 #include "app/scene/scene_file.hpp"
 #include "app/session/screenshots.hpp"
 #include "app/session/session.hpp"
@@ -136,6 +138,54 @@ TEST(Stills, EveryFrameCarriesItsTime) {
   }
   EXPECT_GT(corner, 20);
   EXPECT_EQ(elsewhere, 0);
+}
+
+// Fig. 8's squeeze with made-up per-point loads (growing around the left ring, one SGO slipping,
+// the right finger without loads): the left inset shows the load scale's ends (viridis' dark
+// purple and yellow, on the dots and in the colour bar), the right one neither. The pictures go
+// to <build>/visual-diff/ to be looked at.
+TEST(Stills, InsetsColourTheDotsByLoadWithAColourBar) {
+  const app::SessionDesc session = app::loadSceneFile(std::string(GF_SOURCE_DIR) + "/assets/scenes/fig8-pinch-oscillation.toml");
+  sim::Snapshot snap = app::snapshotAt(session, 4.0);
+  for (sim::FingerSnapshot& f : snap.fingers) {
+    for (sim::ContactSnapshot& c : f.contacts) c.loads.clear();
+  }
+  sim::ContactSnapshot& c = snap.fingers[0].contacts.front();
+  ASSERT_EQ(c.sgos_world.size(), 8u);
+  c.loads.resize(8);
+  for (std::size_t k = 0; k < 8; ++k) c.loads[k].normal = 0.1 * static_cast<double>(k);  // 0 to 0.7 N
+  c.loads[7].slipping = true;
+  c.point_load.normal = 0.4;
+  render::FrameOutputSettings settings = app::frameSettings(session, {});
+  const auto near = [](const std::uint8_t* p, int r, int g, int b) {
+    return std::abs(p[0] - r) < 20 && std::abs(p[1] - g) < 20 && std::abs(p[2] - b) < 20;
+  };
+  const std::filesystem::path out = std::filesystem::path(GF_BINARY_DIR) / "visual-diff";
+  std::filesystem::create_directories(out);
+  for (const auto& [w, h] : {std::pair{640, 360}, std::pair{1280, 720}}) {
+    settings.width = w;
+    settings.height = h;
+    const render::Image image = render::renderStill(session.scene, snap, settings);
+    render::writePng((out / ("load-colours-" + std::to_string(h) + ".png")).string(), image);
+    const std::vector<render::InsetRect> insets = render::insetRects(w, h, 2, render::InsetCorner::kBottomRight);
+    for (std::size_t f = 0; f < 2; ++f) {
+      int yellow = 0, purple = 0;
+      const render::InsetRect& r = insets[f];
+      for (int y = r.y; y < r.y + r.size; ++y) {
+        for (int x = r.x; x < r.x + r.size; ++x) {
+          const std::uint8_t* p = &image.rgb[3 * (static_cast<std::size_t>(y) * static_cast<std::size_t>(w) + static_cast<std::size_t>(x))];
+          yellow += near(p, 253, 231, 37);
+          purple += near(p, 68, 1, 84);
+        }
+      }
+      if (f == 0) {
+        EXPECT_GT(yellow, 4) << w << "x" << h;
+        EXPECT_GT(purple, 4) << w << "x" << h;
+      } else {
+        EXPECT_EQ(yellow + purple, 0) << w << "x" << h << ": no loads, no load colours";
+      }
+    }
+  }
 }
 
 // The overlay fits a 640x360 frame (the goldens' size) and a 1280x720 one: every panel and
