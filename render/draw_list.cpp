@@ -120,6 +120,8 @@ DrawListBuilder::DrawListBuilder(const sim::SceneDesc& scene, std::vector<std::s
 // through them to the device inside the body; then the patches, then the ghosts' outlines.
 void DrawListBuilder::build(const sim::Snapshot& snapshot, const DrawSettings& settings, DrawList& out) {
   out.clear();
+  view_eye_.reset();
+  if (settings.view) view_eye_ = settings.view->eye;
   if (settings.fingers) {
     addProxies(snapshot, out);
     addSprings(snapshot, out);
@@ -238,6 +240,9 @@ void DrawListBuilder::addGhosts(const sim::Snapshot& snap, const DrawSettings& s
   }
 }
 
+// A shaft and a head, drawn without depth: the part nearer the camera goes last (the head of an
+// arrow pointing at the camera covers its shaft; the shaft of one pointing away covers the head's
+// base).
 void DrawListBuilder::addArrow(DrawList& out, const Vec3& from, const Vec3& vector, double radius,
                                const Eigen::Vector3f& colour) {
   const double length = vector.norm();
@@ -245,11 +250,14 @@ void DrawListBuilder::addArrow(DrawList& out, const Vec3& from, const Vec3& vect
   const Vec3 dir = vector / length;
   const double head = std::min(0.45 * length, 5.0 * radius);
   const sim::Quat q = fromY(dir);
-  out.items.push_back(shapeItem(DrawPass::kArrows, DrawShape::kCylinder,
-                                modelMatrix(from, q, Vec3(radius, length - head, radius)), colour, 1.0f));
-  out.items.push_back(shapeItem(DrawPass::kArrows, DrawShape::kCone,
-                                modelMatrix(from + (length - head) * dir, q, Vec3(2.5 * radius, head, 2.5 * radius)),
-                                colour, 1.0f));
+  const DrawItem shaft = shapeItem(DrawPass::kArrows, DrawShape::kCylinder,
+                                   modelMatrix(from, q, Vec3(radius, length - head, radius)), colour, 1.0f);
+  const DrawItem cone = shapeItem(DrawPass::kArrows, DrawShape::kCone,
+                                  modelMatrix(from + (length - head) * dir, q, Vec3(2.5 * radius, head, 2.5 * radius)),
+                                  colour, 1.0f);
+  const bool away = view_eye_ && dir.dot(*view_eye_ - from) < 0.0;
+  out.items.push_back(away ? cone : shaft);
+  out.items.push_back(away ? shaft : cone);
 }
 
 // A coil from the proxy centre to the device, into lines_ (joined to the list after all fingers).

@@ -123,6 +123,7 @@ class DrawListBuilder {
   std::vector<std::shared_ptr<const sim::Mesh>> surfaces_;
   PatchMeshBuilder patch_builder_;
   std::vector<Vertex> fill_, rim_, lines_;  // one finger's patch (or the springs), before joining the list
+  std::optional<sim::Vec3> view_eye_;       // the camera of the list being built, if any
 };
 
 }  // namespace gf::render

@@ -47,6 +47,7 @@ struct Overlay::Impl {
   int width, height;
   std::vector<sim::PatchSettings> patch;
   std::vector<int> n_sgo_when_on;  // restored when god-finger is switched back on
+  std::vector<char> changed_fingers;  // per finger: its settings changed this frame
   std::vector<std::deque<float>> force_history;
   std::map<std::string, ImVec4> widget_rects;  // from the previous frame, for scripted input
   std::size_t next_action = 0;
@@ -174,7 +175,7 @@ struct Overlay::Impl {
       ImGui::TableNextColumn();
       ImGui::TextDisabled("%s", modelLabel(p));
     }
-    std::vector<char> changed(patch.size(), 0);
+    changed_fingers.assign(patch.size(), 0);
     for (const sim::OverlayWidget& w : sim::kOverlayWidgets) {
       ImGui::TableNextRow();
       ImGui::TableNextColumn();
@@ -184,13 +185,13 @@ struct Overlay::Impl {
         ImGui::TableNextColumn();
         ImGui::PushID(static_cast<int>(i));
         ImGui::SetNextItemWidth(kCellFonts * ImGui::GetFontSize());
-        changed[i] |= widget(w, i) ? 1 : 0;
+        changed_fingers[i] |= widget(w, i) ? 1 : 0;
         ImGui::PopID();
       }
     }
     ImGui::EndTable();
     for (std::size_t i = 0; i < patch.size(); ++i) {
-      if (changed[i]) commands.push_back({static_cast<int>(i), patch[i]});
+      if (changed_fingers[i]) commands.push_back({static_cast<int>(i), patch[i]});
     }
     rememberPanel("fingers");
     ImGui::End();

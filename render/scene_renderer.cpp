@@ -382,6 +382,9 @@ struct SceneRenderer::Impl {
       case DrawPass::kArrows:
         use(lit);
         glDisable(GL_DEPTH_TEST);  // arrows read through the proxy and the body
+        // Without depth, an arrow's back faces and the cone's base would be drawn over its front
+        // (a beaded shaft, a sawtooth cone seen end-on): shafts and heads are closed and convex.
+        glEnable(GL_CULL_FACE);
         break;
       case DrawPass::kProxies:
         use(lit);
@@ -408,7 +411,10 @@ struct SceneRenderer::Impl {
         break;
       case DrawPass::kPatchLines:
       case DrawPass::kMarks: break;
-      case DrawPass::kArrows: glEnable(GL_DEPTH_TEST); break;
+      case DrawPass::kArrows:
+        glDisable(GL_CULL_FACE);
+        glEnable(GL_DEPTH_TEST);
+        break;
       case DrawPass::kProxies:
         glDepthMask(GL_TRUE);
         glDisable(GL_CULL_FACE);
