@@ -1,7 +1,30 @@
 #include "sim/detail/contact_models.hpp"
 
+#include <algorithm>
+#include <cmath>
+
+#include "sim/detail/body_factory.hpp"
+
 namespace gf::sim {
 namespace {
+
+// A block is at its friction limit when its force and torsion lie on the limit ellipse within
+// this fraction: the block's projection puts them there up to rounding, while a sticking
+// contact stays well inside.
+constexpr double kLimitMargin = 1e-3;
+// In a sliding contact a point slips when its friction is at least this share of mu times its
+// load: all of them while the contact slides or spins, all but those near the centre of its
+// turn when it does both (where the two parts cancel).
+constexpr double kSlipFraction = 0.5;
+// A point closer than this to the loads' centre across the normal is the centre itself: it
+// takes no part of the torsion (m).
+constexpr double kCentreLever = 1e-9;
+// Loads whose second moment's determinant about the tangent axes is below this share of its
+// trace squared lie on one point or one line: no pressure moment is put into them.
+constexpr double kCollinear = 1e-9;
+// addPressureMoment's passes: at most this many, until the moment is made within this share.
+constexpr int kPressurePasses = 8;
+constexpr double kPressureTolerance = 1e-6;
 
 // addPointRows' torsion for a god-finger patch: from its points (patchTorsion).
 constexpr double kTorsionFromPoints = -1.0;
@@ -69,11 +92,12 @@ struct Pressing {
 };
 Pressing pressingPoints(const FingerContact& c, double truth_share, AggregateScratch& out) {
   Pressing p;
-  const auto add = [&](const btVector3& point, double share, double separation) {
+  const auto add = [&](const btVector3& point, double share, double separation, int which) {
     const auto i = static_cast<std::size_t>(p.count);
     out.points[i] = point;
     out.shares[i] = share;
     out.separations[i] = separation;
+    out.which[i] = which;
     ++p.count;
     p.share += share;
   };
@@ -81,12 +105,12 @@ Pressing pressingPoints(const FingerContact& c, double truth_share, AggregateScr
     const bool all = pass == 1;
     p = {};
     p.all = all;
-    if (all || c.truth.separation <= 0.0) add(c.truth.point_world, truth_share, c.truth.separation);
+    if (all || c.truth.separation <= 0.0) add(c.truth.point_world, truth_share, c.truth.separation, -1);
     p.first_sgo = p.count;
     const int rim = static_cast<int>(c.record.patch.sgos.size());
     for (int i = 0; i < c.sgo_count; ++i) {
       if (all || c.sgo_separation[i] <= 0.0) {
-        add(c.sgo_world[i], injectedPoint(c.record.patch, i).load_share, c.sgo_separation[i]);
+        add(c.sgo_world[i], injectedPoint(c.record.patch, i).load_share, c.sgo_separation[i], i);
         p.rim += i < rim;
       }
     }
@@ -197,7 +221,183 @@ void addAggregateRows(const ContactToSolve& in, SolveRows& out) {
   c.block = out.solver.addBlock(block);
 }
 
+// The position of point j of a contact: 0 the true contact, 1 + i its patch point i.
+btVector3 pointOf(const FingerContact& c, int j) {
+  return j == 0 ? c.truth.point_world : c.sgo_world[static_cast<std::size_t>(j - 1)];
+}
+
+// How the block's friction moment about the normal is split over the points with normal
+// impulses `lambda` (N s, summing to `normal`): the loads' centre, the moment about n there
+// (the torsion row's and the friction force's lever from the block's centre, N m s, body
+// side), and for torsionImpulse L = sum_j lambda_j |r_j| and the loads' mean unit lever m.
+struct TorsionSplit {
+  btVector3 centre{0, 0, 0};
+  double torsion = 0.0;
+  double levers = 0.0;
+  btVector3 mean{0, 0, 0};
+};
+
+// r_j: point j's lever from `centre` across n.
+btVector3 leverAcross(const FingerContact& c, int j, const btVector3& centre, const btVector3& n) {
+  const btVector3 r = pointOf(c, j) - centre;
+  return r - r.dot(n) * n;
+}
+
+btVector3 unitLever(const FingerContact& c, int j, const btVector3& centre, const btVector3& n) {
+  const btVector3 r = leverAcross(c, j, centre, n);
+  return r.length() > kCentreLever ? r / r.length() : btVector3(0, 0, 0);
+}
+
+TorsionSplit torsionSplit(const FingerContact& c, const FrictionBlock& block, const double* lambda, double normal) {
+  const btVector3& n = block.normal;
+  TorsionSplit t;
+  t.centre = c.truth.point_world;
+  if (!(normal > 0.0)) return t;
+  t.centre.setZero();
+  for (int j = 0; j <= c.sgo_count; ++j) t.centre += (lambda[j] / normal) * pointOf(c, j);
+  t.torsion = -block.torque + n.dot((block.centre - t.centre).cross(-block.force));
+  for (int j = 0; j <= c.sgo_count; ++j) {
+    t.levers += lambda[j] * leverAcross(c, j, t.centre, n).length();
+    t.mean += (lambda[j] / normal) * unitLever(c, j, t.centre, n);
+  }
+  return t;
+}
+
+// Point j's part of the torsion (N s, body side): torsion lambda_j / L along n x (u_j - m), u_j
+// its unit lever: each point mu lambda_j across its lever at the limit, as in a patch spinning
+// about its centre, less the mean direction m that would leave a net force.
+btVector3 torsionImpulse(const FingerContact& c, const FrictionBlock& block, const TorsionSplit& t, const double* lambda, int j) {
+  if (!(t.levers > 0.0)) return btVector3(0, 0, 0);
+  const btVector3& n = block.normal;
+  return (t.torsion * lambda[j] / t.levers) * n.cross(unitLever(c, j, t.centre, n) - t.mean);
+}
+
+// One pass of addPressureMoment: d_j = w_j (u_j . g) with w_j = lambda_j / N, u_j = (x_j - c) x n
+// about the loads' centre c and S g = `moment` (tangent plane, basis t1, t2), S their second
+// moment sum_j w_j u_j u_j^T; then clamped at zero and scaled back to N. False when the loads
+// lie on one point or one line (nothing to tilt).
+bool tiltPass(const FingerContact& c, const btVector3& n, const btVector3& t1, const btVector3& t2,
+              const btVector3& moment, double normal, double* lambda) {
+  btVector3 centre(0, 0, 0);
+  for (int j = 0; j <= c.sgo_count; ++j) centre += (lambda[j] / normal) * pointOf(c, j);
+  double s11 = 0.0, s12 = 0.0, s22 = 0.0;
+  for (int j = 0; j <= c.sgo_count; ++j) {
+    const btVector3 u = (pointOf(c, j) - centre).cross(n);
+    const double w = lambda[j] / normal, u1 = u.dot(t1), u2 = u.dot(t2);
+    s11 += w * u1 * u1, s12 += w * u1 * u2, s22 += w * u2 * u2;
+  }
+  const double m1 = moment.dot(t1), m2 = moment.dot(t2), det = s11 * s22 - s12 * s12;
+  if (!(det > kCollinear * (s11 + s22) * (s11 + s22))) return false;
+  const double g1 = (s22 * m1 - s12 * m2) / det, g2 = (s11 * m2 - s12 * m1) / det;
+  double sum = 0.0;
+  for (int j = 0; j <= c.sgo_count; ++j) {
+    const btVector3 u = (pointOf(c, j) - centre).cross(n);
+    lambda[j] = std::max(0.0, lambda[j] + lambda[j] / normal * (u.dot(t1) * g1 + u.dot(t2) * g2));
+    sum += lambda[j];
+  }
+  if (!(sum > 0.0)) return false;
+  std::for_each(lambda, lambda + c.sgo_count + 1, [&](double& l) { l *= normal / sum; });
+  return true;
+}
+
+// The moment about the tangent axes (N m s, pressing rows' side) the points' normal impulses
+// must make about `centre` besides the solver's `moment`: the points carry the friction at
+// their loads' centre instead of the block's centre and the torsion at their depths (on a
+// curved body both lie inside the tangent plane), and the pressure makes up the difference.
+btVector3 pressureTarget(const FingerContact& c, const FrictionBlock& block, const btVector3& moment, const double* lambda,
+                         double normal) {
+  const btVector3& n = block.normal;
+  const TorsionSplit t = torsionSplit(c, block, lambda, normal);
+  btVector3 target = moment + (block.centre - t.centre).cross(block.force);
+  for (int j = 0; j <= c.sgo_count; ++j) {
+    const double depth = (pointOf(c, j) - t.centre).dot(n);
+    target += depth * n.cross(torsionImpulse(c, block, t, lambda, j));
+  }
+  return target - target.dot(n) * n;
+}
+
+// Shifts the points' normal impulses `lambda` (tiltPass) until, about their first centre, they
+// make `moment` (N m s, the pressing rows' side: the body takes -moment) and pressureTarget's
+// rest, keeping their sum: where a pass would pull a point (the moment is near what the
+// points' hull can carry) the load moves to the far side over the next passes.
+void addPressureMoment(const FingerContact& c, const FrictionBlock& block, const btVector3& moment, double* lambda) {
+  const btVector3& n = block.normal;
+  double normal = 0.0;
+  for (int j = 0; j <= c.sgo_count; ++j) normal += lambda[j];
+  if (!(normal > 0.0)) return;
+  btVector3 centre(0, 0, 0);
+  for (int j = 0; j <= c.sgo_count; ++j) centre += (lambda[j] / normal) * pointOf(c, j);
+  btVector3 t1, t2;
+  btPlaneSpace1(n, t1, t2);
+  for (int pass = 0; pass < kPressurePasses; ++pass) {
+    btVector3 made(0, 0, 0);
+    for (int j = 0; j <= c.sgo_count; ++j) made += lambda[j] * (pointOf(c, j) - centre).cross(n);
+    const btVector3 target = pressureTarget(c, block, moment, lambda, normal);
+    btVector3 deficit = target - made;
+    deficit -= deficit.dot(n) * n;
+    if (!(deficit.length() > kPressureTolerance * target.length())) return;
+    if (!tiltPass(c, n, t1, t2, deficit, normal, lambda)) return;
+  }
+}
+
+// The normal impulse on each of the contact's points (N s) into `lambda` (index 0 the true
+// contact, 1 + i its patch point i), as solvedLoads describes; returns their sum.
+double pointImpulses(const FingerContact& c, const FrictionBlock& block, const std::vector<btPersistentManifold*>& injected,
+                     AggregateScratch& s, double* lambda) {
+  std::fill_n(lambda, c.sgo_count + 1, 0.0);
+  btVector3 moment(0, 0, 0);  // the pressing rows' moment the points' own impulses do not make
+  if (!c.aggregate) {
+    lambda[0] = std::max(0.0, static_cast<double>(c.manifold->getContactPoint(0).m_appliedImpulse));
+    for (int i = 0; i < c.sgo_count; ++i) lambda[1 + i] = std::max(0.0, solvedImpulses(injected, c.first_injected, i).normal);
+  } else {
+    const Pressing p = pressingPoints(c, truthShare(c), s);
+    for (int j = 0; j < p.count; ++j) {
+      const auto k = static_cast<std::size_t>(j);
+      lambda[s.which[k] + 1] = s.shares[k] / p.share * std::max(0.0, block.normal_impulse);
+    }
+    moment = block.press.tilt;
+  }
+  addPressureMoment(c, block, moment, lambda);
+  double sum = 0.0;
+  for (int j = 0; j <= c.sgo_count; ++j) sum += lambda[j];
+  return sum;
+}
+
+// Whether the block's friction is at its limit: (|f| / (mu N))^2 + (tau / (tau_max N))^2 = 1.
+bool atFrictionLimit(const FrictionBlock& block) {
+  const double normal = block.normal_impulse;
+  if (!block.solved || !(block.friction > 0.0) || !(normal > 0.0)) return false;
+  double gauge = std::pow(block.force.length() / (block.friction * normal), 2);
+  if (block.torsion > 0.0) gauge += std::pow(block.torque / (block.torsion * normal), 2);
+  return gauge >= (1.0 - kLimitMargin) * (1.0 - kLimitMargin);
+}
+
 }  // namespace
+
+void solvedLoads(const FingerContact& c, const FrictionBlock& block, const std::vector<btPersistentManifold*>& injected,
+                 double dt, AggregateScratch& s, ContactLoads& out) {
+  std::array<double, kMaxPatchPoints + 1> lambda;
+  std::fill_n(lambda.begin(), c.sgo_count + 1, 0.0);
+  const double normal = block.solved ? pointImpulses(c, block, injected, s, lambda.data()) : 0.0;
+  const btVector3& n = block.normal;
+  const TorsionSplit t = torsionSplit(c, block, lambda.data(), normal);
+  const btMatrix3x3 to_body = c.truth.object->getWorldTransform().getBasis().transpose();
+  const bool sliding = atFrictionLimit(block);
+  btVector3 total(0, 0, 0);
+  out.points.resize(static_cast<std::size_t>(c.sgo_count));
+  for (int j = 0; j <= c.sgo_count; ++j) {
+    const double w = normal > 0.0 ? lambda[static_cast<std::size_t>(j)] / normal : (j == 0 ? 1.0 : 0.0);
+    const btVector3 friction = block.solved ? (-w * block.force + torsionImpulse(c, block, t, lambda.data(), j)) / dt
+                                            : btVector3(0, 0, 0);
+    const double load = lambda[static_cast<std::size_t>(j)] / dt;
+    total += friction - load * n;
+    PointLoad& l = j == 0 ? out.point : out.points[static_cast<std::size_t>(j - 1)];
+    l = {load, toEigen(to_body * friction), sliding && load > 0.0 && friction.length() >= kSlipFraction * block.friction * load};
+  }
+  out.force = toEigen(to_body * total);
+  out.rolling_moment = block.solved ? toEigen(to_body * (-block.rolling_impulse / dt)) : Vec3::Zero();
+  out.sliding = sliding;
+}
 
 void GodObjectModel::addRows(const ContactToSolve& c, SolveRows& out) const {
   addPointRows(c, 0.0, false, out);  // no torsion limit: a point turns freely

@@ -7,6 +7,22 @@
 
 namespace gf::sim {
 
+void clearLoads(ContactLoads& loads) {
+  loads.force = Vec3::Zero();
+  loads.point = {};
+  loads.points.clear();
+  loads.rolling_moment = Vec3::Zero();
+  loads.sliding = false;
+}
+
+namespace {
+
+PointLoad toWorld(const PointLoad& local, const Pose& body_frame) {
+  return {local.normal, body_frame.orientation * local.tangential, local.slipping};
+}
+
+}  // namespace
+
 void toContactSnapshot(const ContactRecord& record, const Pose& body_frame, ContactSnapshot& out,
                        const WalkCache* walks) {
   const Patch& p = record.patch;
@@ -17,6 +33,12 @@ void toContactSnapshot(const ContactRecord& record, const Pose& body_frame, Cont
   out.press_depth = record.press_depth;
   out.radius = p.valid ? p.radius : 0.0;
   out.feature = p.hit.feature;
+  out.force = body_frame.orientation * record.loads.force;
+  out.point_load = toWorld(record.loads.point, body_frame);
+  out.loads.clear();
+  for (const PointLoad& l : record.loads.points) out.loads.push_back(toWorld(l, body_frame));
+  out.rolling_moment = body_frame.orientation * record.loads.rolling_moment;
+  out.sliding = record.loads.sliding;
   out.sgos_world.clear();
   out.path_points_world.clear();
   out.path_offsets.clear();

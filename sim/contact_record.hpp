@@ -8,13 +8,27 @@
 
 namespace gf::sim {
 
+/// The forces the solver put on the touched body at a contact's points in one step, in the
+/// body's frame (N): see ContactSnapshot::force, point_load and loads.
+struct ContactLoads {
+  Vec3 force = Vec3::Zero();      ///< the contact's: the sum of its points'
+  PointLoad point;                ///< the true contact's
+  std::vector<PointLoad> points;  ///< the patch's points (its SGOs, then its inner points)
+  Vec3 rolling_moment = Vec3::Zero();  ///< ContactSnapshot::rolling_moment (N m)
+  bool sliding = false;           ///< the friction block is at its limit
+};
+
 /// A contact and its god-finger patch, in the frame of the touched body's walk mesh.
 struct ContactRecord {
   int body = -1;             ///< index into SceneDesc::bodies
   PatchContact contact;      ///< c_p, outward normal (body frame) and separation c_d
   double press_depth = 0.0;  ///< v . c_n (m), Eq. 1's input: > 0 while pressing
   Patch patch;               ///< radius, SGOs and walked paths (body frame); none for a god-object
+  ContactLoads loads;        ///< after the solve: its points' forces (none before, or unsolved)
 };
+
+/// Empties `loads` (keeps storage): a contact the solver has not seen.
+void clearLoads(ContactLoads& loads);
 
 /// `record` at `body_frame`, the pose of the frame it is local to: point, normal, SGOs and paths
 /// transformed to the world frame with that one pose. Reuses the storage of `out`; does not

@@ -35,6 +35,10 @@ void interpolateSnapshot(const Snapshot& a, const Snapshot& b, double time, Snap
       c.outward_normal_world = turn * c.outward_normal_world;
       for (Vec3& p : c.sgos_world) carry(p);
       for (Vec3& p : c.path_points_world) carry(p);
+      c.force = turn * c.force;
+      c.rolling_moment = turn * c.rolling_moment;
+      c.point_load.tangential = turn * c.point_load.tangential;
+      for (PointLoad& l : c.loads) l.tangential = turn * l.tangential;
     }
   }
 }

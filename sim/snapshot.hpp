@@ -39,6 +39,10 @@ struct ContactSnapshot {
   Vec3 force = Vec3::Zero();
   PointLoad point_load;          ///< the true contact point's share (at point_world)
   std::vector<PointLoad> loads;  ///< one per sgos_world; empty when the solver did not see them
+  /// The moment of the patch's rolling rows on the body (N m): what keeps the body from rolling
+  /// under the pad beyond what the points' loads do (god-finger patches; zero otherwise). With
+  /// it, the points' loads make the contact's whole force and moment.
+  Vec3 rolling_moment = Vec3::Zero();
   bool sliding = false;          ///< the contact's friction is at its limit (it slides or spins)
 };
 

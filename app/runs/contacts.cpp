@@ -96,6 +96,22 @@ nlohmann::json patchJson(const sim::Patch& p, const sim::PatchSettings& s) {
           {"paths", paths(p.path_points, p.path_offsets)}};
 }
 
+void addLoadsJson(const sim::ContactSnapshot& c, nlohmann::json& out) {
+  const auto load = [](const sim::PointLoad& l) {
+    return nlohmann::json{{"normal_n", l.normal}, {"tangential_n", vec(l.tangential)}, {"slipping", l.slipping}};
+  };
+  const sim::Vec3& n = c.outward_normal_world;
+  nlohmann::json sgos = nlohmann::json::array();
+  for (const sim::PointLoad& l : c.loads) sgos.push_back(load(l));
+  out["force_n"] = vec(c.force);
+  out["normal_force_n"] = -c.force.dot(n);
+  out["tangential_force_n"] = (c.force - c.force.dot(n) * n).norm();
+  out["rolling_moment_nm"] = vec(c.rolling_moment);
+  out["sliding"] = c.sliding;
+  out["point_load"] = load(c.point_load);
+  out["sgo_loads"] = std::move(sgos);
+}
+
 nlohmann::json contactsJson(const sim::Snapshot& snap, const sim::SceneDesc& scene) {
   nlohmann::json fingers = nlohmann::json::array();
   for (std::size_t f = 0; f < snap.fingers.size(); ++f) {
@@ -104,7 +120,7 @@ nlohmann::json contactsJson(const sim::Snapshot& snap, const sim::SceneDesc& sce
     for (const sim::ContactSnapshot& c : fs.contacts) {
       nlohmann::json sgos = nlohmann::json::array();
       for (const sim::Vec3& g : c.sgos_world) sgos.push_back(vec(g));
-      contacts.push_back({{"body", c.body >= 0 ? scene.bodies[c.body].name : std::string()},
+      nlohmann::json& contact = contacts.emplace_back(nlohmann::json{{"body", c.body >= 0 ? scene.bodies[c.body].name : std::string()},
                           {"point", vec(c.point_world)},
                           {"outward_normal", vec(c.outward_normal_world)},
                           {"separation_m", c.separation},
@@ -113,6 +129,7 @@ nlohmann::json contactsJson(const sim::Snapshot& snap, const sim::SceneDesc& sce
                           {"feature", featureName(c.feature)},
                           {"sgos", sgos},
                           {"paths", paths(c.path_points_world, c.path_offsets)}});
+      addLoadsJson(c, contact);
     }
     fingers.push_back({{"name", scene.fingers[f].name},
                        {"device", vec(fs.device)},

@@ -31,8 +31,17 @@ nlohmann::json patchJson(const sim::Patch& patch, const sim::PatchSettings& sett
 /// walked its full d_i.
 std::string patchExplanation(const sim::Patch& patch, const sim::PatchSettings& settings);
 
+/// The solver's forces at a contact's points (world frame, N), as fields of the contact's
+/// object: "force_n" (the contact's force on the body, what the points' loads add up to),
+/// "normal_force_n" and "tangential_force_n" (its normal and tangential magnitudes),
+/// "rolling_moment_nm" (the patch's rolling rows' moment on the body), "sliding",
+/// "point_load" (the true contact point's) and "sgo_loads" (one per SGO and filled point, in
+/// the order of "sgos"), each {"normal_n", "tangential_n": [x, y, z], "slipping"}.
+void addLoadsJson(const sim::ContactSnapshot& contact, nlohmann::json& out);
+
 /// Every finger of a snapshot in the world frame ("frame": "world"): device, proxy, coupling
-/// force and each contact with its separation, press depth, radius, SGOs and walked paths.
+/// force and each contact with its separation, press depth, radius, SGOs, walked paths and
+/// the loads on its points (addLoadsJson).
 nlohmann::json contactsJson(const sim::Snapshot& snapshot, const sim::SceneDesc& scene);
 
 }  // namespace gf::app

@@ -169,10 +169,11 @@ nlohmann::json stateJson(const sim::Snapshot& snap, const sim::SceneDesc& scene)
     const sim::FingerSnapshot& f = snap.fingers[i];
     nlohmann::json contacts = nlohmann::json::array();
     for (const sim::ContactSnapshot& c : f.contacts) {
-      contacts.push_back({{"body", scene.bodies[static_cast<std::size_t>(c.body)].name},
-                          {"point", vec(c.point_world)},
-                          {"radius_m", c.radius},
-                          {"sgos", c.sgos_world.size()}});
+      nlohmann::json& contact = contacts.emplace_back(nlohmann::json{{"body", scene.bodies[static_cast<std::size_t>(c.body)].name},
+                                                                     {"point", vec(c.point_world)},
+                                                                     {"radius_m", c.radius},
+                                                                     {"sgos", c.sgos_world.size()}});
+      addLoadsJson(c, contact);
     }
     sim::FingerDesc desc = scene.fingers[i];
     desc.patch = f.patch;

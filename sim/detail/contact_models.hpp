@@ -33,6 +33,7 @@ struct AggregateScratch {
   std::array<double, kMaxPatchPoints + 1> shares;       ///< of the load; sum to 1 once scaled
   std::array<double, kMaxPatchPoints + 1> separations;  ///< m, negative when pressing
   std::array<double, kMaxPatchPoints + 1> levers;       ///< m, from the load's centre across the normal
+  std::array<int, kMaxPatchPoints + 1> which;           ///< the contact's point: -1 the true one, else i
 };
 
 /// Where models put the rows of this step's contacts (the World's, valid during beforeSolve).
@@ -78,6 +79,21 @@ class GodFingerModel final : public FingerModel {
   bool wantsPatch() const override { return true; }
   void addRows(const ContactToSolve& c, SolveRows& out) const override;
 };
+
+/// The forces the solve put on the body at contact `c`'s points, after the solve (its manifold
+/// and injected points still there), with `block` its solved friction block and `dt` the step
+/// (s), into `out` in the body's frame. Normal loads: the points solver's own impulses; the
+/// aggregate's normal impulse by the points' load shares. Friction: the block's force in
+/// proportion to the normal loads, and its moment about the normal (at the block's centre) by
+/// their levers (each point mu times its load across its lever at the limit). Then the normal
+/// loads shift linearly across the patch (clamped at zero, their sum kept) until, with the
+/// friction, they make the block's moment about the tangent axes: the aggregate's tilt, and
+/// what carrying the friction at the points' depths instead of the tangent plane changes. The
+/// rolling rows' moment stays apart (ContactLoads::rolling_moment). A point slips when the
+/// block is at its limit and the point's friction is at least kSlipFraction of mu times its
+/// load. Does not allocate once `out` has held as many points.
+void solvedLoads(const FingerContact& c, const FrictionBlock& block, const std::vector<btPersistentManifold*>& injected,
+                 double dt, AggregateScratch& scratch, ContactLoads& out);
 
 /// The model object of an effective model (EffectiveSettings::patch.model). Any thread; does
 /// not allocate.

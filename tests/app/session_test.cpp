@@ -156,6 +156,21 @@ TEST(Session, ContactsCarryPressDepthAndAnglesAreInDegrees) {
   const nlohmann::json summary = readJson(out / "summary.json");
   EXPECT_NEAR(summary["fingers"][0]["tau_a_deg"].get<double>(), 45.0, 1e-9);
   EXPECT_EQ(summary["counters"]["crossing_limit_stops"].get<long>(), 0) << "every walk within its budget";
+  // Each SGO's load (and the true point's) is there, one per SGO; with the contact's tangential
+  // forces they add up to the contact's force (within 1 %, as written with JSON's rounding).
+  for (const nlohmann::json& f : contacts["fingers"]) {
+    const nlohmann::json& c = f["contacts"][0];
+    ASSERT_EQ(c["sgo_loads"].size(), c["sgos"].size());
+    const auto v = [](const nlohmann::json& a) { return Eigen::Vector3d(a[0], a[1], a[2]); };
+    const Eigen::Vector3d n = v(c["outward_normal"]);
+    const auto force = [&](const nlohmann::json& l) { return Eigen::Vector3d(v(l["tangential_n"]) - l["normal_n"].get<double>() * n); };
+    Eigen::Vector3d sum = force(c["point_load"]);
+    for (const nlohmann::json& l : c["sgo_loads"]) sum += force(l);
+    const Eigen::Vector3d total = v(c["force_n"]);
+    EXPECT_GT(c["normal_force_n"].get<double>(), 1.0) << "the fingers squeeze the box";
+    EXPECT_LT((sum - total).norm(), 0.01 * total.norm());
+    EXPECT_NEAR(c["normal_force_n"].get<double>(), -total.dot(n), 1e-9 * total.norm());
+  }
   std::vector<std::string> keys;
   collectKeys(contacts, keys);
   collectKeys(summary, keys);
