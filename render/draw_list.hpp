@@ -1,6 +1,7 @@
 // What the contact overlay of a frame draws, as plain data: the highlighted patches with their
-// walked paths, SGO dots, normals and force arrows, the proxies, the device ghosts and the
-// coupling springs of one Snapshot, in drawing order. Built without GL (testable anywhere, no
+// walked paths, SGO dots coloured by load (slipping ones ringed), normals and force arrows, the
+// proxies, the device ghosts (dashed outlines) and the coupling springs of one Snapshot, in
+// drawing order. Built without GL (testable anywhere, no
 // allocation per frame once its arrays have grown); SceneRenderer's GL pass draws it, in the
 // manner of an abstract scene handed to a renderer.
 #pragma once
@@ -8,6 +9,7 @@
 #include <Eigen/Geometry>
 #include <cstdint>
 #include <memory>
+#include <optional>
 #include <vector>
 
 #include "render/patch_mesh.hpp"
@@ -38,11 +40,11 @@ enum class DrawPass : std::uint8_t {
   kPatchFill,   ///< translucent, lit like the body under it, pulled towards the eye, no depth writes
   kPatchRim,    ///< the band along a patch's edge: as kPatchFill but flat (unlit), so it reads in shade
   kPatchLines,  ///< flat colour, depth-tested: walked paths and the rim
-  kMarks,       ///< lit, opaque, depth-tested: the contact point and the SGOs
+  kMarks,       ///< lit, opaque, depth-tested: the contact point, the SGOs, slip rings
   kArrows,      ///< lit, opaque, through everything: contact normals, force arrows
   kProxies,     ///< lit, translucent, front faces, no depth writes (drawn first): the god-objects
-  kGhosts,      ///< lit, translucent, front faces, through everything: the devices
-  kSprings,     ///< flat, translucent lines through everything: the couplings
+  kGhosts,      ///< flat, translucent triangles through everything: the devices' dashed outlines
+  kSprings,     ///< flat, translucent lines through everything (drawn before the patches): the couplings
 };
 
 struct DrawItem {
@@ -64,17 +66,38 @@ struct DrawList {
   }
 };
 
+/// The camera a list is built for: arrows are kept inside its frame, outlines face it.
+struct DrawView {
+  Eigen::Matrix4d view_proj = Eigen::Matrix4d::Identity();  ///< world to clip space (perspective)
+  sim::Vec3 eye = sim::Vec3::Zero();                       ///< the camera's position (m)
+  double tan_half_fov = 1.0;                               ///< tangent of half the vertical field of view
+  int height_px = 720;                                     ///< the frame's height (pixels)
+};
+
 /// What the overlay shows, and its scales.
 struct DrawSettings {
   bool patch_highlight = true;        ///< patches, SGO dots, normals, force arrows
   bool fingers = true;                ///< proxies, device ghosts, springs
+  /// Contact normals and force arrows; off in close-ups, whose camera looks down the normal (an
+  /// arrow towards the camera is a disc over the patch; their labels draw the forces in 2D).
+  bool contact_arrows = true;
   double force_arrow_m_per_n = 0.01;  ///< arrow length per newton of coupling force (m/N)
   double max_arrow_m = 0.08;          ///< longest force arrow (m)
+  double max_arrow_view_share = 0.25; ///< longest force arrow as a share of the view's height at its proxy
+  std::optional<DrawView> view;       ///< the camera; none: arrows capped by max_arrow_m only
 };
 
 /// The force arrow of a finger (m), drawn from its proxy: the force rendered to the device (away
-/// from the surface touched) at the settings' scale, capped at max_arrow_m; zero without a force.
+/// from the surface touched) at the settings' scale, capped at max_arrow_m and, with a view, at
+/// max_arrow_view_share of the view's height at the proxy and where its tip would leave the
+/// frame (less a margin of 4 % of the frame each side); zero without a force.
 sim::Vec3 forceArrow(const sim::FingerSnapshot& finger, const DrawSettings& settings);
+
+/// The longest an arrow from `from` along unit `direction` may be in `view` (m): `share` of the
+/// view's height at `from`, and no further than its tip stays inside the frame less a margin of
+/// 4 % each side; 0 when `from` is not in front of the camera. An arrow starting outside that
+/// frame is limited by the share only.
+double longestArrowInView(const DrawView& view, const sim::Vec3& from, const sim::Vec3& direction, double share);
 
 /// Builds draw lists of one scene. Any thread (one at a time); build() allocates only while its
 /// arrays and the list's grow to the largest frame.
@@ -89,15 +112,18 @@ class DrawListBuilder {
 
  private:
   void addPatches(const sim::Snapshot& snapshot, const DrawSettings& settings, DrawList& out);
+  void addMarks(const sim::ContactSnapshot& contact, const Eigen::Vector3f& colour, double dot, DrawList& out);
   void addProxies(const sim::Snapshot& snapshot, DrawList& out);
-  void addFingers(const sim::Snapshot& snapshot, DrawList& out);
+  void addSprings(const sim::Snapshot& snapshot, DrawList& out);
+  void addGhosts(const sim::Snapshot& snapshot, const DrawSettings& settings, DrawList& out);
   void addArrow(DrawList& out, const sim::Vec3& from, const sim::Vec3& vector, double radius, const Eigen::Vector3f& colour);
-  void addSpring(DrawList& out, const sim::Vec3& a, const sim::Vec3& b, double coil_radius);
+  void addSpring(const sim::Vec3& a, const sim::Vec3& b, double coil_radius);
 
   std::vector<double> proxy_radius_, r_max_;  // per finger (m)
   std::vector<std::shared_ptr<const sim::Mesh>> surfaces_;
   PatchMeshBuilder patch_builder_;
-  std::vector<Vertex> fill_, rim_, lines_;  // one finger's patch, before joining the list
+  std::vector<Vertex> fill_, rim_, lines_;  // one finger's patch (or the springs), before joining the list
+  std::optional<sim::Vec3> view_eye_;       // the camera of the list being built, if any
 };
 
 }  // namespace gf::render

@@ -386,6 +386,15 @@ void ShadowMap::bindForDrawing() const {
   glViewport(0, 0, size_, size_);
 }
 
+void ShadowMap::copyFrom(const ShadowMap& other) const {
+  GF_ASSERT_GL_THREAD();
+  GF_ASSERT(other.size_ == size_ && "shadow maps of one size");
+  glBindFramebuffer(GL_READ_FRAMEBUFFER, other.fbo_);
+  glBindFramebuffer(GL_DRAW_FRAMEBUFFER, fbo_);
+  glBlitFramebuffer(0, 0, size_, size_, 0, 0, size_, size_, GL_DEPTH_BUFFER_BIT, GL_NEAREST);
+  bindForDrawing();
+}
+
 void ShadowMap::bindTexture(int unit) const {
   GF_ASSERT_GL_THREAD();
   glActiveTexture(GL_TEXTURE0 + unit);

@@ -127,6 +127,8 @@ class ShadowMap {
   ShadowMap(const ShadowMap&) = delete;
   ShadowMap& operator=(const ShadowMap&) = delete;
   void bindForDrawing() const;
+  /// Copies the depth of `other` (of the same size) into this map and binds it for drawing.
+  void copyFrom(const ShadowMap& other) const;
   void bindTexture(int unit) const;
   int size() const { return size_; }
 

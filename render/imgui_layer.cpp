@@ -3,11 +3,13 @@
 #include <imgui.h>
 
 #include <Eigen/Core>
+#include <cmath>
 
 #include "render/context.hpp"
 #include "render/gl.hpp"
 #include "render/gpu.hpp"
 #include "render/shaders.hpp"
+#include "sim/assert.hpp"
 
 namespace gf::render {
 namespace {
@@ -64,7 +66,8 @@ struct ImGuiLayer::Gl {
   }
 };
 
-ImGuiLayer::ImGuiLayer(int width, int height, float font_px) : width_(width), height_(height) {
+ImGuiLayer::ImGuiLayer(int width, int height, float font_px, const std::vector<float>& more_px)
+    : width_(width), height_(height) {
   GF_ASSERT_GL_THREAD();
   ImGuiContext* previous = ImGui::GetCurrentContext();
   context_ = ImGui::CreateContext();
@@ -80,10 +83,14 @@ ImGuiLayer::ImGuiLayer(int width, int height, float font_px) : width_(width), he
   io.KeyMap[ImGuiKey_A] = kKeyA;
   io.KeyMap[ImGuiKey_Tab] = kKeyTab;
   io.KeyMap[ImGuiKey_Escape] = kKeyEscape;
-  ImFontConfig font;
-  font.SizePixels = font_px;
-  font.OversampleH = 2;
-  io.Fonts->AddFontDefault(&font);
+  std::vector<float> sizes{font_px};
+  sizes.insert(sizes.end(), more_px.begin(), more_px.end());
+  for (const float px : sizes) {
+    ImFontConfig font;
+    font.SizePixels = px;
+    font.OversampleH = 2;
+    io.Fonts->AddFontDefault(&font);
+  }
   ImGui::StyleColorsDark();
   ImGuiStyle& style = ImGui::GetStyle();
   style.WindowRounding = 4.0f;
@@ -119,6 +126,23 @@ void ImGuiLayer::render() {
   GF_ASSERT_GL_THREAD();
   ImGui::Render();
   drawLists(*ImGui::GetDrawData());
+}
+
+void ImGuiLayer::scaleSizes(float factor) {
+  ImGuiContext* previous = ImGui::GetCurrentContext();
+  ImGui::SetCurrentContext(context_);
+  ImGui::GetStyle().ScaleAllSizes(factor);
+  ImGui::SetCurrentContext(previous);
+}
+
+ImFont* ImGuiLayer::font(float px) const {
+  ImFontAtlas& atlas = *ImGui::GetIO().Fonts;
+  GF_ASSERT(ImGui::GetCurrentContext() == context_ && "font() inside this layer's frame");
+  ImFont* best = atlas.Fonts[0];
+  for (ImFont* f : atlas.Fonts) {
+    if (std::abs(f->FontSize - px) < std::abs(best->FontSize - px)) best = f;
+  }
+  return best;
 }
 
 void ImGuiLayer::drawLists(const ImDrawData& data) {

@@ -6,9 +6,11 @@
 #include <Eigen/Core>
 #include <memory>
 #include <string>
+#include <vector>
 
 struct ImGuiContext;
 struct ImDrawData;
+struct ImFont;
 
 namespace gf::render {
 
@@ -25,10 +27,11 @@ struct InputState {
 unsigned imguiColour(const Eigen::Vector3f& linear, float alpha = 1.0f);
 
 /// A headless ImGui context with a GL renderer. Fonts are ImGui's built-in font at
-/// `font_px` pixels.
+/// `font_px` pixels (the default) and at each of `more_px`: text is crisp at the size its font
+/// was made for and smears when scaled.
 class ImGuiLayer {
  public:
-  ImGuiLayer(int width, int height, float font_px);
+  ImGuiLayer(int width, int height, float font_px, const std::vector<float>& more_px = {});
   ~ImGuiLayer();
   ImGuiLayer(const ImGuiLayer&) = delete;
   ImGuiLayer& operator=(const ImGuiLayer&) = delete;
@@ -38,6 +41,10 @@ class ImGuiLayer {
   void beginFrame(double dt_s, const InputState& input);
   /// Ends the frame and draws it over the bound framebuffer (alpha-blended, no depth).
   void render();
+  /// Scales ImGui's paddings, spacings and roundings by `factor` (tighter panels in small frames).
+  void scaleSizes(float factor);
+  /// The font made for the size nearest to `px`.
+  ImFont* font(float px) const;
 
  private:
   void drawLists(const ImDrawData& data);

@@ -1,12 +1,14 @@
 // The `patch_insets` effect: a picture-in-picture close-up of each finger's contact patch in a
-// bottom corner of every frame, seen down the contact normal with the proxies hidden, framed in
-// the finger's colour and labelled with the finger, its contact model, n_SGO, the patch radius
-// and the normal force. Render thread only.
+// bottom corner of every frame, seen down the contact normal with the proxies, their shadows and
+// the arrows that would point at the camera hidden, framed in the finger's colour and labelled
+// (render/labels.hpp) with the finger, its contact model, F_n and F_t, the tangential force as
+// an arrow in the picture, a mm scale bar and the load colour bar. Render thread only.
 #pragma once
 
 #include <memory>
 
 #include "render/camera.hpp"
+#include "render/imgui_layer.hpp"
 #include "render/scene_renderer.hpp"
 #include "sim/scene_desc.hpp"
 #include "sim/snapshot.hpp"
@@ -31,22 +33,27 @@ struct InsetRect {
 
 /// The insets' squares of `fingers` fingers in a width x height frame: side 30 % of the height
 /// (narrower when they would not fit side by side), a margin of 1.5 % of the height, in finger
-/// order from left to right.
+/// order from left to right. Their captions go above them.
 std::vector<InsetRect> insetRects(int width, int height, int fingers, InsetCorner corner);
 
 class PatchInsets {
  public:
-  /// Makes the insets' framebuffer (anti-aliased like the frame) and label layer. Throws GlError.
+  /// Makes the insets' framebuffer (anti-aliased like the frame). Throws GlError.
   PatchInsets(const sim::SceneDesc& scene, int frame_width, int frame_height, InsetCorner corner,
               sim::Antialiasing antialiasing, int msaa_samples);
   ~PatchInsets();
   PatchInsets(const PatchInsets&) = delete;
   PatchInsets& operator=(const PatchInsets&) = delete;
 
-  /// Draws every finger's inset into framebuffer `target` (the frame, already anti-aliased) with
-  /// `renderer`, whose settings it changes for the close-ups and restores. `target` is bound on
-  /// return.
+  /// Draws every finger's inset picture into framebuffer `target` (the frame, already
+  /// anti-aliased) with `renderer`, whose settings it changes for the close-ups and restores.
+  /// `target` is bound on return.
   void draw(SceneRenderer& renderer, const sim::Snapshot& snapshot, unsigned target);
+  /// Adds the labels of the insets last drawn (of `snapshot`) to the frame of `layer` (a layer of
+  /// the frame's size, between its beginFrame() and render()).
+  void drawLabels(const ImGuiLayer& layer, const sim::Snapshot& snapshot) const;
+  /// The text height of the insets' labels (pixels): a font `layer` should have.
+  float labelPx() const;
 
  private:
   struct Impl;

@@ -1,5 +1,7 @@
 #include "render/render_thread.hpp"
 
+#include <imgui.h>
+
 #include <algorithm>
 #include <atomic>
 #include <cerrno>
@@ -19,6 +21,7 @@
 #include "render/gl.hpp"
 #include "render/gpu.hpp"
 #include "render/imgui_layer.hpp"
+#include "render/labels.hpp"
 #include "sim/assert.hpp"
 
 namespace gf::render {
@@ -111,41 +114,74 @@ struct Gpu {
   Framebuffer frame;
   std::unique_ptr<Overlay> overlay;
   std::unique_ptr<PatchInsets> insets;
+  // The frame's 2D labels: the insets' captions and, without the overlay (whose panel shows the
+  // time), the time stamp.
+  std::unique_ptr<ImGuiLayer> labels;
+  bool stamp = false;
+  float stamp_px = kMinLabelPx;
   std::unique_ptr<Framebuffer> close_up_frame;
+  std::unique_ptr<ImGuiLayer> close_up_labels;
   sim::Antialiasing antialiasing;
   int close_up_px;
   Gpu(const sim::SceneDesc& desc, const FrameOutputSettings& s)
       : scene(desc, s.scene),
         frame(s.width, s.height, s.antialiasing, s.msaa_samples),
+        stamp(s.time_stamp && !s.overlay),
+        stamp_px(stampLabelPx(s.height)),
         antialiasing(s.antialiasing),
         close_up_px(s.close_up_px) {
-    if (s.overlay) overlay = std::make_unique<Overlay>(desc, s.overlay_settings, s.width, s.height);
+    if (s.overlay) {
+      OverlaySettings o = s.overlay_settings;
+      o.wall_clock = s.realtime;  // offline snapshots carry no haptic timings
+      o.arrow_m_per_n = s.scene.patch_highlight ? s.scene.force_arrow_m_per_n : 0.0;
+      overlay = std::make_unique<Overlay>(desc, o, s.width, s.height);
+    }
     if (s.patch_insets) {
       // Beside the overlay's bottom-right panel when both are on.
       insets = std::make_unique<PatchInsets>(desc, s.width, s.height,
                                              s.overlay ? InsetCorner::kBottomLeft : InsetCorner::kBottomRight,
                                              s.antialiasing, s.msaa_samples);
     }
+    if (insets || stamp) {
+      labels = std::make_unique<ImGuiLayer>(s.width, s.height, stamp_px,
+                                            std::vector<float>{insets ? insets->labelPx() : stamp_px});
+    }
   }
 
-  // The frame of `snap` from `camera`, with the insets, into `frame` (the output bound after).
+  // The frame of `snap` from `camera`, with the insets and labels, into `frame` (the output bound
+  // after).
   void drawScene(const sim::Snapshot& snap, const sim::Camera& camera, int width, int height) {
     frame.bind();
     frame.resolve(scene.draw(snap, camera, width, height));
-    if (insets) {
-      GLint target = 0;
-      glGetIntegerv(GL_FRAMEBUFFER_BINDING, &target);
-      insets->draw(scene, snap, static_cast<unsigned>(target));
+    GLint target = 0;
+    glGetIntegerv(GL_FRAMEBUFFER_BINDING, &target);
+    if (insets) insets->draw(scene, snap, static_cast<unsigned>(target));
+    if (!labels) return;
+    labels->beginFrame(1.0 / 60.0, {});
+    if (insets) insets->drawLabels(*labels, snap);
+    if (stamp) {
+      const RenderSettings& r = scene.settings();
+      drawFrameStamp(*labels, stamp_px, height, snap.time,
+                     r.patch_highlight && r.contact_arrows ? r.force_arrow_m_per_n : 0.0);
     }
+    labels->render();
+    glBindFramebuffer(GL_FRAMEBUFFER, static_cast<GLuint>(target));
   }
 };
 
+// The close-up of each contact of `snap` as a PNG: the patch down its normal, with its caption
+// (finger, model, time, F_n, F_t, radius, SGOs), scale bar, load colour bar and tangential arrow.
 void drawCloseUps(Gpu& gpu, const sim::SceneDesc& desc, const sim::Snapshot& snap, const std::string& prefix) {
-  if (!gpu.close_up_frame) gpu.close_up_frame = std::make_unique<Framebuffer>(gpu.close_up_px, gpu.close_up_px, gpu.antialiasing);
+  const float px = contactLabelPx(gpu.close_up_px);
+  if (!gpu.close_up_frame) {
+    gpu.close_up_frame = std::make_unique<Framebuffer>(gpu.close_up_px, gpu.close_up_px, gpu.antialiasing);
+    gpu.close_up_labels = std::make_unique<ImGuiLayer>(gpu.close_up_px, gpu.close_up_px, px);
+  }
   RenderSettings settings = gpu.scene.settings();
   const RenderSettings saved = settings;
-  settings.fingers = false;  // the proxy would hide the patch it stands on
-  settings.ground = false;   // a camera under a lifted body is under the ground
+  settings.fingers = false;         // the proxy would hide the patch it stands on
+  settings.ground = false;          // a camera under a lifted body is under the ground
+  settings.contact_arrows = false;  // they point at the camera: the labels draw the forces in 2D
   settings.patch_highlight = true;
   gpu.scene.setSettings(settings);
   // Close-ups draw a shadow map of their own (no fingers cast shadows) and leave none behind: the
@@ -157,6 +193,19 @@ void drawCloseUps(Gpu& gpu, const sim::SceneDesc& desc, const sim::Snapshot& sna
     if (!contactCloseUp(desc, snap, f, only, camera)) continue;
     gpu.close_up_frame->bind();
     gpu.close_up_frame->resolve(gpu.scene.draw(only, camera, gpu.close_up_px, gpu.close_up_px));
+    ContactLabel label;
+    label.finger = &desc.fingers[f];
+    label.finger_index = static_cast<int>(f);
+    label.state = &snap.fingers[f];
+    label.contact = &snap.fingers[f].contacts.front();
+    label.camera = camera;
+    label.time = snap.time;
+    label.arrow_m_per_n = saved.force_arrow_m_per_n;
+    label.close_up = true;
+    gpu.close_up_labels->beginFrame(1.0 / 60.0, {});
+    drawContactLabel(*ImGui::GetForegroundDrawList(), gpu.close_up_labels->font(px), px,
+                     {0.0f, 0.0f, static_cast<float>(gpu.close_up_px)}, label);
+    gpu.close_up_labels->render();
     Image image;
     gpu.close_up_frame->read(image);
     writePng(closeUpPath(prefix, desc.fingers[f].name), image);
@@ -430,8 +479,12 @@ void writeChartPng(const ChartSpec& chart, const std::string& path) {
   drawChartFile(chart, path);
 }
 
-Image renderStill(const sim::SceneDesc& scene, const sim::Snapshot& snapshot, const FrameOutputSettings& settings) {
+Image renderStill(const sim::SceneDesc& scene, const sim::Snapshot& snapshot, const FrameOutputSettings& settings,
+                  const std::vector<sim::Snapshot>& lead_in) {
   Gpu gpu(scene, settings);
+  for (const sim::Snapshot& s : lead_in) {
+    if (gpu.overlay) gpu.overlay->record(s);
+  }
   gpu.drawScene(snapshot, settings.camera, settings.width, settings.height);
   if (gpu.overlay) gpu.overlay->draw(snapshot, {});
   Image image;

@@ -44,6 +44,7 @@ struct FrameOutputSettings {
   RenderSettings scene;           ///< drawing switches (effects)
   bool patch_insets = false;      ///< the patch_insets effect (render/patch_insets.hpp)
   bool overlay = false;           ///< the ImGui overlay effect
+  bool time_stamp = true;         ///< the time (and arrow scale) in the frame's corner; the overlay's panel shows them instead
   OverlaySettings overlay_settings;
   int close_up_px = 480;          ///< side of contact close-up images (pixels)
   bool realtime = false;          ///< draw the latest snapshot at `fps` of wall-clock time
@@ -125,6 +126,9 @@ void writeChartPng(const ChartSpec& chart, const std::string& path);
 
 /// Draws one frame of `snapshot` as `settings` ask (size, camera, effects, overlay) on the
 /// calling thread, with a GL context of its own: stills and visual-regression images.
-Image renderStill(const sim::SceneDesc& scene, const sim::Snapshot& snapshot, const FrameOutputSettings& settings);
+/// `lead_in`: the snapshots of the frames a run would have drawn before it (oldest first), whose
+/// forces the overlay's plot shows.
+Image renderStill(const sim::SceneDesc& scene, const sim::Snapshot& snapshot, const FrameOutputSettings& settings,
+                  const std::vector<sim::Snapshot>& lead_in = {});
 
 }  // namespace gf::render

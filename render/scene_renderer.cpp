@@ -78,11 +78,15 @@ struct SceneRenderer::Impl {
   Program flat{"flat", shaders::kSurfaceVertex, shaders::kFlatFragment};
   Program depth{"depth", shaders::kDepthVertex, shaders::kDepthFragment};
   const Program* current = &lit;  // the program drawShape() feeds
-  std::unique_ptr<ShadowMap> shadow;
-  // The state the shadow map was last drawn for: a second view of the same instant (the patch
-  // insets) reuses it.
+  // The key light's depth with the proxies (`shadow`) and without them (`body_shadow`, drawn
+  // first and copied into `shadow` before the proxies are added): views without fingers, such as
+  // the patch insets, show no shadow of a proxy they do not show.
+  std::unique_ptr<ShadowMap> shadow, body_shadow;
+  // The state the shadow maps were last drawn for: a second view of the same instant (the patch
+  // insets) reuses them.
   double shadow_time = -1.0;
   long shadow_step = -1;
+  bool shadow_has_fingers = false;  // `shadow` holds the proxies of that instant
   std::vector<BodyDraw> bodies;
   // Proxies and ghosts are large on screen; contact dots are a few pixels (and many).
   GpuMesh sphere{unitSphere(3)}, dot_sphere{unitSphere(1)}, cylinder{unitCylinder(kRoundSegments)}, cone{unitCone(kRoundSegments)};
@@ -105,6 +109,7 @@ struct SceneRenderer::Impl {
   Vec3 centre = Vec3::Zero();
   double extent = 0.1;
   Eigen::Matrix4f view, view_proj, light_view_proj;  // view, view_proj: this frame's camera
+  DrawView draw_view;  // this frame's camera as the overlay's builder sees it
   Vec3 light_dir = Vec3(0.25, 1.0, 0.3).normalized();
 
   Impl(const sim::SceneDesc& s, const RenderSettings& r) : scene(s), settings(r) {
@@ -164,8 +169,10 @@ struct SceneRenderer::Impl {
     return modelMatrix(p.position, p.orientation, Vec3::Ones());
   }
 
+  // The bodies into `body_shadow`; with the fingers on, that copied into `shadow` and the proxies
+  // added there.
   void shadowPass(const sim::Snapshot& snap) {
-    shadow->bindForDrawing();
+    body_shadow->bindForDrawing();
     glClear(GL_DEPTH_BUFFER_BIT);
     glEnable(GL_POLYGON_OFFSET_FILL);
     glPolygonOffset(2.0f, 4.0f);
@@ -181,14 +188,16 @@ struct SceneRenderer::Impl {
       cast(*bodies[b].gpu, bodyModel(snap, b));
       glDisable(GL_CULL_FACE);
     }
-    glEnable(GL_CULL_FACE);  // spheres are closed
+    shadow_has_fingers = settings.fingers;
     if (settings.fingers) {
+      shadow->copyFrom(*body_shadow);
+      glEnable(GL_CULL_FACE);  // spheres are closed
       for (std::size_t i = 0; i < snap.fingers.size(); ++i) {
         const double r = scene.fingers[i].proxy.radius;
         cast(sphere, modelMatrix(snap.fingers[i].proxy, Eigen::Quaterniond::Identity(), Vec3::Constant(r)));
       }
+      glDisable(GL_CULL_FACE);
     }
-    glDisable(GL_CULL_FACE);
     glDisable(GL_POLYGON_OFFSET_FILL);
   }
 
@@ -197,10 +206,14 @@ struct SceneRenderer::Impl {
     const double far_m = 60.0 * extent + (camera.position - centre).norm();
     view = lookAt(camera.position, camera.target, upFor(camera.target - camera.position));
     view_proj = perspective(camera.fov_deg, double(width) / height, 0.002, far_m) * view;
+    draw_view.view_proj = view_proj.cast<double>();
+    draw_view.eye = camera.position;
+    draw_view.tan_half_fov = std::tan(0.5 * camera.fov_deg * std::numbers::pi / 180.0);
+    draw_view.height_px = height;
     const Eigen::Vector3f l = light_dir.cast<float>(), c = camera.position.cast<float>();
     // Grid: 1 cm minor, 10 cm major lines for table-top scenes; scaled up for larger ones.
     const float minor = static_cast<float>(std::pow(10.0, std::floor(std::log10(extent * 0.5))));
-    if (shadow) shadow->bindTexture(0);
+    if (shadow) (settings.fingers ? shadow : body_shadow)->bindTexture(0);
     for (const Program* p : {&lit, &lit_shadowed, &ground, &receiver, &flat}) {
       p->use();
       glUniformMatrix4fv(p->uniform("u_view_proj"), 1, GL_FALSE, view_proj.data());
@@ -369,6 +382,9 @@ struct SceneRenderer::Impl {
       case DrawPass::kArrows:
         use(lit);
         glDisable(GL_DEPTH_TEST);  // arrows read through the proxy and the body
+        // Without depth, an arrow's back faces and the cone's base would be drawn over its front
+        // (a beaded shaft, a sawtooth cone seen end-on): shafts and heads are closed and convex.
+        glEnable(GL_CULL_FACE);
         break;
       case DrawPass::kProxies:
         use(lit);
@@ -377,11 +393,6 @@ struct SceneRenderer::Impl {
         glEnable(GL_CULL_FACE);  // spheres are closed: the back half would only be blended twice
         break;
       case DrawPass::kGhosts:
-        glDisable(GL_DEPTH_TEST);
-        glEnable(GL_BLEND);
-        use(lit);
-        glEnable(GL_CULL_FACE);
-        break;
       case DrawPass::kSprings:
         glDisable(GL_DEPTH_TEST);
         glEnable(GL_BLEND);
@@ -400,17 +411,16 @@ struct SceneRenderer::Impl {
         break;
       case DrawPass::kPatchLines:
       case DrawPass::kMarks: break;
-      case DrawPass::kArrows: glEnable(GL_DEPTH_TEST); break;
+      case DrawPass::kArrows:
+        glDisable(GL_CULL_FACE);
+        glEnable(GL_DEPTH_TEST);
+        break;
       case DrawPass::kProxies:
         glDepthMask(GL_TRUE);
         glDisable(GL_CULL_FACE);
         glDisable(GL_BLEND);
         break;
       case DrawPass::kGhosts:
-        glDisable(GL_CULL_FACE);
-        glDisable(GL_BLEND);
-        glEnable(GL_DEPTH_TEST);
-        break;
       case DrawPass::kSprings:
         glDisable(GL_BLEND);
         glEnable(GL_DEPTH_TEST);
@@ -418,8 +428,17 @@ struct SceneRenderer::Impl {
     }
   }
 
+  // What the overlay draws, seen from this frame's camera (set by beginSurfacePass()).
   DrawSettings drawSettings() const {
-    return {settings.patch_highlight, settings.fingers, settings.force_arrow_m_per_n, settings.max_arrow_m};
+    DrawSettings d;
+    d.patch_highlight = settings.patch_highlight;
+    d.fingers = settings.fingers;
+    d.contact_arrows = settings.contact_arrows;
+    d.force_arrow_m_per_n = settings.force_arrow_m_per_n;
+    d.max_arrow_m = settings.max_arrow_m;
+    d.max_arrow_view_share = settings.max_arrow_view_share;
+    d.view = draw_view;
+    return d;
   }
 
   // Draws the overlay of `snap`: the list is built without GL, then each item drawn in order.
@@ -460,9 +479,13 @@ void SceneRenderer::setSettings(const RenderSettings& settings) {
   impl_->settings = settings;
   if (settings.shadows && !impl_->shadow) {
     impl_->shadow = std::make_unique<ShadowMap>(settings.shadow_map_size);
-    impl_->shadow_step = -1;  // a new map: drawn at the next draw
+    impl_->body_shadow = std::make_unique<ShadowMap>(settings.shadow_map_size);
+    impl_->shadow_step = -1;  // new maps: drawn at the next draw
   }
-  if (!settings.shadows) impl_->shadow.reset();
+  if (!settings.shadows) {
+    impl_->shadow.reset();
+    impl_->body_shadow.reset();
+  }
 }
 
 const RenderSettings& SceneRenderer::settings() const { return impl_->settings; }
@@ -477,7 +500,9 @@ PixelRect SceneRenderer::draw(const sim::Snapshot& snapshot, const sim::Camera& 
   glEnable(GL_DEPTH_TEST);
   glDepthFunc(GL_LEQUAL);
   glBlendFunc(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA);
-  if (impl_->shadow && (snapshot.time != impl_->shadow_time || snapshot.step != impl_->shadow_step)) {
+  const bool stale = snapshot.time != impl_->shadow_time || snapshot.step != impl_->shadow_step ||
+                     (impl_->settings.fingers && !impl_->shadow_has_fingers);
+  if (impl_->shadow && stale) {
     impl_->shadowPass(snapshot);
     impl_->shadow_time = snapshot.time;
     impl_->shadow_step = snapshot.step;

@@ -18,11 +18,13 @@ namespace gf::render {
 struct RenderSettings {
   bool shadows = true;               ///< shadow map from the key light (soft: 2 bilinear taps)
   bool patch_highlight = true;       ///< contact patches, SGO dots, normals, force arrows
-  bool fingers = true;               ///< proxies, device ghosts, springs
+  bool fingers = true;               ///< proxies, device ghosts, springs; off: no proxy shadows either
+  bool contact_arrows = true;        ///< contact normals and force arrows (off in close-ups down the normal)
   bool ground = true;                ///< ground planes (close-ups from under a lifted body hide them)
   int shadow_map_size = 1024;        ///< texels per side (the map covers 3 scene radii)
   double force_arrow_m_per_n = 0.01; ///< arrow length per newton of coupling force (m/N)
   double max_arrow_m = 0.08;         ///< longest force arrow (m)
+  double max_arrow_view_share = 0.25; ///< longest force arrow, as a share of the view's height at its proxy
 };
 
 /// Draws snapshots of one scene. Construction builds every body's render surface (meshes come
@@ -39,7 +41,8 @@ class SceneRenderer {
   /// Draws `snapshot` seen from `camera` into the bound framebuffer of `width` x `height`.
   /// Returns the pixels where it drew anything but the backdrop (what anti-aliasing must see).
   /// The shadow map is drawn once per instant (snapshot time and step): further views of the
-  /// same instant, such as the patch insets, reuse it.
+  /// same instant, such as the patch insets, reuse it. It is kept twice, with and without the
+  /// proxies: a view without fingers casts no proxy shadows.
   PixelRect draw(const sim::Snapshot& snapshot, const sim::Camera& camera, int width, int height);
   /// Changes the switches for the next draw (close-ups hide the fingers).
   void setSettings(const RenderSettings& settings);

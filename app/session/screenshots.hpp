@@ -33,8 +33,11 @@ struct Shot {
 /// Every reference picture, in README order.
 const std::vector<Shot>& referenceShots();
 
-/// The state of `session`'s scene after running it offline from t = 0 to `time` (s).
-sim::Snapshot snapshotAt(const SessionDesc& session, double time);
+/// The state of `session`'s scene after running it offline from t = 0 to `time` (s). With
+/// `frames_before`, also the states of the frames a run at 60 frames/s draws in the
+/// `seconds` before `time` (oldest first).
+sim::Snapshot snapshotAt(const SessionDesc& session, double time, std::vector<sim::Snapshot>* frames_before = nullptr,
+                         double seconds = 0.0);
 
 /// Runs the shot's scene offline up to its time and renders that instant. Deterministic on one
 /// machine. Throws InputError for a broken scene, render::GlError when GL fails.

@@ -12,6 +12,8 @@
 #include "render/context.hpp"
 #include "render/gl.hpp"
 #include "render/gpu.hpp"
+#include "render/imgui_layer.hpp"
+#include "render/labels.hpp"
 #include "render/patch_insets.hpp"
 #include "render/scene_renderer.hpp"
 
@@ -103,6 +105,8 @@ void BM_FrameStages1280x720(benchmark::State& state) {
   render::Framebuffer frame(1280, 720, f.antialiasing, f.msaa_samples);
   render::PatchInsets insets(p.session.scene, 1280, 720, render::InsetCorner::kBottomRight, f.antialiasing,
                              f.msaa_samples);
+  const float stamp_px = render::stampLabelPx(720);
+  render::ImGuiLayer labels(1280, 720, stamp_px, {insets.labelPx()});  // the insets' captions and the time stamp
   render::Image image;
   sim::Snapshot snapshot = p.snapshot;
   double cpu[5] = {};  // scene (shadow map included), anti-aliasing, insets, read-back, PNG
@@ -124,6 +128,10 @@ void BM_FrameStages1280x720(benchmark::State& state) {
     GLint target = 0;
     glGetIntegerv(GL_FRAMEBUFFER_BINDING, &target);
     insets.draw(renderer, snapshot, static_cast<unsigned>(target));
+    labels.beginFrame(1.0 / 60.0, {});
+    insets.drawLabels(labels, snapshot);
+    render::drawFrameStamp(labels, stamp_px, 720, snapshot.time, f.scene.force_arrow_m_per_n);
+    labels.render();
     glFinish();
     lap(2);
     frame.read(image);

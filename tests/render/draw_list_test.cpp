@@ -1,7 +1,9 @@
 // The overlay's draw list, without GL: what a Fig. 8 squeeze frame holds (patches with their rim
 // bands on the cylinder's surface, one dot per SGO where the snapshot puts it, normals and force
-// arrows pointing away from the surface, proxies drawn first so the patches show through, ghosts
-// and springs), what the switches leave out, and that a rebuild is the same.
+// arrows pointing away from the surface, proxies drawn first so the patches show through, the
+// springs before the patches so these cover them, ghosts as outlines), dots coloured by load with
+// slipping ones ringed, arrows kept inside the view, what the switches leave out, and that a
+// rebuild is the same.
 #include "render/draw_list.hpp"
 
 #include <gtest/gtest.h>
@@ -11,6 +13,8 @@
 
 #include "app/scene/data_folder.hpp"
 #include "app/scene/scene_file.hpp"
+#include "render/camera.hpp"
+#include "render/contact_load.hpp"
 #include "render/geometry.hpp"
 #include "sim/world.hpp"
 
@@ -30,6 +34,9 @@ struct Fig8Frame {
       world.step(0.001, samples);
     }
     world.snapshot(snapshot);
+    for (sim::FingerSnapshot& f : snapshot.fingers) {
+      for (sim::ContactSnapshot& c : f.contacts) c.loads.clear();  // uniform dots (tests below add loads)
+    }
     for (const sim::BodyDesc& b : session.scene.bodies) surfaces.push_back(bodyRenderMesh(b));
   }
 };
@@ -48,23 +55,28 @@ TEST(DrawList, AFig8SqueezeFrameHoldsEveryPartOfTheOverlay) {
   DrawListBuilder builder(frame.session.scene, frame.surfaces);
   DrawList list;
   builder.build(frame.snapshot, DrawSettings{}, list);
-  // Two proxies; per finger a fill, a rim band, its lines, the contact point and 8 SGO dots, a
-  // normal and the force (two pieces each); then two ghosts and one set of spring lines.
+  // Two proxies and one set of spring lines; per finger a fill, a rim band, its lines, the contact
+  // point and 8 SGO dots, a normal and the force (two pieces each); then two ghost outlines.
   EXPECT_EQ(itemsOf(list, DrawPass::kPatchFill).size(), 2u);
   EXPECT_EQ(itemsOf(list, DrawPass::kPatchRim).size(), 2u);
   EXPECT_EQ(itemsOf(list, DrawPass::kPatchLines).size(), 2u);
   EXPECT_EQ(itemsOf(list, DrawPass::kMarks).size(), 2u * 9u);
   EXPECT_EQ(itemsOf(list, DrawPass::kArrows).size(), 2u * 4u);
   EXPECT_EQ(itemsOf(list, DrawPass::kProxies).size(), 2u);
-  EXPECT_EQ(itemsOf(list, DrawPass::kGhosts).size(), 2u);
+  ASSERT_EQ(itemsOf(list, DrawPass::kGhosts).size(), 2u);
+  for (const DrawItem* ghost : itemsOf(list, DrawPass::kGhosts)) {
+    EXPECT_EQ(ghost->shape, DrawShape::kTriangles) << "an outline, not a second sphere";
+  }
   ASSERT_EQ(itemsOf(list, DrawPass::kSprings).size(), 1u);
   EXPECT_EQ(itemsOf(list, DrawPass::kSprings)[0]->count, 2 * 2 * 96);  // two coils of 96 segments
   // Drawing order: the proxies (they write no depth, so the patches drawn after show through
-  // them), finger 0's patch items, finger 1's, then ghosts, springs.
+  // them), the springs (the patches cover the coil where it runs to the device inside the body),
+  // finger 0's patch items, finger 1's, then the ghosts.
   EXPECT_EQ(list.items[0].pass, DrawPass::kProxies);
   EXPECT_EQ(list.items[1].pass, DrawPass::kProxies);
-  EXPECT_EQ(list.items[2].pass, DrawPass::kPatchFill);
-  EXPECT_EQ(list.items.back().pass, DrawPass::kSprings);
+  EXPECT_EQ(list.items[2].pass, DrawPass::kSprings);
+  EXPECT_EQ(list.items[3].pass, DrawPass::kPatchFill);
+  EXPECT_EQ(list.items.back().pass, DrawPass::kGhosts);
   // The force arrow points from the proxy away from the surface: it is the force rendered to the
   // device, against the squeeze (the outward normal of each finger's contact).
   const std::vector<const DrawItem*> arrows = itemsOf(list, DrawPass::kArrows);
@@ -117,6 +129,76 @@ TEST(DrawList, AFig8SqueezeFrameHoldsEveryPartOfTheOverlay) {
   }
 }
 
+// With per-point loads each dot takes its load's colour on the viridis scale (a uniform press
+// mid-scale, twice the mean at the top) and a slipping point a white ring (a flat cylinder
+// along the normal) around its dot.
+TEST(DrawList, DotsAreColouredByLoadAndSlippingOnesRinged) {
+  Fig8Frame frame;
+  sim::ContactSnapshot& c = frame.snapshot.fingers[0].contacts.front();
+  ASSERT_EQ(c.sgos_world.size(), 8u);
+  c.loads.assign(8, sim::PointLoad{});
+  for (sim::PointLoad& l : c.loads) l.normal = 0.4;
+  c.point_load.normal = 0.4;
+  c.loads[3].normal = 1.2;  // 4.4 N over 9 points: mean 0.489 N, this one 2.45x: the top
+  c.loads[5].slipping = true;
+  DrawListBuilder builder(frame.session.scene, frame.surfaces);
+  DrawList list;
+  builder.build(frame.snapshot, DrawSettings{}, list);
+  const std::vector<const DrawItem*> marks = itemsOf(list, DrawPass::kMarks);
+  std::vector<const DrawItem*> dots, rings;
+  for (const DrawItem* m : marks) (m->shape == DrawShape::kDot ? dots : rings).push_back(m);
+  ASSERT_EQ(dots.size(), 2u * 9u);
+  ASSERT_EQ(rings.size(), 1u);
+  const double mean = 4.4 / 9.0;
+  EXPECT_TRUE(dots[0]->colour.isApprox(viridis(0.4 / mean / kLoadScaleTop)));  // the contact point
+  EXPECT_TRUE(dots[1 + 0]->colour.isApprox(viridis(0.4 / mean / kLoadScaleTop)));
+  EXPECT_EQ(dots[1 + 3]->colour, viridis(1.0));
+  EXPECT_EQ(rings[0]->shape, DrawShape::kCylinder);
+  EXPECT_EQ(rings[0]->colour, Eigen::Vector3f::Ones());
+  // The ring sits on SGO 5, flat along the contact normal, wider than the dot.
+  const Eigen::Vector3f at = rings[0]->model.block<3, 1>(0, 3);
+  EXPECT_LT((at.cast<double>() - c.sgos_world[5]).norm(), 1e-3);
+  const Eigen::Vector3f axis = rings[0]->model.block<3, 1>(0, 1);  // the unit cylinder's +y, scaled
+  EXPECT_GT(std::abs(axis.normalized().cast<double>().dot(c.outward_normal_world)), 0.999);
+  const float ring_radius = rings[0]->model.block<3, 1>(0, 0).norm(), dot_radius = dots[1 + 5]->model.block<3, 1>(0, 0).norm();
+  EXPECT_GT(ring_radius, dot_radius);
+  // Finger 1 has no loads: its dots are uniform, the contact point white, the SGOs its colour.
+  EXPECT_EQ(dots[9]->colour, Eigen::Vector3f(0.95f, 0.95f, 0.95f));
+  EXPECT_EQ(dots[10]->colour, fingerColour(1));
+}
+
+// Seen from a camera, the force arrow is at most a quarter of the view's height at its proxy
+// and its tip stays inside the frame less a 4 % margin; a proxy behind the camera draws none.
+TEST(DrawList, ForceArrowsStayInsideTheView) {
+  const sim::Vec3 eye(0.0, 0.0, 0.3), target = sim::Vec3::Zero();
+  DrawView view;
+  view.view_proj = (perspective(40.0, 16.0 / 9.0, 0.002, 10.0) * lookAt(eye, target, sim::Vec3::UnitY())).cast<double>();
+  view.eye = eye;
+  view.tan_half_fov = std::tan(20.0 * M_PI / 180.0);
+  view.height_px = 360;
+  const double half_height = 0.3 * view.tan_half_fov;  // at the target's depth (m)
+  constexpr double kFloat = 1e-7;                       // m: the GL matrices are single precision
+  // Near the right edge, pointing right: stopped at the margin.
+  const sim::Vec3 edge(0.8 * half_height * 16.0 / 9.0, 0.0, 0.0);
+  const double to_margin = longestArrowInView(view, edge, sim::Vec3::UnitX(), 10.0);
+  const Eigen::Vector4d tip = view.view_proj * (edge + to_margin * sim::Vec3::UnitX()).homogeneous();
+  EXPECT_NEAR(tip.x() / tip.w(), 0.92, 1e-9);
+  // In the middle: a quarter of the view's height.
+  EXPECT_NEAR(longestArrowInView(view, target, sim::Vec3::UnitY(), 0.25), 0.25 * 2.0 * half_height, kFloat);
+  // Towards the camera: at most the share, and short of the near plane.
+  EXPECT_LE(longestArrowInView(view, target, sim::Vec3::UnitZ(), 0.25), 0.25 * 2.0 * half_height + kFloat);
+  EXPECT_EQ(longestArrowInView(view, eye + sim::Vec3(0, 0, 0.1), -sim::Vec3::UnitZ(), 0.25), 0.0);
+  // forceArrow() applies it: 20 N at 1 cm/N would be 20 cm, capped at 8 cm, then at the view.
+  sim::FingerSnapshot finger;
+  finger.proxy = target;
+  finger.feedback_force = sim::Vec3(0.0, 20.0, 0.0);
+  DrawSettings settings;
+  EXPECT_NEAR(forceArrow(finger, settings).norm(), 0.08, 1e-12);
+  settings.view = view;
+  EXPECT_NEAR(forceArrow(finger, settings).norm(), 0.25 * 2.0 * half_height, kFloat);
+  EXPECT_GT(forceArrow(finger, settings).y(), 0.0);
+}
+
 TEST(DrawList, SwitchesLeaveTheirPartsOut) {
   const Fig8Frame frame;
   DrawListBuilder builder(frame.session.scene, frame.surfaces);
@@ -134,6 +216,11 @@ TEST(DrawList, SwitchesLeaveTheirPartsOut) {
     EXPECT_FALSE(item.pass == DrawPass::kProxies || item.pass == DrawPass::kGhosts || item.pass == DrawPass::kSprings);
   }
   EXPECT_FALSE(list.items.empty());
+  EXPECT_FALSE(itemsOf(list, DrawPass::kArrows).empty());
+  settings.contact_arrows = false;  // a close-up down the normal: no arrow at the camera
+  builder.build(frame.snapshot, settings, list);
+  EXPECT_TRUE(itemsOf(list, DrawPass::kArrows).empty());
+  EXPECT_FALSE(itemsOf(list, DrawPass::kMarks).empty());
 }
 
 }  // namespace

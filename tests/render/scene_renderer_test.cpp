@@ -1,7 +1,10 @@
-// Frames drawn by the scene renderer: anti-aliasing and the cached backdrop.
+// Frames drawn by the scene renderer: anti-aliasing, the cached backdrop, close-ups without the
+// proxies' shadows, the time stamp, and the overlay's layout in a 640x360 frame.
 #include "render/scene_renderer.hpp"
 
 #include <gtest/gtest.h>
+
+#include <filesystem>
 
 #include "app/scene/scene_file.hpp"
 #include "app/session/screenshots.hpp"
@@ -9,6 +12,9 @@
 #include "render/context.hpp"
 #include "render/gpu.hpp"
 #include "render/image.hpp"
+#include "render/overlay.hpp"
+#include "render/patch_insets.hpp"
+#include "render/render_thread.hpp"
 
 namespace gf {
 namespace {
@@ -76,6 +82,138 @@ TEST_F(Frames, CachedBackdropFollowsTheCamera) {
   const render::Image moved = draw(frame, other);
   EXPECT_NE(moved.rgb, first.rgb);
   EXPECT_EQ(draw(frame, settings_.camera).rgb, first.rgb);
+}
+
+// A view without the fingers shows no proxy shadow, even right after a frame of the same
+// instant drew the proxies into the shadow map it reuses: the right finger's inset of Fig. 7's
+// side pick (the proxy's shadow fell across the patch).
+TEST(CloseUps, AViewWithoutFingersShowsNoProxyShadow) {
+  render::GlContext context;
+  const app::SessionDesc session = app::loadSceneFile(std::string(GF_SOURCE_DIR) + "/assets/scenes/fig7-side-pick.toml");
+  const sim::Snapshot snapshot = app::snapshotAt(session, 2.5);
+  const render::FrameOutputSettings settings = app::frameSettings(session, {});
+  render::SceneRenderer renderer(session.scene, settings.scene);
+  render::Framebuffer frame(320, 180, sim::Antialiasing::kNone);
+  render::Framebuffer inset(120, 120, sim::Antialiasing::kNone);
+  sim::Snapshot only;
+  sim::Camera camera;
+  ASSERT_TRUE(render::contactCloseUp(session.scene, snapshot, 1, only, camera));
+  const auto close = [&] {
+    render::RenderSettings s = settings.scene;
+    s.fingers = false;
+    s.ground = false;
+    renderer.setSettings(s);
+    inset.bind();
+    inset.resolve(renderer.draw(only, camera, 120, 120));
+    render::Image image;
+    inset.read(image);
+    renderer.setSettings(settings.scene);
+    return image;
+  };
+  frame.bind();
+  frame.resolve(renderer.draw(snapshot, settings.camera, 320, 180));  // the proxies in the shadow map
+  const render::Image after_frame = close();
+  renderer.redrawShadows();
+  const render::Image alone = close();  // a map drawn without the fingers
+  EXPECT_EQ(after_frame.rgb, alone.rgb);
+}
+
+// Every frame without the overlay carries its time in the bottom-left corner: two frames of
+// one state at two times differ there only.
+TEST(Stills, EveryFrameCarriesItsTime) {
+  const app::SessionDesc session = app::loadSceneFile(std::string(GF_SOURCE_DIR) + "/assets/scenes/fig5-push-ball.toml");
+  render::FrameOutputSettings settings = app::frameSettings(session, {});
+  settings.width = 640;
+  settings.height = 360;
+  sim::Snapshot a = app::snapshotAt(session, 0.0), b = a;
+  b.time = 7.25;  // the same state: only the stamp differs
+  const render::Image ia = render::renderStill(session.scene, a, settings), ib = render::renderStill(session.scene, b, settings);
+  int corner = 0, elsewhere = 0;
+  for (int y = 0; y < 360; ++y) {
+    for (int x = 0; x < 640; ++x) {
+      const std::size_t i = 3 * (static_cast<std::size_t>(y) * 640 + static_cast<std::size_t>(x));
+      if (ia.rgb[i] == ib.rgb[i] && ia.rgb[i + 1] == ib.rgb[i + 1] && ia.rgb[i + 2] == ib.rgb[i + 2]) continue;
+      (x < 200 && y > 320 ? corner : elsewhere) += 1;
+    }
+  }
+  EXPECT_GT(corner, 20);
+  EXPECT_EQ(elsewhere, 0);
+}
+
+// Fig. 8's squeeze with made-up per-point loads (growing around the left ring, one SGO slipping,
+// the right finger without loads): the left inset shows the load scale's ends (viridis' dark
+// purple and yellow, on the dots and in the colour bar), the right one neither. The pictures go
+// to <build>/visual-diff/ to be looked at.
+TEST(Stills, InsetsColourTheDotsByLoadWithAColourBar) {
+  const app::SessionDesc session = app::loadSceneFile(std::string(GF_SOURCE_DIR) + "/assets/scenes/fig8-pinch-oscillation.toml");
+  sim::Snapshot snap = app::snapshotAt(session, 4.0);
+  for (sim::FingerSnapshot& f : snap.fingers) {
+    for (sim::ContactSnapshot& c : f.contacts) c.loads.clear();
+  }
+  sim::ContactSnapshot& c = snap.fingers[0].contacts.front();
+  ASSERT_EQ(c.sgos_world.size(), 8u);
+  c.loads.resize(8);
+  for (std::size_t k = 0; k < 8; ++k) c.loads[k].normal = 0.1 * static_cast<double>(k);  // 0 to 0.7 N
+  c.loads[7].slipping = true;
+  c.point_load.normal = 0.4;
+  render::FrameOutputSettings settings = app::frameSettings(session, {});
+  const auto near = [](const std::uint8_t* p, int r, int g, int b) {
+    return std::abs(p[0] - r) < 20 && std::abs(p[1] - g) < 20 && std::abs(p[2] - b) < 20;
+  };
+  const std::filesystem::path out = std::filesystem::path(GF_BINARY_DIR) / "visual-diff";
+  std::filesystem::create_directories(out);
+  for (const auto& [w, h] : {std::pair{640, 360}, std::pair{1280, 720}}) {
+    settings.width = w;
+    settings.height = h;
+    const render::Image image = render::renderStill(session.scene, snap, settings);
+    render::writePng((out / ("load-colours-" + std::to_string(h) + ".png")).string(), image);
+    const std::vector<render::InsetRect> insets = render::insetRects(w, h, 2, render::InsetCorner::kBottomRight);
+    for (std::size_t f = 0; f < 2; ++f) {
+      int yellow = 0, purple = 0;
+      const render::InsetRect& r = insets[f];
+      for (int y = r.y; y < r.y + r.size; ++y) {
+        for (int x = r.x; x < r.x + r.size; ++x) {
+          const std::uint8_t* p = &image.rgb[3 * (static_cast<std::size_t>(y) * static_cast<std::size_t>(w) + static_cast<std::size_t>(x))];
+          yellow += near(p, 253, 231, 37);
+          purple += near(p, 68, 1, 84);
+        }
+      }
+      if (f == 0) {
+        EXPECT_GT(yellow, 4) << w << "x" << h;
+        EXPECT_GT(purple, 4) << w << "x" << h;
+      } else {
+        EXPECT_EQ(yellow + purple, 0) << w << "x" << h << ": no loads, no load colours";
+      }
+    }
+  }
+}
+
+// The overlay fits a 640x360 frame (the goldens' size) and a 1280x720 one: every panel and
+// widget inside the frame, no two panels overlapping.
+TEST(Stills, TheOverlayFitsTheFrame) {
+  render::GlContext context;
+  const app::SessionDesc session = app::loadSceneFile(std::string(GF_SOURCE_DIR) + "/assets/scenes/overlay-demo.toml");
+  const sim::Snapshot snapshot = app::snapshotAt(session, 0.5);
+  for (const auto& [w, h] : {std::pair{640, 360}, std::pair{1280, 720}}) {
+    render::Framebuffer frame(w, h, sim::Antialiasing::kNone);
+    frame.bind();
+    render::Overlay overlay(session.scene, {}, w, h);
+    overlay.draw(snapshot, {});
+    const std::map<std::string, render::OverlayRect> layout = overlay.layout();
+    ASSERT_EQ(layout.count("panel/fingers"), 1u);
+    ASSERT_EQ(layout.count("right/friction"), 1u);
+    for (const auto& [id, r] : layout) {
+      EXPECT_GE(r.x0, 0.0f) << id << " at " << w << "x" << h;
+      EXPECT_GE(r.y0, 0.0f) << id << " at " << w << "x" << h;
+      EXPECT_LE(r.x1, static_cast<float>(w)) << id << " at " << w << "x" << h;
+      EXPECT_LE(r.y1, static_cast<float>(h)) << id << " at " << w << "x" << h;
+      for (const auto& [other, o] : layout) {
+        if (id >= other || id.rfind("panel/", 0) != 0 || other.rfind("panel/", 0) != 0) continue;
+        const bool apart = r.x1 <= o.x0 || o.x1 <= r.x0 || r.y1 <= o.y0 || o.y1 <= r.y0;
+        EXPECT_TRUE(apart) << id << " overlaps " << other << " at " << w << "x" << h;
+      }
+    }
+  }
 }
 
 }  // namespace
