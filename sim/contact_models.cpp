@@ -342,13 +342,11 @@ void addPressureMoment(const FingerContact& c, const FrictionBlock& block, const
 
 // The normal impulse on each of the contact's points (N s) into `lambda` (index 0 the true
 // contact, 1 + i its patch point i), as solvedLoads describes; returns their sum.
-double pointImpulses(const FingerContact& c, const FrictionBlock& block, const std::vector<btPersistentManifold*>& injected,
-                     AggregateScratch& s, double* lambda) {
+double pointImpulses(const FingerContact& c, const FrictionBlock& block, AggregateScratch& s, double* lambda) {
   std::fill_n(lambda, c.sgo_count + 1, 0.0);
   btVector3 moment(0, 0, 0);  // the pressing rows' moment the points' own impulses do not make
   if (!c.aggregate) {
-    lambda[0] = std::max(0.0, static_cast<double>(c.manifold->getContactPoint(0).m_appliedImpulse));
-    for (int i = 0; i < c.sgo_count; ++i) lambda[1 + i] = std::max(0.0, solvedImpulses(injected, c.first_injected, i).normal);
+    for (int j = 0; j <= c.sgo_count; ++j) lambda[j] = std::max(0.0, c.solved.normal[static_cast<std::size_t>(j)]);
   } else {
     const Pressing p = pressingPoints(c, truthShare(c), s);
     for (int j = 0; j < p.count; ++j) {
@@ -374,14 +372,22 @@ bool atFrictionLimit(const FrictionBlock& block) {
 
 }  // namespace
 
-void solvedLoads(const FingerContact& c, const FrictionBlock& block, const std::vector<btPersistentManifold*>& injected,
-                 double dt, AggregateScratch& s, ContactLoads& out) {
+void keepSolved(FingerContact& c, const std::vector<btPersistentManifold*>& injected, double dt) {
+  c.solved.dt = dt;
+  c.solved.body_basis = c.truth.object->getWorldTransform().getBasis();
+  if (c.aggregate) return;
+  c.solved.normal[0] = c.manifold->getContactPoint(0).m_appliedImpulse;
+  for (int i = 0; i < c.sgo_count; ++i) c.solved.normal[static_cast<std::size_t>(1 + i)] = solvedImpulses(injected, c.first_injected, i).normal;
+}
+
+void solvedLoads(const FingerContact& c, const FrictionBlock& block, AggregateScratch& s, ContactLoads& out) {
+  const double dt = c.solved.dt;
   std::array<double, kMaxPatchPoints + 1> lambda;
   std::fill_n(lambda.begin(), c.sgo_count + 1, 0.0);
-  const double normal = block.solved ? pointImpulses(c, block, injected, s, lambda.data()) : 0.0;
+  const double normal = block.solved ? pointImpulses(c, block, s, lambda.data()) : 0.0;
   const btVector3& n = block.normal;
   const TorsionSplit t = torsionSplit(c, block, lambda.data(), normal);
-  const btMatrix3x3 to_body = c.truth.object->getWorldTransform().getBasis().transpose();
+  const btMatrix3x3 to_body = c.solved.body_basis.transpose();
   const bool sliding = atFrictionLimit(block);
   btVector3 total(0, 0, 0);
   out.points.resize(static_cast<std::size_t>(c.sgo_count));

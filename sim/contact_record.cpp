@@ -7,14 +7,6 @@
 
 namespace gf::sim {
 
-void clearLoads(ContactLoads& loads) {
-  loads.force = Vec3::Zero();
-  loads.point = {};
-  loads.points.clear();
-  loads.rolling_moment = Vec3::Zero();
-  loads.sliding = false;
-}
-
 namespace {
 
 PointLoad toWorld(const PointLoad& local, const Pose& body_frame) {
@@ -22,6 +14,15 @@ PointLoad toWorld(const PointLoad& local, const Pose& body_frame) {
 }
 
 }  // namespace
+
+void toSnapshotLoads(const ContactLoads& loads, const Pose& body_frame, ContactSnapshot& out) {
+  out.force = body_frame.orientation * loads.force;
+  out.point_load = toWorld(loads.point, body_frame);
+  out.loads.clear();
+  for (const PointLoad& l : loads.points) out.loads.push_back(toWorld(l, body_frame));
+  out.rolling_moment = body_frame.orientation * loads.rolling_moment;
+  out.sliding = loads.sliding;
+}
 
 void toContactSnapshot(const ContactRecord& record, const Pose& body_frame, ContactSnapshot& out,
                        const WalkCache* walks) {
@@ -33,12 +34,7 @@ void toContactSnapshot(const ContactRecord& record, const Pose& body_frame, Cont
   out.press_depth = record.press_depth;
   out.radius = p.valid ? p.radius : 0.0;
   out.feature = p.hit.feature;
-  out.force = body_frame.orientation * record.loads.force;
-  out.point_load = toWorld(record.loads.point, body_frame);
-  out.loads.clear();
-  for (const PointLoad& l : record.loads.points) out.loads.push_back(toWorld(l, body_frame));
-  out.rolling_moment = body_frame.orientation * record.loads.rolling_moment;
-  out.sliding = record.loads.sliding;
+  toSnapshotLoads({}, body_frame, out);
   out.sgos_world.clear();
   out.path_points_world.clear();
   out.path_offsets.clear();

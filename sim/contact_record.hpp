@@ -9,7 +9,7 @@
 namespace gf::sim {
 
 /// The forces the solver put on the touched body at a contact's points in one step, in the
-/// body's frame (N): see ContactSnapshot::force, point_load and loads.
+/// body's frame (N): see ContactSnapshot::force, point_load, loads and rolling_moment.
 struct ContactLoads {
   Vec3 force = Vec3::Zero();      ///< the contact's: the sum of its points'
   PointLoad point;                ///< the true contact's
@@ -24,11 +24,11 @@ struct ContactRecord {
   PatchContact contact;      ///< c_p, outward normal (body frame) and separation c_d
   double press_depth = 0.0;  ///< v . c_n (m), Eq. 1's input: > 0 while pressing
   Patch patch;               ///< radius, SGOs and walked paths (body frame); none for a god-object
-  ContactLoads loads;        ///< after the solve: its points' forces (none before, or unsolved)
 };
 
-/// Empties `loads` (keeps storage): a contact the solver has not seen.
-void clearLoads(ContactLoads& loads);
+/// `loads` (body frame) into `out`'s force, point_load, loads, rolling_moment and sliding, in
+/// the world frame at `body_frame`. Reuses the storage of `out`. Any thread.
+void toSnapshotLoads(const ContactLoads& loads, const Pose& body_frame, ContactSnapshot& out);
 
 /// `record` at `body_frame`, the pose of the frame it is local to: point, normal, SGOs and paths
 /// transformed to the world frame with that one pose. Reuses the storage of `out`; does not

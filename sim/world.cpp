@@ -251,7 +251,14 @@ void World::snapshot(Snapshot& out) const {
     for (int k = 0; k < f.contact_count; ++k) {
       const ContactRecord& r = f.contacts[k].record;
       // Contact k's walks are memory k's since the step (rememberImpulses).
-      toContactSnapshot(r, w.bodyFrame(r.body), fs.contacts[k], &f.memory_walks[static_cast<std::size_t>(k)]);
+      const Pose frame = w.bodyFrame(r.body);
+      toContactSnapshot(r, frame, fs.contacts[k], &f.memory_walks[static_cast<std::size_t>(k)]);
+      // The loads on its points, split from the last solve's result only now: snapshots are
+      // taken at frame times, and the split costs more than the rest of the contact's step.
+      const FingerContact& c = f.contacts[k];
+      if (c.block < 0) continue;
+      solvedLoads(c, w.solver.block(c.block), w.snapshot_scratch, w.snapshot_loads);
+      toSnapshotLoads(w.snapshot_loads, frame, fs.contacts[k]);
     }
   }
 }

@@ -126,7 +126,6 @@ void World::Impl::recordContact(const Finger& f, const ContactMemory* mem, Finge
                mem ? mem->ring_tangent_local : Vec3::Zero()};
   r.press_depth = pressDepth(c.v_local, r.contact.outward_normal_local.normalized());
   clearPatch(r.patch);
-  clearLoads(r.loads);
 }
 
 // The patch of a god-finger contact (timed and counted), then its points in the world.
@@ -195,8 +194,8 @@ void World::Impl::placePatchPoints(FingerContact& c, const ContactMemory* mem) {
 }
 
 // What each contact leaves for the next step (ContactMemory): its points' and its block's
-// solved impulses, the ring's frame and the pad's normal; and the forces on its points
-// (solvedLoads), for snapshots.
+// solved impulses, the ring's frame and the pad's normal; and what snapshots need to split its
+// loads over its points (keepSolved).
 void World::Impl::rememberImpulses(Finger& f) {
   const PatchSettings& s = f.settings.patch;
   f.memory_count = f.contact_count;
@@ -225,7 +224,7 @@ void World::Impl::rememberImpulses(Finger& f) {
     mem.rolling_impulse = block.solved ? block.rolling_impulse : btVector3(0, 0, 0);
     mem.normal_impulse = block.solved ? block.normal_impulse : 0.0;
     mem.tilt_impulse = block.solved && block.aggregate ? block.press.tilt : btVector3(0, 0, 0);
-    solvedLoads(c, block, injected, world.getSolverInfo().m_timeStep, aggregate_scratch, c.record.loads);
+    keepSolved(c, injected, world.getSolverInfo().m_timeStep);
     c.manifold = nullptr;  // Bullet may free it at the next collision pass
     c.truth.object = nullptr;
   }

@@ -80,9 +80,14 @@ class GodFingerModel final : public FingerModel {
   void addRows(const ContactToSolve& c, SolveRows& out) const override;
 };
 
-/// The forces the solve put on the body at contact `c`'s points, after the solve (its manifold
-/// and injected points still there), with `block` its solved friction block and `dt` the step
-/// (s), into `out` in the body's frame. Normal loads: the points solver's own impulses; the
+/// Keeps what solvedLoads needs of contact `c`'s solve in c.solved: its points' normal
+/// impulses (points solver), the step `dt` (s) and the body's orientation. After the solve,
+/// while its manifold and `injected` points are still there; a few copies per point.
+void keepSolved(FingerContact& c, const std::vector<btPersistentManifold*>& injected, double dt);
+
+/// The forces the last solve put on the body at contact `c`'s points (keepSolved), with `block`
+/// its solved friction block (valid until the next step's beforeSolve), into `out` in the
+/// body's frame. Called for snapshots only: it costs more than the rest of the contact's step. Normal loads: the points solver's own impulses; the
 /// aggregate's normal impulse by the points' load shares. Friction: the block's force in
 /// proportion to the normal loads, and its moment about the normal (at the block's centre) by
 /// their levers (each point mu times its load across its lever at the limit). Then the normal
@@ -92,8 +97,7 @@ class GodFingerModel final : public FingerModel {
 /// rolling rows' moment stays apart (ContactLoads::rolling_moment). A point slips when the
 /// block is at its limit and the point's friction is at least kSlipFraction of mu times its
 /// load. Does not allocate once `out` has held as many points.
-void solvedLoads(const FingerContact& c, const FrictionBlock& block, const std::vector<btPersistentManifold*>& injected,
-                 double dt, AggregateScratch& scratch, ContactLoads& out);
+void solvedLoads(const FingerContact& c, const FrictionBlock& block, AggregateScratch& scratch, ContactLoads& out);
 
 /// The model object of an effective model (EffectiveSettings::patch.model). Any thread; does
 /// not allocate.

@@ -14,6 +14,14 @@ namespace gf::sim {
 /// Points a patch injects besides the true contact: the SGOs and a filled patch's inner points.
 inline constexpr int kMaxPatchPoints = kMaxSgo * kMaxRings;
 
+/// What a snapshot needs of a contact's last solve to split its loads over its points
+/// (solvedLoads): kept by keepSolved after the solve.
+struct SolvedContact {
+  std::array<double, kMaxPatchPoints + 1> normal{};  ///< points solver: the true contact's, then each patch point's normal impulse (N s)
+  double dt = 0.0;                                   ///< the step (s)
+  btMatrix3x3 body_basis = btMatrix3x3::getIdentity();  ///< the body's orientation during the solve
+};
+
 /// A finger's contact with one body this step: the deepest point over every manifold between
 /// the proxy and the body (one per child hull of a compound).
 struct FingerContact {
@@ -34,6 +42,7 @@ struct FingerContact {
   Vec3 pad_normal = Vec3::UnitY();  ///< the pad plane's normal (world)
   /// Its walks, carried from the body's last contact with the finger (warm-started walks).
   WalkCache walks;
+  SolvedContact solved;  ///< after the solve, for snapshots
 };
 
 /// What a finger's contact with one body leaves for the next step: the solved impulses (to

@@ -116,6 +116,9 @@ struct World::Impl final : SolveHooks {
   std::vector<Finger> fingers;
   std::vector<btPersistentManifold*> injected;
   AggregateScratch aggregate_scratch;
+  // World::snapshot's storage for splitting each contact's loads over its points (solvedLoads).
+  mutable AggregateScratch snapshot_scratch;
+  mutable ContactLoads snapshot_loads;
   SolveRows rows{solver, dispatcher, injected, aggregate_scratch};  // where the models add rows
   std::vector<SavedState> saved;
   double time = 0.0;

@@ -6,6 +6,7 @@
 
 #include "sim/god_finger.hpp"
 #include "sim/primitives.hpp"
+#include "sim/snapshot.hpp"
 #include "tests/sim/test_context.hpp"
 
 namespace {
@@ -35,6 +36,22 @@ void BM_PinchStep(benchmark::State& state) {
 }
 BENCHMARK(BM_PinchStep)->ArgsProduct({{0, 8, 16, 64}, {20, 10}, {0, 1}})->ArgNames({"n_sgo", "iterations", "aggregate"})
     ->Unit(benchmark::kMicrosecond)->Repetitions(5)->ReportAggregatesOnly(true);
+
+// One snapshot of the held Fig. 8 pinch (as a frame takes it, 60 times a second): poses, both
+// fingers' patches, and the solver's loads split over their points (solvedLoads). n_SGO per
+// finger and the contact solver (0 points, 1 aggregate).
+void BM_PinchSnapshot(benchmark::State& state) {
+  test_support::TestContext ctx("fig8-pinch-oscillation", static_cast<int>(state.range(0)),
+                                {std::string("world.contact_solver=") + (state.range(1) == 1 ? "aggregate" : "points")});
+  ctx.simulate(3.5);
+  sim::Snapshot snap;
+  ctx.world().snapshot(snap);
+  for (auto _ : state) {
+    ctx.world().snapshot(snap);
+    benchmark::DoNotOptimize(snap.fingers[0].contacts.data());
+  }
+}
+BENCHMARK(BM_PinchSnapshot)->ArgsProduct({{8, 64}, {0, 1}})->ArgNames({"n_sgo", "aggregate"})->Unit(benchmark::kMicrosecond);
 
 // One step of the same pinch per contact model at the default 10 iterations: 0 god_object,
 // 1 soft_finger, 2 god_finger ring, 3 god_finger filled (3 points per path), at n_SGO 8 and 16.
