@@ -30,7 +30,7 @@ const std::vector<Shot>& referenceShots() {
       {"vertex-contact", "vertex-contact", 1.2, "", {}},
       {"overlay", "overlay-demo", 2.0, "", {}},
       {"compare-fig5", "fig5-push-ball", 1.5, "", {}, {"god_object", "god_finger"}, 3.0, 1280, 720},
-      {"compare-fig8", "fig8-pinch-oscillation", 2.5, "", {}, {"god_object", "god_finger"}, 5.0, 1280, 720},
+      {"compare-fig8", "fig8-pinch-oscillation", 7.0, "", {}, {"god_object", "soft_finger", "god_finger"}, 8.0, 1280, 720},
   };
   return kShots;
 }
