@@ -109,9 +109,27 @@ struct WebServer::Impl {
   RequestRate limit;
   std::atomic<int> streams{0};
   std::atomic<long> served{0}, unauthorized{0}, limited{0}, foreign{0}, busy{0}, stream_frames{0};
+  std::atomic<long> commands{0}, answered{0};  // posted to /command; answered of them
   std::atomic<bool> stopping{false};
 
   Impl(const ServeOptions& o, LiveView& v, CommandHandler c) : options(o), view(v), command(std::move(c)) {}
+
+  // Requests served and refused, streams, and the commands posted: `commands_running` are taken
+  // and not yet answered (under `live`, the one being run and those waiting behind it).
+  nlohmann::json stats() const {
+    const long done = answered.load(), taken = commands.load();  // in this order: never fewer taken
+    return {{"url", "http://" + options.host + ":" + std::to_string(options.port) + "/"},
+            {"token", !options.token.empty()},
+            {"requests", served.load()},
+            {"unauthorized", unauthorized.load()},
+            {"rate_limited", limited.load()},
+            {"foreign", foreign.load()},
+            {"streams_refused", busy.load()},
+            {"streams_open", streams.load()},
+            {"stream_frames_sent", stream_frames.load()},
+            {"commands", taken},
+            {"commands_running", taken - done}};
+  }
 
   bool authorized(const httplib::Request& req) const {
     if (options.token.empty()) return true;
@@ -208,6 +226,9 @@ struct WebServer::Impl {
     server.Get("/state.json", [this](const httplib::Request&, httplib::Response& res) {
       res.set_content(view.stateText(), "application/json");
     });
+    server.Get("/server.json", [this](const httplib::Request&, httplib::Response& res) {
+      res.set_content(stats().dump(), "application/json");
+    });
     server.Get("/stream.mjpg", [this](const httplib::Request&, httplib::Response& res) { stream(res); });
     server.Get("/frame.jpg", [this](const httplib::Request&, httplib::Response& res) { frame(res); });
     server.Post("/command", [this](const httplib::Request& req, httplib::Response& res) {
@@ -218,7 +239,9 @@ struct WebServer::Impl {
       }
       std::string line = req.body;
       while (!line.empty() && (line.back() == '\n' || line.back() == '\r')) line.pop_back();
+      ++commands;
       const std::string answer = command(line);
+      ++answered;
       if (answer.rfind("error", 0) == 0) res.status = 400;
       res.set_content(answer + "\n", "text/plain");
     });
@@ -282,17 +305,6 @@ void WebServer::stop() {
   if (s.thread.joinable()) s.thread.join();
 }
 
-nlohmann::json WebServer::statsJson() const {
-  const Impl& s = *impl_;
-  return {{"url", "http://" + s.options.host + ":" + std::to_string(s.options.port) + "/"},
-          {"token", !s.options.token.empty()},
-          {"requests", s.served.load()},
-          {"unauthorized", s.unauthorized.load()},
-          {"rate_limited", s.limited.load()},
-          {"foreign", s.foreign.load()},
-          {"streams_refused", s.busy.load()},
-          {"streams_open", s.streams.load()},
-          {"stream_frames_sent", s.stream_frames.load()}};
-}
+nlohmann::json WebServer::statsJson() const { return impl_->stats(); }
 
 }  // namespace gf::app

@@ -77,8 +77,8 @@ class WebServer {
   /// Ends every stream, stops listening, joins the threads. Idempotent; never waits on the
   /// haptic thread.
   void stop();
-  /// Requests served, refused (401, 429, 503), streams open and stream frames sent, for
-  /// summary.json. Any thread.
+  /// Requests served, refused (401, 429, 503), streams open, stream frames sent and commands
+  /// posted (and not yet answered), for summary.json and `GET /server.json`. Any thread.
   nlohmann::json statsJson() const;
 
   struct Impl;

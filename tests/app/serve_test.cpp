@@ -423,8 +423,10 @@ TEST(Serve, LiveTakesThePagesCommandsInTurnWithStandardInput) {
   std::fflush(input);
   const std::string answer = test::lineWith(child.lines, "ok {");
   EXPECT_NE(answer.find("\"t\":0.15"), std::string::npos) << "stdin's step follows the page's: " << answer;
-  // A frame of t = 0.15 s is drawn and its state served.
+  // A frame of t = 0.15 s is drawn and its state served (each look after a new frame: the
+  // address's burst of requests is kept for the commands below).
   for (;;) {
+    client.Get("/frame.jpg");
     const auto state = client.Get("/state.json");
     ASSERT_TRUE(state);
     if (state->status == 429) continue;  // polled faster than the server takes
@@ -444,28 +446,35 @@ TEST(Serve, LiveTakesThePagesCommandsInTurnWithStandardInput) {
   };
   EXPECT_EQ(post(client, "state").rfind("ok {", 0), 0u);
   // Ctrl-C while the page has a long step running and another command waiting: the step stops,
-  // both are answered, and the session ends (it used to wait for ever on the waiting one).
+  // both are answered, and the session ends (it used to wait for ever on the waiting one). Each
+  // is sent once the server has taken the one before (/server.json's commands_running).
+  const auto running = [&](long n) {
+    for (;;) {
+      const auto stats = client.Get("/server.json");
+      if (!stats) return false;
+      if (stats->status == 429) continue;
+      if (nlohmann::json::parse(stats->body)["commands_running"].get<long>() >= n) return true;
+    }
+  };
   std::string long_step, waiting;
-  std::atomic<int> sent{0};
   std::thread first([&] {
     httplib::Client c("127.0.0.1", port);
     c.set_read_timeout(120, 0);
-    ++sent;
     long_step = post(c, "step 10000000");
   });
+  const bool one = running(1);
   std::thread second([&] {
     httplib::Client c("127.0.0.1", port);
     c.set_read_timeout(120, 0);
-    while (sent.load() == 0) std::this_thread::yield();
-    ++sent;
     waiting = post(c, "state");
   });
-  while (sent.load() < 2) std::this_thread::yield();
+  const bool both = one && running(2);
   kill(-child.pid, SIGINT);
   first.join();
   second.join();
   const test::Ended ended = test::finishLines(child);
   guard.done = true;
+  EXPECT_TRUE(both);
   EXPECT_EQ(ended.status, 130);
   // Each is answered: run (the step stopped at the signal) or refused as the session ended.
   for (const std::string& a : {long_step, waiting}) {
