@@ -350,10 +350,10 @@ def main(start):
     godfinger, slurm_study, out = (os.path.abspath(p) for p in sys.argv[1:4])
     for signum in (signal.SIGTERM, signal.SIGINT, signal.SIGHUP):
         signal.signal(signum, interrupted)
-    shutil.rmtree(out, ignore_errors=True)
-    os.makedirs(out)
     check_tools()
     check_root()
+    shutil.rmtree(out, ignore_errors=True)
+    os.makedirs(out)
     local = os.path.join(out, "local")
     run([godfinger, "study", STUDY, "--quick", "--jobs", "1", "--out", local], deadline_left(start))
     say(start, f"local: {STUDY} --quick --jobs 1 done")
