@@ -16,6 +16,7 @@ GF_PACKAGES=(
   python3 python3-jsonschema  # examples/device-udp/client.py, the scene schema's test
   mkdocs                      # the manual (docs/), built with --strict by ctest Docs.*
   chromium                    # headless, for the browser tests (tests/browser/, ctest Browser.*)
+  slurm-wlm munge             # a one-node Slurm cluster for the study test (tests/cluster/, ctest Cluster.*)
 )
 
 gf_log() { printf '[godfinger] %s\n' "$*" >&2; }
