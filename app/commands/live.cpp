@@ -9,7 +9,7 @@
 namespace gf::app {
 namespace {
 
-class LiveCommand final : public Command {
+class LiveSubcommand final : public Command {
  public:
   CLI::App* add(CLI::App& app) override {
     CLI::App* live = app.add_subcommand("live", "Interactive session: one command a line on standard input");
@@ -39,6 +39,6 @@ class LiveCommand final : public Command {
 
 }  // namespace
 
-std::unique_ptr<Command> makeLiveCommand(const std::vector<std::string>&) { return std::make_unique<LiveCommand>(); }
+std::unique_ptr<Command> makeLiveCommand(const std::vector<std::string>&) { return std::make_unique<LiveSubcommand>(); }
 
 }  // namespace gf::app

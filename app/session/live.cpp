@@ -26,110 +26,98 @@ namespace {
 
 using K = LiveCommand::Kind;
 
-class Live {
- public:
-  explicit Live(const LiveOptions& o) : options_(o), session_(loadSceneFile(o.scene_path, o.overrides)), world_(session_.scene) {
-    // Live steps when told to; a UDP device's packets come in wall-clock time.
-    if (!session_.udp_devices.empty()) {
-      const UdpDeviceDesc& d = session_.udp_devices.front();
-      throw InputError(d.file, d.line, d.column,
-                       "fingers." + session_.scene.fingers[static_cast<std::size_t>(d.finger)].name + ".device.udp",
-                       "`live` steps on command and cannot follow a UDP device: use `godfinger run --realtime`");
+}  // namespace
+
+LiveSession::LiveSession(const LiveOptions& o)
+    : options_(o), session_(loadSceneFile(o.scene_path, o.overrides)), world_(session_.scene) {
+  // Live steps when told to; a UDP device's packets come in wall-clock time.
+  if (!session_.udp_devices.empty()) {
+    const UdpDeviceDesc& d = session_.udp_devices.front();
+    throw InputError(d.file, d.line, d.column,
+                     "fingers." + session_.scene.fingers[static_cast<std::size_t>(d.finger)].name + ".device.udp",
+                     "`live` steps on command and cannot follow a UDP device: use `godfinger run --realtime`");
+  }
+  devices_ = sim::deviceTracks(session_.scene);
+  samples_.resize(devices_.size());
+}
+
+void LiveSession::show(render::RenderThread* renderer, LiveView* view) {
+  renderer_ = renderer;
+  view_ = view;
+  publish();
+}
+
+bool LiveSession::execute(const std::string& line, std::string& answer, bool posted) {
+  const LiveCommand c = parseLiveCommand(line, session_.scene);
+  if (posted && c.kind == K::kQuit) {
+    throw std::invalid_argument("quit: only on the session's standard input (or Ctrl-C)");
+  }
+  switch (c.kind) {
+    case K::kNone: return true;
+    case K::kQuit: answer = "ok bye"; return false;
+    case K::kHelp: answer = std::string("ok ") + kLiveHelp; return true;
+    case K::kStep:
+      for (long i = 0; i < c.steps && !(options_.stop_on_interrupt && interruptSignal() != 0); ++i) step();
+      answer = state();
+      break;
+    case K::kState: answer = state(); return true;
+    case K::kMove: answer = move(c); break;
+    case K::kSet: {
+      sim::FingerDesc& f = session_.scene.fingers[static_cast<std::size_t>(c.finger)];
+      const sim::PatchSettings next = applySet(c, f.patch);
+      world_.setPatchSettings(c.finger, next);
+      f.patch = next;
+      answer = "ok " + c.text;
+      break;
     }
-    devices_ = sim::deviceTracks(session_.scene);
-    samples_.resize(devices_.size());
+    case K::kSnapshot:
+      world_.snapshot(snap_);
+      answer = writeSnapshot(c, snap_, session_.scene, options_.out_dir);
+      return true;
+    case K::kRecord:
+      if (!view_) throw std::invalid_argument("record: only with --serve (the frames are the browser view's)");
+      answer = view_->record(c.on);
+      return true;
   }
+  publish();
+  return true;
+}
 
-  const SessionDesc& session() const { return session_; }
-  double time() const { return world_.time(); }
-  /// --serve: the frames go to `renderer` after every command, and `record` to `view`.
-  void show(render::RenderThread* renderer, LiveView* view) {
-    renderer_ = renderer;
-    view_ = view;
-    publish();
+void LiveSession::step() {
+  const double t = world_.time();
+  for (std::size_t i = 0; i < devices_.size(); ++i) samples_[i] = devices_[i].sample(t);
+  world_.step(1.0 / session_.scene.world.haptic_rate_hz, samples_);
+}
+
+const sim::Snapshot& LiveSession::snapshot() {
+  world_.snapshot(snap_);
+  return snap_;
+}
+
+std::string LiveSession::move(const LiveCommand& c) {
+  const double t = world_.time();
+  sim::DeviceTrack track;
+  track.interpolation = sim::Interpolation::kLinear;
+  track.keyframes.push_back({t, devices_[static_cast<std::size_t>(c.finger)].sample(t).position});
+  if (c.seconds > 0.0) track.keyframes.push_back({t + c.seconds, c.target});
+  else track.keyframes.back().position = c.target;
+  if (const std::optional<sim::FieldError> e = sim::validateTrack(track)) {
+    throw std::invalid_argument("move: " + e->reason);
   }
+  devices_[static_cast<std::size_t>(c.finger)] = track;
+  return moveAnswer(c, session_.scene, t + c.seconds);
+}
 
-  // One line, checked whole before anything runs; the answer goes into `answer`. Returns false
-  // on quit. Throws std::invalid_argument (or runtime_error) with the error's text.
-  bool execute(const std::string& line, std::string& answer, bool posted = false) {
-    const LiveCommand c = parseLiveCommand(line, session_.scene);
-    if (posted && c.kind == K::kQuit) {
-      throw std::invalid_argument("quit: only on the session's standard input (or Ctrl-C)");
-    }
-    switch (c.kind) {
-      case K::kNone: return true;
-      case K::kQuit: answer = "ok bye"; return false;
-      case K::kHelp: answer = std::string("ok ") + kLiveHelp; return true;
-      case K::kStep:
-        for (long i = 0; i < c.steps && !(options_.stop_on_interrupt && interruptSignal() != 0); ++i) step();
-        answer = state();
-        break;
-      case K::kState: answer = state(); return true;
-      case K::kMove: answer = move(c); break;
-      case K::kSet: {
-        sim::FingerDesc& f = session_.scene.fingers[static_cast<std::size_t>(c.finger)];
-        const sim::PatchSettings next = applySet(c, f.patch);
-        world_.setPatchSettings(c.finger, next);
-        f.patch = next;
-        answer = "ok " + c.text;
-        break;
-      }
-      case K::kSnapshot:
-        world_.snapshot(snap_);
-        answer = writeSnapshot(c, snap_, session_.scene, options_.out_dir);
-        return true;
-      case K::kRecord:
-        if (!view_) throw std::invalid_argument("record: only with --serve (the frames are the browser view's)");
-        answer = view_->record(c.on);
-        return true;
-    }
-    publish();
-    return true;
-  }
+std::string LiveSession::state() { return "ok " + stateJson(snapshot(), session_.scene).dump(); }
 
- private:
-  void step() {
-    const double t = world_.time();
-    for (std::size_t i = 0; i < devices_.size(); ++i) samples_[i] = devices_[i].sample(t);
-    world_.step(1.0 / session_.scene.world.haptic_rate_hz, samples_);
-  }
+void LiveSession::publish() {
+  if (renderer_) renderer_->publishLatest([&](sim::Snapshot& slot) { world_.snapshot(slot); });
+}
 
-  std::string move(const LiveCommand& c) {
-    const double t = world_.time();
-    sim::DeviceTrack track;
-    track.interpolation = sim::Interpolation::kLinear;
-    track.keyframes.push_back({t, devices_[static_cast<std::size_t>(c.finger)].sample(t).position});
-    if (c.seconds > 0.0) track.keyframes.push_back({t + c.seconds, c.target});
-    else track.keyframes.back().position = c.target;
-    if (const std::optional<sim::FieldError> e = sim::validateTrack(track)) {
-      throw std::invalid_argument("move: " + e->reason);
-    }
-    devices_[static_cast<std::size_t>(c.finger)] = track;
-    return moveAnswer(c, session_.scene, t + c.seconds);
-  }
-
-  std::string state() {
-    world_.snapshot(snap_);
-    return "ok " + stateJson(snap_, session_.scene).dump();
-  }
-
-  // --serve: the world as it is now, for the next frame.
-  void publish() {
-    if (renderer_) renderer_->publishLatest([&](sim::Snapshot& slot) { world_.snapshot(slot); });
-  }
-
-  const LiveOptions& options_;
-  SessionDesc session_;
-  sim::World world_;
-  std::vector<sim::DeviceTrack> devices_;
-  std::vector<sim::DeviceSample> samples_;
-  sim::Snapshot snap_;
-  render::RenderThread* renderer_ = nullptr;
-  LiveView* view_ = nullptr;
-};
+namespace {
 
 // Runs one line for `input`:`number`; writes the answer or the error. False on quit.
-bool answerLine(Live& live, const std::string& line, const std::string& where, std::string& answer, int& failures,
+bool answerLine(LiveSession& live, const std::string& line, const std::string& where, std::string& answer, int& failures,
                 bool posted = false) {
   bool go_on = true;
   try {
@@ -141,7 +129,7 @@ bool answerLine(Live& live, const std::string& line, const std::string& where, s
   return go_on;
 }
 
-int interruptedEnd(const Live& live, std::ostream& out) {
+int interruptedEnd(const LiveSession& live, std::ostream& out) {
   out << "error: interrupted by " << (interruptSignal() == SIGTERM ? "SIGTERM" : "SIGINT") << " at t = " << live.time()
       << " s; the session ends" << std::endl;
   return interruptedStatus();
@@ -202,7 +190,7 @@ std::string postAndWait(LiveQueue& queue, const std::string& line) {
   return answer.get();
 }
 
-int runServed(Live& live, const LiveOptions& options, std::istream& in, std::ostream& out) {
+int runServed(LiveSession& live, const LiveOptions& options, std::istream& in, std::ostream& out) {
   const SessionDesc& session = live.session();
   SessionOptions so;
   so.out_dir = options.out_dir;
@@ -256,7 +244,7 @@ int runServed(Live& live, const LiveOptions& options, std::istream& in, std::ost
 }  // namespace
 
 int runLive(const LiveOptions& options, std::istream& in, std::ostream& out) {
-  Live live(options);
+  LiveSession live(options);
   std::optional<InterruptScope> interrupt;
   if (options.stop_on_interrupt) interrupt.emplace();
   if (options.serve) return runServed(live, options, in, out);

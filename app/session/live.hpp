@@ -8,6 +8,11 @@
 
 #include "app/scene/session_desc.hpp"
 #include "app/serve/web_server.hpp"
+#include "sim/world.hpp"
+
+namespace gf::render {
+class RenderThread;
+}
 
 namespace gf::app {
 
@@ -26,6 +31,45 @@ struct LiveOptions {
   /// not end the session: `quit` on standard input or Ctrl-C does.
   std::optional<ServeOptions> serve{};
   std::string camera;  ///< --serve: the camera of the frames (empty: the scene's first)
+};
+
+class LiveView;
+struct LiveCommand;
+
+/// One live session: a scene's world, stepped and steered by the live protocol's commands. Used
+/// by `godfinger live`, the browser view and the Python module's World. One thread at a time.
+class LiveSession {
+ public:
+  /// Loads options.scene_path with options.overrides. Throws InputError when the scene cannot be
+  /// loaded or follows a UDP device (live steps on command, a UDP device in wall-clock time).
+  explicit LiveSession(const LiveOptions& options);
+
+  const SessionDesc& session() const { return session_; }
+  double time() const { return world_.time(); }
+  /// --serve: the frames go to `renderer` after every command, and `record` to `view`.
+  void show(render::RenderThread* renderer, LiveView* view);
+  /// Runs one line, checked whole before anything runs; the answer goes into `answer`. Returns
+  /// false on quit. Throws std::invalid_argument (or std::runtime_error) with the error's text.
+  bool execute(const std::string& line, std::string& answer, bool posted = false);
+  /// One haptic step (1 / haptic_rate_hz) with the devices sampled at the step's start: what
+  /// `step` runs N times. No allocation once the world has warmed up.
+  void step();
+  /// The world now (the session's own snapshot, valid until the next call).
+  const sim::Snapshot& snapshot();
+
+ private:
+  std::string move(const LiveCommand& c);
+  std::string state();
+  void publish();  // --serve: the world as it is now, for the next frame
+
+  LiveOptions options_;
+  SessionDesc session_;
+  sim::World world_;
+  std::vector<sim::DeviceTrack> devices_;
+  std::vector<sim::DeviceSample> samples_;
+  sim::Snapshot snap_;
+  render::RenderThread* renderer_ = nullptr;
+  LiveView* view_ = nullptr;
 };
 
 /// Runs commands from `in` until `quit` or end of input, answering each on `out`:

@@ -14,6 +14,7 @@ GF_PACKAGES=(
   ffmpeg
   parallel
   python3 python3-jsonschema  # examples/device-udp/client.py, the scene schema's test
+  python3-dev pybind11-dev python3-numpy python3-pytest  # the Python module (app/python/), its tests
   mkdocs                      # the manual (docs/), built with --strict by ctest Docs.*
   chromium                    # headless, for the browser tests (tests/browser/, ctest Browser.*)
   slurm-wlm munge             # a one-node Slurm cluster for the study test (tests/cluster/, ctest Cluster.*)

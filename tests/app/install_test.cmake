@@ -65,3 +65,22 @@ file(MAKE_DIRECTORY "${WORK}/moved")
 file(COPY "${BINARY_DIR}/godfinger" DESTINATION "${WORK}/moved")
 file(COPY "${BINARY_DIR}/share" DESTINATION "${WORK}/moved")
 check_copy(moved "${WORK}/moved/godfinger" "${WORK}/moved/share/godfinger")
+
+# 3. The Python module (when built): installed under the prefix's PYTHON_MODULE_DIR, imported
+#    from another folder through PYTHONPATH, it runs a scene found only in the installed data.
+if(PYTHON_MODULE_DIR)
+  set(modules "${WORK}/prefix/${PYTHON_MODULE_DIR}")
+  file(GLOB installed "${modules}/godfinger.*.so")
+  if(NOT installed)
+    message(FATAL_ERROR "cmake --install did not put the Python module into ${modules}")
+  endif()
+  set(ENV{PYTHONPATH} "${modules}")
+  execute_process(COMMAND "${PYTHON3}" -c [[
+import godfinger
+run = godfinger.run("only-in-installed", duration=0.01)
+print(godfinger.__file__, len(run.trace["t"]))
+]] WORKING_DIRECTORY "${WORK}" OUTPUT_VARIABLE said ERROR_VARIABLE complained RESULT_VARIABLE failed)
+  if(failed OR NOT said MATCHES "^${modules}/godfinger[^ ]*\\.so 10\n$")
+    message(FATAL_ERROR "the installed Python module did not run a scene of the installed data (${failed}):\n${said}${complained}")
+  endif()
+endif()

@@ -1,0 +1,39 @@
+// The Python module's conversions: keyword arguments into the command line's forms, a run's
+// files and a world's snapshots into Python objects (dicts, lists, numpy arrays).
+#pragma once
+
+#include <pybind11/pybind11.h>
+
+#include <string>
+#include <vector>
+
+#include "sim/scene_desc.hpp"
+#include "sim/snapshot.hpp"
+
+namespace gf::app::python {
+
+namespace py = pybind11;
+
+/// `set={"fingers.left.n_sgo": 0, ...}` as --set texts ("fingers.left.n_sgo=0"): numbers in
+/// their shortest round-trip form, booleans as true/false, strings as given (--set reads a value
+/// that is not TOML as a string), lists and tuples as TOML arrays. Throws InputError naming the
+/// key for a value of another type.
+std::vector<std::string> overridesFromDict(const py::dict& set);
+
+/// The shortest decimal that reads back as exactly `x`.
+std::string shortestNumber(double x);
+
+/// A CSV file of a run as {column: numpy array}, in the file's column order: a column whose
+/// cells all read as numbers becomes float64 (read back exactly: the files hold shortest
+/// round-trip decimals), any other an array of str. Throws std::runtime_error naming the file.
+py::dict readCsvColumns(const std::string& path);
+
+/// JSON text as Python objects (json.loads).
+py::object parseJson(const std::string& text);
+
+/// A world's snapshot with per-SGO arrays: time, step; per finger its device, proxy, forces, SGO
+/// count and contacts, each contact's SGO positions (N x 3), the solver's loads on them (normal
+/// N, tangential N x 3, slipping N) and its whole force; per body its pose and velocities.
+py::dict snapshotDict(const sim::Snapshot& snapshot, const sim::SceneDesc& scene);
+
+}  // namespace gf::app::python

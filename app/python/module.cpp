@@ -1,0 +1,203 @@
+// The Python module `godfinger`: run() and study() go through the command's own code (a
+// session's run folder, a study's `godfinger run` processes) into a temporary folder, read back
+// into numpy arrays and dicts; World is world.cpp's. Bad input raises godfinger.InputError (a
+// ValueError) with the command line's message.
+#include "app/python/module.hpp"
+
+#include <dlfcn.h>
+#include <pybind11/stl.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <optional>
+#include <sstream>
+
+#include "app/python/convert.hpp"
+#include "app/runs/run_folder.hpp"
+#include "app/scene/data_folder.hpp"
+#include "app/scene/input_error.hpp"
+#include "app/scene/scene_file.hpp"
+#include "app/session/session.hpp"
+#include "app/study/study.hpp"
+#include "sim/settings.hpp"
+
+namespace fs = std::filesystem;
+
+namespace gf::app::python {
+namespace {
+
+using namespace pybind11::literals;
+
+// What a run left, read back.
+struct RunResult {
+  py::dict trace;
+  py::object summary = py::none();
+  py::dict contacts;
+  std::vector<std::string> failed_expectations;
+  std::optional<std::string> out;
+  long steps = 0;
+};
+
+// The folder this module was loaded from.
+fs::path moduleFolder() {
+  Dl_info info{};
+  if (dladdr(reinterpret_cast<void*>(&bindWorld), &info) == 0 || !info.dli_fname) return {};
+  return fs::absolute(info.dli_fname).parent_path();
+}
+
+// The godfinger executable beside the module: a build tree's <build>/godfinger, or an installed
+// prefix's bin/godfinger; else the one on PATH.
+std::string godfingerExecutable() {
+  const fs::path here = moduleFolder();
+  for (const fs::path& exe : {here / ".." / "godfinger", here / GF_PY_TO_BIN / "godfinger"}) {
+    if (!here.empty() && fs::exists(exe)) return fs::canonical(exe).string();
+  }
+  return "godfinger";
+}
+
+// Finds the bundled data beside the module (a build tree's share/godfinger, or the installed
+// prefix's) for the scene reader and the runs a study starts, unless $GODFINGER_DATA says.
+void findDataBesideModule() {
+  const fs::path here = moduleFolder();
+  if (here.empty() || std::getenv("GODFINGER_DATA")) return;
+  for (const fs::path& data : {here / ".." / "share" / "godfinger", here / GF_PY_TO_DATA}) {
+    if (fs::is_directory(data / "scenes")) {
+      setenv("GODFINGER_DATA", fs::canonical(data).c_str(), 0);
+      return;
+    }
+  }
+}
+
+// A folder of its own under the system's temporary folder, removed when done (unless kept).
+class Scratch {
+ public:
+  explicit Scratch(const std::optional<std::string>& keep) {
+    if (keep) {
+      path_ = *keep;
+      return;
+    }
+    std::string pattern = (fs::temp_directory_path() / "godfinger-XXXXXX").string();
+    if (!mkdtemp(pattern.data())) throw std::runtime_error(pattern + ": cannot create a temporary folder");
+    path_ = pattern;
+    owned_ = true;
+  }
+  ~Scratch() {
+    std::error_code ignored;
+    if (owned_) fs::remove_all(path_, ignored);
+  }
+  Scratch(const Scratch&) = delete;
+  Scratch& operator=(const Scratch&) = delete;
+  const std::string& path() const { return path_; }
+  void keep() { owned_ = false; }
+
+ private:
+  std::string path_;
+  bool owned_ = false;
+};
+
+std::string fileText(const fs::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::ostringstream text;
+  text << in.rdbuf();
+  if (!in) throw std::runtime_error(path.string() + ": cannot read");
+  return text.str();
+}
+
+// trace.csv, summary.json and contacts/*.json of a finished run folder.
+void readRunFolder(const fs::path& dir, RunResult& r) {
+  if (fs::exists(dir / "trace.csv")) r.trace = readCsvColumns((dir / "trace.csv").string());
+  if (fs::exists(dir / "summary.json")) r.summary = parseJson(fileText(dir / "summary.json"));
+  if (!fs::is_directory(dir / kContactsFolder)) return;
+  std::vector<fs::path> files;
+  for (const fs::directory_entry& e : fs::directory_iterator(dir / kContactsFolder)) {
+    if (e.path().extension() == ".json") files.push_back(e.path());
+  }
+  std::sort(files.begin(), files.end());
+  for (const fs::path& f : files) r.contacts[py::str(f.stem().string())] = parseJson(fileText(f));
+}
+
+RunResult run(const std::string& scene, std::optional<double> duration, const py::dict& set,
+              const std::optional<std::string>& out, bool close_ups) {
+  const std::vector<std::string> overrides = overridesFromDict(set);
+  SessionDesc session = loadSceneFile(resolveScenePath(scene), overrides);
+  session.overrides = overrides;
+  if (duration) {
+    const sim::Setting<sim::SceneDesc>& d = *sim::findSetting(sim::sceneSettings(), "duration");
+    if (const std::optional<std::string> why = sim::checkGiven(d, *duration)) {
+      throw InputError("godfinger.run", 0, 0, "duration", *why);
+    }
+    session.scene.duration = *duration;
+  }
+  Scratch folder(out);
+  SessionOptions options;
+  options.out_dir = folder.path();
+  options.progress = false;
+  options.close_ups = close_ups;
+  std::vector<ExpectFailure> failed;
+  options.expect_failures = &failed;
+  options.command_line = {"python3", "godfinger.run", scene};
+  for (const std::string& o : overrides) options.command_line.push_back("--set=" + o);
+  RunResult r;
+  {
+    py::gil_scoped_release unlocked;  // other Python threads go on while the run does
+    r.steps = runSession(session, options).steps;
+  }
+  readRunFolder(folder.path(), r);
+  for (const ExpectFailure& f : failed) r.failed_expectations.push_back(f.text());
+  r.out = out;
+  return r;
+}
+
+py::dict study(const std::string& name_or_file, int jobs, bool quick, const py::dict& set,
+               const std::optional<std::string>& out, bool progress) {
+  if (jobs < 1 || jobs > 256) throw InputError("godfinger.study", 0, 0, "jobs", "must be in 1..256, got " + std::to_string(jobs));
+  const StudyDesc desc = loadStudyFile(name_or_file);
+  const std::vector<std::string> overrides = overridesFromDict(set);
+  const StudyPlan plan = expandStudy(desc, quick, overrides);
+  if (!quick) expandStudy(desc, true, overrides);  // the --quick grid's overrides are checked too, as the command does
+  Scratch folder(out);
+  StudyOptions options;
+  options.out = folder.path();
+  options.jobs = jobs;
+  options.progress = progress;
+  options.godfinger = godfingerExecutable();
+  int code = 0;
+  {
+    py::gil_scoped_release unlocked;
+    const RunFolder lock(options.out);
+    code = runStudy(plan, options);
+  }
+  if (code != 0) {
+    folder.keep();
+    throw std::runtime_error("study " + desc.name + ": not every run succeeded and was measured (exit " +
+                             std::to_string(code) + "); see " + options.out + "/report.md and runs/*/run.log");
+  }
+  return readCsvColumns((fs::path(options.out) / "results.csv").string());
+}
+
+}  // namespace
+
+}  // namespace gf::app::python
+
+PYBIND11_MODULE(godfinger, m) {
+  namespace py = pybind11;
+  using namespace gf::app::python;
+  using namespace pybind11::literals;
+  m.doc() = "godfinger: the god-finger contact method on Bullet (runs, live worlds, studies)";
+  py::register_exception<gf::app::InputError>(m, "InputError", PyExc_ValueError);
+  findDataBesideModule();
+  py::class_<RunResult>(m, "Run", "What a run wrote: trace, summary, contacts")
+      .def_readonly("trace", &RunResult::trace, "trace.csv as {column: numpy array}")
+      .def_readonly("summary", &RunResult::summary, "summary.json as a dict")
+      .def_readonly("contacts", &RunResult::contacts, "contacts/*.json as {name: dict}")
+      .def_readonly("failed_expectations", &RunResult::failed_expectations, "The scene's [expect] that failed")
+      .def_readonly("steps", &RunResult::steps, "Haptic steps run")
+      .def_readonly("out", &RunResult::out, "The run folder when one was given (else None: a temporary one, removed)");
+  m.def("run", &run, "scene"_a, py::kw_only(), "duration"_a = py::none(), "set"_a = py::dict(), "out"_a = py::none(),
+        "close_ups"_a = false, "Runs a scene as `godfinger run` does; returns its trace, summary and contacts");
+  m.def("study", &study, "name_or_file"_a, py::kw_only(), "jobs"_a = 1, "quick"_a = false, "set"_a = py::dict(),
+        "out"_a = py::none(), "progress"_a = false,
+        "Runs an accuracy study as `godfinger study` does; returns results.csv as {column: numpy array}");
+  bindWorld(m);
+}
