@@ -35,9 +35,12 @@ constexpr int kHacdVerticesPerPart = 64;
 // Moves a loaded mesh into its principal frame and fills mass properties of `out`.
 std::shared_ptr<const Mesh> toBodyFrame(const BodyDesc& d, const Mesh& mesh, BodyShapes& out) {
   const MassProperties mp = massProperties(mesh);
-  if (d.mass > 0.0 && !(mp.volume > 1e-15)) {
-    fail(d, "mesh", "'" + d.mesh_path + "' encloses no volume (open or inside-out?): a dynamic "
-                    "mesh body needs a closed, outward-wound mesh");
+  if (d.mass > 0.0) {
+    const SolidCheck solid = solidCheck(mesh);
+    if (!solid.solid || !(mp.volume > 1e-15)) {
+      fail(d, "mesh", "'" + d.mesh_path + "': " + (solid.solid ? "its volume is too small" : solid.why_not) +
+                          "; a dynamic body takes its mass distribution from that volume (make it static, or close the mesh)");
+    }
   }
   Eigen::Matrix3d axes = Eigen::Matrix3d::Identity();
   Vec3 principal = Vec3::Zero();

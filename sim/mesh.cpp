@@ -313,4 +313,31 @@ MassProperties massProperties(const Mesh& m) {
   return mp;
 }
 
+SolidCheck solidCheck(const Mesh& m) {
+  // Openings that close up in space leave the faces' vector area (sum of area times normal) at
+  // zero, as for a closed surface; relative to the total area, up to rounding.
+  constexpr double kOpenVectorArea = 1e-9;
+  const MeshBuildReport& r = m.report();
+  Vec3 vector_area = Vec3::Zero();
+  double area = 0.0;
+  for (int f = 0; f < m.faceCount(); ++f) {
+    const Vec3 n = (m.corner(f, 1) - m.corner(f, 0)).cross(m.corner(f, 2) - m.corner(f, 0));
+    vector_area += 0.5 * n;
+    area += 0.5 * n.norm();
+  }
+  const bool closed = r.boundary_edges == 0 && r.non_manifold_edges == 0;
+  SolidCheck c;
+  if (!closed && vector_area.norm() > kOpenVectorArea * area) {
+    c.why_not = "not closed (" + std::to_string(r.boundary_edges) + " boundary and " +
+                std::to_string(r.non_manifold_edges) + " non-manifold edges): it encloses no volume";
+    return c;
+  }
+  if (!(massProperties(m).volume > 0.0)) {
+    c.why_not = "it encloses no volume (inside-out: its faces are wound inward)";
+    return c;
+  }
+  c.solid = true;
+  return c;
+}
+
 }  // namespace gf::sim

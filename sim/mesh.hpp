@@ -144,6 +144,17 @@ struct MassProperties {
 };
 MassProperties massProperties(const Mesh& mesh);
 
+/// Whether a mesh encloses a volume, so that a dynamic body may take its mass distribution from
+/// it: it is closed (no boundary or non-manifold edge), or its openings close up in space (cracks
+/// along T-junctions: the faces' vector area sums to zero, so the volume does not depend on
+/// where it is measured from), and it is wound outward (volume > 0). `why_not` says what fails
+/// ("" when solid), in the words `godfinger mesh-info` and the scene reader use.
+struct SolidCheck {
+  bool solid = false;
+  std::string why_not;
+};
+SolidCheck solidCheck(const Mesh& mesh);
+
 /// Builds a mesh: welds vertices by position, drops degenerate and duplicate triangles, links
 /// neighbours through every edge and marks boundary and non-manifold edges. Deterministic.
 /// Throws std::invalid_argument for non-finite positions, positions beyond 1e150 m of the origin

@@ -16,6 +16,8 @@
 #include <sstream>
 #include <string_view>
 
+#include "sim/detail/off_file.hpp"
+
 namespace gf::sim {
 namespace {
 
@@ -32,154 +34,65 @@ std::string countText(double count) {
   return s.str();
 }
 
-// The next line of `in` that is neither empty nor a comment ('#'), or "" at the end.
-std::string contentLine(std::istream& in, long& number) {
-  std::string line;
-  while (std::getline(in, line)) {
-    ++number;
-    const std::size_t first = line.find_first_not_of(" \t\r");
-    if (first != std::string::npos && line[first] != '#') return line.substr(first);
-  }
-  return "";
-}
-
-// The next line of `in` that is not empty, or "" at the end.
-std::string nonEmptyLine(std::istream& in, long& number) {
-  std::string line;
-  while (std::getline(in, line)) {
-    ++number;
-    const std::size_t first = line.find_first_not_of(" \t\r");
-    if (first != std::string::npos) return line.substr(first);
-  }
-  return "";
-}
-
-// Whether `prefix` (before "OFF") makes an OFF keyword whose counts follow it: [ST][C][N][4] for
-// texture coordinates, colours, normals and homogeneous coordinates.
-bool offPrefix(std::string_view prefix) {
-  for (const std::string_view part : {"ST", "C", "N", "4"}) {
-    if (prefix.starts_with(part)) prefix.remove_prefix(part.size());
-  }
-  return prefix.empty();
-}
-
-// Refuses line `number` of an OFF file of `size` bytes when a run of digits in it reads as a
-// number above `size`: as a count of vertices, faces or coordinates each needs a byte or more.
-void refuseCountsBeyond(const std::string& path, std::uintmax_t size, const std::string& line, long number) {
-  for (std::size_t i = 0; i < line.size();) {
-    if (!std::isdigit(static_cast<unsigned char>(line[i]))) {
-      ++i;
-      continue;
-    }
-    std::size_t j = i;
-    while (j < line.size() && std::isdigit(static_cast<unsigned char>(line[j]))) ++j;
-    const double value = std::strtod(line.substr(i, j - i).c_str(), nullptr);
-    if (value > static_cast<double>(size)) {
-      throw MeshLoadError(path + ":" + std::to_string(number) + ": OFF header: " + line.substr(i, j - i) +
-                          " is more than its " + std::to_string(size) + " bytes can hold as a count");
-    }
-    i = j;
-  }
-}
-
-// Most vertices of an OFF face the importer reads (it skips a longer face).
-constexpr long kMaxOffFaceVertices = 9;
-
-// An OFF file's header against what the file holds: the counts it promises must fit in its size
-// (checked before anything is allocated: a lying header cannot make us, or the importer, reserve
-// gigabytes) and its lines must be there (the importer asserts, aborting the process, otherwise).
-// Its lines must also read as the importer reads them, line by line: it takes the edge count
-// from the next line when the counts line lacks it, and counts a face it skips (a comment line
-// among the faces, a face of 0 or more than 9 vertices) out of the face count without moving
-// on, so two of them wrap the count around and it reads far past its faces (a crash).
-void checkOff(const std::string& path, std::uintmax_t size) {
-  std::ifstream in(path);
-  long number = 0;
-  std::string line = contentLine(in, number);
-  const std::size_t keyword = line.find("OFF");
-  std::string counts;
-  if (keyword != std::string::npos && offPrefix(std::string_view(line).substr(0, keyword))) {
-    counts = line.substr(keyword + 3);
-    if (counts.find_first_not_of(" \t\r") == std::string::npos) counts = contentLine(in, number);
-  } else if (std::isdigit(static_cast<unsigned char>(line[0]))) {
-    counts = line;  // no keyword, which the format allows: the counts come first
-  } else {
-    // nOFF (a dimension before the counts), a prefix the importer takes without the keyword
-    // ("N219647295 327": it reserved 219 million vertices), or not OFF: the importer decides,
-    // but no number it may read as a count or dimension can exceed the file's size.
-    refuseCountsBeyond(path, size, line, number);
-    const std::string next = contentLine(in, number);
-    refuseCountsBeyond(path, size, next, number);
-    return;
-  }
-  std::istringstream c(counts);
-  double nv = -1, nf = -1, ne = -1;
-  c >> nv >> nf >> ne;
-  if (!(nv >= 0) || !(nf >= 0) || !(ne >= 0) || nv != std::floor(nv) || nf != std::floor(nf)) {
-    throw MeshLoadError(path + ":" + std::to_string(number) + ": OFF header: expected vertex, face and edge counts");
-  }
-  // A vertex needs at least "0 0 0\n" (6 bytes), a face "3 0 1 2\n" (8).
-  if (nv * 6 + nf * 8 > static_cast<double>(size)) {
-    throw MeshLoadError(path + ":" + std::to_string(number) + ": OFF header promises " +
-                        countText(nv) + " vertices and " +
-                        countText(nf) + " faces, more than its " + std::to_string(size) +
-                        " bytes can hold");
-  }
-  long vertices = 0, faces = 0;
-  const long want_v = static_cast<long>(nv), want_f = static_cast<long>(nf);
-  for (std::string l = nonEmptyLine(in, number); !l.empty(); l = nonEmptyLine(in, number)) {
-    if (l[0] == '#') {
-      throw MeshLoadError(path + ":" + std::to_string(number) + ": OFF: a comment among the " +
-                          (vertices < want_v ? "vertices" : "faces") + " (the importer reads it as one)");
-    }
-    if (vertices < want_v) {
-      ++vertices;
-      continue;
-    }
-    std::istringstream f(l);
-    long n = 0;
-    f >> n;
-    if (!f || n < 1) throw MeshLoadError(path + ":" + std::to_string(number) + ": OFF face " + std::to_string(faces) + ": expected a vertex count");
-    if (n > kMaxOffFaceVertices) {
-      throw MeshLoadError(path + ":" + std::to_string(number) + ": OFF face " + std::to_string(faces) + " has " +
-                          std::to_string(n) + " vertices; the importer reads at most 9");
-    }
-    for (long k = 0; k < n; ++k) {
-      long index = -1;
-      f >> index;
-      if (!f) throw MeshLoadError(path + ":" + std::to_string(number) + ": OFF face " + std::to_string(faces) + ": expected " + std::to_string(n) + " vertex indices");
-      if (index < 0 || index >= want_v) {
-        throw MeshLoadError(path + ":" + std::to_string(number) + ": OFF face " + std::to_string(faces) + " names vertex " +
-                            std::to_string(index) + " of " + std::to_string(want_v));
-      }
-    }
-    if (++faces == want_f) break;
-  }
-  if (vertices < want_v || faces < want_f) {
-    throw MeshLoadError(path + ": OFF header promises " + std::to_string(want_v) + " vertices and " + std::to_string(want_f) +
-                        " faces; the file holds " + std::to_string(vertices) + " and " + std::to_string(faces));
-  }
-}
-
-// A binary STL's triangle count against its size (84-byte header, 50 bytes a triangle).
+// A binary STL's triangle count against its size (84-byte header, 50 bytes a triangle), both
+// ways: fewer bytes than the count needs, or room for more whole triangles than it counts. A
+// file starting with "solid" is ASCII unless its size is exactly what its count needs.
 void checkStl(const std::string& path, std::uintmax_t size) {
   std::ifstream in(path, std::ios::binary);
   char head[84] = {};
   in.read(head, sizeof head);
-  if (in.gcount() < 84 || std::strncmp(head, "solid", 5) == 0) return;  // ASCII STL: the importer reads it
+  if (in.gcount() < 84) return;  // too short for binary: the importer decides
   std::uint32_t count = 0;
   std::memcpy(&count, head + 80, 4);
-  if (84 + 50 * static_cast<std::uintmax_t>(count) > size) {
+  const std::uintmax_t needs = 84 + 50 * static_cast<std::uintmax_t>(count);
+  if (std::strncmp(head, "solid", 5) == 0 && needs != size) return;  // ASCII STL: the importer reads it
+  if (needs > size) {
     throw MeshLoadError(path + ": binary STL header promises " + std::to_string(count) + " triangles, more than its " +
                         std::to_string(size) + " bytes hold");
   }
+  if (const std::uintmax_t more = (size - needs) / 50; more > 0) {
+    throw MeshLoadError(path + ": binary STL header counts " + std::to_string(count) + " triangles; the file holds " +
+                        std::to_string(size - needs) + " bytes more, room for " + std::to_string(more) +
+                        " more (a wrong count would drop them)");
+  }
 }
 
-// A PLY header's element counts against the file's size (at least one byte per element), and
-// its end: the importer reads a header without an end_header line forever.
-void checkPly(const std::string& path, std::uintmax_t size) {
+// A PLY file's header: its format and elements, each with its properties' sizes in bytes.
+struct PlyProperty {
+  int bytes = 0;       ///< a scalar's size, or a list's item size
+  int count_bytes = 0; ///< a list's count size; 0 for a scalar
+  bool count_signed = false;
+};
+struct PlyElement {
+  std::string name;
+  double count = 0;
+  std::vector<PlyProperty> properties;
+};
+struct PlyHeader {
+  std::string format;  ///< "ascii", "binary_little_endian" or "binary_big_endian"
+  std::vector<PlyElement> elements;
+  std::streamoff body = 0;  ///< where the elements start
+};
+
+// Bytes of a PLY type (0 for an unknown name) and whether it is signed.
+int plyBytes(const std::string& type, bool* is_signed = nullptr) {
+  static const std::pair<const char*, int> kTypes[] = {
+      {"char", -1}, {"uchar", 1}, {"int8", -1}, {"uint8", 1}, {"short", -2}, {"ushort", 2}, {"int16", -2},
+      {"uint16", 2}, {"int", -4}, {"uint", 4}, {"int32", -4}, {"uint32", 4}, {"float", 4}, {"float32", 4},
+      {"double", 8}, {"float64", 8}};
+  for (const auto& [name, bytes] : kTypes) {
+    if (type != name) continue;
+    if (is_signed) *is_signed = bytes < 0;
+    return std::abs(bytes);
+  }
+  return 0;
+}
+
+// The header, its end required (the importer reads a header without an end_header line forever)
+// and its counts checked against the file's size (at least one byte per element).
+PlyHeader readPlyHeader(const std::string& path, std::ifstream& in, std::uintmax_t size) {
   constexpr long kMaxHeaderLines = 10000;
-  std::ifstream in(path, std::ios::binary);
+  PlyHeader h;
   std::string line;
   long number = 0;
   double elements = 0;
@@ -187,13 +100,20 @@ void checkPly(const std::string& path, std::uintmax_t size) {
   while (!ended && number < kMaxHeaderLines && std::getline(in, line)) {
     ++number;
     std::istringstream l(line);
-    std::string word, name;
-    double count = -1;
-    l >> word;
+    std::string word, a, b, c;
+    l >> word >> a >> b >> c;
     ended = word == "end_header";
+    if (word == "format") h.format = a;
+    if (word == "property" && !h.elements.empty()) {
+      PlyProperty p;
+      p.bytes = a == "list" ? plyBytes(c) : plyBytes(a);
+      if (a == "list") p.count_bytes = plyBytes(b, &p.count_signed);
+      h.elements.back().properties.push_back(p);
+    }
     if (word != "element") continue;
-    l >> name >> count;
-    if (!(count >= 0)) throw MeshLoadError(path + ":" + std::to_string(number) + ": PLY element " + name + ": expected a count");
+    const double count = std::strtod(b.c_str(), nullptr);
+    if (!(count >= 0)) throw MeshLoadError(path + ":" + std::to_string(number) + ": PLY element " + a + ": expected a count");
+    h.elements.push_back({a, count, {}});
     elements += count;
   }
   if (!ended) {
@@ -204,6 +124,84 @@ void checkPly(const std::string& path, std::uintmax_t size) {
     throw MeshLoadError(path + ": PLY header promises " + countText(elements) +
                         " elements, more than its " + std::to_string(size) + " bytes hold");
   }
+  h.body = in.tellg();
+  return h;
+}
+
+// The header's element counts ("vertex 8, face 12").
+std::string plyCounts(const PlyHeader& h) {
+  std::string s;
+  for (const PlyElement& e : h.elements) s += (s.empty() ? "" : ", ") + e.name + " " + countText(e.count);
+  return s;
+}
+
+// An ASCII PLY holds one element a line: as many content lines as the header counts elements.
+void checkPlyAsciiBody(const std::string& path, std::ifstream& in, const PlyHeader& h) {
+  double counted = 0, lines = 0;
+  for (const PlyElement& e : h.elements) counted += e.count;
+  for (std::string line; std::getline(in, line);) {
+    if (line.find_first_not_of(" \t\r") != std::string::npos) ++lines;
+  }
+  if (lines != counted) {
+    throw MeshLoadError(path + ": PLY header counts " + countText(counted) + " elements (" + plyCounts(h) +
+                        "); the file holds " + countText(lines) + " lines of them");
+  }
+}
+
+// A binary PLY's elements walked through (lists by their counts) to the end of the file: the
+// header may count neither more elements than the file holds nor fewer.
+void checkPlyBinaryBody(const std::string& path, std::ifstream& in, const PlyHeader& h, std::uintmax_t size) {
+  const bool big_endian = h.format == "binary_big_endian";
+  std::uintmax_t at = static_cast<std::uintmax_t>(h.body);
+  for (const PlyElement& e : h.elements) {
+    const auto lists = std::count_if(e.properties.begin(), e.properties.end(), [](const PlyProperty& p) { return p.count_bytes > 0; });
+    for (double i = 0; i < e.count && at <= size; ++i) {
+      if (lists == 0) {  // fixed-size rows: all at once
+        std::uintmax_t row = 0;
+        for (const PlyProperty& p : e.properties) row += static_cast<std::uintmax_t>(p.bytes);
+        at += row * static_cast<std::uintmax_t>(e.count);
+        break;
+      }
+      for (const PlyProperty& p : e.properties) {
+        if (p.count_bytes == 0 || p.bytes == 0) {
+          at += static_cast<std::uintmax_t>(p.bytes);
+          continue;
+        }
+        unsigned char b[4] = {};
+        in.seekg(static_cast<std::streamoff>(at));
+        if (!in.read(reinterpret_cast<char*>(b), p.count_bytes)) break;
+        std::uint32_t n = 0;
+        for (int k = 0; k < p.count_bytes; ++k) n = n << 8 | b[big_endian ? k : p.count_bytes - 1 - k];
+        if (p.count_signed && (b[big_endian ? 0 : p.count_bytes - 1] & 0x80)) n = 0;  // negative: none
+        at += static_cast<std::uintmax_t>(p.count_bytes) + static_cast<std::uintmax_t>(n) * static_cast<std::uintmax_t>(p.bytes);
+      }
+    }
+  }
+  if (at > size) {
+    throw MeshLoadError(path + ": PLY header counts " + plyCounts(h) + "; the file ends before the last of them (" +
+                        std::to_string(at - size) + " bytes short)");
+  }
+  if (at < size) {
+    std::string rest(static_cast<std::size_t>(std::min<std::uintmax_t>(size - at, 64)), '\0');
+    in.clear();
+    in.seekg(static_cast<std::streamoff>(at));
+    in.read(rest.data(), static_cast<std::streamsize>(rest.size()));
+    if (size - at > 64 || rest.find_first_not_of(std::string(" \t\r\n\0", 5)) != std::string::npos) {
+      throw MeshLoadError(path + ": PLY header counts " + plyCounts(h) + "; the file holds " + std::to_string(size - at) +
+                          " bytes more after them (a wrong count would drop them)");
+    }
+  }
+}
+
+// A PLY file's header and body agree: every element the header counts is there, and no more.
+void checkPly(const std::string& path, std::uintmax_t size) {
+  std::ifstream in(path, std::ios::binary);
+  const PlyHeader h = readPlyHeader(path, in, size);
+  const bool known = std::all_of(h.elements.begin(), h.elements.end(), [](const PlyElement& e) {
+    return std::all_of(e.properties.begin(), e.properties.end(), [](const PlyProperty& p) { return p.bytes > 0; });
+  });
+  if (h.format == "ascii") checkPlyAsciiBody(path, in, h);
+  if (h.format.starts_with("binary") && known) checkPlyBinaryBody(path, in, h, size);
 }
 
 // Headers that lie about what the file holds, before the importer sees them.
@@ -212,7 +210,6 @@ void checkHeader(const std::string& path) {
   const std::uintmax_t size = std::filesystem::file_size(path, ec);
   if (ec) throw MeshLoadError(path + ": cannot read mesh: " + ec.message());
   const std::string ext = lower(std::filesystem::path(path).extension().string());
-  if (ext == ".off") checkOff(path, size);
   if (ext == ".stl") checkStl(path, size);
   if (ext == ".ply") checkPly(path, size);
 }
@@ -258,6 +255,7 @@ void colladaAsset(const std::string& path, MeshFileInfo& info) {
     if (axis != std::string::npos) info.declared_up = head.substr(axis, 1);
   }
   info.unit_and_up_applied = true;  // the Collada importer scales and turns the root node
+  info.unit_applied = true;
 }
 
 void addParts(const aiScene& scene, const aiNode& node, const aiMatrix4x4& parent, MeshFileInfo& info) {
@@ -277,9 +275,40 @@ void addParts(const aiScene& scene, const aiNode& node, const aiMatrix4x4& paren
   for (unsigned i = 0; i < node.mNumChildren; ++i) addParts(scene, *node.mChildren[i], global, info);
 }
 
+// An FBX file's unit in metres: its UnitScaleFactor counts centimetres (1: the unit is 1 cm);
+// 1 when the importer gives none.
+double fbxUnit(const aiScene& scene) {
+  if (scene.mMetaData == nullptr) return 1.0;
+  for (unsigned i = 0; i < scene.mMetaData->mNumProperties; ++i) {
+    const aiMetadataEntry& e = scene.mMetaData->mValues[i];
+    if (std::string(scene.mMetaData->mKeys[i].C_Str()) != "UnitScaleFactor") continue;
+    double unit = 0.0;
+    if (e.mType == AI_DOUBLE) unit = *static_cast<const double*>(e.mData);
+    if (e.mType == AI_FLOAT) unit = *static_cast<const float*>(e.mData);
+    if (unit > 0.0 && std::isfinite(unit)) return 0.01 * unit;
+  }
+  return 1.0;
+}
+
+bool isFbx(const std::string& path) { return lower(std::filesystem::path(path).extension().string()) == ".fbx"; }
+bool isOff(const std::string& path) { return lower(std::filesystem::path(path).extension().string()) == ".off"; }
+
+// An OFF file, read by our reader: one part, no declared unit or up axis.
+MeshFileInfo describeOffFile(const std::string& path) {
+  const detail::OffFile off = detail::readOffFile(path, 1.0);
+  MeshFileInfo info;
+  info.format = "OFF (Object File Format)";
+  MeshPart part;
+  part.vertices = static_cast<int>(off.vertices);
+  part.triangles = static_cast<int>(off.mesh.triangles.size());
+  info.parts.push_back(part);
+  return info;
+}
+
 }  // namespace
 
 MeshFileInfo describeMeshFile(const std::string& path) {
+  if (isOff(path)) return describeOffFile(path);
   checkHeader(path);
   Assimp::Importer importer;
   const aiScene* scene = importer.ReadFile(path, 0);
@@ -303,6 +332,7 @@ MeshFileInfo describeMeshFile(const std::string& path) {
     }
   }
   if (up_axis >= 0) info.declared_up = (up_negative ? "-" : "") + kAxisNames[up_axis];
+  info.unit_applied = isFbx(path) && info.declared_unit_m > 0.0;  // readMeshFile applies it
   const std::string ext = lower(std::filesystem::path(path).extension().string());
   if (ext == ".dae") colladaAsset(path, info);
   if (ext == ".gltf" || ext == ".glb") {
@@ -316,6 +346,11 @@ MeshFileInfo describeMeshFile(const std::string& path) {
 RawMesh readMeshFile(const std::string& path, double scale) {
   if (!std::isfinite(scale) || scale <= 0.0) {
     throw MeshLoadError(path + ": scale must be a positive finite number");
+  }
+  if (isOff(path)) {
+    RawMesh off = detail::readOffFile(path, scale).mesh;
+    if (off.triangles.empty()) throw MeshLoadError(path + ": the file holds no triangle");
+    return off;
   }
   checkHeader(path);
   Assimp::Importer importer;
@@ -331,6 +366,7 @@ RawMesh readMeshFile(const std::string& path, double scale) {
   if (scene == nullptr) {
     throw MeshLoadError(path + ": cannot read mesh: " + importer.GetErrorString());
   }
+  const double unit = isFbx(path) ? fbxUnit(*scene) : 1.0;  // the file's declared unit in metres
   RawMesh raw;
   for (unsigned mi = 0; mi < scene->mNumMeshes; ++mi) {
     const aiMesh* mesh = scene->mMeshes[mi];
@@ -338,7 +374,7 @@ RawMesh readMeshFile(const std::string& path, double scale) {
     const auto base = static_cast<std::int32_t>(raw.positions.size());
     for (unsigned v = 0; v < mesh->mNumVertices; ++v) {
       const aiVector3D& p = mesh->mVertices[v];
-      const Vec3 q = scale * Vec3(p.x, p.y, p.z);
+      const Vec3 q = scale * unit * Vec3(p.x, p.y, p.z);
       if (!q.allFinite()) {
         throw MeshLoadError(path + ": vertex " + std::to_string(v) + " of mesh " +
                             std::to_string(mi) + " is not finite");

@@ -23,7 +23,9 @@ struct RawMesh {
   std::vector<std::array<std::int32_t, 3>> triangles;
 };
 
-/// Reads every triangle of every mesh in the file, node transforms applied, times `scale`.
+/// Reads every triangle of every mesh in the file, node transforms applied, in the file's
+/// declared unit (FBX's UnitScaleFactor, in centimetres; Collada's <unit>), times `scale`. OFF
+/// files are read by our own reader (detail/off_file.hpp), the rest by assimp.
 /// Points and lines are ignored. Throws MeshLoadError when the file cannot be read or holds no
 /// triangle, or a coordinate is not finite. Allocates; call at load time only.
 RawMesh readMeshFile(const std::string& path, double scale = 1.0);
@@ -45,6 +47,7 @@ struct MeshFileInfo {
   double declared_unit_m = 0.0;    ///< metres per file unit the file declares; 0: none
   std::string declared_up;         ///< "X", "Y" or "Z" (with a sign when negative); "": none
   bool unit_and_up_applied = false;  ///< the importer turned them into the root's transform
+  bool unit_applied = false;  ///< readMeshFile gives metres from the declared unit (Collada, FBX)
 };
 
 /// Reads the file's parts, node transforms and declared unit and up axis (Collada's <unit> and

@@ -2,6 +2,8 @@
 
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
+#include <iomanip>
 #include <numbers>
 #include <sstream>
 #include <type_traits>
@@ -10,6 +12,26 @@
 #include "sim/primitives.hpp"
 
 namespace gf::sim {
+
+std::string numberText(double x, int digits) {
+  for (;; ++digits) {
+    std::ostringstream s;
+    s << std::setprecision(digits) << x;
+    if (digits >= 17 || std::strtod(s.str().c_str(), nullptr) == x) return s.str();
+  }
+}
+
+std::pair<std::string, std::string> distinctTexts(double bound, double got, int digits) {
+  const std::string g = numberText(got);
+  for (;; ++digits) {
+    std::ostringstream b;
+    b << std::setprecision(digits) << bound;
+    // The bound as printed must lie on the same side of the value as the bound itself.
+    const double shown_bound = std::strtod(b.str().c_str(), nullptr);
+    if (digits >= 17 || ((shown_bound < got) == (bound < got) && (shown_bound > got) == (bound > got))) return {b.str(), g};
+  }
+}
+
 namespace {
 
 // Vector components are bounded to what a haptic scene can hold and the solver stays finite on
@@ -101,11 +123,7 @@ const char* nSgoRule(double n) {
 }
 
 // Formats a number as a reason shows it (6 significant digits).
-std::string shown(double x) {
-  std::ostringstream s;
-  s << x;
-  return s.str();
-}
+std::string shown(double x) { return numberText(x); }
 
 std::string rangeReason(const SettingKind kind, double min, double max, bool min_excluded, double got) {
   if (kind == SettingKind::kInteger || kind == SettingKind::kChoice) {
@@ -349,12 +367,10 @@ std::optional<FieldError> validateFinger(const FingerDesc& finger) {
   // contact_stiffness. Past its radius the proxy's centre is inside the body, whose nearest face
   // may then be the far one: a 1 mm proxy at 40 N went 2 mm into a 1 mm wall.
   if (const double depth = finger.coupling.max_force / finger.proxy.contact_stiffness; !(depth < finger.proxy.radius)) {
-    char b[200];
-    std::snprintf(b, sizeof b,
-                  "must exceed max_force / contact_stiffness = %.4g m, how deep the contact lets the proxy in at "
-                  "the coupling's clamp (lower max_force or raise contact_stiffness), got %s",
-                  depth, shown(finger.proxy.radius).c_str());
-    return FieldError{"proxy_radius", b};
+    const auto [bound, got] = distinctTexts(depth, finger.proxy.radius);
+    return FieldError{"proxy_radius", "must exceed max_force / contact_stiffness = " + bound +
+                                          " m, how deep the contact lets the proxy in at the coupling's clamp (lower "
+                                          "max_force or raise contact_stiffness), got " + got};
   }
   if (std::optional<FieldError> e = validateTrack(finger.device)) {
     e->field = "device." + e->field;
@@ -365,20 +381,15 @@ std::optional<FieldError> validateFinger(const FingerDesc& finger) {
 
 std::optional<FieldError> validateCouplingStability(const FingerDesc& finger, double haptic_rate_hz) {
   const double m = finger.proxy.mass, rate = haptic_rate_hz;
-  const auto limit = [](double v) {
-    char b[48];
-    std::snprintf(b, sizeof b, "%.4g", v);
-    return std::string(b);
-  };
   if (finger.coupling.stiffness > m * rate * rate) {
-    return FieldError{"coupling_stiffness", "must be at most proxy_mass x haptic_rate^2 = " + limit(m * rate * rate) +
-                                                " N/m here (the coupling spring is integrated explicitly), got " +
-                                                shown(finger.coupling.stiffness)};
+    const auto [bound, got] = distinctTexts(m * rate * rate, finger.coupling.stiffness);
+    return FieldError{"coupling_stiffness", "must be at most proxy_mass x haptic_rate^2 = " + bound +
+                                                " N/m here (the coupling spring is integrated explicitly), got " + got};
   }
   if (finger.coupling.damping > m * rate) {
-    return FieldError{"coupling_damping", "must be at most proxy_mass x haptic_rate = " + limit(m * rate) +
-                                              " N s/m here (the coupling damper is integrated explicitly), got " +
-                                              shown(finger.coupling.damping)};
+    const auto [bound, got] = distinctTexts(m * rate, finger.coupling.damping);
+    return FieldError{"coupling_damping", "must be at most proxy_mass x haptic_rate = " + bound +
+                                              " N s/m here (the coupling damper is integrated explicitly), got " + got};
   }
   return std::nullopt;
 }

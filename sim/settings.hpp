@@ -9,6 +9,7 @@
 #include <span>
 #include <stdexcept>
 #include <string>
+#include <utility>
 #include <string_view>
 
 #include "sim/scene_desc.hpp"
@@ -89,6 +90,16 @@ const Setting<Desc>* findSetting(std::span<const Setting<Desc>> table, std::stri
   }
   return nullptr;
 }
+
+/// `x` as text for messages: `digits` significant digits, and as many more (up to 17) as it
+/// takes to read back as `x`, so that "got X" never reads as a bound X violates
+/// (1.000001 is "1.000001", not "1"). Any thread; allocates.
+std::string numberText(double x, int digits = 6);
+
+/// A computed bound and the value that violates it as texts: the value as numberText gives it,
+/// the bound with `digits` significant digits and more while, as printed, it would equal the
+/// value or lie on the value's other side (up to 17). Any thread; allocates.
+std::pair<std::string, std::string> distinctTexts(double bound, double got, int digits = 4);
 
 /// Why `given` (in the setting's unit) is not legal for `setting`, or nullopt when it is.
 /// Allocates only to return a reason. Any thread.

@@ -46,7 +46,8 @@ std::string closest(const nlohmann::json& checks) {
 
 std::vector<std::string> checkedScenes(const std::vector<std::string>& paths) {
   std::vector<std::string> out;
-  for (const std::string& p : paths) {
+  for (const std::string& given : paths) {
+    const std::string p = resolveDataPath(given);
     if (fs::is_directory(p)) {
       std::vector<std::string> found;
       for (const auto& e : fs::recursive_directory_iterator(p)) {

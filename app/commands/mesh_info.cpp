@@ -5,6 +5,7 @@
 #include <cstdio>
 
 #include "app/commands/commands.hpp"
+#include "app/scene/data_folder.hpp"
 #include "app/scene/input_error.hpp"
 #include "sim/mesh.hpp"
 #include "sim/mesh_import.hpp"
@@ -59,7 +60,8 @@ nlohmann::json meshInfoJson(const MeshInfoOptions& o) {
       {"part_count", parts.size()},
       {"declared", {{"unit_m", file.declared_unit_m > 0.0 ? nlohmann::json(file.declared_unit_m) : nlohmann::json(nullptr)},
                     {"up_axis", file.declared_up.empty() ? nlohmann::json(nullptr) : nlohmann::json(file.declared_up)},
-                    {"applied_by_the_importer", file.unit_and_up_applied}}},
+                    {"applied_by_the_importer", file.unit_and_up_applied},
+                    {"unit_applied", file.unit_applied}}},
       {"scale", o.scale},
       {"read", {{"vertices", raw_vertices}, {"triangles", raw_triangles}}},
       {"welded", {{"vertices", mesh.vertexCount()}, {"triangles", mesh.faceCount()},
@@ -70,7 +72,8 @@ nlohmann::json meshInfoJson(const MeshInfoOptions& o) {
       {"checks", {{"closed", closed}, {"boundary_edges", r.boundary_edges}, {"non_manifold_edges", r.non_manifold_edges},
                   {"inconsistent_winding_edges", r.inconsistent_edges}, {"outward", outward}}},
   };
-  if (closed && mp.volume > 0.0) {
+  const sim::SolidCheck solid = sim::solidCheck(mesh);  // the rule a dynamic body meets in a scene
+  if (solid.solid) {
     const double mass = o.mass > 0.0 ? o.mass : o.density * mp.volume;
     const Eigen::Matrix3d inertia = (mass / mp.volume) * mp.inertia;
     const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> principal(inertia);
@@ -83,8 +86,7 @@ nlohmann::json meshInfoJson(const MeshInfoOptions& o) {
                   {"principal_moments_kg_m2", vec(principal.eigenvalues())}};
   } else {
     j["solid"] = nullptr;
-    j["solid_why_not"] = closed ? "encloses no volume (inside-out): usable as a static body or a walk mesh only"
-                                : "not closed: encloses no volume; usable as a static body or a walk mesh only";
+    j["solid_why_not"] = solid.why_not + ": usable as a static body or a walk mesh only (a dynamic body is refused)";
   }
   const double suggest = suggestedScale(extent.maxCoeff(), o.scale);
   j["suggested_scale"] = suggest > 0.0 ? nlohmann::json(suggest) : nlohmann::json(nullptr);
@@ -113,8 +115,9 @@ std::string meshInfoText(const nlohmann::json& j) {
          (p["transformed"].get<bool>() ? ", moved to " + v3(p["translation"]) + " by its node" : ""));
   }
   const nlohmann::json& d = j["declared"];
+  const bool unit_only = d["unit_applied"].get<bool>() && !d["applied_by_the_importer"].get<bool>();
   line("declared unit: " + (d["unit_m"].is_null() ? std::string("none") : format("%g m", d["unit_m"].get<double>())) +
-       ", up axis: " + (d["up_axis"].is_null() ? std::string("none") : d["up_axis"].get<std::string>()) +
+       (unit_only ? " (applied on reading)" : "") + ", up axis: " + (d["up_axis"].is_null() ? std::string("none") : d["up_axis"].get<std::string>()) +
        (d["applied_by_the_importer"].get<bool>() ? " (applied on reading)" : ""));
   line("welded: " + std::to_string(j["welded"]["vertices"].get<int>()) + " vertices, " +
        std::to_string(j["welded"]["triangles"].get<int>()) + " triangles (read " + std::to_string(j["read"]["vertices"].get<int>()) +
@@ -162,6 +165,7 @@ class MeshInfoCommand final : public Command {
 
   int run() override {
     try {
+      options_.path = resolveDataPath(options_.path);
       const nlohmann::json info = meshInfoJson(options_);
       std::fputs(json_ ? (info.dump(2) + "\n").c_str() : meshInfoText(info).c_str(), stdout);
     } catch (const sim::MeshLoadError& e) {

@@ -9,6 +9,7 @@
 #include "app/commands/commands.hpp"
 #include "app/runs/contacts.hpp"
 #include "app/runs/files.hpp"
+#include "app/scene/data_folder.hpp"
 #include "app/scene/input_error.hpp"
 #include "render/render_thread.hpp"
 #include "sim/contact_record.hpp"
@@ -139,6 +140,7 @@ int PatchCommand::run() {
   const sim::PatchSettings& settings = a.finger.patch;
   std::shared_ptr<const sim::Mesh> mesh;
   try {
+    a.mesh = resolveDataPath(a.mesh);
     mesh = std::make_shared<const sim::Mesh>(sim::loadMesh(a.mesh, a.scale));
   } catch (const sim::MeshLoadError& e) {
     throw InputError("command line", 0, 0, "--mesh", e.what());

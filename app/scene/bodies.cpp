@@ -105,6 +105,15 @@ double bodyVolume(const sim::BodyDesc& b) {
   return 0.0;
 }
 
+// A dynamic mesh body spreads its mass over the volume its mesh encloses: an open or inside-out
+// mesh has none (the rule of sim::solidCheck, which `godfinger mesh-info` reports too).
+void requireSolid(Reader& r, const sim::BodyDesc& b) {
+  if (const sim::SolidCheck solid = sim::solidCheck(*b.mesh); !solid.solid) {
+    r.fail(r.find("mesh"), "mesh", "'" + b.mesh_path + "': " + solid.why_not + "; a dynamic body takes its mass "
+           "distribution from that volume: set static = true, or close the mesh (godfinger mesh-info shows its edges)");
+  }
+}
+
 // Body settings every shape has (dimensions, scale and mass are read where they apply).
 bool commonBodySetting(const sim::Setting<sim::BodyDesc>& s) {
   for (const sim::ShapeInfo& shape : sim::shapeInfos()) {
@@ -131,6 +140,7 @@ sim::BodyDesc readBody(const std::string& name, const toml::table& t, const Read
   const bool is_plane = b.shape == sim::ShapeKind::kPlane;
   const bool is_static = r.boolean("static", is_plane);
   if (is_plane && !is_static) r.fail(r.find("static"), "static", "a plane is always static");
+  if (!is_static && sim::isMeshShape(b.shape)) requireSolid(r, b);
   if (is_static) {
     for (const char* field : {"mass", "density"}) {
       if (r.has(field)) r.fail(r.find(field), field, "a static body has no mass; remove the field");
@@ -146,9 +156,8 @@ sim::BodyDesc readBody(const std::string& name, const toml::table& t, const Read
     b.mass = density * volume;
     const sim::Setting<sim::BodyDesc>& mass = *sim::findSetting(sim::bodySettings(), "mass");
     if (const std::optional<std::string> why = sim::checkGiven(mass, b.mass)) {
-      char text[160];
-      std::snprintf(text, sizeof text, "gives a mass of %g kg (volume %g m^3): ", b.mass, volume);
-      r.fail(r.find("density"), "density", text + *why);
+      r.fail(r.find("density"), "density",
+             "gives a mass of " + sim::numberText(b.mass) + " kg (volume " + sim::numberText(volume) + " m^3): " + *why);
     }
   } else {
     r.setting(*sim::findSetting(sim::bodySettings(), "mass"), b, "mass", true);
@@ -176,11 +185,10 @@ void checkMassRatios(Reader& r, const sim::SceneDesc& scene) {
     const auto body = std::find_if(scene.bodies.begin(), scene.bodies.end(), [&name = name](const sim::BodyDesc& b) { return b.name == name; });
     if (body == scene.bodies.end() || body->mass <= 0.0 || body->mass >= lightest * (1 - 1e-9)) continue;
     Reader br(*t, r.field("bodies." + name), r.file());
-    char why[240];
-    std::snprintf(why, sizeof why,
-                  "must be at least 1/100 of the heaviest proxy, %g kg here (fingers.%s.proxy_mass %g kg): the solver "
-                  "cannot hold a lighter body in a pinch, got %g",
-                  lightest, heaviest->name.c_str(), heaviest->proxy.mass, body->mass);
+    const auto [least, got] = sim::distinctTexts(lightest, body->mass, 6);
+    const std::string why = "must be at least 1/100 of the heaviest proxy, " + least + " kg here (fingers." +
+                            heaviest->name + ".proxy_mass " + sim::numberText(heaviest->proxy.mass) +
+                            " kg): the solver cannot hold a lighter body in a pinch, got " + got;
     const char* field = br.has("density") ? "density" : "mass";  // the field the user wrote
     br.fail(br.find(field), field, why);
   }

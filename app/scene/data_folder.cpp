@@ -32,7 +32,19 @@ std::string bundledSceneDir() {
   return (fs::path(dataDir()) / "scenes").string();
 }
 
-std::string resolveScenePath(const std::string& scene) {
+std::string resolveDataPath(const std::string& path) {
+  std::error_code ec;
+  const fs::path given(path);
+  if (path.empty() || fs::exists(given, ec) || given.is_absolute()) return path;
+  // Bundled data as the repository names it (assets/meshes/...) or as the data folder does.
+  const auto first = given.begin();
+  const fs::path in_data = *first == "assets" ? given.lexically_relative("assets") : given;
+  const fs::path bundled = fs::path(dataDir()) / in_data;
+  return fs::exists(bundled, ec) ? bundled.lexically_normal().string() : path;
+}
+
+std::string resolveScenePath(const std::string& given) {
+  const std::string scene = resolveDataPath(given);
   if (fs::is_regular_file(scene)) return scene;
   const fs::path bundled = fs::path(bundledSceneDir()) / (scene + ".toml");
   if (scene.find('/') == std::string::npos && fs::is_regular_file(bundled)) return bundled.string();

@@ -16,8 +16,14 @@ std::string dataDir();
 /// The folder of bundled scene files: $GODFINGER_SCENES if set, else dataDir()/scenes.
 std::string bundledSceneDir();
 
-/// A scene argument as given on the command line: a path to a file, or the name of a bundled
-/// scene (without ".toml"). Throws InputError when neither exists.
+/// A file or folder named on the command line: `path` itself when it exists (relative to the
+/// working directory) or is absolute; else the bundled data's copy when there is one, named as
+/// in the repository ("assets/meshes/bunny.obj") or in the data folder ("meshes/bunny.obj");
+/// else `path` unchanged (for the caller's error).
+std::string resolveDataPath(const std::string& path);
+
+/// A scene argument as given on the command line: a path to a file (resolveDataPath), or the name
+/// of a bundled scene (without ".toml"). Throws InputError when neither exists.
 std::string resolveScenePath(const std::string& scene);
 
 /// The bundled scene files, sorted by name.

@@ -241,9 +241,7 @@ class Reader {
     const double v = n.value<double>().value_or(0.0);
     if (!std::isfinite(v)) fail(&n, key, "must be finite");
     if (v < lo || v > hi) {
-      std::ostringstream s;
-      s << "must be in [" << lo << ", " << hi << "], got " << v;
-      fail(&n, key, s.str());
+      fail(&n, key, "must be in [" + sim::numberText(lo) + ", " + sim::numberText(hi) + "], got " + sim::numberText(v));
     }
     return v;
   }

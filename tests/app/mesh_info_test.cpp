@@ -124,6 +124,9 @@ TEST(MeshInfo, AnOpenMeshCountsItsBoundaryAndHasNoSolid) {
   EXPECT_EQ(info["checks"]["boundary_edges"], 4);
   EXPECT_TRUE(info["solid"].is_null());
   EXPECT_NE(meshInfoText(info).find("closed: no (4 boundary edges"), std::string::npos) << meshInfoText(info);
+  EXPECT_NE(info["solid_why_not"].get<std::string>().find("not closed (4 boundary and 0 non-manifold edges)"),
+            std::string::npos)
+      << "the words the scene reader refuses a dynamic body of it with";
 }
 
 // A file that is not a mesh: MeshLoadError naming it.

@@ -191,6 +191,64 @@ TEST(SceneFile, MissingAndEmptyMeshesAreNamed) {
   }
 }
 
+// An open mesh encloses no volume, so a dynamic body cannot take its mass distribution from it:
+// refused naming the scene file, the mesh line and field, as mesh-info calls it "static only"; a
+// static body of it is fine, and a slab whose top is split at T-junctions (open edges whose faces
+// still close up in space) encloses a volume and may be dynamic.
+TEST(SceneFile, AnOpenMeshAsADynamicBodyIsRefusedNamingFileLineAndField) {
+  const fs::path dir = gf::test::scratchRoot() / "gf_scene_file_open_mesh";
+  fs::create_directories(dir);
+  std::ofstream(dir / "open-box.obj") << "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 0 0 1\nv 1 0 1\nv 1 1 1\nv 0 1 1\n"
+                                         "f 1 3 2\nf 1 4 3\nf 1 2 6\nf 1 6 5\nf 2 3 7\nf 2 7 6\nf 3 4 8\nf 3 8 7\n"
+                                         "f 4 1 5\nf 4 5 8\n";
+  // A unit cube whose top face is split at the midpoint of one edge (a T-junction): 2 boundary edges.
+  std::ofstream(dir / "t-cube.obj") << "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 0 0 1\nv 1 0 1\nv 1 1 1\nv 0 1 1\n"
+                                       "v 0.5 0 1\nf 1 3 2\nf 1 4 3\nf 1 2 6\nf 1 6 5\nf 2 3 7\nf 2 7 6\nf 3 4 8\n"
+                                       "f 3 8 7\nf 4 1 5\nf 4 5 8\nf 5 9 8\nf 9 6 7\nf 9 7 8\n";
+  const std::string ball = "shape = \"sphere\"\nradius = 0.03";
+  const std::string dynamic = replaced(ball, "shape = \"mesh\"\nmesh = \"open-box.obj\"\nscale = 0.05");
+  try {
+    parseSceneText(dynamic, "scene.toml", dir.string());
+    ADD_FAILURE() << "an open mesh accepted as a dynamic body";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.file(), "scene.toml");
+    EXPECT_EQ(e.line(), 8) << e.what();
+    EXPECT_EQ(e.field(), "bodies.ball.mesh");
+    EXPECT_NE(e.reason().find("not closed (4 boundary and 0 non-manifold edges)"), std::string::npos) << e.what();
+    EXPECT_NE(e.reason().find("static = true"), std::string::npos) << e.what();
+  }
+  std::string still = dynamic;
+  still.replace(still.find("mass = 0.1"), 10, "static = true");
+  EXPECT_NO_THROW(parseSceneText(still, "scene.toml", dir.string()));
+  std::string cracked = dynamic;
+  cracked.replace(cracked.find("open-box.obj"), 12, "t-cube.obj");
+  EXPECT_NO_THROW(parseSceneText(cracked, "scene.toml", dir.string()));
+}
+
+// Bundled meshes and folders are found by their repository name from any working directory,
+// like bundled scenes; a path that exists where the command runs comes first.
+TEST(SceneFile, BundledMeshesAndFoldersAreFoundFromAnywhere) {
+  const fs::path here = fs::current_path();
+  const fs::path elsewhere = gf::test::scratchRoot() / "gf_data_path_elsewhere";
+  fs::remove_all(elsewhere);
+  fs::create_directories(elsewhere / "assets" / "meshes");
+  fs::current_path(elsewhere);
+  const std::string mesh = resolveDataPath("assets/meshes/bunny.obj");
+  const std::string scenes = resolveDataPath("assets/scenes");
+  const std::string short_name = resolveDataPath("meshes/bunny.obj");
+  std::ofstream("assets/meshes/bunny.obj") << "v 0 0 0\n";
+  const std::string local = resolveDataPath("assets/meshes/bunny.obj");
+  const std::string missing = resolveDataPath("assets/meshes/none.obj");
+  fs::current_path(here);
+  EXPECT_TRUE(fs::is_regular_file(mesh)) << mesh;
+  EXPECT_EQ(fs::path(mesh).filename(), "bunny.obj");
+  EXPECT_TRUE(fs::is_directory(scenes)) << scenes;
+  EXPECT_TRUE(fs::is_regular_file(fs::path(scenes) / "concave-mesh.toml")) << scenes;
+  EXPECT_EQ(short_name, mesh);
+  EXPECT_EQ(local, "assets/meshes/bunny.obj") << "the working directory's file wins";
+  EXPECT_EQ(missing, "assets/meshes/none.obj") << "unchanged, for the caller's error";
+}
+
 TEST(SceneFile, BadOverridesAreNamed) {
   const InputError a = errorOf(kMinimal, {"fingers.left.n_sgo=lots"});
   EXPECT_EQ(a.file(), "--set fingers.left.n_sgo=lots");

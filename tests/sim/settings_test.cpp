@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdlib>
 #include <numbers>
 #include <set>
 #include <vector>
@@ -200,6 +201,36 @@ TEST(Settings, ShapesAndEffectsComeFromTables) {
   EXPECT_FALSE(e.gravity || e.friction || e.god_finger || e.tangential_stretch || e.angular_threshold ||
                e.friction_cone || e.force_feedback)
       << "every physics effect has a row";
+}
+
+// A refusal never reads "got X" with X the bound it violates: values take the digits they need
+// to read back as themselves (d0 = 1.000001 is "got 1.000001", not "got 1"), while round values
+// print as before; a computed bound and its violator print with digits enough to differ.
+TEST(Settings, RefusedValuesNeverPrintAsTheBoundTheyViolate) {
+  const Setting<FingerDesc>& d0 = *findSetting(fingerSettings(), "d0");
+  const std::optional<std::string> why = checkGiven(d0, 1.000001);
+  ASSERT_TRUE(why.has_value());
+  EXPECT_NE(why->find("got 1.000001"), std::string::npos) << *why;
+  EXPECT_NE(why->find("1e-06, 1]"), std::string::npos) << *why;
+  EXPECT_EQ(numberText(1.000001), "1.000001");
+  EXPECT_EQ(numberText(0.1), "0.1");
+  EXPECT_EQ(numberText(1e6), "1e+06");
+  EXPECT_EQ(numberText(1.0 + 1e-15), "1.000000000000001");
+  for (const double x : {1.000001, 0.1 + 0.2, 1e-6 * (1 - 1e-12), 123456.7890123}) {
+    EXPECT_EQ(std::strtod(numberText(x).c_str(), nullptr), x) << numberText(x);
+  }
+  const auto [bound, got] = distinctTexts(0.0010004, 0.001);
+  EXPECT_EQ(bound, "0.0010004");
+  EXPECT_EQ(got, "0.001");
+  EXPECT_EQ(distinctTexts(2.5, 3.0).first, "2.5");
+  EXPECT_EQ(distinctTexts(1e5, 100001).first, "1e+05") << "a round bound stays short";
+  EXPECT_EQ(distinctTexts(0.00100049, 0.0010003).first, "0.0010005") << "0.001 would lie below the value it exceeds";
+  FingerDesc f;
+  f.proxy.radius = f.coupling.max_force / f.proxy.contact_stiffness * (1 - 1e-9);
+  const std::optional<FieldError> e = validateFinger(f);
+  ASSERT_TRUE(e.has_value());
+  const std::size_t eq = e->reason.find("= "), at = e->reason.find("got ");
+  EXPECT_NE(e->reason.substr(eq + 2, e->reason.find(' ', eq + 2) - eq - 2), e->reason.substr(at + 4)) << e->reason;
 }
 
 }  // namespace
