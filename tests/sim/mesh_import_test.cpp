@@ -58,6 +58,15 @@ class MeshImport : public ::testing::Test {
     std::ofstream(p) << text;
     return p.string();
   }
+  // The refusal of `text` written as `name`, after the file's path; "accepted" if it loads.
+  std::string message(const std::string& name, const std::string& text) {
+    try {
+      loadMesh(write(name, text));
+    } catch (const MeshLoadError& e) {
+      return std::string(e.what()).substr((dir_ / name).string().size());
+    }
+    return std::string("accepted");
+  }
   fs::path dir_;
 };
 
@@ -96,14 +105,6 @@ TEST_F(MeshImport, AllDegenerateTrianglesIsAnError) {
 // element before anything is allocated for them (the importer would abort the process on some,
 // and reserve gigabytes for others); a face naming a vertex the file lacks is rejected too.
 TEST_F(MeshImport, LyingHeadersAndBadIndicesAreRejectedNamingTheElement) {
-  const auto message = [&](const std::string& name, const std::string& text) {
-    try {
-      loadMesh(write(name, text));
-    } catch (const MeshLoadError& e) {
-      return std::string(e.what()).substr((dir_ / name).string().size());
-    }
-    return std::string("accepted");
-  };
   const std::string pad = "# padding so the size check alone does not catch it ............................\n";
   EXPECT_EQ(message("huge.off", "OFF\n1000000000 1000000000 0\n"),
             ":2: OFF header promises 1000000000 vertices and 1000000000 faces, more than its 28 bytes can hold");
@@ -139,14 +140,6 @@ TEST_F(MeshImport, OffCommentsAnywhereAreRead) {
 // a vertex more than the header counts (read as a face it is not), a face more, a vertex or
 // face fewer.
 TEST_F(MeshImport, OffCountsThatDisagreeWithTheFileAreRefusedBothWays) {
-  const auto message = [&](const std::string& name, const std::string& text) {
-    try {
-      loadMesh(write(name, text));
-    } catch (const MeshLoadError& e) {
-      return std::string(e.what()).substr((dir_ / name).string().size());
-    }
-    return std::string("accepted");
-  };
   const std::string vertices = "0 0 0\n1 0 0\n0 1 0\n0 0 1\n";
   const std::string faces = "3 0 2 1\n3 0 1 3\n3 0 3 2\n3 1 2 3\n";
   const std::string pad = "# padding so the size check alone does not catch it ..............................\n";
@@ -186,14 +179,6 @@ TEST_F(MeshImport, OffPolygonsOfAnySizeAreSplitIntoTriangles) {
 
 // Binary STL and PLY element counts against the data, both ways.
 TEST_F(MeshImport, StlAndPlyCountsThatDisagreeWithTheDataAreRefusedBothWays) {
-  const auto message = [&](const std::string& name, const std::string& text) {
-    try {
-      loadMesh(write(name, text));
-    } catch (const MeshLoadError& e) {
-      return std::string(e.what()).substr((dir_ / name).string().size());
-    }
-    return std::string("accepted");
-  };
   std::string stl(84 + 2 * 50, '\0');
   const std::uint32_t one = 1;
   std::memcpy(stl.data() + 80, &one, 4);
