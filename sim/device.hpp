@@ -20,6 +20,10 @@ struct DeviceSample {
   /// s: how long the device took to move to `position` from the position it gave before (a
   /// sender's time between its last two packets); 0 for one step, a source sampled every step.
   double interval = 0.0;
+  /// The device's orientation (a 6-DOF device): rotates the device frame into the scene frame.
+  /// Identity for a 3-DOF device, which has none; a god-finger with a pad model reads its pad
+  /// axis through it (PatchSettings::pad_model).
+  Quat orientation = Quat::Identity();
 };
 
 /// A device path through keyframes (time in s, position in m), held at both ends.
@@ -27,11 +31,13 @@ struct DeviceTrack {
   struct Keyframe {
     double time = 0.0;
     Vec3 position = Vec3::Zero();
+    Quat orientation = Quat::Identity();  ///< unit; identity unless the track gives one
   };
   std::vector<Keyframe> keyframes;  ///< strictly increasing times
   Interpolation interpolation = Interpolation::kSmooth;
 
-  /// Position and velocity at time t (s). Before the first keyframe, at the first; after the
+  /// Position, velocity and orientation at time t (s); the orientation is slerped with the
+  /// position's interpolation parameter (shortest arc). Before the first keyframe, at the first; after the
   /// last, at the last; with no keyframe, at the origin. Any thread; does not allocate.
   DeviceSample sample(double t) const;
 };
