@@ -9,6 +9,10 @@
 
 namespace gf::app {
 
+/// Whether the finger's device gives an orientation: a keyframe's (q, a CSV's qw..qz, or the
+/// device's tilt) other than the identity. Only then does trace.csv record it.
+bool deviceGivesOrientation(const sim::FingerDesc& finger);
+
 /// trace.csv's columns for a scene, in order (as TraceWriter documents them).
 std::vector<std::string> traceColumns(const sim::SceneDesc& scene);
 
@@ -20,7 +24,10 @@ class TraceWriter {
   /// Columns: t; per dynamic body its pose (.px .py .pz .qx .qy .qz .qw); per finger its
   /// coupling force (.fx .fy .fz), SGO count (.n_sgo), contact radius (.r), proxy and device
   /// positions (.px .py .pz, .dx .dy .dz); per dynamic body its linear (.vx .vy .vz, m/s) and
-  /// angular (.wx .wy .wz, rad/s, world frame) velocity.
+  /// angular (.wx .wy .wz, rad/s, world frame) velocity; per finger the force sent to the
+  /// device (.sent_fx .sent_fy .sent_fz) and its port energy (.port_energy); last, per finger
+  /// whose device gives an orientation (deviceGivesOrientation), that orientation (.dqw .dqx
+  /// .dqy .dqz).
   TraceWriter(const sim::World& world, const std::string& path);
 
   /// Appends the row of the world's current state.
@@ -32,6 +39,7 @@ class TraceWriter {
  private:
   RowFile file_;
   std::vector<int> dynamic_bodies_;
+  std::vector<int> oriented_fingers_;  // fingers whose device gives an orientation
   std::vector<double> row_;  // the row being filled
 };
 

@@ -14,14 +14,11 @@
 namespace gf::app {
 namespace {
 
-// A keyframe's q may be off unit length by this much (4 hand-written decimals are), then it is
-// normalised; beyond, it is refused.
-constexpr double kUnitTolerance = 1e-3;
 // tilt_deg lies in [-kMaxTiltDeg, kMaxTiltDeg]; tilt_axis is at least kMinTiltAxis long.
 constexpr double kMaxTiltDeg = 180.0, kMinTiltAxis = 1e-9;
 
 // A keyframe's `q = [w, x, y, z]`: the device's orientation, a unit quaternion within
-// kUnitTolerance (then normalised), else refused naming the field.
+// kOrientationTolerance (then normalised), else refused naming the field.
 sim::Quat readOrientation(Reader& kr, const toml::node& n) {
   const toml::array* a = n.as_array();
   if (!a || a->size() != 4) kr.fail(&n, "q", "expected a unit quaternion [w, x, y, z] (4 numbers)");
@@ -33,8 +30,8 @@ sim::Quat readOrientation(Reader& kr, const toml::node& n) {
     if (!std::isfinite(c[i])) kr.fail(&e, "q", "must be finite");
   }
   const sim::Quat q(c[0], c[1], c[2], c[3]);
-  if (!(std::abs(q.norm() - 1.0) <= kUnitTolerance)) {
-    kr.fail(&n, "q", "must be a unit quaternion [w, x, y, z] (|q| within " + sim::numberText(kUnitTolerance) +
+  if (!(std::abs(q.norm() - 1.0) <= kOrientationTolerance)) {
+    kr.fail(&n, "q", "must be a unit quaternion [w, x, y, z] (|q| within " + sim::numberText(kOrientationTolerance) +
                          " of 1), got |q| = " + sim::numberText(q.norm()));
   }
   return q.normalized();

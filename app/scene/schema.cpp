@@ -79,7 +79,7 @@ json deviceSchema() {
   json keyframes = object({{"keyframes", {{"type", "array"}, {"items", keyframe}, {"minItems", 1}}},
                            {"interpolation", interpolation}},
                           "scripted keyframes", {"keyframes"});
-  json csv = object({{"csv", {{"type", "string"}, {"description", "recorded device: a CSV t,x,y,z (s, m)"}}}},
+  json csv = object({{"csv", {{"type", "string"}, {"description", "recorded device: a CSV t,x,y,z or t,x,y,z,qw,qx,qy,qz (s, m)"}}}},
                     "a recorded device", {"csv"});
   json udp_fields = {
       {"udp",

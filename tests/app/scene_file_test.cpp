@@ -362,6 +362,43 @@ TEST(SceneFileOrientation, BadOrientationsAndTiltsAreNamed) {
   EXPECT_NEAR(s.scene.fingers[0].device.keyframes[1].orientation.norm(), 1.0, 1e-15);
 }
 
+// A device CSV may carry the orientation, qw,qx,qy,qz after the position (all four or none):
+// slerped between rows, normalised within 0.001, a bad one named by file, line and column.
+TEST(SceneFileOrientation, DeviceCsvTakesAnOrientation) {
+  const fs::path dir = gf::test::scratchRoot() / "gf_scene_file_test";
+  fs::create_directories(dir);
+  std::ofstream(dir / "oriented.csv") << "t,x,y,z,qw,qx,qy,qz\n0,0,0.1,0,1,0,0,0\n1,0,0.05,0,0.7071,0.7071,0,0\n";
+  const sim::DeviceTrack d = readDeviceCsv((dir / "oriented.csv").string());
+  const sim::Quat eighth(Eigen::AngleAxisd(std::numbers::pi / 4.0, sim::Vec3::UnitX()));
+  EXPECT_LT(d.sample(0.5).orientation.angularDistance(eighth), 1e-4);
+  EXPECT_NEAR(d.keyframes[1].orientation.norm(), 1.0, 1e-15);
+  struct Case {
+    std::string text;
+    int line, column;
+    std::string field, reason;
+  };
+  const Case cases[] = {
+      {"t,x,y,z,qw,qx\n0,0,0,0,1,0\n", 1, 1, "header", "t,x,y,z,qw,qx,qy,qz"},
+      {"t,x,y,z,qw,qx,qy,qz\n0,0,0,0,1,0,0\n", 2, 13, "qy", "expected 8 columns"},
+      {"t,x,y,z,qw,qx,qy,qz\n0,0,0,0,1,0,0,0,0\n", 2, 15, "qz", "expected 8 columns"},
+      {"t,x,y,z,qw,qx,qy,qz\n0,0,0,0,1,0,0,0\n1,0,0,0,2,0,0,0\n", 3, 9, "qw,qx,qy,qz", "unit quaternion"},
+      {"t,x,y,z,qw,qx,qy,qz\n0,0,0,0,1,0,nan,0\n", 2, 13, "qy", "expected a finite number"},
+      {"t,x,y,z\n0,0,0,0,1,0,0,0\n", 2, 7, "z", "expected 4 columns"},
+  };
+  for (const Case& c : cases) {
+    std::ofstream(dir / "bad_oriented.csv") << c.text;
+    try {
+      readDeviceCsv((dir / "bad_oriented.csv").string());
+      ADD_FAILURE() << "accepted:\n" << c.text;
+    } catch (const InputError& e) {
+      EXPECT_EQ(e.line(), c.line) << e.what();
+      EXPECT_EQ(e.column(), c.column) << e.what();
+      EXPECT_EQ(e.field(), c.field) << e.what();
+      EXPECT_NE(std::string(e.what()).find(c.reason), std::string::npos) << e.what();
+    }
+  }
+}
+
 // Two bodies on one mesh file share one loaded mesh; the World and the renderer use it without
 // reading the file again (it is gone by then).
 TEST(SceneFile, EachMeshFileIsReadOnceAndShared) {
