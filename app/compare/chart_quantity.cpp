@@ -65,16 +65,19 @@ std::string modelDetail(const SessionDesc& session) {
   if (session.scene.fingers.empty()) return "";
   const sim::PatchSettings& p = session.scene.fingers.front().patch;
   char b[200];
+  // An oriented pad follows the device's orientation (docs/pad-model.md): say so, and its tip.
+  char pad[48] = "";
+  if (p.pad_model == sim::PadModel::kOriented) std::snprintf(pad, sizeof pad, ", oriented pad (tip %.2g)", p.tip_ratio);
   switch (sim::effectiveModel(p)) {
     case sim::ContactModel::kGodObject: std::snprintf(b, sizeof b, "one point, mu %.3g", p.friction); break;
     case sim::ContactModel::kSoftFinger:
-      std::snprintf(b, sizeof b, "one point, torsion %.3g mm x normal force, mu %.3g", 1000.0 * p.torsional_friction,
-                    p.friction);
+      std::snprintf(b, sizeof b, "one point, torsion %.3g mm x normal force, mu %.3g%s", 1000.0 * p.torsional_friction,
+                    p.friction, pad);
       break;
     case sim::ContactModel::kGodFinger:
-      std::snprintf(b, sizeof b, "%d SGOs%s, r_max %.3g mm, alpha %.3g, tau_a %.3g deg, mu %.3g", p.n_sgo,
+      std::snprintf(b, sizeof b, "%d SGOs%s, r_max %.3g mm, alpha %.3g, tau_a %.3g deg, mu %.3g%s", p.n_sgo,
                     p.fill == sim::PatchFill::kFilled ? " (filled)" : "", 1000.0 * p.r_max, p.alpha,
-                    p.tau_a * 180.0 / std::numbers::pi, p.friction);
+                    p.tau_a * 180.0 / std::numbers::pi, p.friction, pad);
       break;
   }
   return b;

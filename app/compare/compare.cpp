@@ -52,8 +52,7 @@ std::vector<std::string> modelOverrides(const SessionDesc& session, const std::s
   return compareModelOverrides(names, model);
 }
 
-// The models, checked: 1..4 known contact models or pad models, none twice; a pad model only
-// where the finger settings have `pad_model`.
+// The models, checked: 1..4 known contact models or pad models, none twice.
 void checkModels(const std::vector<std::string>& models) {
   if (models.empty() || models.size() > 4) {
     throw InputError("command line", 0, 0, "--models", "give 1 to 4 contact models, e.g. god_object,god_finger");
@@ -64,11 +63,6 @@ void checkModels(const std::vector<std::string>& models) {
       throw InputError("command line", 0, 0, "--models",
                        "unknown contact model '" + models[i] + "' (one of " + sim::choiceList(contactModelSetting()) +
                            ", god_finger_3dof, god_finger_6dof)");
-    }
-    if (pad && !sim::findSetting(sim::fingerSettings(), "pad_model")) {
-      throw InputError("command line", 0, 0, "--models",
-                       "'" + models[i] + "' is a god-finger with a pad model (fingers.NAME.pad_model = " +
-                           padModelOf(models[i]) + "), and this build's fingers have no pad_model setting yet");
     }
     if (std::find(models.begin(), models.begin() + static_cast<long>(i), models[i]) != models.begin() + static_cast<long>(i)) {
       throw InputError("command line", 0, 0, "--models", "'" + models[i] + "' is given twice");

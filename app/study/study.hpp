@@ -30,6 +30,9 @@ struct StudyOverride {
 struct StudyAxis {
   std::vector<std::string> fields;    ///< as for --set
   std::string name;                   ///< results.csv's column and the labels' name: `name`, else the first field
+  /// `chart = true`: every measure is also charted against this axis' values (numbers), one
+  /// line per series (StudyDesc::chart_axes).
+  bool chart = false;
   std::vector<StudyOverride> values;  ///< each value in TOML syntax (text without "field=")
   std::vector<StudyOverride> quick;   ///< the values --quick uses (default: the first)
 };
@@ -101,6 +104,9 @@ struct StudyDesc {
   CostKind cost = CostKind::kStep;
   std::vector<StudySeries> series;
   std::vector<StudyOverride> quick_set;  ///< overrides every --quick run gets last
+  /// The study-level axes with `chart = true`, by name: each measure gets a chart against each
+  /// (MEASURE-vs-AXIS.png beside work-precision.png).
+  std::vector<std::string> chart_axes;
 };
 
 /// Reads a study file (a path, or the name of a bundled study). Checks the file itself; the

@@ -11,9 +11,11 @@ namespace gf::app {
 
 using Row = StudyRow;
 
-const char* errorUnit(const StudyMeasure& m) {
-  if (m.error != ErrorKind::kAbsolute) return "";
-  switch (m.kind) {
+namespace {
+
+// The unit of a measure's value, with a leading space ("" for a ratio).
+const char* valueUnit(MeasureKind kind) {
+  switch (kind) {
     case MeasureKind::kSwing: return " deg";
     case MeasureKind::kForceSd:
     case MeasureKind::kFrictionForce: return " N";
@@ -26,7 +28,17 @@ const char* errorUnit(const StudyMeasure& m) {
   return "";
 }
 
+}  // namespace
+
+const char* errorUnit(const StudyMeasure& m) { return m.error != ErrorKind::kAbsolute ? "" : valueUnit(m.kind); }
+
 namespace {
+
+// The series' colours, in the order of the study's series.
+const Eigen::Vector3f kSeriesColours[] = {
+    {0.85f, 0.2f, 0.15f}, {0.95f, 0.6f, 0.1f}, {0.15f, 0.45f, 0.85f}, {0.1f, 0.6f, 0.3f},
+    {0.55f, 0.3f, 0.75f}, {0.4f, 0.4f, 0.4f},  {0.0f, 0.7f, 0.75f},   {0.75f, 0.45f, 0.3f},
+    {0.9f, 0.4f, 0.7f},   {0.6f, 0.75f, 0.1f}, {0.1f, 0.2f, 0.5f},    {0.5f, 0.1f, 0.1f}};
 
 constexpr double kFrontGain = 0.99;  // a best point lowers the series' best |error| so far by 1 % or more
 
@@ -168,15 +180,12 @@ render::ChartSpec workPrecisionChart(const StudyPlan& plan, const std::vector<Ro
   chart.log_x = chart.log_y = true;
   chart.width = 1280;
   chart.height = 720;
-  static const Eigen::Vector3f kColours[] = {
-      {0.85f, 0.2f, 0.15f}, {0.95f, 0.6f, 0.1f}, {0.15f, 0.45f, 0.85f}, {0.1f, 0.6f, 0.3f},
-      {0.55f, 0.3f, 0.75f}, {0.4f, 0.4f, 0.4f},  {0.0f, 0.7f, 0.75f},   {0.75f, 0.45f, 0.3f},
-      {0.9f, 0.4f, 0.7f},   {0.6f, 0.75f, 0.1f}, {0.1f, 0.2f, 0.5f},    {0.5f, 0.1f, 0.1f}};
+
   std::size_t colour = 0;
   for (const StudySeries& s : plan.study.series) {
     const std::vector<const Row*> points = chartable(rows, s.name, plan.study.cost);
     if (points.empty()) continue;
-    const Eigen::Vector3f c = kColours[colour++ % std::size(kColours)];
+    const Eigen::Vector3f c = kSeriesColours[colour++ % std::size(kSeriesColours)];
     render::ChartSeries markers{s.name, c, {}, {}};
     markers.style = render::SeriesStyle::kMarkers;
     render::ChartSeries front{"", c, {}, {}};
@@ -211,6 +220,110 @@ render::ChartSpec workPrecisionChart(const StudyPlan& plan, const std::vector<Ro
     chart.bands.push_back({0.0, noise, b, Eigen::Vector3f(0.55f, 0.55f, 0.6f)});
   }
   return chart;
+}
+
+namespace {
+
+const char* referenceText(ReferenceKind k) {
+  switch (k) {
+    case ReferenceKind::kRun: return "the reference run";
+    case ReferenceKind::kTwoThirdsMuFR: return "(2/3) mu F r";
+    case ReferenceKind::kMuFR: return "mu F r";
+    case ReferenceKind::kHertzMuFR: return "(3 pi / 16) mu F r";
+    case ReferenceKind::kMuF: return "mu F";
+    case ReferenceKind::kRollingPrediction: return "the rolling prediction";
+    case ReferenceKind::kPatchRadius: return "the Eq. 1 radius";
+    case ReferenceKind::kFR: return "F r";
+    case ReferenceKind::kValue: return "the given value";
+  }
+  return "";
+}
+
+// Puts a line's points in the order of their x.
+void sortByX(render::ChartSeries& line) {
+  std::vector<std::size_t> order(line.x.size());
+  for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
+  std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return line.x[a] < line.x[b]; });
+  const std::vector<double> x = line.x, y = line.y;
+  for (std::size_t i = 0; i < order.size(); ++i) {
+    line.x[i] = x[order[i]];
+    line.y[i] = y[order[i]];
+  }
+}
+
+// The line key of a row on a chart against `axis`: its series and the other axes varying in it.
+std::string lineKey(const Row& r, const std::vector<std::string>& varying, const std::string& axis) {
+  std::vector<std::string> others;
+  for (const std::string& f : varying) {
+    if (f != axis) others.push_back(f);
+  }
+  const std::string label = pointLabel(r, others);
+  return label.empty() ? r.series : r.series + " " + label;
+}
+
+double axisNumber(const Row& r, const std::string& axis) {
+  for (const auto& [field, value] : r.run->axis_values) {
+    if (field == axis) return std::strtod(value.c_str(), nullptr);
+  }
+  return NAN;
+}
+
+render::ChartSpec measureAgainstAxis(const StudyPlan& plan, const std::vector<Row>& rows, std::size_t k,
+                                     const std::string& axis) {
+  const StudyMeasure& m = plan.study.series.front().measures[k];
+  render::ChartSpec chart;
+  chart.title = plan.study.name + ": " + m.name + " against " + axis;
+  chart.x_label = axis;
+  chart.y_label = m.name + (*valueUnit(m.kind) ? std::string(" (") + (valueUnit(m.kind) + 1) + ")" : "");
+  chart.width = 1280;
+  chart.height = 720;
+  static const render::MarkerShape kMarkers[] = {render::MarkerShape::kCircle, render::MarkerShape::kSquare,
+                                                 render::MarkerShape::kTriangle, render::MarkerShape::kDiamond};
+  std::map<std::string, std::size_t> line_of;
+  for (const StudySeries& s : plan.study.series) {
+    const std::vector<std::string> varying = varyingAxes(rows, s.name);
+    for (const Row& r : rows) {
+      if (r.series != s.name || r.measures.size() <= k || !std::isfinite(r.measures[k].measure)) continue;
+      const std::string key = lineKey(r, varying, axis);
+      if (!line_of.count(key)) {
+        const std::size_t i = chart.series.size();
+        line_of[key] = i;
+        render::ChartSeries line{key, kSeriesColours[i % std::size(kSeriesColours)], {}, {}};
+        line.style = render::SeriesStyle::kLineAndMarkers;
+        line.marker = kMarkers[i % std::size(kMarkers)];
+        chart.series.push_back(std::move(line));
+      }
+      render::ChartSeries& line = chart.series[line_of[key]];
+      line.x.push_back(axisNumber(r, axis));
+      line.y.push_back(r.measures[k].measure);
+    }
+  }
+  render::ChartSeries reference{std::string("reference: ") + referenceText(m.reference) + " (" +
+                                    plan.study.series.front().name + "'s runs)",
+                                Eigen::Vector3f(0.45f, 0.45f, 0.45f), {}, {}};
+  reference.dash = render::LineDash::kDotted;
+  for (const Row& r : rows) {
+    if (r.series != plan.study.series.front().name || r.measures.size() <= k) continue;
+    if (!std::isfinite(r.measures[k].reference)) continue;
+    reference.x.push_back(axisNumber(r, axis));
+    reference.y.push_back(r.measures[k].reference);
+  }
+  if (!reference.x.empty()) chart.series.push_back(std::move(reference));
+  for (render::ChartSeries& line : chart.series) sortByX(line);
+  return chart;
+}
+
+}  // namespace
+
+std::vector<AxisChart> axisCharts(const StudyPlan& plan, const std::vector<Row>& rows) {
+  std::vector<AxisChart> out;
+  for (const std::string& axis : plan.study.chart_axes) {
+    const std::vector<StudyMeasure>& measures = plan.study.series.front().measures;
+    for (std::size_t k = 0; k < measures.size(); ++k) {
+      out.push_back({measures[k].name + "-vs-" + axis + ".png", measureAgainstAxis(plan, rows, k, axis)});
+    }
+  }
+  return out;
 }
 
 }  // namespace gf::app

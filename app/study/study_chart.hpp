@@ -39,4 +39,16 @@ std::string costLabel(CostKind k);
 /// measure is one a perfect run makes zero (swing, force s.d.) and its reference is a run.
 render::ChartSpec workPrecisionChart(const StudyPlan& plan, const std::vector<StudyRow>& rows);
 
+/// A chart of a measure's value against a study axis (StudyDesc::chart_axes) and where it goes.
+struct AxisChart {
+  std::string file;  ///< "MEASURE-vs-AXIS.png"
+  render::ChartSpec chart;
+};
+
+/// For each charted axis and each measure of the first series: the measure's value against the
+/// axis' value, a line with markers per series (and per combination of the other axes that vary
+/// within it), and the first series' reference as a dotted grey line. Rows without the measure
+/// are left out.
+std::vector<AxisChart> axisCharts(const StudyPlan& plan, const std::vector<StudyRow>& rows);
+
 }  // namespace gf::app

@@ -1,5 +1,7 @@
 // Study files: reading, and expanding a study into its runs.
 #include <charconv>
+#include <cmath>
+#include <cstdlib>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -118,6 +120,14 @@ std::vector<StudyAxis> readAxes(Reader& parent, const std::string& key) {
       for (StudyOverride& v : *list) v.field_source = sourceAt(*field, r.field("field"));
     }
     if (axis.quick.empty()) axis.quick = {axis.values.front()};
+    axis.chart = r.boolean("chart", false);
+    for (const StudyOverride& v : axis.values) {
+      char* end = nullptr;
+      const double x = std::strtod(v.text.c_str(), &end);
+      if (axis.chart && (end == v.text.c_str() || *end != '\0' || !std::isfinite(x))) {
+        r.fail(r.nodeOf("chart"), "chart", "a charted axis needs numbers as values, got " + v.text);
+      }
+    }
     r.finish();
     out.push_back(std::move(axis));
   }
@@ -353,6 +363,9 @@ StudyDesc parseStudyText(const std::string& text, const std::string& source_name
   const std::string scene = sceneOf(r, "");
   const std::vector<StudyOverride> set = readSet(r, "set");
   const std::vector<StudyAxis> axes = readAxes(r, "axes");
+  for (const StudyAxis& a : axes) {
+    if (a.chart) study.chart_axes.push_back(a.name);
+  }
   const std::vector<StudyMeasure> measures = readMeasures(r, "measures");
   std::vector<StudyOverride> reference_set, reference_quick;
   const bool reference = readReferenceRun(r, reference_set, reference_quick);
@@ -370,6 +383,9 @@ StudyDesc parseStudyText(const std::string& text, const std::string& source_name
     s.set = set;
     for (StudyOverride& o : readSet(sr, "set")) s.set.push_back(std::move(o));
     s.axes = readAxes(sr, "axes");
+    for (const StudyAxis& a : s.axes) {
+      if (a.chart) sr.fail(sr.nodeOf("axes"), "axes", "chart: only an axis of the whole study ([[axes]]) is charted");
+    }
     s.axes.insert(s.axes.end(), axes.begin(), axes.end());
     s.measures = readMeasures(sr, "measures");
     if (s.measures.empty()) s.measures = measures;

@@ -329,6 +329,11 @@ int collectStudy(const StudyPlan& plan, const std::string& runs_dir, const std::
   writeFileAtomically((fs::path(out) / "results.csv").string(), resultsCsv(plan, rows));
   writeFileAtomically((fs::path(out) / "report.md").string(), reportMd(plan, rows, parallel_times));
   render::writeChartPng(workPrecisionChart(plan, rows), (fs::path(out) / "work-precision.png").string());
+  std::string also;
+  for (const AxisChart& c : axisCharts(plan, rows)) {
+    render::writeChartPng(c.chart, (fs::path(out) / c.file).string());
+    also += ", " + c.file;
+  }
   int unmeasured = 0, incomplete = 0, absent = 0;
   for (const Row& r : rows) {
     unmeasured += r.status == "unmeasured";
@@ -336,8 +341,8 @@ int collectStudy(const StudyPlan& plan, const std::string& runs_dir, const std::
     absent += r.status == "missing";
   }
   std::printf("%s: %zu runs (%d missing, %d incomplete, %d unmeasured); wrote %s/results.csv, report.md, "
-              "work-precision.png\n",
-              plan.study.name.c_str(), rows.size(), absent, incomplete, unmeasured, out.c_str());
+              "work-precision.png%s\n",
+              plan.study.name.c_str(), rows.size(), absent, incomplete, unmeasured, out.c_str(), also.c_str());
   return missing + unmeasured == 0 ? 0 : 1;
 }
 

@@ -153,9 +153,8 @@ TEST(Compare, BadOptionsAreErrorsNamingTheOptionBeforeAnyRun) {
 }
 
 // god_finger_3dof and god_finger_6dof are the god-finger with pad_model disc and oriented on
-// every finger; the contact_model names stay one override each. Where the finger settings have
-// no pad_model (a build without the pad model), the two names are refused before any run,
-// saying what they need; otherwise the runs of a pad model carry its pad_model.
+// every finger; the contact_model names stay one override each; the runs of a pad model carry
+// its pad_model.
 TEST(Compare, PadModelNamesAreAGodFingerWithItsPadModel) {
   EXPECT_EQ(compareModelOverrides({"left", "right"}, "god_finger_3dof"),
             (std::vector<std::string>{"fingers.left.contact_model=god_finger", "fingers.left.pad_model=disc",
@@ -167,27 +166,14 @@ TEST(Compare, PadModelNamesAreAGodFingerWithItsPadModel) {
   EXPECT_EQ(modelTitle("god_finger_3dof"), "god-finger 3-DOF");
   EXPECT_EQ(modelTitle("god_finger_6dof"), "god-finger 6-DOF");
   EXPECT_NE(modelColour("god_finger_6dof", 1), modelColour("god_finger_3dof", 0));
-  if (sim::findSetting(sim::fingerSettings(), "pad_model")) {
-    // With the pad model, every finger of each run gets its pad (checked on the loaded scene).
-    const std::string scene = resolveScenePath("orientation-track");
-    for (const char* model : {"god_finger_3dof", "god_finger_6dof"}) {
-      EXPECT_NO_THROW(loadSceneFile(scene, compareModelOverrides({"index"}, model))) << model;
-    }
-    return;
+  // Every finger of each run gets its pad: the scene loads with the overrides, pad_model set.
+  const std::string scene = resolveScenePath("orientation-track");
+  for (const char* model : {"god_finger_3dof", "god_finger_6dof"}) {
+    const SessionDesc s = loadSceneFile(scene, compareModelOverrides({"index"}, model));
+    EXPECT_EQ(s.scene.fingers.at(0).patch.pad_model,
+              std::string(model) == "god_finger_6dof" ? sim::PadModel::kOriented : sim::PadModel::kDisc)
+        << model;
   }
-  CompareOptions o;
-  o.scene = "orientation-track";
-  o.godfinger = kBin;
-  o.out = (freshFolder("compare-pad-models") / "never").string();
-  o.models = {"god_finger_3dof", "god_finger_6dof", "soft_finger"};
-  try {
-    runCompare(o);
-    ADD_FAILURE() << "a pad model accepted without pad_model";
-  } catch (const InputError& e) {
-    EXPECT_EQ(e.field(), "--models");
-    EXPECT_NE(std::string(e.what()).find("pad_model = disc"), std::string::npos) << e.what();
-  }
-  EXPECT_FALSE(fs::exists(o.out));
 }
 
 TEST(Compare, AShortFig5ComparisonWritesFramesVideoAndMeasures) {

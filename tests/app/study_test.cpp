@@ -429,6 +429,51 @@ TEST(StudyChart, LabelsTellPointsApartAndTheReferenceNoiseIsShaded) {
   EXPECT_TRUE(workPrecisionChart(plan, rows).bands.empty());
 }
 
+// An axis with `chart = true` charts every measure against its values: a line per series in the
+// order of the axis (whatever order the runs came in), the first series' reference dotted.
+TEST(StudyChart, AChartedAxisGivesEachMeasureAgainstIt) {
+  const fs::path dir = freshDir("gf_study_axis_chart");
+  const fs::path study = writeStudy(dir, R"(
+[[axes]]
+field = "fingers.index.device.tilt_deg"
+name = "pad_angle_deg"
+chart = true
+values = [30, 0]
+[[measures]]
+name = "torsion_limit"
+kind = "friction_torque"
+body = "puck"
+window = [0.7, 1.0]
+reference = "two_thirds_mu_f_r"
+[[series]]
+name = "a"
+[[series]]
+name = "b"
+)");
+  const StudyPlan plan = expandStudy(loadStudyFile(study.string()), false, {});
+  ASSERT_EQ(plan.study.chart_axes, std::vector<std::string>{"pad_angle_deg"});
+  ASSERT_EQ(plan.runs.size(), 4u);
+  std::vector<StudyRow> rows(plan.runs.size());
+  for (std::size_t i = 0; i < rows.size(); ++i) {
+    rows[i].run = &plan.runs[i];
+    rows[i].series = plan.study.series[static_cast<std::size_t>(plan.runs[i].series)].name;
+    const double angle = std::atof(plan.runs[i].axis_values.at(0).second.c_str());
+    rows[i].measures = {{0.02 - 1e-4 * angle - (rows[i].series == "b" ? 0.001 : 0.0), 0.022, 0.0, ""}};
+  }
+  const std::vector<AxisChart> charts = axisCharts(plan, rows);
+  ASSERT_EQ(charts.size(), 1u);
+  EXPECT_EQ(charts[0].file, "torsion_limit-vs-pad_angle_deg.png");
+  EXPECT_EQ(charts[0].chart.x_label, "pad_angle_deg");
+  EXPECT_EQ(charts[0].chart.y_label, "torsion_limit (N m)");
+  ASSERT_EQ(charts[0].chart.series.size(), 3u);
+  EXPECT_EQ(charts[0].chart.series[0].label, "a");
+  EXPECT_EQ(charts[0].chart.series[0].x, (std::vector<double>{0.0, 30.0}));
+  EXPECT_DOUBLE_EQ(charts[0].chart.series[0].y[1], 0.017);
+  EXPECT_DOUBLE_EQ(charts[0].chart.series[1].y[0], 0.019);
+  EXPECT_EQ(charts[0].chart.series[2].dash, render::LineDash::kDotted);
+  EXPECT_EQ(charts[0].chart.series[2].y, (std::vector<double>{0.022, 0.022}));
+}
+
 TEST(StudyJobs, EmitParallelCollectMatchesADirectRun) {
   ASSERT_EQ(std::system("command -v parallel > /dev/null"), 0) << "GNU parallel is needed (scripts/test installs it)";
   const fs::path direct = freshDir("gf_study_direct"), emitted = freshDir("gf_study_emitted");
@@ -476,6 +521,12 @@ TEST(StudyFile, MalformedStudiesNameFileLineColumnAndField) {
        ":2:1: measures.0.body: must be a box or a cylinder"},
       {"[[measures]]\nkind = \"trajectory\"\nbody = \"puck\"\nreference = 0.5\n[[series]]\nname = \"a\"\n",
        ":5:13: measures.0.reference: a number is not a reference of trajectory"},
+      {"[[axes]]\nfield = \"fingers.index.patch\"\nchart = true\nvalues = [\"ring\", \"filled\"]\n[[measures]]\n"
+       "kind = \"friction_torque\"\nbody = \"puck\"\n[[series]]\nname = \"a\"\n",
+       ":4:9: axes.0.chart: a charted axis needs numbers as values, got 'ring'"},
+      {"[[measures]]\nkind = \"friction_torque\"\nbody = \"puck\"\n[[series]]\nname = \"a\"\n"
+       "axes = [{ field = \"fingers.index.n_sgo\", values = [4], chart = true }]\n",
+       ":7:8: series.0.axes: chart: only an axis of the whole study ([[axes]]) is charted"},
   };
   for (const Case& c : cases) {
     const fs::path study = writeStudy(dir, c.text);
