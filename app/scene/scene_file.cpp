@@ -73,6 +73,7 @@ SessionDesc readSession(toml::table& root, const std::string& source, const std:
     }
   }
   checkMassRatios(r, s.scene);
+  r.failOn(sim::validateOverlapStability(s.scene));
   for (const auto& [name, t] : r.namedTables("cameras")) {
     checkName("cameras", name, t);
     s.cameras.push_back(readCamera(name, *t, r));
