@@ -20,7 +20,9 @@ class TraceWriter {
   /// Columns: t; per dynamic body its pose (.px .py .pz .qx .qy .qz .qw); per finger its
   /// coupling force (.fx .fy .fz), SGO count (.n_sgo), contact radius (.r), proxy and device
   /// positions (.px .py .pz, .dx .dy .dz); per dynamic body its linear (.vx .vy .vz, m/s) and
-  /// angular (.wx .wy .wz, rad/s, world frame) velocity.
+  /// angular (.wx .wy .wz, rad/s, world frame) velocity; per finger the force sent to its
+  /// device (.sent_fx .sent_fy .sent_fz) and its port's energy (.port_energy); per two fingers
+  /// A, B (A before B) their patches' overlap (A+B.overlap_mm2, mm^2).
   TraceWriter(const sim::World& world, const std::string& path);
 
   /// Appends the row of the world's current state.
