@@ -26,8 +26,10 @@ constexpr double kFrameMargin = 0.04;     // of the frame each side that an arro
 constexpr double kNearM = 0.002;          // m: the near plane (scene_renderer's)
 constexpr float kPatchAlpha = 0.65f;
 constexpr float kRimAlpha = 0.95f;
-constexpr float kOverlapAlpha = 0.8f;
-constexpr double kOverlapLiftM = 0.0004;  // m above the surface: over both patches' fills (0.2 mm)
+constexpr float kOverlapAlpha = 0.6f;
+// The overlap region's height above the surface, in proxy radii: over the SGO dots (0.12), which
+// show through it, tinted.
+constexpr double kOverlapLiftShare = 0.15;
 constexpr float kProxyAlpha = 0.45f;
 constexpr int kSpringSegments = 96;  // a coil of 8 turns
 constexpr int kSpringTurns = 8;
@@ -174,7 +176,8 @@ void DrawListBuilder::addOverlaps(const sim::Snapshot& snap, DrawList& out) {
         for (const sim::ContactSnapshot& b : snap.fingers[j].contacts) {
           const std::size_t body = static_cast<std::size_t>(a.body);
           if (a.body != b.body || body >= surfaces_.size() || !surfaces_[body]) continue;
-          buildOverlapRegion(a, b, *surfaces_[body], snap.bodies[body], kOverlapLiftM, fill_, lines_);
+          const double lift = kOverlapLiftShare * std::min(proxy_radius_[i], proxy_radius_[j]);
+          buildOverlapRegion(a, b, *surfaces_[body], snap.bodies[body], lift, fill_, lines_);
         }
       }
     }

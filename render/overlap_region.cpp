@@ -21,18 +21,24 @@ double exitDistance(const Vec3& from, const Vec3& u, const Vec3& c, double r) {
 
 }  // namespace
 
+bool patchesOverlap(const sim::ContactSnapshot& a, const sim::ContactSnapshot& b) {
+  if (a.body != b.body || !(a.radius > 0.0) || !(b.radius > 0.0)) return false;
+  if (!(a.outward_normal_world.dot(b.outward_normal_world) > 0.0)) return false;
+  const Vec3 n = (a.outward_normal_world + b.outward_normal_world).normalized();
+  const Vec3 gap = b.point_world - a.point_world;
+  return (gap - gap.dot(n) * n).norm() < a.radius + b.radius;
+}
+
 void buildOverlapRegion(const sim::ContactSnapshot& a, const sim::ContactSnapshot& b, const sim::Mesh& mesh,
                         const sim::Pose& pose, double lift, std::vector<Vertex>& triangles,
                         std::vector<Vertex>& outline) {
-  if (!(a.radius > 0.0) || !(b.radius > 0.0)) return;
-  if (!(a.outward_normal_world.dot(b.outward_normal_world) > 0.0)) return;  // facing apart: no overlap
+  if (!patchesOverlap(a, b)) return;
   // The common tangent plane and the two discs' centres in it (as sim::discOverlap takes them).
   const Vec3 n = (a.outward_normal_world + b.outward_normal_world).normalized();
   const Vec3 ca = a.point_world;
   Vec3 cb = b.point_world - (b.point_world - ca).dot(n) * n;
   const Vec3 gap = cb - ca;
   const double d = gap.norm();
-  if (d >= a.radius + b.radius) return;
   // A point inside both discs: the middle of their overlap along the line between the centres.
   const Vec3 e = d > 1e-12 ? Vec3(gap / d) : Vec3(n.unitOrthogonal());
   const double lo = std::max(-a.radius, d - b.radius), hi = std::min(a.radius, d + b.radius);

@@ -13,6 +13,10 @@ namespace gf::render {
 /// Linear RGB of the overlap region: magenta, apart from every finger's colour.
 inline constexpr float kOverlapColour[3] = {0.95f, 0.1f, 0.75f};
 
+/// Whether contacts `a` and `b` are on one body and their Eq. 1 discs overlap in their common
+/// tangent plane (as sim::discOverlap measures it). Any thread.
+bool patchesOverlap(const sim::ContactSnapshot& a, const sim::ContactSnapshot& b);
+
 /// Appends the region contacts `a` and `b` (on the same body) both cover: the intersection of
 /// their Eq. 1 discs in the common tangent plane (the lens the overlap area measures), as a fan
 /// of triangles projected onto `mesh` (the body's render surface in its description frame, at
