@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "sim/detail/body_factory.hpp"
+#include "sim/detail/patch_ring.hpp"
 
 namespace gf::sim {
 namespace {
@@ -410,7 +411,10 @@ void GodObjectModel::addRows(const ContactToSolve& c, SolveRows& out) const {
 }
 
 void SoftFingerModel::addRows(const ContactToSolve& c, SolveRows& out) const {
-  addPointRows(c, c.settings.patch.torsional_friction, false, out);  // 0 without the friction effect
+  // 0 without the friction effect; the 6-DOF pad scales the torsion radius like its ellipse.
+  const PatchContact& pc = c.contact.record.contact;
+  const PadEllipse pad = padEllipse(c.settings.patch, pc.pad_normal_local, pc.outward_normal_local.normalized());
+  addPointRows(c, c.settings.patch.torsional_friction * padTorsionFactor(pad), false, out);
 }
 
 void GodFingerModel::addRows(const ContactToSolve& c, SolveRows& out) const {

@@ -1,5 +1,6 @@
 #include "sim/god_finger.hpp"
 
+#include "sim/detail/patch_ring.hpp"
 #include "sim/warm_walk.hpp"
 
 #include <Eigen/Geometry>
@@ -29,9 +30,6 @@ constexpr double kMaxCrossings = 1e6;  // whatever the mesh: every walk ends
 // An SGO's load share uses a lever of at least this fraction of r (an SGO that stopped at the
 // contact would otherwise take the whole load).
 constexpr double kMinLeverFraction = 0.05;
-// The reference direction of the ring must keep this fraction of its length on the tangent
-// plane to be used.
-constexpr double kMinReferenceFraction = 1e-3;
 
 // The faces a radial vector may start on, and the walk's angular limit.
 struct WalkContext {
@@ -44,27 +42,6 @@ struct WalkContext {
   double cos_start;   // at an edge or vertex hit, faces this well aligned are start faces
   WalkLimits limits{normal, cos_limit, has_limit, cos_facing};  // the above, for carried walks
 };
-
-// Orthonormal tangent basis of a unit normal (Duff et al., JCGT 2017, branchless form).
-void tangentBasis(const Vec3& n, Vec3& t1, Vec3& t2) {
-  const double sign = std::copysign(1.0, n.z());
-  const double a = -1.0 / (sign + n.z());
-  const double b = n.x() * n.y() * a;
-  t1 = Vec3(1.0 + sign * n.x() * n.x() * a, sign * b, -sign * n.x());
-  t2 = Vec3(b, sign + n.y() * n.y() * a, -n.y());
-}
-
-// The ring's in-plane axes for unit normal n: t1 along the reference's part in the tangent
-// plane when it keeps enough of its length there, else a fixed basis of n.
-void ringAxes(const Vec3& ref, const Vec3& n, Vec3& t1, Vec3& t2) {
-  const Vec3 ref_t = ref - ref.dot(n) * n;
-  if (ref_t.norm() > kMinReferenceFraction * ref.norm() && ref_t.norm() > kDegenerateLength) {
-    t1 = ref_t.normalized();
-    t2 = n.cross(t1);
-  } else {
-    tangentBasis(n, t1, t2);
-  }
-}
 
 // Rotates x by the smallest rotation taking unit a onto unit b; projects when a = -b.
 Vec3 rotateOnto(const Vec3& x, const Vec3& a, const Vec3& b) {
@@ -391,23 +368,20 @@ double stretched(double radius, const Vec3& v_tangential, const Vec3& radial_uni
   return radius * std::exp(std::clamp(x, -logs.bound, logs.bound));
 }
 
-// cos and sin of the ring's angles 2 pi i / n, kept per thread for the last n asked for.
-struct RingAngles {
-  int n = 0;
-  std::array<double, kMaxSgo> c{}, s{};
-};
-
-const RingAngles& ringAngles(int n) {
-  thread_local RingAngles ring;
-  if (ring.n != n) {
-    for (int i = 0; i < n; ++i) {
-      const double angle = 2.0 * std::numbers::pi * i / n;
-      ring.c[static_cast<std::size_t>(i)] = std::cos(angle);
-      ring.s[static_cast<std::size_t>(i)] = std::sin(angle);
-    }
-    ring.n = n;
-  }
-  return ring;
+// The walk's angular limit, min(tau_a, atan(theta)) over the active tests, and the start
+// faces: the hit face, or at an edge or vertex the faces best aligned with unit normal n.
+WalkContext walkContext(const Mesh& mesh, const PatchSettings& s, const Vec3& n, const SurfacePoint& hit, double side) {
+  double limit = std::numbers::pi;
+  if (s.angular_threshold) limit = std::min(limit, s.tau_a);
+  if (s.friction_cone) limit = std::min(limit, std::atan(s.friction));
+  WalkContext ctx{mesh, s, n, cosWithTolerance(limit), limit < std::numbers::pi,
+                  std::sin(kAngleTolerance), 1.0};
+  double best_align = -1.0;
+  forEachFaceAroundHit(mesh, hit, [&](int f) {
+    best_align = std::max(best_align, sideOf(mesh, hit, side, f) * mesh.faceNormal(f).dot(n));
+  });
+  ctx.cos_start = cosWithTolerance(std::acos(std::clamp(best_align, -1.0, 1.0)));
+  return ctx;
 }
 
 // One radial vector's walk: carried from the cache's path when it still holds, else Algorithm 1
@@ -511,6 +485,7 @@ void computePatch(const Mesh& mesh, const PatchContact& contact, const Vec3& v, 
   const double nlen = contact.outward_normal_local.norm();
   if (!computable(s) || !contact.point_local.allFinite() || !std::isfinite(contact.separation) ||
       !std::isfinite(contact.rounding) || !contact.ring_reference_local.allFinite() || !v.allFinite() ||
+      !contact.pad_normal_local.allFinite() ||
       !std::isfinite(nlen) || nlen < 0.5 || mesh.faceCount() == 0) {
     return;
   }
@@ -522,23 +497,15 @@ void computePatch(const Mesh& mesh, const PatchContact& contact, const Vec3& v, 
   out.radius = contactRadius(out.press_depth, s.r_max, s.d0);
   out.hit = contactFeature(mesh, contact, s.feature_tolerance);
   if (!(out.radius > 0.0)) return;
-  // Step 3: the walk's angular limit, min(tau_a, atan(theta)) over the active tests, and the
-  // start faces: the hit face, or at an edge or vertex the faces best aligned with n.
-  double limit = std::numbers::pi;
-  if (s.angular_threshold) limit = std::min(limit, s.tau_a);
-  if (s.friction_cone) limit = std::min(limit, std::atan(s.friction));
-  WalkContext ctx{mesh, s, n, cosWithTolerance(limit), limit < std::numbers::pi,
-                  std::sin(kAngleTolerance), 1.0};
+  // Step 3: the walk's angular limit and start faces (walkContext).
   const double side = mesh.faceNormal(out.hit.face).dot(n) < 0.0 ? -1.0 : 1.0;
-  double best_align = -1.0;
-  forEachFaceAroundHit(mesh, out.hit, [&](int f) {
-    best_align = std::max(best_align, sideOf(mesh, out.hit, side, f) * mesh.faceNormal(f).dot(n));
-  });
-  ctx.cos_start = cosWithTolerance(std::acos(std::clamp(best_align, -1.0, 1.0)));
+  const WalkContext ctx = walkContext(mesh, s, n, out.hit, side);
   // The ring of radial vectors: radial 0 along the reference carried from the last step.
   Vec3 t1, t2;
   ringAxes(contact.ring_reference_local, n, t1, t2);
   out.ring_tangent = t1;
+  // The 6-DOF pad's ellipse (off for pad_model disc or a flat pad: the disc, exactly).
+  const PadEllipse pad = padEllipse(s, contact.pad_normal_local, n);
   // Eq. 2 reads the tangential part of v: pressing alone stretches nothing.
   const Vec3 v_t = v - v.dot(n) * n;
   const bool filled = s.fill == PatchFill::kFilled;
@@ -561,7 +528,7 @@ void computePatch(const Mesh& mesh, const PatchContact& contact, const Vec3& v, 
     const Start start = face_hit ? Start{out.hit.face, side, ci * f1 + si * f2, true} : startFace(ctx, out.hit, side, r);
     const bool usable = start.usable && start.dir.norm() > kDegenerateLength;
     out.radial.push_back(usable ? start.dir : r);
-    out.d_i.push_back(usable ? stretched(out.radius, v_t, r, s, logs) : 0.0);
+    out.d_i.push_back(usable ? stretched(out.radius * padRadiusScale(pad, r), v_t, r, s, logs) : 0.0);
     if (!usable) {
       if (carry) uncachePath(*carry, i);
       out.radial_stop.push_back(WalkStop::kDropped);
@@ -570,7 +537,7 @@ void computePatch(const Mesh& mesh, const PatchContact& contact, const Vec3& v, 
     Sgo sgo = walkRadial(ctx, start, out.hit.point, out.d_i.back(), carry, i, out);
     if (warm && !carry) ++warm->cold_walks;
     sgo.radial = i;
-    if (filled) fillPath(s.rings, 2.0 * std::numbers::pi / s.n_sgo, sgo, out);
+    if (filled) fillPath(s.rings, padSectorAngle(pad, r, n, 2.0 * std::numbers::pi / s.n_sgo), sgo, out);
     out.radial_stop.push_back(sgo.stop);
     out.sgos.push_back(sgo);
     out.path_offsets.push_back(static_cast<std::int32_t>(out.path_points.size()));

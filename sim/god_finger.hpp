@@ -25,6 +25,10 @@ struct PatchContact {
   /// pass the previous step's Patch::ring_tangent so the ring does not turn between steps.
   /// Zero (or along the normal): a fixed tangent basis of the normal.
   Vec3 ring_reference_local = Vec3::Zero();
+  /// The 6-DOF pad's outward normal (unit; the device's orientation times the finger's
+  /// pad_axis), read when the settings' pad_model is oriented: the patch becomes the pad's
+  /// ellipse (sim/detail/patch_ring.hpp). Zero: no pad, the disc.
+  Vec3 pad_normal_local = Vec3::Zero();
 };
 
 /// Why the walk of one radial vector ended.

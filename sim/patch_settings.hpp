@@ -5,6 +5,8 @@
 #include <cstdint>
 #include <iosfwd>
 
+#include "sim/math.hpp"
+
 namespace gf::sim {
 
 /// How a finger touches a body (`contact_model` in scene files).
@@ -27,6 +29,13 @@ enum class ContactSolver : std::uint8_t {
                ///< rows) whose limits come from the patch's points (sim/detail/patch_friction.hpp)
 };
 
+/// How a god-finger's contact area follows the device's orientation (`pad_model` in scene files).
+enum class PadModel : std::uint8_t {
+  kDisc,      ///< "disc": the paper's 3-DOF patch, a disc of Eq. 1's radius; orientation ignored
+  kOriented,  ///< "oriented": the 6-DOF pad, an ellipse shrinking towards the tip as the pad
+              ///< tilts from the surface (docs/pad-model.md, sim/detail/patch_ring.hpp)
+};
+
 /// A finger's choice of solver (`contact_solver` of a finger): the world's, or one of them.
 enum class SolverChoice : std::uint8_t {
   kWorld,      ///< "world": `world.contact_solver`
@@ -40,6 +49,7 @@ std::ostream& operator<<(std::ostream& os, ContactModel model);
 std::ostream& operator<<(std::ostream& os, PatchFill fill);
 std::ostream& operator<<(std::ostream& os, ContactSolver solver);
 std::ostream& operator<<(std::ostream& os, SolverChoice choice);
+std::ostream& operator<<(std::ostream& os, PadModel pad);
 
 /// The solver a finger's choice gives under the world's.
 inline ContactSolver resolveSolver(SolverChoice finger, ContactSolver world) {
@@ -82,6 +92,9 @@ struct PatchSettings {
   /// so a fine mesh keeps the full radius; a walk that runs out stops (WalkStop::kCrossingLimit).
   int max_face_crossings = 64;
   double feature_tolerance = 1e-7;  ///< distance (m) within which a hit is an edge/vertex hit
+  PadModel pad_model = PadModel::kDisc;  ///< disc (3-DOF) or oriented (6-DOF pad)
+  Vec3 pad_axis = Vec3(0.0, -1.0, 0.0);  ///< oriented: the pad's outward normal, device frame (unit)
+  double tip_ratio = 0.4;  ///< oriented: the tip's contact size over the flat pad's, in (0, 1]
 };
 
 /// The model a finger's settings give: n_sgo 0 makes the god-finger a god-object.

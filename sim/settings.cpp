@@ -42,9 +42,10 @@ constexpr double kMaxGravity = 100.0;   // m/s^2
 constexpr double kMaxLoadForce = 1e4;   // N
 constexpr double kMaxLoadTorque = 1e3;  // N m
 constexpr double kRadPerDeg = std::numbers::pi / 180.0;
-constexpr double kBig = 1e3;
+constexpr double kBig = 1e3;  // m: nothing in a haptic scene is larger
+constexpr double kMinPadAxisLength = 0.1;  // the pad axis is normalized: a typo of 0 is refused
 // N/m: push_apart's stiffness; each scene's bound is narrower (validateOverlapStability).
-constexpr double kMaxOverlapStiffness = 1e5;  // m: nothing in a haptic scene is larger
+constexpr double kMaxOverlapStiffness = 1e5;
 
 // The member reached from `object` through the member pointers First, Rest...
 template <auto First, auto... Rest, class T>
@@ -93,6 +94,7 @@ constexpr std::string_view kContactModelNames[] = {"god_object", "soft_finger", 
 constexpr std::string_view kPatchFillNames[] = {"ring", "filled"};
 constexpr std::string_view kContactSolverNames[] = {"points", "aggregate"};
 constexpr std::string_view kSolverChoiceNames[] = {"world", "points", "aggregate"};
+constexpr std::string_view kPadModelNames[] = {"disc", "oriented"};
 constexpr std::string_view kOverlapNames[] = {"ignore", "push_apart", "merge"};
 
 template <class S>
@@ -220,6 +222,9 @@ std::span<const Setting<FingerDesc>> fingerSettings() {
       named(row<F, &F::patch, &P::contact_solver>("contact_solver", "", 0, 0), kSolverChoiceNames),
       row<F, &F::patch, &P::rings>("rings", "", 1, kMaxRings),
       row<F, &F::patch, &P::torsional_friction>("torsional_friction", "m", 0.0, 0.1),
+      named(row<F, &F::patch, &P::pad_model>("pad_model", "", 0, 0), kPadModelNames),
+      row<F, &F::patch, &P::pad_axis>("pad_axis", "", -1.0, 1.0),
+      aboveMin(row<F, &F::patch, &P::tip_ratio>("tip_ratio", "", 0.0, 1.0)),
       live(withRule(row<F, &F::patch, &P::n_sgo>("n_sgo", "", 0, kMaxSgo), nSgoRule)),
       live(row<F, &F::patch, &P::r_max>("r_max", "m", 0.0, 1.0)),
       live(row<F, &F::patch, &P::d0>("d0", "m", 1e-6, 1.0)),
@@ -378,6 +383,11 @@ std::optional<FieldError> validateFinger(const FingerDesc& finger) {
                                           " m, how deep the contact lets the proxy in at the coupling's clamp (lower "
                                           "max_force or raise contact_stiffness), got " + got};
   }
+  // The pad's axis is a direction: normalized where it is used, so it needs a length.
+  if (!(finger.patch.pad_axis.norm() >= kMinPadAxisLength)) {
+    return FieldError{"pad_axis", "must be a direction, of length at least " + shown(kMinPadAxisLength) + ", got " +
+                                      shown(finger.patch.pad_axis.norm())};
+  }
   if (std::optional<FieldError> e = validateTrack(finger.device)) {
     e->field = "device." + e->field;
     return e;
@@ -507,5 +517,6 @@ std::ostream& operator<<(std::ostream& os, ContactModel model) { return writeNam
 std::ostream& operator<<(std::ostream& os, PatchFill fill) { return writeName(os, fill, kPatchFillNames); }
 std::ostream& operator<<(std::ostream& os, ContactSolver solver) { return writeName(os, solver, kContactSolverNames); }
 std::ostream& operator<<(std::ostream& os, SolverChoice choice) { return writeName(os, choice, kSolverChoiceNames); }
+std::ostream& operator<<(std::ostream& os, PadModel pad) { return writeName(os, pad, kPadModelNames); }
 
 }  // namespace gf::sim

@@ -122,6 +122,11 @@ Vec3 World::devicePosition(int finger) const {
   return impl_->fingers[finger].device.position;
 }
 
+Quat World::deviceOrientation(int finger) const {
+  GF_ASSERT_OWNER();
+  return impl_->fingers[finger].device.orientation;
+}
+
 Vec3 World::proxyPosition(int finger) const {
   GF_ASSERT_OWNER();
   return toEigen(impl_->fingers[finger].proxy->getCenterOfMassPosition());

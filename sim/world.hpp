@@ -84,6 +84,8 @@ class World {
   Vec3 proxyPosition(int finger) const;
   /// The finger's device position of the last step (m).
   Vec3 devicePosition(int finger) const;
+  /// The finger's device orientation of the last step (identity for a 3-DOF device).
+  Quat deviceOrientation(int finger) const;
   Vec3 couplingForce(int finger) const;
   /// The force the finger's device is to render (N): the opposite of the coupling force (zero
   /// when the scene turns force feedback off), followed at most max_force_rate fast, so that it

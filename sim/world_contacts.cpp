@@ -33,6 +33,13 @@ Vec3 padNormal(const Vec3& n, const ContactMemory* mem) {
   return pad;
 }
 
+// The 6-DOF pad's outward normal in the body frame (`to_local` turns world into body): the
+// device's orientation applied to the finger's pad_axis; zero for the disc pad model.
+Vec3 padNormalLocal(const PatchSettings& s, const Quat& device, const btMatrix3x3& to_local) {
+  if (s.pad_model != PadModel::kOriented) return Vec3::Zero();
+  return toEigen(to_local * toBt(device * s.pad_axis.normalized()));
+}
+
 }  // namespace
 
 void World::Impl::beforeSolve() {
@@ -131,7 +138,7 @@ void World::Impl::recordContact(const Finger& f, const ContactMemory* mem, Finge
   r.body = c.truth.object->getUserIndex();
   r.contact = {toEigen(t.invXform(c.truth.point_world)), toEigen(to_local * c.truth.outward_normal_world),
                c.truth.separation, bodies[r.body].shapes.rounding,
-               mem ? mem->ring_tangent_local : Vec3::Zero()};
+               mem ? mem->ring_tangent_local : Vec3::Zero(), padNormalLocal(f.settings.patch, f.device.orientation, to_local)};
   r.press_depth = pressDepth(c.v_local, r.contact.outward_normal_local.normalized());
   clearPatch(r.patch);
 }

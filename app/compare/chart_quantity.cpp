@@ -22,7 +22,8 @@ constexpr float kModelMarkerSpacingPx = 90.0f;  // markers along a model's curve
 Eigen::Vector3f modelColour(const std::string& model, std::size_t index) {
   if (model == "god_object") return {0.80f, 0.15f, 0.10f};
   if (model == "soft_finger") return {0.05f, 0.55f, 0.25f};
-  if (model == "god_finger") return {0.05f, 0.30f, 0.90f};
+  if (model == "god_finger" || model == "god_finger_3dof") return {0.05f, 0.30f, 0.90f};
+  if (model == "god_finger_6dof") return {0.90f, 0.50f, 0.05f};
   return index % 2 ? Eigen::Vector3f(0.6f, 0.3f, 0.7f) : Eigen::Vector3f(0.3f, 0.3f, 0.3f);
 }
 
@@ -30,9 +31,12 @@ void styleModelSeries(render::ChartSeries& s, const std::string& model, std::siz
   using render::LineDash;
   using render::MarkerShape;
   s.style = render::SeriesStyle::kLine;
-  if (model == "god_finger") {
+  if (model == "god_finger" || model == "god_finger_3dof") {
     s.dash = LineDash::kSolid;
     s.marker = MarkerShape::kCircle;
+  } else if (model == "god_finger_6dof") {
+    s.dash = LineDash::kDotted;
+    s.marker = MarkerShape::kDiamond;
   } else if (model == "soft_finger") {
     s.dash = LineDash::kDashed;
     s.marker = MarkerShape::kSquare;
@@ -51,6 +55,8 @@ std::string modelTitle(const std::string& model) {
   if (model == "god_object") return "god-object";
   if (model == "soft_finger") return "soft finger";
   if (model == "god_finger") return "god-finger";
+  if (model == "god_finger_3dof") return "god-finger 3-DOF";
+  if (model == "god_finger_6dof") return "god-finger 6-DOF";
   return model;
 }
 

@@ -68,11 +68,12 @@ nlohmann::json seriesMeasures(const render::ChartSeries& s);
 
 /// Each model's colour in the chart and its panel's swatch (linear RGB); others by position.
 Eigen::Vector3f modelColour(const std::string& model, std::size_t index);
-/// Each model's line: the god-finger solid, the soft finger dashed, the god-object dash-dotted,
+/// Each model's line: the god-finger (and its 3-DOF pad) solid, the 6-DOF god-finger dotted,
+/// the soft finger dashed, the god-object dash-dotted,
 /// each with its own marker shape every 90 px, the markers of model `index` of `count` shifted
 /// by index / count of that, so curves that coincide stay visible (in the legend too).
 void styleModelSeries(render::ChartSeries& s, const std::string& model, std::size_t index, std::size_t count);
-/// "god-object", "soft finger", "god-finger".
+/// "god-object", "soft finger", "god-finger", "god-finger 3-DOF", "god-finger 6-DOF".
 std::string modelTitle(const std::string& model);
 /// The settings that make the model what it is, for its panel (the first finger's).
 std::string modelDetail(const SessionDesc& session);

@@ -34,26 +34,41 @@ namespace {
 
 namespace fs = std::filesystem;
 
+// The pad model a compare model name stands for (a god-finger with it), or null.
+const char* padModelOf(const std::string& model) {
+  if (model == "god_finger_3dof") return "disc";
+  if (model == "god_finger_6dof") return "oriented";
+  return nullptr;
+}
+
 const sim::Setting<sim::FingerDesc>& contactModelSetting() {
   return *sim::findSetting(sim::fingerSettings(), "contact_model");
 }
 
 // The --set lines giving every finger of the scene `model`.
 std::vector<std::string> modelOverrides(const SessionDesc& session, const std::string& model) {
-  std::vector<std::string> out;
-  for (const sim::FingerDesc& f : session.scene.fingers) out.push_back("fingers." + f.name + ".contact_model=" + model);
-  return out;
+  std::vector<std::string> names;
+  for (const sim::FingerDesc& f : session.scene.fingers) names.push_back(f.name);
+  return compareModelOverrides(names, model);
 }
 
-// The models, checked: 1..4 known contact models, none twice.
+// The models, checked: 1..4 known contact models or pad models, none twice; a pad model only
+// where the finger settings have `pad_model`.
 void checkModels(const std::vector<std::string>& models) {
   if (models.empty() || models.size() > 4) {
     throw InputError("command line", 0, 0, "--models", "give 1 to 4 contact models, e.g. god_object,god_finger");
   }
   for (std::size_t i = 0; i < models.size(); ++i) {
-    if (sim::choiceIndex(contactModelSetting(), models[i]) < 0) {
+    const bool pad = padModelOf(models[i]) != nullptr;
+    if (!pad && sim::choiceIndex(contactModelSetting(), models[i]) < 0) {
       throw InputError("command line", 0, 0, "--models",
-                       "unknown contact model '" + models[i] + "' (one of " + sim::choiceList(contactModelSetting()) + ")");
+                       "unknown contact model '" + models[i] + "' (one of " + sim::choiceList(contactModelSetting()) +
+                           ", god_finger_3dof, god_finger_6dof)");
+    }
+    if (pad && !sim::findSetting(sim::fingerSettings(), "pad_model")) {
+      throw InputError("command line", 0, 0, "--models",
+                       "'" + models[i] + "' is a god-finger with a pad model (fingers.NAME.pad_model = " +
+                           padModelOf(models[i]) + "), and this build's fingers have no pad_model setting yet");
     }
     if (std::find(models.begin(), models.begin() + static_cast<long>(i), models[i]) != models.begin() + static_cast<long>(i)) {
       throw InputError("command line", 0, 0, "--models", "'" + models[i] + "' is given twice");
@@ -378,6 +393,16 @@ int runCompare(const CompareOptions& o) {
   run.compose();
   run.finish();
   return run.status();
+}
+
+std::vector<std::string> compareModelOverrides(const std::vector<std::string>& fingers, const std::string& model) {
+  std::vector<std::string> out;
+  const char* pad = padModelOf(model);
+  for (const std::string& f : fingers) {
+    out.push_back("fingers." + f + ".contact_model=" + (pad ? std::string("god_finger") : model));
+    if (pad) out.push_back("fingers." + f + ".pad_model=" + pad);
+  }
+  return out;
 }
 
 render::Image renderCompareFrame(const std::string& scene, const std::vector<std::string>& models,

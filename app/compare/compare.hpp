@@ -16,7 +16,9 @@ namespace gf::app {
 
 struct CompareOptions {
   std::string scene;                   ///< scene file or bundled scene name
-  std::vector<std::string> models;     ///< contact models, each a `contact_model` name (1..4)
+  /// 1..4 models, each a `contact_model` name, or god_finger_3dof (a god-finger with
+  /// pad_model "disc") or god_finger_6dof (pad_model "oriented")
+  std::vector<std::string> models;
   std::vector<std::string> overrides;  ///< --set for every run
   double duration = 0.0;               ///< s; 0: the scene's
   std::string out;                     ///< folder (default compare-SCENE)
@@ -33,6 +35,11 @@ struct CompareOptions {
   std::string godfinger;               ///< the executable the runs are started with
   bool quiet = false;
 };
+
+/// The --set lines that make every finger of `fingers` (names) the compare model `model`:
+/// `fingers.F.contact_model=MODEL`, or for god_finger_3dof / god_finger_6dof
+/// `fingers.F.contact_model=god_finger` and `fingers.F.pad_model=disc` / `=oriented`.
+std::vector<std::string> compareModelOverrides(const std::vector<std::string>& fingers, const std::string& model);
 
 /// Runs the comparison; 0 when every run finished (an [expect] failing is reported, not an
 /// error), 1 when a run failed, 130/143 when interrupted. Throws InputError for bad options.

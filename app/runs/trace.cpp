@@ -4,6 +4,13 @@
 
 namespace gf::app {
 
+bool deviceGivesOrientation(const sim::FingerDesc& f) {
+  for (const sim::DeviceTrack::Keyframe& k : f.device.keyframes) {
+    if (k.orientation.coeffs() != sim::Quat::Identity().coeffs()) return true;
+  }
+  return false;
+}
+
 std::vector<std::string> traceColumns(const sim::SceneDesc& d) {
   std::vector<std::string> out = {"t"};
   for (const sim::BodyDesc& b : d.bodies) {
@@ -21,6 +28,11 @@ std::vector<std::string> traceColumns(const sim::SceneDesc& d) {
   for (const sim::FingerDesc& f : d.fingers) {
     for (const char* c : {".sent_fx", ".sent_fy", ".sent_fz", ".port_energy"}) out.push_back(f.name + c);
   }
+  // A 6-DOF device's orientation, last, so a 3-DOF scene's columns are as they always were.
+  for (const sim::FingerDesc& f : d.fingers) {
+    if (!deviceGivesOrientation(f)) continue;
+    for (const char* c : {".dqw", ".dqx", ".dqy", ".dqz"}) out.push_back(f.name + c);
+  }
   // Each two fingers' patch overlap (mm^2, docs/overlap.md), in World::overlap's pair order.
   for (std::size_t a = 0; a < d.fingers.size(); ++a) {
     for (std::size_t b = a + 1; b < d.fingers.size(); ++b) out.push_back(d.fingers[a].name + "+" + d.fingers[b].name + ".overlap_mm2");
@@ -33,6 +45,9 @@ TraceWriter::TraceWriter(const sim::World& world, const std::string& path)
   const sim::SceneDesc& d = world.desc();
   for (std::size_t b = 0; b < d.bodies.size(); ++b) {
     if (d.bodies[b].mass > 0.0) dynamic_bodies_.push_back(static_cast<int>(b));
+  }
+  for (std::size_t f = 0; f < d.fingers.size(); ++f) {
+    if (deviceGivesOrientation(d.fingers[f])) oriented_fingers_.push_back(static_cast<int>(f));
   }
 }
 
@@ -60,6 +75,10 @@ void TraceWriter::record(const sim::World& world) {
   for (int f = 0; f < static_cast<int>(world.desc().fingers.size()); ++f) {
     const sim::Vec3 sent = world.feedbackForce(f);
     for (double v : {sent.x(), sent.y(), sent.z(), world.portEnergy(f)}) *x++ = v;
+  }
+  for (int f : oriented_fingers_) {
+    const sim::Quat q = world.deviceOrientation(f);
+    for (double v : {q.w(), q.x(), q.y(), q.z()}) *x++ = v;
   }
   for (int k = 0; k < world.overlapPairCount(); ++k) *x++ = world.overlap(k).area * 1e6;
   GF_ASSERT(x == row_.data() + row_.size() && "trace.csv's row matches traceColumns()");

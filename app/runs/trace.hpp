@@ -9,6 +9,10 @@
 
 namespace gf::app {
 
+/// Whether the finger's device gives an orientation: a keyframe's (q, a CSV's qw..qz, or the
+/// device's tilt) other than the identity. Only then does trace.csv record it.
+bool deviceGivesOrientation(const sim::FingerDesc& finger);
+
 /// trace.csv's columns for a scene, in order (as TraceWriter documents them).
 std::vector<std::string> traceColumns(const sim::SceneDesc& scene);
 
@@ -20,9 +24,10 @@ class TraceWriter {
   /// Columns: t; per dynamic body its pose (.px .py .pz .qx .qy .qz .qw); per finger its
   /// coupling force (.fx .fy .fz), SGO count (.n_sgo), contact radius (.r), proxy and device
   /// positions (.px .py .pz, .dx .dy .dz); per dynamic body its linear (.vx .vy .vz, m/s) and
-  /// angular (.wx .wy .wz, rad/s, world frame) velocity; per finger the force sent to its
-  /// device (.sent_fx .sent_fy .sent_fz) and its port's energy (.port_energy); per two fingers
-  /// A, B (A before B) their patches' overlap (A+B.overlap_mm2, mm^2).
+  /// angular (.wx .wy .wz, rad/s, world frame) velocity; per finger the force sent to the
+  /// device (.sent_fx .sent_fy .sent_fz) and its port energy (.port_energy); per finger whose
+  /// device gives an orientation (deviceGivesOrientation), that orientation (.dqw .dqx .dqy
+  /// .dqz); last, per two fingers A, B (A before B) their patches' overlap (A+B.overlap_mm2, mm^2).
   TraceWriter(const sim::World& world, const std::string& path);
 
   /// Appends the row of the world's current state.
@@ -34,6 +39,7 @@ class TraceWriter {
  private:
   RowFile file_;
   std::vector<int> dynamic_bodies_;
+  std::vector<int> oriented_fingers_;  // fingers whose device gives an orientation
   std::vector<double> row_;  // the row being filled
 };
 

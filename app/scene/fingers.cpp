@@ -4,6 +4,8 @@
 #include <arpa/inet.h>
 
 #include <charconv>
+#include <cmath>
+#include <numbers>
 #include <optional>
 
 #include "app/scene/scene_file.hpp"
@@ -12,7 +14,30 @@
 namespace gf::app {
 namespace {
 
-// The keyframes of a device table: each {t, p}, then the track's own rules (times increasing).
+// tilt_deg lies in [-kMaxTiltDeg, kMaxTiltDeg]; tilt_axis is at least kMinTiltAxis long.
+constexpr double kMaxTiltDeg = 180.0, kMinTiltAxis = 1e-9;
+
+// A keyframe's `q = [w, x, y, z]`: the device's orientation, a unit quaternion within
+// kOrientationTolerance (then normalised), else refused naming the field.
+sim::Quat readOrientation(Reader& kr, const toml::node& n) {
+  const toml::array* a = n.as_array();
+  if (!a || a->size() != 4) kr.fail(&n, "q", "expected a unit quaternion [w, x, y, z] (4 numbers)");
+  double c[4];
+  for (std::size_t i = 0; i < 4; ++i) {
+    const toml::node& e = *a->get(i);
+    if (!e.is_number()) kr.fail(&e, "q", std::string("expected a number, got ") + typeName(e));
+    c[i] = e.value<double>().value_or(0.0);
+    if (!std::isfinite(c[i])) kr.fail(&e, "q", "must be finite");
+  }
+  const sim::Quat q(c[0], c[1], c[2], c[3]);
+  if (!(std::abs(q.norm() - 1.0) <= kOrientationTolerance)) {
+    kr.fail(&n, "q", "must be a unit quaternion [w, x, y, z] (|q| within " + sim::numberText(kOrientationTolerance) +
+                         " of 1), got |q| = " + sim::numberText(q.norm()));
+  }
+  return q.normalized();
+}
+
+// The keyframes of a device table: each {t, p, q}, then the track's own rules (times increasing).
 void readKeyframes(Reader& r, sim::DeviceTrack& d) {
   const toml::node* k = r.find("keyframes");
   const toml::array* a = k->as_array();
@@ -25,6 +50,7 @@ void readKeyframes(Reader& r, sim::DeviceTrack& d) {
     const toml::node* p = kr.find("p");
     if (!p) kr.fail(&e, "p", "missing (device position [x, y, z] in m)");
     kf.position = kr.checkedVec3(*p, "p");
+    if (const toml::node* q = kr.find("q")) kf.orientation = readOrientation(kr, *q);
     kr.finish();
     d.keyframes.push_back(kf);
     tables.push_back(e.as_table());
@@ -105,15 +131,27 @@ WebDeviceDesc readWebDevice(Reader& r, sim::Vec3& start) {
   return w;
 }
 
-// A finger's device: keyframes, a recorded CSV, a live UDP device (then `udp` is set) or the
-// browser's pointer (then `web` is set); a live device's track holds it at its start, where
-// the proxy starts.
-sim::DeviceTrack readDevice(Reader& parent, const std::string& base_dir, std::optional<UdpDeviceDesc>& udp,
-                            std::optional<WebDeviceDesc>& web) {
-  const toml::node* n = parent.find("device");
-  if (!n) parent.fail(nullptr, "device", "missing: the finger needs a device (keyframes, csv, udp or web)");
-  if (!n->is_table()) parent.fail(n, "device", "expected a table");
-  Reader r(*n->as_table(), parent.field("device"), parent.file());
+// `tilt_deg` and `tilt_axis` (device frame): the fixed rotation that follows every orientation
+// the device gives (q_k * R(tilt_axis, tilt_deg)), so a study sweeps the pad angle as one number.
+sim::Quat readTilt(Reader& r) {
+  const double degrees = r.number("tilt_deg", 0.0, -kMaxTiltDeg, kMaxTiltDeg);
+  const Vec3 axis = r.vec3("tilt_axis", Vec3::UnitX());
+  if (!(axis.norm() >= kMinTiltAxis) || axis.cwiseAbs().maxCoeff() > sim::kMaxSceneCoordinate) {
+    r.fail(r.nodeOf("tilt_axis"), "tilt_axis", "expected a non-zero axis [x, y, z] in the device frame");
+  }
+  return sim::Quat(Eigen::AngleAxisd(degrees * std::numbers::pi / 180.0, axis.normalized()));
+}
+
+// Every keyframe's orientation followed by `tilt`.
+void applyTilt(sim::DeviceTrack& d, const sim::Quat& tilt) {
+  for (sim::DeviceTrack::Keyframe& k : d.keyframes) k.orientation = (k.orientation * tilt).normalized();
+}
+
+// Where the device's positions come from: keyframes, a recorded CSV, a live UDP device (then
+// `udp` is set) or the browser's pointer (then `web` is set); a live device's track holds it at
+// its start, where the proxy starts.
+sim::DeviceTrack readDeviceSource(Reader& r, const std::string& base_dir, std::optional<UdpDeviceDesc>& udp,
+                                  std::optional<WebDeviceDesc>& web) {
   sim::DeviceTrack d;
   if (static_cast<int>(r.has("csv")) + static_cast<int>(r.has("keyframes")) + static_cast<int>(r.has("udp")) +
           static_cast<int>(r.has("web")) != 1) {
@@ -124,7 +162,6 @@ sim::DeviceTrack readDevice(Reader& parent, const std::string& base_dir, std::op
     sim::Vec3 start;
     web = readWebDevice(r, start);
     d.keyframes.push_back({0.0, start});
-    r.finish();
     return d;
   }
   if (!r.has("udp")) {
@@ -146,6 +183,20 @@ sim::DeviceTrack readDevice(Reader& parent, const std::string& base_dir, std::op
   } else {
     readKeyframes(r, d);
   }
+  return d;
+}
+
+// A finger's device: its source, then the tilt that follows every orientation it gives.
+sim::DeviceTrack readDevice(Reader& parent, const std::string& base_dir, std::optional<UdpDeviceDesc>& udp,
+                            std::optional<WebDeviceDesc>& web) {
+  const toml::node* n = parent.find("device");
+  if (!n) parent.fail(nullptr, "device", "missing: the finger needs a device (keyframes, csv, udp or web)");
+  if (!n->is_table()) parent.fail(n, "device", "expected a table");
+  Reader r(*n->as_table(), parent.field("device"), parent.file());
+  const sim::Quat tilt = readTilt(r);
+  sim::DeviceTrack d = readDeviceSource(r, base_dir, udp, web);
+  applyTilt(d, tilt);
+  if (udp) udp->tilt = tilt;
   r.finish();
   return d;
 }

@@ -21,8 +21,15 @@ SessionDesc loadSceneFile(const std::string& path, std::span<const std::string> 
 SessionDesc parseSceneText(const std::string& text, const std::string& source_name,
                            const std::string& base_dir, std::span<const std::string> overrides = {});
 
-/// Reads a recorded device path: CSV with a header row "t,x,y,z" (s, m), strictly increasing
-/// times; played back with linear interpolation. Throws InputError naming file and line.
+/// A device orientation given as a quaternion (a keyframe's q, a CSV row's qw..qz) may be off
+/// unit length by this much (four hand-written decimals are); it is then normalised, and
+/// refused beyond.
+inline constexpr double kOrientationTolerance = 1e-3;
+
+/// Reads a recorded device path: CSV with a header row "t,x,y,z" (s, m) or
+/// "t,x,y,z,qw,qx,qy,qz" (with the device's orientation, a unit quaternion within
+/// kOrientationTolerance), strictly increasing times; played back with linear interpolation
+/// (the orientation slerped). Throws InputError naming file, line, column and column name.
 sim::DeviceTrack readDeviceCsv(const std::string& path);
 
 }  // namespace gf::app

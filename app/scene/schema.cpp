@@ -71,13 +71,15 @@ json namedObjects(const json& each, const std::string& description) {
 }
 
 json deviceSchema() {
-  json keyframe = object({{"t", numberSchema(0.0, 1e6, "s")}, {"p", vec3Schema("device position (m)", 1e3)}},
+  json q = {{"type", "array"}, {"items", {{"type", "number"}}}, {"minItems", 4}, {"maxItems", 4},
+            {"description", "device orientation, a unit quaternion [w, x, y, z] (|q| within 0.001 of 1)"}};
+  json keyframe = object({{"t", numberSchema(0.0, 1e6, "s")}, {"p", vec3Schema("device position (m)", 1e3)}, {"q", q}},
                          "a keyframe", {"t", "p"});
   json interpolation = enumSchema(kInterpolations, "between keyframes: smooth (zero velocity at each) or linear");
   json keyframes = object({{"keyframes", {{"type", "array"}, {"items", keyframe}, {"minItems", 1}}},
                            {"interpolation", interpolation}},
                           "scripted keyframes", {"keyframes"});
-  json csv = object({{"csv", {{"type", "string"}, {"description", "recorded device: a CSV t,x,y,z (s, m)"}}}},
+  json csv = object({{"csv", {{"type", "string"}, {"description", "recorded device: a CSV t,x,y,z or t,x,y,z,qw,qx,qy,qz (s, m)"}}}},
                     "a recorded device", {"csv"});
   json udp_fields = {
       {"udp",
@@ -95,7 +97,14 @@ json deviceSchema() {
   json web = object({{"web", {{"const", true}, {"description", "the pointer of the browser view (`--serve`) drives it"}}},
                      {"start", vec3Schema("scene position held until the page moves it (m)", 1e3)}},
                     "the browser view's pointer", {"web"});
-  return {{"oneOf", {keyframes, csv, object(udp_fields, "a live UDP device", {"udp"}), web}}};
+  json udp = object(udp_fields, "a live UDP device", {"udp"});
+  // Every kind of device may be tilted: the fixed rotation after each orientation it gives.
+  for (json* kind : {&keyframes, &csv, &udp, &web}) {
+    (*kind)["properties"]["tilt_deg"] =
+        numberSchema(-180.0, 180.0, "deg: a fixed rotation about tilt_axis after every orientation (default 0)");
+    (*kind)["properties"]["tilt_axis"] = vec3Schema("the tilt's axis in the device frame, non-zero (default [1, 0, 0])", 1e3);
+  }
+  return {{"oneOf", {keyframes, csv, udp, web}}};
 }
 
 json bodySchema() {

@@ -51,6 +51,9 @@ struct UdpDeviceDesc {
   /// s: time constant of the low-pass filter on the velocity from successive packets (0: raw
   /// differences); the coupling damps on it.
   double velocity_smoothing = 0.005;
+  /// The device table's tilt (`tilt_deg` about `tilt_axis`, device frame): follows every
+  /// orientation the device sends (q * tilt).
+  sim::Quat tilt = sim::Quat::Identity();
   std::string file;                    ///< where `udp` was given (the scene file, or a --set), for errors
   int line = 0, column = 0;
 };

@@ -28,6 +28,7 @@ sim::DeviceSample SteeredDevice::sample(double t) {
     return s;
   }
   sim::DeviceSample s;
+  s.orientation = track_.sample(t).orientation;  // the page moves the position only
   if (t >= t1_) {
     s.position = to_;
   } else {

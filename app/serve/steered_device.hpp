@@ -1,5 +1,6 @@
 // A finger's device that the browser view (or a `move` posted to it) steers while a realtime
-// session runs: the scene's track until the first move, then straight lines to each target.
+// session runs: the scene's track until the first move, then straight lines to each target;
+// its orientation stays the track's (for a `web` device its tilt) whatever the moves.
 // The server thread posts targets; the haptic thread samples without blocking or allocating.
 #pragma once
 

@@ -19,6 +19,10 @@ double readF64(std::span<const std::uint8_t> b, std::size_t at) {
   return std::bit_cast<double>(v);
 }
 
+double readF32(std::span<const std::uint8_t> b, std::size_t at) {
+  return static_cast<double>(std::bit_cast<float>(readU32(b, at)));
+}
+
 void writeU32(std::span<std::uint8_t> b, std::size_t at, std::uint32_t v) {
   for (std::size_t i = 0; i < 4; ++i) b[at + i] = static_cast<std::uint8_t>(v >> (8 * i));
 }
@@ -31,9 +35,10 @@ void writeF64(std::span<std::uint8_t> b, std::size_t at, double d) {
 }  // namespace
 
 PacketError parseDevicePacket(std::span<const std::uint8_t> b, DevicePacket& out) {
-  if (b.size() != DevicePacket::kSize) return PacketError::kSize;
-  if (readU32(b, 0) != DevicePacket::kMagic) return PacketError::kMagic;
+  if (b.size() != DevicePacket::kSize && b.size() != DevicePacket::kOrientedSize) return PacketError::kSize;
   DevicePacket p;
+  p.oriented = b.size() == DevicePacket::kOrientedSize;
+  if (readU32(b, 0) != (p.oriented ? DevicePacket::kOrientedMagic : DevicePacket::kMagic)) return PacketError::kMagic;
   p.seq = readU32(b, 4);
   p.channel = readU32(b, 8);
   p.buttons = readU32(b, 12);
@@ -41,6 +46,11 @@ PacketError parseDevicePacket(std::span<const std::uint8_t> b, DevicePacket& out
   p.position = sim::Vec3(readF64(b, 24), readF64(b, 32), readF64(b, 40));
   if (!std::isfinite(p.time) || !p.position.allFinite() || p.position.cwiseAbs().maxCoeff() > kMaxDeviceCoordinate) {
     return PacketError::kBadValue;
+  }
+  if (p.oriented) {
+    const sim::Quat q(readF32(b, 48), readF32(b, 52), readF32(b, 56), readF32(b, 60));
+    if (!q.coeffs().allFinite() || !(std::abs(q.norm() - 1.0) <= kMaxOrientationError)) return PacketError::kBadValue;
+    p.orientation = q.normalized();
   }
   out = p;
   return PacketError::kNone;
@@ -53,6 +63,17 @@ void encodeDevicePacket(const DevicePacket& p, std::span<std::uint8_t, DevicePac
   writeU32(out, 12, p.buttons);
   writeF64(out, 16, p.time);
   for (int i = 0; i < 3; ++i) writeF64(out, 24 + 8 * static_cast<std::size_t>(i), p.position[i]);
+}
+
+void encodeOrientedDevicePacket(const DevicePacket& p, std::span<std::uint8_t, DevicePacket::kOrientedSize> out) {
+  encodeDevicePacket(p, out.first<DevicePacket::kSize>());
+  writeU32(out, 0, DevicePacket::kOrientedMagic);
+  const sim::Quat& q = p.orientation;
+  std::size_t at = DevicePacket::kSize;
+  for (double c : {q.w(), q.x(), q.y(), q.z()}) {
+    writeU32(out, at, std::bit_cast<std::uint32_t>(static_cast<float>(c)));
+    at += 4;
+  }
 }
 
 bool parseDeviceReply(std::span<const std::uint8_t> b, DeviceReply& out) {
@@ -81,7 +102,7 @@ void encodeDeviceReply(const DeviceReply& r, std::span<std::uint8_t, DeviceReply
 }
 
 DeviceLink::DeviceLink(const UdpDeviceDesc& desc, double max_force)
-    : desc_(desc), max_force_(max_force), position_(desc.start) {}
+    : desc_(desc), max_force_(max_force), position_(desc.start), orientation_(desc.tilt) {}
 
 bool DeviceLink::take(const DevicePacket& p, double t, std::uint64_t sender) {
   const auto ahead = static_cast<std::int32_t>(p.seq - seq_);  // serial-number order
@@ -106,6 +127,9 @@ bool DeviceLink::take(const DevicePacket& p, double t, std::uint64_t sender) {
   // it is a far one), the device clock's gap otherwise.
   const bool new_stream = !heard_ || takeover || gap < 0.0 || gap > desc_.stale_after;
   interval_ = new_stream ? 0.0 : gap;
+  // A GFD1 packet keeps its stream's orientation; a new stream starts from the device's own.
+  if (p.oriented) orientation_ = (p.orientation * desc_.tilt).normalized();
+  else if (new_stream) orientation_ = desc_.tilt;
   if (new_stream) {
     velocity_.setZero();  // a new stream: no estimate yet
   } else if (gap >= kMinVelocityInterval) {
@@ -135,7 +159,9 @@ sim::DeviceSample DeviceLink::sample(double t) {
   stale_ = stale;
   if (stale_) resync_ = ramping_ = true;
   if (stale_) ++counters_.stale_steps;
-  return {position_, stale_ ? sim::Vec3::Zero() : velocity_, interval_};
+  sim::DeviceSample out{position_, stale_ ? sim::Vec3::Zero() : velocity_, interval_};
+  out.orientation = orientation_;
+  return out;
 }
 
 DeviceReply DeviceLink::reply(double t, const sim::DeviceFeedback& f) {

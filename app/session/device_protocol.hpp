@@ -14,15 +14,21 @@
 
 namespace gf::app {
 
-/// A device's packet to godfinger (48 bytes).
+/// A device's packet to godfinger: "GFD1" (48 bytes, a position) or "GFD2" (64 bytes: the same
+/// fields, then the device's orientation as 4 x f32 w, x, y, z at offset 48).
 struct DevicePacket {
   static constexpr std::uint32_t kMagic = 0x31444647;  ///< bytes "GFD1"
   static constexpr std::size_t kSize = 48;
+  static constexpr std::uint32_t kOrientedMagic = 0x32444647;  ///< bytes "GFD2"
+  static constexpr std::size_t kOrientedSize = 64;
   std::uint32_t seq = 0;      ///< increases by one per packet (wraps around)
   std::uint32_t channel = 0;  ///< which finger of those sharing the socket
   std::uint32_t buttons = 0;  ///< device buttons, bit i = button i
   double time = 0.0;          ///< s: the device's own clock when it read the position
   sim::Vec3 position = sim::Vec3::Zero();  ///< m, in the device's frame
+  bool oriented = false;  ///< a GFD2 packet: `orientation` was sent
+  /// GFD2: rotates the device frame into the scene's axes (unit; normalised when parsed).
+  sim::Quat orientation = sim::Quat::Identity();
 };
 
 /// godfinger's reply to a device, sent after every haptic step (64 bytes).
@@ -45,10 +51,15 @@ struct DeviceReply {
 /// Why a datagram was not taken as a DevicePacket.
 enum class PacketError {
   kNone,
-  kSize,       ///< not exactly DevicePacket::kSize bytes
-  kMagic,      ///< wrong first four bytes (another protocol or version)
-  kBadValue,   ///< time not finite, or a coordinate not finite or beyond kMaxDeviceCoordinate
+  kSize,       ///< neither DevicePacket::kSize nor kOrientedSize bytes
+  kMagic,      ///< wrong first four bytes for the size (another protocol or version)
+  /// time not finite, a coordinate not finite or beyond kMaxDeviceCoordinate, or (GFD2) an
+  /// orientation not finite or further than kMaxOrientationError from unit length
+  kBadValue,
 };
+
+/// A GFD2 orientation's |q| may differ from 1 by this much (it is then normalised).
+inline constexpr double kMaxOrientationError = 1e-3;
 
 /// m: the largest device coordinate taken (a device's workspace is well under a metre).
 inline constexpr double kMaxDeviceCoordinate = 100.0;
@@ -59,8 +70,10 @@ inline constexpr double kMinVelocityInterval = 1e-5;
 
 /// Decodes a datagram; `out` is written only when the result is kNone. Any bytes.
 PacketError parseDevicePacket(std::span<const std::uint8_t> bytes, DevicePacket& out);
-/// Encodes into exactly DevicePacket::kSize bytes.
+/// Encodes a GFD1 packet (the orientation left out) into exactly DevicePacket::kSize bytes.
 void encodeDevicePacket(const DevicePacket& packet, std::span<std::uint8_t, DevicePacket::kSize> out);
+/// Encodes a GFD2 packet (with the orientation) into exactly DevicePacket::kOrientedSize bytes.
+void encodeOrientedDevicePacket(const DevicePacket& packet, std::span<std::uint8_t, DevicePacket::kOrientedSize> out);
 
 /// Decodes a reply (for clients and tests); false unless the size and magic are right.
 bool parseDeviceReply(std::span<const std::uint8_t> bytes, DeviceReply& out);
@@ -90,7 +103,9 @@ class DeviceLink {
   /// when its seq is not newer than the last taken, or its position maps outside the scene's
   /// coordinate range (sim::kMaxSceneCoordinate). Seqs compare with wrap-around; the first
   /// packet after a dropout is taken whatever its seq (a restarted device is followed at once),
-  /// the ones after it are ordered again. `sender` names where it came from (an address and
+  /// the ones after it are ordered again. A GFD2 packet's orientation (then the device's tilt)
+  /// becomes the device's; a GFD1 packet moves the position only, the orientation staying the
+  /// last GFD2 packet's of the same stream (identity for a stream that sent none). `sender` names where it came from (an address and
   /// port): a packet taken from another sender than the last is a takeover, faded in like a
   /// device back from a dropout (the gain and the force sent start again from zero, the
   /// velocity estimate too).
@@ -98,7 +113,8 @@ class DeviceLink {
   /// The device for the step starting at t: the newest packet's position in the scene
   /// (workspace_offset + workspace_scale * position) and a low-pass velocity from successive
   /// packets; while stale (no packet for stale_after) the position held, velocity 0; before the
-  /// first packet, the start position.
+  /// first packet, the start position. The orientation is held likewise (the tilt alone
+  /// before any GFD2 packet).
   sim::DeviceSample sample(double t);
   /// The reply after the step that ended at t. The target is the feedback force times
   /// force_scale times the gain, which ramps at 1 / force_ramp per second towards 0 while stale
@@ -127,6 +143,7 @@ class DeviceLink {
   double received_at_ = 0.0, device_time_ = 0.0, sample_time_ = 0.0, first_packet_at_ = 0.0, gain_ = 0.0;
   double interval_ = 0.0;  // s: device-clock gap between the last two packets of one stream
   sim::Vec3 position_, velocity_ = sim::Vec3::Zero();  // scene frame
+  sim::Quat orientation_;  // the newest GFD2 orientation, then the tilt
   Counters counters_;
 };
 

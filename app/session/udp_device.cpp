@@ -165,7 +165,7 @@ void UdpDeviceBridge::Socket::poll(double t) {
   polled_at = t;
   // One byte more than a packet, so a longer datagram shows as one (MSG_TRUNC gives its length);
   // the control message carries the kernel's count of datagrams dropped on a full buffer.
-  std::array<std::uint8_t, DevicePacket::kSize + 1> buffer;
+  std::array<std::uint8_t, DevicePacket::kOrientedSize + 1> buffer;
   alignas(cmsghdr) std::array<char, CMSG_SPACE(sizeof(std::uint32_t))> control;
   for (int n = 0; n < kMaxDatagramsPerStep; ++n) {
     sockaddr_in from{};

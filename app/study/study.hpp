@@ -28,7 +28,8 @@ struct StudyOverride {
 
 /// Scene fields varied together over a list of values (e.g. both fingers' n_sgo).
 struct StudyAxis {
-  std::vector<std::string> fields;    ///< as for --set; the first names the axis
+  std::vector<std::string> fields;    ///< as for --set
+  std::string name;                   ///< results.csv's column and the labels' name: `name`, else the first field
   std::vector<StudyOverride> values;  ///< each value in TOML syntax (text without "field=")
   std::vector<StudyOverride> quick;   ///< the values --quick uses (default: the first)
 };
@@ -42,7 +43,12 @@ enum class MeasureKind {
   kForceSd,         ///< s.d. of the non-gravity force along `axis` over the window (N)
   kGeodesicRadius,  ///< mean great-circle distance from the contact point to the SGOs on a sphere (m)
   kTrajectory,      ///< RMS distance between the body's path and the reference run's (m)
+  kTipMoment,       ///< applied torque about `axis` minus I times the angular acceleration when the
+                    ///< body has turned kTipAngleDeg about it: the moment the contact held (N m)
 };
+
+/// The turn (deg) about a tip_moment measure's axis at which the body has tipped.
+inline constexpr double kTipAngleDeg = 1.0;
 
 enum class ReferenceKind {
   kRun,                 ///< the same measure in the study's reference run
@@ -52,6 +58,7 @@ enum class ReferenceKind {
   kMuF,                 ///< mu F: Coulomb sliding
   kRollingPrediction,   ///< 0 (slides) when theta + r/R >= 1, else 1 (rolls)
   kPatchRadius,         ///< the Eq. 1 radius the patch walked
+  kFR,                  ///< F r: a pad whose whole load has moved to its rim (the tilt limit)
   kValue,               ///< a number the study file gives (StudyMeasure::reference_value)
 };
 

@@ -17,6 +17,7 @@ const char* errorUnit(const StudyMeasure& m) {
     case MeasureKind::kSwing: return " deg";
     case MeasureKind::kForceSd:
     case MeasureKind::kFrictionForce: return " N";
+    case MeasureKind::kTipMoment:
     case MeasureKind::kFrictionTorque: return " N m";
     case MeasureKind::kGeodesicRadius:
     case MeasureKind::kTrajectory: return " m";
@@ -58,12 +59,14 @@ std::vector<std::string> varyingAxes(const std::vector<Row>& rows, const std::st
 }
 
 // One axis value in a point's label: "n8" for n_SGO 8, "it10" for 10 solver iterations, "2kHz"
-// for a haptic rate of 2000 Hz, "res4" for walk resolution 4; else the field's last name = value.
+// for a haptic rate of 2000 Hz, "res4" for walk resolution 4, "45deg" for an angle (a name ending
+// in _deg, e.g. pad_angle_deg); else the field's last name = value.
 std::string labelToken(const std::string& field, const std::string& value) {
   const std::string name = field.substr(field.rfind('.') + 1);
   if (name == "n_sgo") return "n" + value;
   if (name == "solver_iterations") return "it" + value;
   if (name == "walk_resolution") return "res" + value;
+  if (name.size() > 4 && name.ends_with("_deg")) return value + "deg";
   if (name == "haptic_rate") {
     const double hz = std::atof(value.c_str());
     if (hz >= 1000.0 && std::fmod(hz, 1000.0) == 0.0) return std::to_string(std::lround(hz / 1000.0)) + "kHz";

@@ -20,9 +20,9 @@ namespace {
 namespace fs = std::filesystem;
 
 constexpr const char* kMeasureKinds[] = {"friction_torque", "friction_force", "roll_ratio", "swing",
-                                         "force_sd", "geodesic_radius", "trajectory"};
+                                         "force_sd", "geodesic_radius", "trajectory", "tip_moment"};
 constexpr const char* kReferenceKinds[] = {"run", "two_thirds_mu_f_r", "mu_f_r", "hertz_mu_f_r", "mu_f",
-                                           "rolling_prediction", "patch_radius"};
+                                           "rolling_prediction", "patch_radius", "f_r"};
 constexpr const char* kErrorKinds[] = {"relative", "absolute", "deviation"};
 constexpr const char* kCostKinds[] = {"step", "patch"};
 
@@ -36,6 +36,7 @@ bool referenceFits(MeasureKind m, ReferenceKind r) {
     case ReferenceKind::kMuF: return m == MeasureKind::kFrictionForce;
     case ReferenceKind::kRollingPrediction: return m == MeasureKind::kRollRatio;
     case ReferenceKind::kPatchRadius: return m == MeasureKind::kGeodesicRadius;
+    case ReferenceKind::kFR: return m == MeasureKind::kTipMoment;
     case ReferenceKind::kValue: return m != MeasureKind::kTrajectory;  // its reference is the path's
   }
   return false;
@@ -105,6 +106,8 @@ std::vector<StudyAxis> readAxes(Reader& parent, const std::string& key) {
       for (const auto& [text, node] : r.strings("field")) axis.fields.push_back(text);
     }
     if (axis.fields.empty()) r.fail(field, "field", "expected a field name or a non-empty array of them");
+    axis.name = r.string("name", axis.fields.front());
+    if (axis.name.empty()) r.fail(r.nodeOf("name"), "name", "must not be empty");
     for (const std::string& f : axis.fields) {
       if (f.empty() || f.find('=') != std::string::npos) r.fail(field, "field", "'" + f + "' is not a field path");
     }
@@ -433,7 +436,7 @@ StudyPlan expandStudy(const StudyDesc& study, bool quick, const std::vector<std:
       for (std::size_t k = 0; k < series.axes.size(); ++k) {
         const StudyOverride& v = (quick ? series.axes[k].quick : series.axes[k].values)[at[k]];
         for (const std::string& f : series.axes[k].fields) run.overrides.push_back({f + "=" + v.text, v.source, v.field_source});
-        run.axis_values.emplace_back(series.axes[k].fields.front(), valueText(v.text));
+        run.axis_values.emplace_back(series.axes[k].name, valueText(v.text));
       }
       if (quick) run.overrides.insert(run.overrides.end(), study.quick_set.begin(), study.quick_set.end());
       runs.push_back(std::move(run));

@@ -146,6 +146,22 @@ class View {
     return sim::contactRadius(normalForce() / finger_->coupling.stiffness, p.r_max, p.d0);
   }
   double friction() const { return finger_->patch.friction; }
+  // F r for a measure about an axis across the press: F the mean magnitude of the finger's
+  // coupling force over the window's first kPressRows rows, before the load tips the body (N),
+  // r the Eq. 1 radius of its press depth F / k (m).
+  double pressMoment() const {
+    constexpr std::size_t kPressRows = 50;
+    const std::string f = finger_->name;
+    const std::size_t n = std::min(rows_.size(), kPressRows);
+    double sum = 0.0;
+    for (std::size_t k = 0; k < n; ++k) {
+      const std::size_t r = rows_[k];
+      sum += Vec3(run_.column(f + ".fx")[r], run_.column(f + ".fy")[r], run_.column(f + ".fz")[r]).norm();
+    }
+    const double press = sum / static_cast<double>(n);
+    const sim::PatchSettings& p = finger_->patch;
+    return press * sim::contactRadius(press / finger_->coupling.stiffness, p.r_max, p.d0);
+  }
   // The loads on the body at time t: force (N) and torque (N m).
   std::pair<Vec3, Vec3> loads(double t) const {
     Vec3 f = Vec3::Zero(), tau = Vec3::Zero();
@@ -220,6 +236,28 @@ Value rollRatio(const StudyMeasure& m, const View& v) {
   std::snprintf(b, sizeof b, "the %s went %.3g mm in the window [%g, %g], less than %g %% of its radius (it rests)",
                 m.body.c_str(), roll.distance() * 1e3, m.from, m.to, RollRatio::kMinTravel * 100.0);
   return {NAN, std::string("no roll ratio: ") + b};
+}
+
+// The moment the contact held about the axis when the body tipped: at the first row where the
+// body has turned about the axis by kTipAngleDeg since the window's start, the applied torque
+// about it minus I times the angular acceleration fitted over the kTipFitRows rows up to it.
+Value tipMoment(const StudyMeasure& m, const View& v) {
+  constexpr std::size_t kTipFitRows = 20;
+  const Eigen::Quaterniond q0 = v.orientation(v.rows().front());
+  std::vector<double> t, w;
+  for (std::size_t r : v.rows()) {
+    t.push_back(v.t(r));
+    w.push_back(v.bodyVector(r, ".wx", ".wy", ".wz").dot(m.axis));
+    const Eigen::AngleAxisd aa(v.orientation(r) * q0.inverse());
+    if (std::abs(aa.angle() * aa.axis().dot(m.axis)) * kRadToDeg < kTipAngleDeg) continue;
+    const std::ptrdiff_t n = static_cast<std::ptrdiff_t>(std::min(t.size(), kTipFitRows));
+    const std::vector<double> tt(t.end() - n, t.end()), ww(w.end() - n, w.end());
+    return {v.loads(v.t(r)).second.dot(m.axis) - v.inertiaAbout(r) * slope(tt, ww), {}};
+  }
+  char b[160];
+  std::snprintf(b, sizeof b, "no tip moment: the %s did not turn by %g deg about the axis in the window [%g, %g]",
+                m.body.c_str(), kTipAngleDeg, m.from, m.to);
+  return {NAN, b};
 }
 
 // Largest rotation about the axis since the window's first row (deg).
@@ -314,6 +352,7 @@ Value measureOnly(const StudyMeasure& m, const RunOutputs& run, const View& v) {
     case MeasureKind::kSwing: return {swing(m, v), {}};
     case MeasureKind::kForceSd: return {forceSd(m, v, run), {}};
     case MeasureKind::kGeodesicRadius: return {geodesicRadius(m, run, v), {}};
+    case MeasureKind::kTipMoment: return tipMoment(m, v);
     case MeasureKind::kTrajectory: break;
   }
   v.fail("a trajectory is measured against its reference run");
@@ -361,6 +400,7 @@ MeasureResult evaluateMeasure(const StudyMeasure& m, const RunOutputs& run, cons
       case ReferenceKind::kRollingPrediction:
         r.reference = v.friction() + v.patchRadius() / v.body().radius >= 1.0 ? 0.0 : 1.0;
         break;
+      case ReferenceKind::kFR: r.reference = v.pressMoment(); break;
       case ReferenceKind::kPatchRadius: r.reference = contactAt(m, run, v).at("radius_m").get<double>(); break;
     }
   }

@@ -27,8 +27,10 @@ import sys
 import time
 
 PACKET = struct.Struct("<IIIId3d")       # magic, seq, channel, buttons, time, x, y, z (48 bytes)
+ORIENTED = struct.Struct("<IIIId3d4f")   # the same, then the orientation w, x, y, z as f32 (64 bytes)
 REPLY = struct.Struct("<IIIId3ddIf")     # magic, seq, channel, flags, time, fx, fy, fz, radius, n_sgo, gain (64 bytes)
 PACKET_MAGIC = 0x31444647                # "GFD1"
+ORIENTED_MAGIC = 0x32444647              # "GFD2"
 REPLY_MAGIC = 0x31524647                 # "GFR1"
 STALE, TOUCHING, RAMPING = 1, 2, 4
 
@@ -42,7 +44,8 @@ DEFAULT_SCENE = next((p for p in (os.path.join(d, "fig8-pinch-oscillation.toml")
 
 
 def load_tracks(path):
-    """Each finger's (interpolation, [(t, (x, y, z)), ...]) in the scene file's order."""
+    """Each finger's (interpolation, [(t, (x, y, z), (w, x, y, z)), ...]) in the scene file's order
+    (the orientation is the keyframe's q, identity when it gives none)."""
     import tomllib  # Python 3.11+
     with open(path, "rb") as f:
         scene = tomllib.load(f)
@@ -51,27 +54,46 @@ def load_tracks(path):
         device = finger.get("device", {})
         if "keyframes" not in device:
             sys.exit(f"{path}: fingers.{name}.device has no keyframes to replay")
-        frames = [(float(k["t"]), tuple(float(v) for v in k["p"])) for k in device["keyframes"]]
+        frames = [(float(k["t"]), tuple(float(v) for v in k["p"]), tuple(float(v) for v in k.get("q", (1, 0, 0, 0))))
+                  for k in device["keyframes"]]
         tracks.append((device.get("interpolation", "smooth"), frames))
     if not tracks:
         sys.exit(f"{path}: no fingers")
     return tracks
 
 
-def position(track, t):
-    """The track's position at time t, as godfinger plays keyframes back (held at both ends)."""
+def slerp(q0, q1, u):
+    """Unit quaternions (w, x, y, z) q0 to q1 by u in [0, 1], the shorter way round."""
+    n0, n1 = (math.sqrt(sum(c * c for c in q)) for q in (q0, q1))
+    q0, q1 = tuple(c / n0 for c in q0), tuple(c / n1 for c in q1)
+    dot = sum(a * b for a, b in zip(q0, q1))
+    if dot < 0.0:
+        q1, dot = tuple(-c for c in q1), -dot
+    if dot > 0.9995:  # nearly parallel: a normalised straight line
+        q = tuple(a + u * (b - a) for a, b in zip(q0, q1))
+    else:
+        angle = math.acos(dot)
+        w0, w1 = math.sin((1.0 - u) * angle), math.sin(u * angle)
+        q = tuple(w0 * a + w1 * b for a, b in zip(q0, q1))
+    n = math.sqrt(sum(c * c for c in q))
+    return tuple(c / n for c in q)
+
+
+def pose(track, t):
+    """The track's position and orientation at time t, as godfinger plays keyframes back (held
+    at both ends)."""
     interpolation, frames = track
     if t <= frames[0][0]:
-        return frames[0][1]
+        return frames[0][1], slerp(frames[0][2], frames[0][2], 0.0)
     if t >= frames[-1][0]:
-        return frames[-1][1]
-    for (t0, p0), (t1, p1) in zip(frames, frames[1:]):
+        return frames[-1][1], slerp(frames[-1][2], frames[-1][2], 0.0)
+    for (t0, p0, q0), (t1, p1, q1) in zip(frames, frames[1:]):
         if t < t1:
             u = (t - t0) / (t1 - t0)
             if interpolation == "smooth":
                 u = u * u * (3.0 - 2.0 * u)
-            return tuple(a + u * (b - a) for a, b in zip(p0, p1))
-    return frames[-1][1]
+            return tuple(a + u * (b - a) for a, b in zip(p0, p1)), slerp(q0, q1, u)
+    return frames[-1][1], slerp(frames[-1][2], frames[-1][2], 0.0)
 
 
 def percentile(values, q):
@@ -90,6 +112,9 @@ def main():
     parser.add_argument("--scene", default=DEFAULT_SCENE,
                         help="scene file whose fingers' keyframes are replayed, finger i on channel i "
                              "(default: the Fig. 8 pinch)")
+    parser.add_argument("--gfd2", action="store_true",
+                        help="send 64-byte GFD2 packets with each track's orientation (its keyframes' q, "
+                             "identity without): a 6-DOF device")
     args = parser.parse_args()
     if not (args.rate > 0 and args.seconds >= 0 and 0 < args.port < 65536):
         parser.error("--rate must be > 0, --seconds >= 0 and --port in 1..65535")
@@ -133,8 +158,12 @@ def main():
                 counts["answered"] += 1
                 rtts.append((now - waiting.popleft()[1]) * 1e6)
 
-    def send_packet(channel, seq, t, p):
-        sock.sendto(PACKET.pack(PACKET_MAGIC, seq, channel, 0, t, *p), target)
+    def send_packet(channel, seq, t, pose_now):
+        p, q = pose_now
+        if args.gfd2:
+            sock.sendto(ORIENTED.pack(ORIENTED_MAGIC, seq, channel, 0, t, *p, *q), target)
+        else:
+            sock.sendto(PACKET.pack(PACKET_MAGIC, seq, channel, 0, t, *p), target)
         sent_at[channel].append((seq, time.perf_counter()))
         counts["sent"] += 1
 
@@ -151,7 +180,7 @@ def main():
             read_replies()
         t = k * period
         for channel, track in enumerate(tracks):
-            send_packet(channel, k, t, position(track, t))
+            send_packet(channel, k, t, pose(track, t))
         read_replies()
     end = time.perf_counter() + 0.05  # the last replies
     while time.perf_counter() < end:

@@ -16,6 +16,7 @@
 #include "app/runs/run_reader.hpp"
 #include "app/scene/scene_file.hpp"
 #include "render/image.hpp"
+#include "sim/settings.hpp"
 #include "tests/app/run_helpers.hpp"
 
 namespace gf::app {
@@ -149,6 +150,44 @@ TEST(Compare, BadOptionsAreErrorsNamingTheOptionBeforeAnyRun) {
     }
     EXPECT_FALSE(fs::exists(out)) << chart;
   }
+}
+
+// god_finger_3dof and god_finger_6dof are the god-finger with pad_model disc and oriented on
+// every finger; the contact_model names stay one override each. Where the finger settings have
+// no pad_model (a build without the pad model), the two names are refused before any run,
+// saying what they need; otherwise the runs of a pad model carry its pad_model.
+TEST(Compare, PadModelNamesAreAGodFingerWithItsPadModel) {
+  EXPECT_EQ(compareModelOverrides({"left", "right"}, "god_finger_3dof"),
+            (std::vector<std::string>{"fingers.left.contact_model=god_finger", "fingers.left.pad_model=disc",
+                                      "fingers.right.contact_model=god_finger", "fingers.right.pad_model=disc"}));
+  EXPECT_EQ(compareModelOverrides({"index"}, "god_finger_6dof"),
+            (std::vector<std::string>{"fingers.index.contact_model=god_finger", "fingers.index.pad_model=oriented"}));
+  EXPECT_EQ(compareModelOverrides({"index"}, "soft_finger"),
+            (std::vector<std::string>{"fingers.index.contact_model=soft_finger"}));
+  EXPECT_EQ(modelTitle("god_finger_3dof"), "god-finger 3-DOF");
+  EXPECT_EQ(modelTitle("god_finger_6dof"), "god-finger 6-DOF");
+  EXPECT_NE(modelColour("god_finger_6dof", 1), modelColour("god_finger_3dof", 0));
+  if (sim::findSetting(sim::fingerSettings(), "pad_model")) {
+    // With the pad model, every finger of each run gets its pad (checked on the loaded scene).
+    const std::string scene = resolveScenePath("orientation-track");
+    for (const char* model : {"god_finger_3dof", "god_finger_6dof"}) {
+      EXPECT_NO_THROW(loadSceneFile(scene, compareModelOverrides({"index"}, model))) << model;
+    }
+    return;
+  }
+  CompareOptions o;
+  o.scene = "orientation-track";
+  o.godfinger = kBin;
+  o.out = (freshFolder("compare-pad-models") / "never").string();
+  o.models = {"god_finger_3dof", "god_finger_6dof", "soft_finger"};
+  try {
+    runCompare(o);
+    ADD_FAILURE() << "a pad model accepted without pad_model";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.field(), "--models");
+    EXPECT_NE(std::string(e.what()).find("pad_model = disc"), std::string::npos) << e.what();
+  }
+  EXPECT_FALSE(fs::exists(o.out));
 }
 
 TEST(Compare, AShortFig5ComparisonWritesFramesVideoAndMeasures) {

@@ -22,6 +22,7 @@
 #include <unistd.h>
 
 #include "app/session/device_protocol.hpp"
+#include "app/runs/run_reader.hpp"
 #include "tests/app/loopback.hpp"
 #include "tests/app/run_helpers.hpp"
 
@@ -323,6 +324,44 @@ TEST(UdpDevice, TheExampleClientDrivesTheBundledScene) {
     EXPECT_EQ(f["out_of_order"], 0);
   }
   EXPECT_EQ(taken, sockets[0]["datagrams"].get<long>());  // in order on loopback: every packet read is taken
+}
+
+// The example program as a 6-DOF device (--gfd2: 64-byte packets with each keyframe's
+// orientation, the identity for the Fig. 8 tracks): every packet is taken, none is a bad value,
+// and the finger whose device table gives a tilt records in trace.csv the orientation sent
+// followed by that tilt (10 deg about x).
+TEST(UdpDevice, TheExampleClientSendsGfd2AndTheTraceHasTheOrientation) {
+  const fs::path dir = freshFolder("gf_udp_gfd2");
+  Child child = start(kBin + " run device-udp --realtime --quiet --set duration=30 --set fingers.left.device.udp=0 " +
+                          "--set fingers.right.device.udp=0 --set fingers.left.device.tilt_deg=10 --out " +
+                          (dir / "run").string(),
+                      (dir / "stdout.txt").string());
+  ASSERT_GT(child.pid, 0);
+  KillGroupOnExit stop{child.pid};
+  const int port = listeningPort(child.lines);
+  ASSERT_GT(port, 0) << "the run did not say where it listens";
+  const std::string command = std::string(GF_PYTHON3) + " " + GF_SOURCE_DIR + "/examples/device-udp/client.py --port " +
+                              std::to_string(port) + " --seconds 0.5 --rate 1000 --gfd2";
+  std::FILE* client = popen(command.c_str(), "r");
+  ASSERT_NE(client, nullptr);
+  char line[1024] = {};
+  const bool read = std::fgets(line, sizeof line, client) != nullptr;
+  EXPECT_EQ(pclose(client), 0) << line;
+  ASSERT_TRUE(read) << "client.py printed nothing";
+  EXPECT_GT(nlohmann::json::parse(line)["answered"].get<long>(), 0);
+  kill(-child.pid, SIGINT);
+  EXPECT_EQ(finish(child), 130);
+  stop.done = true;
+  const nlohmann::json summary = summaryOf(dir / "run");
+  const nlohmann::json& socket = summary["udp_devices"]["sockets"].at(0);
+  EXPECT_EQ(socket["bad_value"], 0);
+  EXPECT_EQ(socket["wrong_size"], 0);
+  EXPECT_EQ(socket["bad_magic"], 0);
+  const CsvTable trace = readTrace(dir / "run");
+  const double half = 5.0 * std::acos(-1.0) / 180.0;  // half of 10 deg
+  EXPECT_NEAR(trace.column("left.dqw").back(), std::cos(half), 1e-6);
+  EXPECT_NEAR(trace.column("left.dqx").back(), std::sin(half), 1e-6);
+  EXPECT_EQ(std::count(trace.names.begin(), trace.names.end(), "right.dqw"), 0) << "an untilted UDP device is not traced";
 }
 
 }  // namespace

@@ -131,6 +131,8 @@ TEST(Command, SchemaAcceptsTheBundledScenesAndCatchesMistakes) {
   mistake("unknown-effect", "\"gravity\"", "\"gravitation\"");
   mistake("two-device-sources", "keyframes = [", "csv = \"x.csv\"\nkeyframes = [");
   mistake("negative-mass", "mass = ", "mass = -");
+  mistake("tilt-beyond-half-turn", "keyframes = [", "tilt_deg = 200\nkeyframes = [");
+  mistake("three-number-q", "p = [", "q = [1, 0, 0], p = [");
 }
 
 // `godfinger bench realtime`: each round's sleeper and loop are in bench.json, every wake-up and

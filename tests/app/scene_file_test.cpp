@@ -285,6 +285,120 @@ TEST(SceneFile, DeviceCsvErrorsNameTheLine) {
   }
 }
 
+// A keyframe's q = [w, x, y, z] is the device's orientation, slerped between keyframes; the
+// device table's tilt follows every orientation (q_k * R(tilt_axis, tilt_deg)), settable by --set.
+TEST(SceneFileOrientation, KeyframesTakeQFollowedByTheTilt) {
+  const std::string text = replaced("keyframes = [ { t = 0.0, p = [0, 0.1, 0] }, { t = 0.2, p = [0, 0.06, 0] } ]",
+                                    "keyframes = [ { t = 0.0, p = [0, 0.1, 0], q = [1, 0, 0, 0] },\n"
+                                    "  { t = 0.2, p = [0, 0.06, 0], q = [0.7071, 0, 0.7071, 0] } ]\n"
+                                    "interpolation = \"linear\"");
+  const SessionDesc plain = parseSceneText(text, "scene.toml", "", {});
+  const auto& k = plain.scene.fingers[0].device.keyframes;
+  EXPECT_TRUE(k[0].orientation.isApprox(sim::Quat::Identity(), 1e-15));
+  const sim::Quat quarter(Eigen::AngleAxisd(std::numbers::pi / 2.0, sim::Vec3::UnitY()));
+  EXPECT_NEAR(k[1].orientation.norm(), 1.0, 1e-15) << "normalised";
+  EXPECT_LT(k[1].orientation.angularDistance(quarter), 1e-4);
+  const sim::Quat eighth(Eigen::AngleAxisd(std::numbers::pi / 4.0, sim::Vec3::UnitY()));
+  EXPECT_LT(plain.scene.fingers[0].device.sample(0.1).orientation.angularDistance(eighth), 1e-4) << "slerped";
+
+  const std::vector<std::string> tilt_overrides = {"fingers.left.device.tilt_deg=30",
+                                                   "fingers.left.device.tilt_axis=[0, 0, 2]"};
+  const SessionDesc tilted = parseSceneText(text, "scene.toml", "", tilt_overrides);
+  const sim::Quat tilt(Eigen::AngleAxisd(std::numbers::pi / 6.0, sim::Vec3::UnitZ()));
+  for (std::size_t i = 0; i < 2; ++i) {
+    const sim::Quat expected = (k[i].orientation * tilt).normalized();
+    EXPECT_LT(tilted.scene.fingers[0].device.keyframes[i].orientation.angularDistance(expected), 1e-12) << i;
+  }
+  // The default axis is the device's x; no q and no tilt leaves the identity (a 3-DOF device).
+  const std::vector<std::string> about_x_overrides = {"fingers.left.device.tilt_deg=-75"};
+  const SessionDesc x = parseSceneText(kMinimal, "scene.toml", "", about_x_overrides);
+  const sim::Quat about_x(Eigen::AngleAxisd(-75.0 * std::numbers::pi / 180.0, sim::Vec3::UnitX()));
+  EXPECT_LT(x.scene.fingers[0].device.keyframes[1].orientation.angularDistance(about_x), 1e-12);
+  const SessionDesc plain_minimal = parseSceneText(kMinimal, "scene.toml", "", {});
+  for (const auto& kf : plain_minimal.scene.fingers[0].device.keyframes) {
+    EXPECT_EQ(kf.orientation.coeffs(), sim::Quat::Identity().coeffs());
+  }
+}
+
+// A q that is not four finite numbers within 0.001 of unit length, a tilt beyond +-180 deg and a
+// zero tilt axis are refused naming the file, line and field.
+TEST(SceneFileOrientation, BadOrientationsAndTiltsAreNamed) {
+  const std::string second = "{ t = 0.2, p = [0, 0.06, 0] }";
+  struct Case {
+    std::string text;
+    std::vector<std::string> overrides;
+    int line;
+    std::string field, reason;
+  };
+  const Case cases[] = {
+      {replaced(second, "{ t = 0.2, p = [0, 0.06, 0], q = [1, 0, 0] }"), {}, 14, "fingers.left.device.keyframes.q",
+       "[w, x, y, z]"},
+      {replaced(second, "{ t = 0.2, p = [0, 0.06, 0], q = [1, 0, 0, 0.1] }"), {}, 14,
+       "fingers.left.device.keyframes.q", "unit quaternion"},
+      {replaced(second, "{ t = 0.2, p = [0, 0.06, 0], q = [0, 0, 0, 0] }"), {}, 14,
+       "fingers.left.device.keyframes.q", "unit quaternion"},
+      {replaced(second, "{ t = 0.2, p = [0, 0.06, 0], q = [1, 0, \"y\", 0] }"), {}, 14,
+       "fingers.left.device.keyframes.q", "expected a number"},
+      {replaced(second, "{ t = 0.2, p = [0, 0.06, 0], q = [1, 0, nan, 0] }"), {}, 14,
+       "fingers.left.device.keyframes.q", "finite"},
+      {replaced("[fingers.left.device]\n", "[fingers.left.device]\ntilt_deg = 200\n"), {}, 14,
+       "fingers.left.device.tilt_deg", "must be in [-180, 180]"},
+      {replaced("[fingers.left.device]\n", "[fingers.left.device]\ntilt_axis = [0, 0, 0]\n"), {}, 14,
+       "fingers.left.device.tilt_axis", "non-zero axis"},
+      {kMinimal, {"fingers.left.device.tilt_deg=\"steep\""}, 0, "fingers.left.device.tilt_deg", "expected a number"},
+  };
+  for (const Case& c : cases) {
+    const InputError e = errorOf(c.text, c.overrides);
+    if (c.overrides.empty()) {
+      EXPECT_EQ(e.file(), "scene.toml");
+      EXPECT_EQ(e.line(), c.line) << e.what();
+    }
+    EXPECT_EQ(e.field(), c.field) << e.what();
+    EXPECT_NE(std::string(e.what()).find(c.reason), std::string::npos) << e.what();
+  }
+  // Four hand-written decimals are within the tolerance and are normalised.
+  const SessionDesc s = parseSceneText(replaced(second, "{ t = 0.2, p = [0, 0.06, 0], q = [0.9659, 0.2588, 0, 0] }"),
+                                       "scene.toml", "", {});
+  EXPECT_NEAR(s.scene.fingers[0].device.keyframes[1].orientation.norm(), 1.0, 1e-15);
+}
+
+// A device CSV may carry the orientation, qw,qx,qy,qz after the position (all four or none):
+// slerped between rows, normalised within 0.001, a bad one named by file, line and column.
+TEST(SceneFileOrientation, DeviceCsvTakesAnOrientation) {
+  const fs::path dir = gf::test::scratchRoot() / "gf_scene_file_test";
+  fs::create_directories(dir);
+  std::ofstream(dir / "oriented.csv") << "t,x,y,z,qw,qx,qy,qz\n0,0,0.1,0,1,0,0,0\n1,0,0.05,0,0.7071,0.7071,0,0\n";
+  const sim::DeviceTrack d = readDeviceCsv((dir / "oriented.csv").string());
+  const sim::Quat eighth(Eigen::AngleAxisd(std::numbers::pi / 4.0, sim::Vec3::UnitX()));
+  EXPECT_LT(d.sample(0.5).orientation.angularDistance(eighth), 1e-4);
+  EXPECT_NEAR(d.keyframes[1].orientation.norm(), 1.0, 1e-15);
+  struct Case {
+    std::string text;
+    int line, column;
+    std::string field, reason;
+  };
+  const Case cases[] = {
+      {"t,x,y,z,qw,qx\n0,0,0,0,1,0\n", 1, 1, "header", "t,x,y,z,qw,qx,qy,qz"},
+      {"t,x,y,z,qw,qx,qy,qz\n0,0,0,0,1,0,0\n", 2, 13, "qy", "expected 8 columns"},
+      {"t,x,y,z,qw,qx,qy,qz\n0,0,0,0,1,0,0,0,0\n", 2, 15, "qz", "expected 8 columns"},
+      {"t,x,y,z,qw,qx,qy,qz\n0,0,0,0,1,0,0,0\n1,0,0,0,2,0,0,0\n", 3, 9, "qw,qx,qy,qz", "unit quaternion"},
+      {"t,x,y,z,qw,qx,qy,qz\n0,0,0,0,1,0,nan,0\n", 2, 13, "qy", "expected a finite number"},
+      {"t,x,y,z\n0,0,0,0,1,0,0,0\n", 2, 7, "z", "expected 4 columns"},
+  };
+  for (const Case& c : cases) {
+    std::ofstream(dir / "bad_oriented.csv") << c.text;
+    try {
+      readDeviceCsv((dir / "bad_oriented.csv").string());
+      ADD_FAILURE() << "accepted:\n" << c.text;
+    } catch (const InputError& e) {
+      EXPECT_EQ(e.line(), c.line) << e.what();
+      EXPECT_EQ(e.column(), c.column) << e.what();
+      EXPECT_EQ(e.field(), c.field) << e.what();
+      EXPECT_NE(std::string(e.what()).find(c.reason), std::string::npos) << e.what();
+    }
+  }
+}
+
 // Two bodies on one mesh file share one loaded mesh; the World and the renderer use it without
 // reading the file again (it is gone by then).
 TEST(SceneFile, EachMeshFileIsReadOnceAndShared) {

@@ -334,6 +334,18 @@ TEST(Serve, ASteeredDeviceGoesStraightToEachTargetFromWhereItIs) {
   EXPECT_EQ(d.moves(), 2);
 }
 
+// A steered device keeps its track's orientation (a web device's tilt): the moves are positions.
+TEST(Serve, ASteeredDeviceKeepsItsTracksOrientation) {
+  const sim::Quat tilt(Eigen::AngleAxisd(0.5, sim::Vec3::UnitX()));
+  sim::DeviceTrack track;
+  track.keyframes = {{0.0, sim::Vec3(0, 0.1, 0), tilt}};
+  SteeredDevice d(track, true);
+  EXPECT_EQ(d.sample(0.1).orientation.coeffs(), tilt.coeffs());
+  d.moveTo(sim::Vec3(0.05, 0.0, 0.0), 0.1);
+  EXPECT_EQ(d.sample(0.15).orientation.coeffs(), tilt.coeffs());
+  EXPECT_EQ(d.sample(0.5).orientation.coeffs(), tilt.coeffs());
+}
+
 // The live protocol's lines: each checked whole, with the error's words.
 TEST(Serve, LiveCommandsAreCheckedWhole) {
   const SessionDesc s = loadSceneFile(resolveScenePath("live-view"));

@@ -69,6 +69,22 @@ void BM_ModelStep(benchmark::State& state) {
 BENCHMARK(BM_ModelStep)->ArgsProduct({{0, 1, 2, 3}, {8, 16}})->ArgNames({"model", "n_sgo"})
     ->Unit(benchmark::kMicrosecond)->Repetitions(3)->ReportAggregatesOnly(true);
 
+// One step of the held pinch with both fingers' pad model disc (0) or oriented (1), ring (0) or
+// filled (1) patches, n_SGO 8, the default 10 iterations. The pinch presses the cylinder's side
+// with the devices unturned: the oriented pads stand at 90 degrees, every radial on the tip's
+// ellipse. Alternate the cases (--benchmark_enable_random_interleaving=true) and compare medians.
+void BM_PadStep(benchmark::State& state) {
+  std::vector<std::string> overrides = {"world.solver_iterations=10"};
+  for (const char* finger : {"left", "right"}) {
+    overrides.push_back(std::string("fingers.") + finger + ".pad_model=" + (state.range(0) == 1 ? "oriented" : "disc"));
+    overrides.push_back(std::string("fingers.") + finger + ".patch=" + (state.range(1) == 1 ? "filled" : "ring"));
+  }
+  const int points = timeHeldPinch(state, 8, overrides);
+  state.counters["points_per_step"] = benchmark::Counter(static_cast<double>(points));
+}
+BENCHMARK(BM_PadStep)->ArgsProduct({{0, 1}, {0, 1}})->ArgNames({"oriented", "filled"})
+    ->Unit(benchmark::kMicrosecond)->Repetitions(9)->ReportAggregatesOnly(true);
+
 // The patch alone on the pinch cylinder's walk mesh: time per SGO.
 void BM_Patch(benchmark::State& state) {
   const sim::Mesh mesh = sim::tessellateCylinder(0.03, 0.05, 64);

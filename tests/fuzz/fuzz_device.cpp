@@ -54,6 +54,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     const gf::sim::DeviceSample s = link.sample(t);
     require(s.position.allFinite() && s.velocity.allFinite());
     require(s.position.cwiseAbs().maxCoeff() <= gf::sim::kMaxSceneCoordinate);
+    require(s.orientation.coeffs().allFinite() && std::abs(s.orientation.norm() - 1.0) <= 1e-9);  // GFD2: unit
     t += kDt;
     const gf::app::DeviceReply r = link.reply(t, coupling(s));
     require(r.force.allFinite() && r.gain >= 0.0f && r.gain <= 1.0f);

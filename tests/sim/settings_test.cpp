@@ -72,7 +72,11 @@ TEST(Settings, LiveSettingsAreTheGodFingerOnes) {
   for (const Setting<FingerDesc>& s : fingerSettings()) {
     FingerDesc f;
     const double extreme = s.kind == SettingKind::kInteger ? kMaxSgo : s.max;
-    setGiven(s, f, extreme != givenValue(s, FingerDesc{}) ? extreme : s.min);
+    if (s.kind == SettingKind::kVector) {
+      s.set_vector(f, Vec3::Constant(s.max));  // a vector setting: every component at its largest
+    } else {
+      setGiven(s, f, extreme != givenValue(s, FingerDesc{}) ? extreme : s.min);
+    }
     const bool patch_changed = f.patch.n_sgo != PatchSettings{}.n_sgo || f.patch.r_max != PatchSettings{}.r_max ||
                                f.patch.d0 != PatchSettings{}.d0 || f.patch.alpha != PatchSettings{}.alpha ||
                                f.patch.stretch_length != PatchSettings{}.stretch_length ||
