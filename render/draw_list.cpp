@@ -6,6 +6,7 @@
 #include <numbers>
 
 #include "render/contact_load.hpp"
+#include "render/overlap_region.hpp"
 
 namespace gf::render {
 namespace {
@@ -25,6 +26,10 @@ constexpr double kFrameMargin = 0.04;     // of the frame each side that an arro
 constexpr double kNearM = 0.002;          // m: the near plane (scene_renderer's)
 constexpr float kPatchAlpha = 0.65f;
 constexpr float kRimAlpha = 0.95f;
+constexpr float kOverlapAlpha = 0.6f;
+// The overlap region's height above the surface, in proxy radii: over the SGO dots (0.12), which
+// show through it, tinted.
+constexpr double kOverlapLiftShare = 0.15;
 constexpr float kProxyAlpha = 0.45f;
 constexpr int kSpringSegments = 96;  // a coil of 8 turns
 constexpr int kSpringTurns = 8;
@@ -158,6 +163,28 @@ void DrawListBuilder::addPatches(const sim::Snapshot& snap, const DrawSettings& 
     // The force rendered to the device, from the proxy: it points away from what is touched.
     if (!f.contacts.empty()) addArrow(out, f.proxy, forceArrow(f, settings), 0.6 * dot, kForceColour);
   }
+  addOverlaps(snap, out);
+}
+
+// The region each two fingers' patches on one body both cover, over the patches, in its tint.
+void DrawListBuilder::addOverlaps(const sim::Snapshot& snap, DrawList& out) {
+  fill_.clear();
+  lines_.clear();
+  for (std::size_t i = 0; i < snap.fingers.size(); ++i) {
+    for (std::size_t j = i + 1; j < snap.fingers.size(); ++j) {
+      for (const sim::ContactSnapshot& a : snap.fingers[i].contacts) {
+        for (const sim::ContactSnapshot& b : snap.fingers[j].contacts) {
+          const std::size_t body = static_cast<std::size_t>(a.body);
+          if (a.body != b.body || body >= surfaces_.size() || !surfaces_[body]) continue;
+          const double lift = kOverlapLiftShare * std::min(proxy_radius_[i], proxy_radius_[j]);
+          buildOverlapRegion(a, b, *surfaces_[body], snap.bodies[body], lift, fill_, lines_);
+        }
+      }
+    }
+  }
+  const Eigen::Vector3f tint(kOverlapColour[0], kOverlapColour[1], kOverlapColour[2]);
+  addRange(out, DrawPass::kPatchRim, DrawShape::kTriangles, fill_, tint, kOverlapAlpha);
+  addRange(out, DrawPass::kPatchLines, DrawShape::kLines, lines_, 0.5f * tint, 1.0f);
 }
 
 // The contact point and the SGOs (and a filled patch's points) of one contact. With per-point

@@ -112,6 +112,7 @@ class DrawListBuilder {
 
  private:
   void addPatches(const sim::Snapshot& snapshot, const DrawSettings& settings, DrawList& out);
+  void addOverlaps(const sim::Snapshot& snapshot, DrawList& out);
   void addMarks(const sim::ContactSnapshot& contact, const Eigen::Vector3f& colour, double dot, DrawList& out);
   void addProxies(const sim::Snapshot& snapshot, DrawList& out);
   void addSprings(const sim::Snapshot& snapshot, DrawList& out);

@@ -12,6 +12,7 @@
 #include "render/gpu.hpp"
 #include "render/imgui_layer.hpp"
 #include "render/labels.hpp"
+#include "render/overlap_region.hpp"
 
 namespace gf::render {
 namespace {
@@ -25,10 +26,16 @@ bool contactCloseUp(const sim::SceneDesc& scene, const sim::Snapshot& snapshot, 
                     sim::Snapshot& only, sim::Camera& camera) {
   if (finger >= snapshot.fingers.size() || snapshot.fingers[finger].contacts.empty()) return false;
   only = snapshot;
-  for (std::size_t g = 0; g < only.fingers.size(); ++g) {
-    if (g != finger) only.fingers[g].contacts.clear();
-  }
   const sim::ContactSnapshot& c = snapshot.fingers[finger].contacts.front();
+  // Other fingers' contacts leave the close-up, but for patches overlapping this one: they stay
+  // with the region both cover (docs/overlap.md).
+  for (std::size_t g = 0; g < only.fingers.size(); ++g) {
+    if (g == finger) continue;
+    std::vector<sim::ContactSnapshot>& others = only.fingers[g].contacts;
+    others.erase(std::remove_if(others.begin(), others.end(),
+                                [&](const sim::ContactSnapshot& o) { return !patchesOverlap(c, o); }),
+                 others.end());
+  }
   const double half = std::max(1.5 * scene.fingers[finger].patch.r_max, 1.3 * c.radius) + 0.002;
   camera = closeUpCamera(c.point_world, c.outward_normal_world, half);
   return true;

@@ -16,7 +16,7 @@
 namespace gf::render {
 
 /// The close-up of finger `finger`'s first contact: `only` becomes `snapshot` with that finger's
-/// contacts alone (reusing its storage), `camera` looks down the contact normal at a square
+/// contacts alone, and other fingers' patches that overlap its patch (reusing its storage), `camera` looks down the contact normal at a square
 /// view holding the patch (r_max and the radius drawn, with a margin). False, and nothing
 /// changed, when the finger touches nothing.
 bool contactCloseUp(const sim::SceneDesc& scene, const sim::Snapshot& snapshot, std::size_t finger,

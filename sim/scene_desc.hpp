@@ -3,6 +3,7 @@
 #pragma once
 
 #include <Eigen/Geometry>
+#include <cstdint>
 #include <limits>
 #include <memory>
 #include <string>
@@ -95,6 +96,13 @@ struct PatchChange {
   PatchSettings patch;  ///< the finger's whole god-finger settings from then on (n_sgo 0: god-object)
 };
 
+/// What the World does where two fingers' patches on one body overlap (docs/overlap.md).
+enum class OverlapMode : std::uint8_t {
+  kIgnore,     ///< nothing: each patch on its own, as in the paper (overlap only measured)
+  kPushApart,  ///< a force pushes the two proxies apart in the tangent plane (the paper's proposal)
+  kMerge,      ///< coinciding points of the two patches carry one point's load, split by the presses
+};
+
 /// World-wide physics settings.
 struct WorldSettings {
   Vec3 gravity = Vec3(0, -9.81, 0);  ///< m/s^2, y up
@@ -104,6 +112,9 @@ struct WorldSettings {
   double haptic_rate_hz = 1000.0;    ///< fixed step rate of the haptic loop
   double linear_damping = 0.0;       ///< Bullet body damping (1/s) on dynamic bodies
   double angular_damping = 0.0;
+  OverlapMode overlap = OverlapMode::kIgnore;  ///< two fingers' patches overlapping on one body
+  /// N/m: push_apart's force on each proxy per metre of the two patch discs' overlap depth.
+  double overlap_stiffness = 2000.0;
 };
 
 /// A whole session description.

@@ -44,6 +44,8 @@ constexpr double kMaxLoadTorque = 1e3;  // N m
 constexpr double kRadPerDeg = std::numbers::pi / 180.0;
 constexpr double kBig = 1e3;  // m: nothing in a haptic scene is larger
 constexpr double kMinPadAxisLength = 0.1;  // the pad axis is normalized: a typo of 0 is refused
+// N/m: push_apart's stiffness; each scene's bound is narrower (validateOverlapStability).
+constexpr double kMaxOverlapStiffness = 1e5;
 
 // The member reached from `object` through the member pointers First, Rest...
 template <auto First, auto... Rest, class T>
@@ -93,6 +95,7 @@ constexpr std::string_view kPatchFillNames[] = {"ring", "filled"};
 constexpr std::string_view kContactSolverNames[] = {"points", "aggregate"};
 constexpr std::string_view kSolverChoiceNames[] = {"world", "points", "aggregate"};
 constexpr std::string_view kPadModelNames[] = {"disc", "oriented"};
+constexpr std::string_view kOverlapNames[] = {"ignore", "push_apart", "merge"};
 
 template <class S>
 S live(S s) {
@@ -172,6 +175,9 @@ std::span<const Setting<SceneDesc>> sceneSettings() {
       named(row<S, &S::world, &WorldSettings::contact_solver>("world.contact_solver", "", 0, 0), kContactSolverNames),
       row<S, &S::world, &WorldSettings::linear_damping>("world.linear_damping", "1/s", 0.0, 1e3),
       row<S, &S::world, &WorldSettings::angular_damping>("world.angular_damping", "1/s", 0.0, 1e3),
+      named(row<S, &S::world, &WorldSettings::overlap>("world.overlap", "", 0, 0), kOverlapNames),
+      // The stable bound for the scene's proxies is checked with them (validateOverlapStability).
+      row<S, &S::world, &WorldSettings::overlap_stiffness>("world.overlap_stiffness", "N/m", 10.0, kMaxOverlapStiffness),
   };
   return kTable;
 }
@@ -404,6 +410,24 @@ std::optional<FieldError> validateCouplingStability(const FingerDesc& finger, do
   return std::nullopt;
 }
 
+std::optional<FieldError> validateOverlapStability(const SceneDesc& scene) {
+  if (scene.world.overlap != OverlapMode::kPushApart) return std::nullopt;
+  const double rate = scene.world.haptic_rate_hz;
+  for (const FingerDesc& f : scene.fingers) {
+    // Each proxy feels its coupling and the push against the other proxy: the relative motion
+    // of two proxies of mass m is a spring of coupling + 2 x overlap stiffness on m, integrated
+    // explicitly like the coupling (validateCouplingStability).
+    const double bound = 0.5 * (f.proxy.mass * rate * rate - f.coupling.stiffness);
+    if (scene.world.overlap_stiffness > bound) {
+      const auto [shown_bound, got] = distinctTexts(bound, scene.world.overlap_stiffness);
+      return FieldError{"world.overlap_stiffness", "must be at most (proxy_mass x haptic_rate^2 - coupling_stiffness) / 2 = " +
+                                                       shown_bound + " N/m for finger '" + f.name +
+                                                       "' (push_apart's spring is integrated explicitly), got " + got};
+    }
+  }
+  return std::nullopt;
+}
+
 std::string liveFingerSettingNames() {
   std::string names;
   for (const Setting<FingerDesc>& s : fingerSettings()) {
@@ -463,6 +487,7 @@ void requireValid(const SceneDesc& scene) {
   for (const FingerDesc& f : scene.fingers) {
     if (std::optional<FieldError> e = validateFinger(f)) throw DescriptionError("finger '" + f.name + "'", *e);
   }
+  if (std::optional<FieldError> e = validateOverlapStability(scene)) throw DescriptionError("scene", *e);
   for (std::size_t i = 0; i < scene.loads.size(); ++i) {
     if (std::optional<FieldError> e = validateLoad(scene.loads[i], scene.bodies)) {
       throw DescriptionError("load " + std::to_string(i), *e);

@@ -183,6 +183,10 @@ std::optional<FieldError> validateFinger(const FingerDesc& finger);
 /// proxy_mass * rate (k dt^2 / m and c dt / m at most 1; hard cases pinch-coupling-stiff and
 /// pinch-coupling-damped hold at those limits, and 4 times the stiffness rings).
 std::optional<FieldError> validateCouplingStability(const FingerDesc& finger, double haptic_rate_hz);
+/// push_apart's stiffness against the stable bound of every finger's proxy and coupling:
+/// overlap_stiffness <= (proxy_mass x haptic_rate^2 - coupling_stiffness) / 2. Nullopt for the
+/// other overlap modes. Any thread.
+std::optional<FieldError> validateOverlapStability(const SceneDesc& scene);
 /// The names of the finger settings that may change during a run (`live`'s `set`, a scene's
 /// `[[changes]]`), comma-separated in table order.
 std::string liveFingerSettingNames();

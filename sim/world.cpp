@@ -165,6 +165,23 @@ int World::sgoCount(int finger) const {
   return n;
 }
 
+int World::overlapPairCount() const {
+  GF_ASSERT_OWNER();
+  return static_cast<int>(impl_->overlaps.size());
+}
+
+OverlapStats World::overlap(int pair) const {
+  GF_ASSERT_OWNER();
+  const Impl::OverlapPair& p = impl_->overlaps[static_cast<std::size_t>(pair)];
+  return {p.a, p.b, p.area, p.peak, p.integral};
+}
+
+Vec3 World::overlapForce(int finger) const {
+  GF_ASSERT_OWNER();
+  const bool push = impl_->desc.world.overlap == OverlapMode::kPushApart;
+  return push ? impl_->fingers[static_cast<std::size_t>(finger)].overlap_push : Vec3::Zero();
+}
+
 double World::contactRadius(int finger) const {
   GF_ASSERT_OWNER();
   const Impl::Finger& f = impl_->fingers[finger];

@@ -20,6 +20,14 @@ struct Touch {
   double separation = 0.0;     ///< signed, negative when penetrating (m)
 };
 
+/// Two fingers' patch overlap (World::overlap).
+struct OverlapStats {
+  int finger_a = -1, finger_b = -1;  ///< finger indices, a < b
+  double area = 0.0;                 ///< m^2 in the last step
+  double peak = 0.0;                 ///< m^2: the largest area so far
+  double integral = 0.0;             ///< m^2 s: the area integrated over time so far
+};
+
 /// Counters of numerical trouble and work done.
 struct WorldCounters {
   long steps = 0;
@@ -97,6 +105,14 @@ class World {
   int sgoCount(int finger) const;
   /// Mean Eq. 1 radius of the finger's patches this step (m); 0 without a patch.
   double contactRadius(int finger) const;
+  /// Two fingers' patches on one body (docs/overlap.md), one pair per two fingers a < b in
+  /// finger order (pair index: a's pairs with every later finger, then b's, ...).
+  int overlapPairCount() const;
+  /// Pair `pair`'s overlap: this step's area (summed over the bodies both touch), its peak and
+  /// its integral over time so far.
+  OverlapStats overlap(int pair) const;
+  /// push_apart's force on the finger's proxy this step (N); zero with the other modes.
+  Vec3 overlapForce(int finger) const;
   /// Kinetic plus gravitational potential energy of the dynamic bodies and proxies (J).
   double mechanicalEnergy() const;
   /// Finger i's deepest contact of the last step, at its body's pose now (world frame): false

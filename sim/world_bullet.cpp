@@ -30,6 +30,7 @@ World::Impl::Impl(const SceneDesc& d) : desc(d) {
   for (std::size_t i = 0; i < desc.fingers.size(); ++i) addFinger(static_cast<int>(i), desc.fingers[i]);
   injected.reserve(desc.fingers.size() * kMaxContactsPerFinger * (kMaxSgo / MANIFOLD_CACHE_SIZE + 1));
   saved.resize(bodies.size() + fingers.size());
+  makeOverlapPairs();
 }
 
 World::Impl::~Impl() {
@@ -125,7 +126,10 @@ void World::Impl::applyCouplings(std::span<const DeviceSample> devices, double d
     f.force = sim::couplingForce(cs, f.device.position, f.device.velocity,
                                  toEigen(f.proxy->getCenterOfMassPosition()),
                                  toEigen(f.proxy->getLinearVelocity()));
-    f.proxy->applyCentralForce(toBt(f.force));
+    // push_apart's force from the last step's overlap acts on the proxy beside the coupling; the
+    // device feels it through the coupling, which the proxy, pushed off, stretches.
+    const bool push = desc.world.overlap == OverlapMode::kPushApart;
+    f.proxy->applyCentralForce(toBt(push ? Vec3(f.force + f.overlap_push) : f.force));
   }
 }
 

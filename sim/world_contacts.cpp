@@ -53,8 +53,19 @@ void World::Impl::beforeSolve() {
     if (b0->getUserIndex() == kProxyTag) gatherProxyManifold(m, b0);
     else if (b1->getUserIndex() == kProxyTag) gatherProxyManifold(m, b1);
   }
+  // Every contact's patch first, then the overlaps between them, then the models' rows.
   for (Finger& f : fingers) {
     for (int k = 0; k < f.contact_count; ++k) handleContact(f, f.contacts[k]);
+  }
+  handleOverlaps();
+  for (Finger& f : fingers) {
+    const FingerDesc& fd = desc.fingers[static_cast<std::size_t>(&f - fingers.data())];
+    for (int k = 0; k < f.contact_count; ++k) {
+      FingerContact& c = f.contacts[k];
+      f.model->addRows({c, f.memoryOf(c.truth.object->getUserIndex()), f.settings, f.proxy.get(),
+                        fd.proxy.contact_stiffness, fd.proxy.contact_damping}, rows);
+      counters.sgos_injected += c.sgo_count;
+    }
   }
 }
 
@@ -94,10 +105,10 @@ void World::Impl::gatherProxyManifold(btPersistentManifold& m, const btCollision
   c.manifold = &m;
 }
 
-// One contact: recorded in the body's frame, its patch if the finger's model wants one (a
-// patch starts on touching and survives a small gap, kPatchReleaseGap), then the model's rows.
+// One contact: recorded in the body's frame, and its patch if the finger's model wants one (a
+// patch starts on touching and survives a small gap, kPatchReleaseGap); beforeSolve adds the
+// model's rows once every contact has its patch.
 void World::Impl::handleContact(Finger& f, FingerContact& c) {
-  const FingerDesc& fd = desc.fingers[&f - fingers.data()];
   const ContactMemory* mem = f.memoryOf(c.truth.object->getUserIndex());
   // The walks carried from the body's last contact with this finger (swapped back after).
   if (mem) {
@@ -114,9 +125,6 @@ void World::Impl::handleContact(Finger& f, FingerContact& c) {
   } else {
     c.walks.valid = false;
   }
-  f.model->addRows({c, mem, f.settings, f.proxy.get(), fd.proxy.contact_stiffness, fd.proxy.contact_damping},
-                   rows);
-  counters.sgos_injected += c.sgo_count;
 }
 
 // The contact in the touched body's frame (the frame of its walk mesh), with the press depth

@@ -62,6 +62,14 @@ nlohmann::json summaryJson(const SessionDesc& session, const sim::World& world, 
     fingers.push_back(j);
   }
   const sim::WorldCounters& c = world.counters();
+  nlohmann::json overlaps = nlohmann::json::array();  // docs/overlap.md
+  for (int k = 0; k < world.overlapPairCount(); ++k) {
+    const sim::OverlapStats o = world.overlap(k);
+    overlaps.push_back({{"fingers", {scene.fingers[static_cast<std::size_t>(o.finger_a)].name,
+                                     scene.fingers[static_cast<std::size_t>(o.finger_b)].name}},
+                        {"peak_mm2", o.peak * 1e6},
+                        {"integral_mm2_s", o.integral * 1e6}});
+  }
   nlohmann::json bodies = nlohmann::json::array();
   for (std::size_t b = 0; b < scene.bodies.size(); ++b) {
     if (scene.bodies[b].mass <= 0.0) continue;
@@ -94,6 +102,7 @@ nlohmann::json summaryJson(const SessionDesc& session, const sim::World& world, 
           {"effects", effectsJson(scene.effects)},
           {"fingers", fingers},
           {"bodies", bodies},
+          {"overlap", overlaps},
           {"meshes", meshes},
           {"step_time_us", {{"median", stats.step_median_us}, {"p99", stats.step_p99_us},
                             {"max", stats.step_max_us}}},

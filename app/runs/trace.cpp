@@ -28,6 +28,10 @@ std::vector<std::string> traceColumns(const sim::SceneDesc& d) {
   for (const sim::FingerDesc& f : d.fingers) {
     for (const char* c : {".sent_fx", ".sent_fy", ".sent_fz", ".port_energy"}) out.push_back(f.name + c);
   }
+  // Each two fingers' patch overlap (mm^2, docs/overlap.md), in World::overlap's pair order.
+  for (std::size_t a = 0; a < d.fingers.size(); ++a) {
+    for (std::size_t b = a + 1; b < d.fingers.size(); ++b) out.push_back(d.fingers[a].name + "+" + d.fingers[b].name + ".overlap_mm2");
+  }
   // A 6-DOF device's orientation, last, so a 3-DOF scene's columns are as they always were.
   for (const sim::FingerDesc& f : d.fingers) {
     if (!deviceGivesOrientation(f)) continue;
@@ -72,6 +76,7 @@ void TraceWriter::record(const sim::World& world) {
     const sim::Vec3 sent = world.feedbackForce(f);
     for (double v : {sent.x(), sent.y(), sent.z(), world.portEnergy(f)}) *x++ = v;
   }
+  for (int k = 0; k < world.overlapPairCount(); ++k) *x++ = world.overlap(k).area * 1e6;
   for (int f : oriented_fingers_) {
     const sim::Quat q = world.deviceOrientation(f);
     for (double v : {q.w(), q.x(), q.y(), q.z()}) *x++ = v;

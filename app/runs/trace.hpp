@@ -25,9 +25,9 @@ class TraceWriter {
   /// coupling force (.fx .fy .fz), SGO count (.n_sgo), contact radius (.r), proxy and device
   /// positions (.px .py .pz, .dx .dy .dz); per dynamic body its linear (.vx .vy .vz, m/s) and
   /// angular (.wx .wy .wz, rad/s, world frame) velocity; per finger the force sent to the
-  /// device (.sent_fx .sent_fy .sent_fz) and its port energy (.port_energy); last, per finger
-  /// whose device gives an orientation (deviceGivesOrientation), that orientation (.dqw .dqx
-  /// .dqy .dqz).
+  /// device (.sent_fx .sent_fy .sent_fz) and its port energy (.port_energy); per two fingers
+  /// A, B (A before B) their patches' overlap (A+B.overlap_mm2, mm^2); last, per finger whose
+  /// device gives an orientation (deviceGivesOrientation), that orientation (.dqw .dqx .dqy .dqz).
   TraceWriter(const sim::World& world, const std::string& path);
 
   /// Appends the row of the world's current state.

@@ -73,6 +73,12 @@ SessionDesc readSession(toml::table& root, const std::string& source, const std:
     }
   }
   checkMassRatios(r, s.scene);
+  if (std::optional<sim::FieldError> e = sim::validateOverlapStability(s.scene)) {
+    // Named at the [world] table's overlap_stiffness (or the --set that gave it).
+    const toml::node* w = r.nodeOf("world");
+    if (w && w->is_table()) Reader(*w->as_table(), "world", r.file()).failOn(sim::FieldError{"overlap_stiffness", e->reason});
+    r.failOn(e);
+  }
   for (const auto& [name, t] : r.namedTables("cameras")) {
     checkName("cameras", name, t);
     s.cameras.push_back(readCamera(name, *t, r));

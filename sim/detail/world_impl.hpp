@@ -42,6 +42,7 @@ struct World::Impl final : SolveHooks {
     DeviceSample device;
     Vec3 force = Vec3::Zero();  // coupling force on the proxy (N)
     Vec3 sent = Vec3::Zero();   // force the device is to render (N): -force, rate-limited
+    Vec3 overlap_push = Vec3::Zero();  // push_apart's force on the proxy from the last step's overlaps (N)
     PortObserver port;          // the energy that came in through the device port
     std::array<FingerContact, kMaxContactsPerFinger> contacts;
     int contact_count = 0;
@@ -56,6 +57,13 @@ struct World::Impl final : SolveHooks {
       }
       return nullptr;
     }
+  };
+  // Two fingers' patches on one body (world_overlap.cpp): fingers a < b, summed over bodies.
+  struct OverlapPair {
+    int a = -1, b = -1;
+    double area = 0.0;      // m^2 this step
+    double peak = 0.0;      // m^2 so far
+    double integral = 0.0;  // m^2 s so far
   };
   // Last finite state of a rigid body, for rolling back a step that produced NaN.
   struct SavedState {
@@ -87,13 +95,20 @@ struct World::Impl final : SolveHooks {
   void afterSolve() override;   ///< remembers the impulses, releases injected manifolds
   /// Keeps the deepest point of a proxy's manifold as its finger's contact with that body.
   void gatherProxyManifold(btPersistentManifold& m, const btCollisionObject* proxy);
-  /// One contact: its record, its patch if the finger's model wants one, the model's rows.
+  /// One contact: its record and its patch if the finger's model wants one (rows: beforeSolve).
   void handleContact(Finger& f, FingerContact& c);
   void recordContact(const Finger& f, const ContactMemory* mem, FingerContact& c) const;
   void computeContactPatch(const Finger& f, FingerContact& c, const ContactMemory* mem);
   void placePatchPoints(FingerContact& c, const ContactMemory* mem);  ///< world points, depths
   void checkWalks(const Mesh& mesh, const Finger& f, FingerContact& c);  ///< checkWarmWalks
   void rememberImpulses(Finger& f);  ///< each contact's ContactMemory for the next step
+
+  // Overlapping patches (world_overlap.cpp), between the patches and the rows of a step.
+  void makeOverlapPairs();  ///< one OverlapPair per two fingers (construction; allocates)
+  /// Each pair's overlap this step; push_apart's forces for the next step; merge's shares.
+  void handleOverlaps();
+  /// merge: coinciding points of a's and b's patches share one point's load, split by `share_a`.
+  void mergeCoinciding(FingerContact& a, FingerContact& b, double share_a) const;
 
   // Step safety (world_safety.cpp).
   void saveStates();   ///< every body's and proxy's state before the step
@@ -114,6 +129,7 @@ struct World::Impl final : SolveHooks {
   GodFingerDynamicsWorld world{&dispatcher, &broadphase, &solver, &config, this};
   std::vector<Body> bodies;
   std::vector<Finger> fingers;
+  std::vector<OverlapPair> overlaps;
   std::vector<btPersistentManifold*> injected;
   AggregateScratch aggregate_scratch;
   // World::snapshot's storage for splitting each contact's loads over its points (solvedLoads).

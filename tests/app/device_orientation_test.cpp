@@ -179,7 +179,7 @@ TEST(DeviceTraceOrientation, OnlyASixDofDeviceAddsItsOrientationColumns) {
     return parseSceneText(text, "s.toml", "");
   };
   const std::vector<std::string> flat = traceColumns(with("[1, 0, 0, 0]").scene);
-  EXPECT_EQ(flat.back(), "b.port_energy") << "an identity q is a 3-DOF device";
+  EXPECT_EQ(flat.back(), "a+b.overlap_mm2") << "an identity q is a 3-DOF device: nothing after the fingers' overlap";
   const std::vector<std::string> turned = traceColumns(with("[0.7071, 0.7071, 0, 0]").scene);
   ASSERT_EQ(turned.size(), flat.size() + 4);
   EXPECT_EQ(std::vector<std::string>(turned.end() - 4, turned.end()),

@@ -724,6 +724,23 @@ TEST(SceneFile, CouplingBeyondItsStabilityLimitIsRejected) {
   EXPECT_NE(rate.find("haptic_rate"), std::string::npos) << rate;
 }
 
+// push_apart's spring between two proxies must be stable too: up to (proxy_mass x rate^2 -
+// coupling_stiffness) / 2 (49 600 N/m for the defaults at 1 kHz; overlap-pinch holds there),
+// named at world.overlap_stiffness; the other modes do not use it.
+TEST(SceneFile, OverlapStiffnessBeyondItsStabilityLimitIsRejected) {
+  const std::string text = kMinimal + "[world]\noverlap = \"push_apart\"\noverlap_stiffness = 49601.0\n";
+  const InputError e = errorOf(text);
+  EXPECT_EQ(e.field(), "world.overlap_stiffness");
+  EXPECT_NE(std::string(e.what()).find("scene.toml:17:21: world.overlap_stiffness: must be at most (proxy_mass x "
+                                       "haptic_rate^2 - coupling_stiffness) / 2 = 4.96e+04 N/m for finger 'left'"),
+            std::string::npos) << e.what();
+  const std::vector<std::string> at_limit = {"world.overlap_stiffness=49600"}, merged = {"world.overlap=merge"};
+  EXPECT_NO_THROW(parseSceneText(text, "scene.toml", "", at_limit));
+  EXPECT_NO_THROW(parseSceneText(text, "scene.toml", "", merged));
+  EXPECT_EQ(errorOf(kMinimal, {"world.overlap=shove"}).field(), "world.overlap");
+  EXPECT_EQ(errorOf(kMinimal, {"world.overlap_stiffness=5"}).field(), "world.overlap_stiffness");
+}
+
 // The contact is a spring too: at the coupling's clamp it lets the proxy in by max_force /
 // contact_stiffness, and a proxy radius not above that depth is rejected (a 1 mm proxy at the
 // default 40 N and 20000 N/m went 2 mm into a 1 mm wall); the hard case

@@ -103,7 +103,8 @@ TEST(Session, SameSceneTwiceGivesByteIdenticalTrace) {
   EXPECT_EQ(ta.substr(0, ta.find('\n')),
             "t,box.px,box.py,box.pz,box.qx,box.qy,box.qz,box.qw,left.fx,left.fy,left.fz,left.n_sgo,left.r,left.px,left.py,left.pz,left.dx,left.dy,left.dz,"
             "right.fx,right.fy,right.fz,right.n_sgo,right.r,right.px,right.py,right.pz,right.dx,right.dy,right.dz,box.vx,box.vy,box.vz,box.wx,box.wy,box.wz,"
-            "left.sent_fx,left.sent_fy,left.sent_fz,left.port_energy,right.sent_fx,right.sent_fy,right.sent_fz,right.port_energy");
+            "left.sent_fx,left.sent_fy,left.sent_fz,left.port_energy,right.sent_fx,right.sent_fy,right.sent_fz,right.port_energy,"
+            "left+right.overlap_mm2");
 }
 
 // Options writing into a fresh temporary folder `name`, without progress lines.

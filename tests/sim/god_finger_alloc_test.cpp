@@ -14,6 +14,7 @@
 #include "sim/world.hpp"
 #include "tests/alloc_counter.hpp"
 #include "tests/sim/pressed_box.hpp"
+#include "tests/sim/test_context.hpp"
 
 namespace gf::sim {
 namespace {
@@ -107,6 +108,33 @@ long allocationsOfPressedBoxSteps(ContactSolver solver, PatchSettings patch = {}
 TEST(WorldAllocation, NoHeapAllocationPerStepWithEitherSolver) {
   EXPECT_EQ(allocationsOfPressedBoxSteps(ContactSolver::kPoints), 0);
   EXPECT_EQ(allocationsOfPressedBoxSteps(ContactSolver::kAggregate), 0);
+}
+
+// The overlap-pinch scene's two fingers with their patches overlapping (t = 1.7 s on): measuring
+// the overlap and handling it (docs/overlap.md) allocate nothing per step.
+long allocationsOfOverlappingSteps(const std::string& mode) {
+  test_support::TestContext ctx("overlap-pinch", test_support::kSceneSgo, {"world.overlap=" + mode});
+  ctx.simulate(1.7);
+  World& w = ctx.world();
+  std::vector<DeviceSample> samples(ctx.scene().fingers.size());
+  const auto step = [&] {
+    for (std::size_t f = 0; f < samples.size(); ++f) samples[f] = ctx.scene().fingers[f].device.sample(w.time());
+    w.step(1e-3, samples);
+  };
+  for (int i = 0; i < 50; ++i) step();
+  btAlignedAllocSetCustom(countedAlloc, std::free);
+  const long before = gf::test::allocations();
+  for (int i = 0; i < 200; ++i) step();
+  const long counted = gf::test::allocations() - before;
+  btAlignedAllocSetCustom(std::malloc, std::free);
+  EXPECT_EQ(w.overlapPairCount(), 1);
+  return counted;
+}
+
+TEST(WorldAllocation, NoHeapAllocationPerStepWithOverlapHandled) {
+  EXPECT_EQ(allocationsOfOverlappingSteps("ignore"), 0);
+  EXPECT_EQ(allocationsOfOverlappingSteps("push_apart"), 0);
+  EXPECT_EQ(allocationsOfOverlappingSteps("merge"), 0);
 }
 
 TEST(WorldAllocation, NoHeapAllocationPerStepWithTheOrientedPad) {
