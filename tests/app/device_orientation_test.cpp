@@ -15,6 +15,7 @@
 #include "app/scene/scene_file.hpp"
 #include "app/session/device_protocol.hpp"
 #include "sim/world.hpp"
+#include "tests/app/wire_bytes.hpp"
 
 namespace gf::app {
 namespace {
@@ -24,20 +25,9 @@ using sim::Vec3;
 
 constexpr double kDt = 0.001;  // s: the haptic step of these tests
 
-// Bytes of a little-endian u32 / f64 / f32 written by hand (not by the code under test).
-void putU32(std::vector<std::uint8_t>& b, std::uint32_t v) {
-  for (int i = 0; i < 4; ++i) b.push_back(static_cast<std::uint8_t>(v >> (8 * i)));
-}
-void putF64(std::vector<std::uint8_t>& b, double d) {
-  std::uint64_t v;
-  std::memcpy(&v, &d, sizeof v);
-  for (int i = 0; i < 8; ++i) b.push_back(static_cast<std::uint8_t>(v >> (8 * i)));
-}
-void putF32(std::vector<std::uint8_t>& b, float f) {
-  std::uint32_t v;
-  std::memcpy(&v, &f, sizeof v);
-  putU32(b, v);
-}
+using test::putF64;
+using test::putU32;
+using test::putF32;
 
 // A GFD2 datagram: "GFD2", seq 7, channel 1, buttons 2, time 3.5, position, then w, x, y, z.
 std::vector<std::uint8_t> orientedBytes(std::uint32_t magic, float w, float x, float y, float z) {

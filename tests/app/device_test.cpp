@@ -21,6 +21,7 @@
 #include "app/session/session.hpp"
 #include "app/session/udp_device.hpp"
 #include "sim/world.hpp"
+#include "tests/app/wire_bytes.hpp"
 
 namespace gf::app {
 namespace {
@@ -29,15 +30,8 @@ using sim::Vec3;
 
 constexpr double kDt = 0.001;  // s: the haptic step of these tests
 
-// Bytes of a little-endian u32 / f64 written by hand (not by the code under test).
-void putU32(std::vector<std::uint8_t>& b, std::uint32_t v) {
-  for (int i = 0; i < 4; ++i) b.push_back(static_cast<std::uint8_t>(v >> (8 * i)));
-}
-void putF64(std::vector<std::uint8_t>& b, double d) {
-  std::uint64_t v;
-  std::memcpy(&v, &d, sizeof v);
-  for (int i = 0; i < 8; ++i) b.push_back(static_cast<std::uint8_t>(v >> (8 * i)));
-}
+using test::putF64;
+using test::putU32;
 
 std::vector<std::uint8_t> packetBytes(std::uint32_t magic, std::uint32_t seq, std::uint32_t channel, double x) {
   std::vector<std::uint8_t> b;

@@ -278,28 +278,52 @@ TEST(UdpDevice, ADeviceDrivesARealtimeRunThroughLoopback) {
   }
 }
 
+// Runs `device-udp` in realtime with both fingers on one free port (and the `--set`s of `extra`),
+// drives it with the example client (examples/device-udp/client.py `client_args`), then stops
+// it with Ctrl-C: the client's JSON report, or null (with the failure reported) when a step
+// failed. The run's folder is dir/run.
+nlohmann::json driveWithExampleClient(const fs::path& dir, const std::string& extra, const std::string& client_args) {
+  Child child = start(kBin + " run device-udp --realtime --quiet --set duration=30 --set fingers.left.device.udp=0 " +
+                          "--set fingers.right.device.udp=0" + extra + " --out " + (dir / "run").string(),
+                      (dir / "stdout.txt").string());
+  if (child.pid <= 0) {
+    ADD_FAILURE() << "the run did not start";
+    return nullptr;
+  }
+  KillGroupOnExit stop{child.pid};
+  const int port = listeningPort(child.lines);
+  if (port <= 0) {
+    ADD_FAILURE() << "the run did not say where it listens";
+    return nullptr;
+  }
+  const std::string command = std::string(GF_PYTHON3) + " " + GF_SOURCE_DIR + "/examples/device-udp/client.py --port " +
+                              std::to_string(port) + " " + client_args;
+  std::FILE* client = popen(command.c_str(), "r");
+  if (client == nullptr) {
+    ADD_FAILURE() << "cannot start " << command;
+    return nullptr;
+  }
+  char line[1024] = {};
+  const bool read = std::fgets(line, sizeof line, client) != nullptr;
+  EXPECT_EQ(pclose(client), 0) << line;
+  kill(-child.pid, SIGINT);
+  EXPECT_EQ(finish(child), 130);
+  stop.done = true;
+  if (!read) {
+    ADD_FAILURE() << "client.py printed nothing";
+    return nullptr;
+  }
+  return nlohmann::json::parse(line);
+}
+
 // The example device program and the bundled scene it is written for: client.py replays the
 // Fig. 8 pinch on both channels of the scene's socket (here any free port) and reports what it
 // sent and got back. Its JSON line and the run's summary must agree on a pinch that squeezed.
 TEST(UdpDevice, TheExampleClientDrivesTheBundledScene) {
   const fs::path dir = freshFolder("gf_udp_example");
-  Child child = start(kBin + " run device-udp --realtime --quiet --set duration=30 --set fingers.left.device.udp=0 " +
-                          "--set fingers.right.device.udp=0 --out " + (dir / "run").string(),
-                      (dir / "stdout.txt").string());
-  ASSERT_GT(child.pid, 0);
-  KillGroupOnExit stop{child.pid};
-  const int port = listeningPort(child.lines);
-  ASSERT_GT(port, 0) << "the run did not say where it listens";
   // 1.5 s of the pinch: the fingers close in by 0.5 s and squeeze (about 4 N each).
-  const std::string command = std::string(GF_PYTHON3) + " " + GF_SOURCE_DIR + "/examples/device-udp/client.py --port " +
-                              std::to_string(port) + " --seconds 1.5 --rate 1000";
-  std::FILE* client = popen(command.c_str(), "r");
-  ASSERT_NE(client, nullptr);
-  char line[1024] = {};
-  const bool read = std::fgets(line, sizeof line, client) != nullptr;
-  EXPECT_EQ(pclose(client), 0) << line;
-  ASSERT_TRUE(read) << "client.py printed nothing";
-  const nlohmann::json report = nlohmann::json::parse(line);
+  const nlohmann::json report = driveWithExampleClient(dir, "", "--seconds 1.5 --rate 1000");
+  ASSERT_TRUE(report.is_object());
   EXPECT_EQ(report["sent"], 2 * 1501);  // both fingers, 1.5 s at 1 kHz, both ends
   EXPECT_EQ(report["channels"], 2);
   EXPECT_EQ(report["bad_replies"], 0);
@@ -309,9 +333,6 @@ TEST(UdpDevice, TheExampleClientDrivesTheBundledScene) {
   EXPECT_GE(report["rtt_us_p99"].get<double>(), report["rtt_us_p50"].get<double>());
   EXPECT_GT(report["max_force_n"].get<double>(), 1.0);  // the squeeze was felt
   EXPECT_LE(report["max_force_n"].get<double>(), kMaxForce);
-  kill(-child.pid, SIGINT);
-  EXPECT_EQ(finish(child), 130);
-  stop.done = true;
   const nlohmann::json summary = summaryOf(dir / "run");
   const nlohmann::json& sockets = summary["udp_devices"]["sockets"];
   ASSERT_EQ(sockets.size(), 1u);  // both fingers on one socket
@@ -332,26 +353,10 @@ TEST(UdpDevice, TheExampleClientDrivesTheBundledScene) {
 // followed by that tilt (10 deg about x).
 TEST(UdpDevice, TheExampleClientSendsGfd2AndTheTraceHasTheOrientation) {
   const fs::path dir = freshFolder("gf_udp_gfd2");
-  Child child = start(kBin + " run device-udp --realtime --quiet --set duration=30 --set fingers.left.device.udp=0 " +
-                          "--set fingers.right.device.udp=0 --set fingers.left.device.tilt_deg=10 --out " +
-                          (dir / "run").string(),
-                      (dir / "stdout.txt").string());
-  ASSERT_GT(child.pid, 0);
-  KillGroupOnExit stop{child.pid};
-  const int port = listeningPort(child.lines);
-  ASSERT_GT(port, 0) << "the run did not say where it listens";
-  const std::string command = std::string(GF_PYTHON3) + " " + GF_SOURCE_DIR + "/examples/device-udp/client.py --port " +
-                              std::to_string(port) + " --seconds 0.5 --rate 1000 --gfd2";
-  std::FILE* client = popen(command.c_str(), "r");
-  ASSERT_NE(client, nullptr);
-  char line[1024] = {};
-  const bool read = std::fgets(line, sizeof line, client) != nullptr;
-  EXPECT_EQ(pclose(client), 0) << line;
-  ASSERT_TRUE(read) << "client.py printed nothing";
-  EXPECT_GT(nlohmann::json::parse(line)["answered"].get<long>(), 0);
-  kill(-child.pid, SIGINT);
-  EXPECT_EQ(finish(child), 130);
-  stop.done = true;
+  const nlohmann::json report =
+      driveWithExampleClient(dir, " --set fingers.left.device.tilt_deg=10", "--seconds 0.5 --rate 1000 --gfd2");
+  ASSERT_TRUE(report.is_object());
+  EXPECT_GT(report["answered"].get<long>(), 0);
   const nlohmann::json summary = summaryOf(dir / "run");
   const nlohmann::json& socket = summary["udp_devices"]["sockets"].at(0);
   EXPECT_EQ(socket["bad_value"], 0);
