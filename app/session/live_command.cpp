@@ -102,25 +102,25 @@ LiveCommand parseLiveCommand(const std::string& line, const sim::SceneDesc& scen
   const auto arguments = [&](std::size_t lo, std::size_t hi, const char* usage) {
     if (w.size() - 1 < lo || w.size() - 1 > hi) throw std::invalid_argument(command + ": expected " + usage);
   };
-  using K = LiveCommand::Kind;
+  using Kind = LiveCommand::Kind;
   if (command == "quit" || command == "exit" || command == "help" || command == "state") {
     arguments(0, 0, "no argument");
-    c.kind = command == "help" ? K::kHelp : command == "state" ? K::kState : K::kQuit;
+    c.kind = command == "help" ? Kind::kHelp : command == "state" ? Kind::kState : Kind::kQuit;
   } else if (command == "step") {
     arguments(0, 1, "step [N]");
-    c.kind = K::kStep;
+    c.kind = Kind::kStep;
     c.steps = w.size() > 1 ? wholeNumber(w[1], 1, 10000000, "step: N") : 1;
   } else if (command == "move") {
     arguments(4, 5, "FINGER X Y Z [SECONDS]");
-    c.kind = K::kMove;
+    c.kind = Kind::kMove;
     parseMove(w, scene, c);
   } else if (command == "set") {
     arguments(1, 1, "fingers.NAME.FIELD=VALUE");
-    c.kind = K::kSet;
+    c.kind = Kind::kSet;
     parseSet(w[1], scene, c);
   } else if (command == "snapshot") {
     arguments(0, 1, "snapshot [NAME]");
-    c.kind = K::kSnapshot;
+    c.kind = Kind::kSnapshot;
     c.text = w.size() > 1 ? w[1] : "";
     if (c.text.find('/') != std::string::npos || c.text == "." || c.text == "..") {
       throw std::invalid_argument("snapshot: NAME must not contain '/'");
@@ -128,7 +128,7 @@ LiveCommand parseLiveCommand(const std::string& line, const sim::SceneDesc& scen
   } else if (command == "record") {
     arguments(1, 1, "record start|stop");
     if (w[1] != "start" && w[1] != "stop") throw std::invalid_argument("record: expected start or stop, got '" + w[1] + "'");
-    c.kind = K::kRecord;
+    c.kind = Kind::kRecord;
     c.on = w[1] == "start";
   } else {
     throw std::invalid_argument("unknown command '" + command + "' (try help)");

@@ -8,10 +8,9 @@
 #include <set>
 
 namespace gf::app {
+namespace {
 
 using Row = StudyRow;
-
-namespace {
 
 // The unit of a measure's value, with a leading space ("" for a ratio).
 const char* valueUnit(MeasureKind kind) {

@@ -6,6 +6,7 @@ GF_ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/../.." && pwd)"
 # Debian packages the build, the tests and the demo need.
 GF_PACKAGES=(
   build-essential cmake ninja-build pkg-config git
+  ccache                      # compiles taken from the cache on a rebuild (cmake/buildSpeed.cmake)
   libbullet-dev libbullet-extras-dev libeigen3-dev libassimp-dev
   libosmesa6-dev libimgui-dev libstb-dev libdeflate-dev
   libgtest-dev libgmock-dev libbenchmark-dev

@@ -23,10 +23,10 @@ namespace gf::app {
 namespace {
 
 namespace fs = std::filesystem;
-using test::exitStatus;
-using test::freshFolder;
-using test::kBin;
-using test::readFile;
+using gf::app::test::exitStatus;
+using gf::app::test::freshFolder;
+using gf::app::test::kBin;
+using gf::app::test::readFile;
 
 TEST(Compare, PanelsKeepTheFrameAspectAndLeaveTheChartAThird) {
   for (int n = 1; n <= 4; ++n) {

@@ -23,11 +23,11 @@ namespace {
 using sim::Quat;
 using sim::Vec3;
 
-constexpr double kDt = 0.001;  // s: the haptic step of these tests
+constexpr double kHapticStep = 0.001;  // s: the haptic step of these tests
 
-using test::putF64;
-using test::putU32;
-using test::putF32;
+using gf::test::putF64;
+using gf::test::putU32;
+using gf::test::putF32;
 
 // A GFD2 datagram: "GFD2", seq 7, channel 1, buttons 2, time 3.5, position, then w, x, y, z.
 std::vector<std::uint8_t> orientedBytes(std::uint32_t magic, float w, float x, float y, float z) {
@@ -148,10 +148,10 @@ TEST(DeviceLinkOrientation, TheOrientationReachesTheWorldsDevice) {
   std::vector<sim::DeviceSample> samples(1);
   const Quat pitch = about(Vec3::UnitX(), -20.0);
   for (long k = 0; k < 10; ++k) {
-    const double t = static_cast<double>(k) * kDt;
+    const double t = static_cast<double>(k) * kHapticStep;
     link.take(packet(static_cast<std::uint32_t>(k + 1), t, &pitch), t);
     samples[0] = link.sample(t);
-    world.step(kDt, samples);
+    world.step(kHapticStep, samples);
   }
   EXPECT_LT(world.deviceOrientation(0).angularDistance(pitch * d.tilt), 1e-6);
 }

@@ -30,8 +30,8 @@ using sim::Vec3;
 
 constexpr double kDt = 0.001;  // s: the haptic step of these tests
 
-using test::putF64;
-using test::putU32;
+using gf::test::putF64;
+using gf::test::putU32;
 
 std::vector<std::uint8_t> packetBytes(std::uint32_t magic, std::uint32_t seq, std::uint32_t channel, double x) {
   std::vector<std::uint8_t> b;

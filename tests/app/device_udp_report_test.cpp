@@ -29,12 +29,12 @@ namespace gf::app {
 namespace {
 
 using namespace test;
+using gf::test::kGuardMs;
 using gf::test::loopback;
 using gf::test::packetBytes;
 using gf::test::portOf;
 using sim::Vec3;
 
-constexpr int kGuardMs = 20000;  // a reply not here by then means the run is gone (a hang guard)
 
 // One finger on any free loopback port; `duration` s.
 std::string oneFinger(const std::string& duration) {

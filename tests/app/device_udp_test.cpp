@@ -30,18 +30,18 @@ namespace gf::app {
 namespace {
 
 using namespace test;
+using gf::test::kGuardMs;
 using gf::test::loopback;
 using gf::test::packetBytes;
 using gf::test::portOf;
 using sim::Vec3;
 
-constexpr double kDt = 0.001;          // s: the scene's haptic step
+constexpr double kSceneStep = 0.001;          // s: the scene's haptic step
 // s: the scene's stale_after, its largest value: only a dropout the test makes on purpose is one,
 // however long this process waits for the CPU between two packets.
 constexpr double kStaleAfter = 1.0;
 constexpr double kRamp = 0.1;          // s: the scene's force_ramp
 constexpr double kMaxForce = 40.0;     // N: the coupling's default clamp
-constexpr int kGuardMs = 20000;        // a reply not here by then means the run is gone (a hang guard)
 
 // The port a run's first "listening on 127.0.0.1:PORT, channel C" line gives, or 0.
 int listeningPort(std::FILE* lines) {
@@ -79,7 +79,7 @@ class Device {
   std::uint32_t send(const Vec3& position) {
     DevicePacket p;
     p.seq = next_seq_++;
-    p.time = 1000.0 + p.seq * kDt;
+    p.time = 1000.0 + p.seq * kSceneStep;
     p.position = position;
     std::array<std::uint8_t, DevicePacket::kSize> bytes;
     encodeDevicePacket(p, bytes);
@@ -217,7 +217,7 @@ TEST(UdpDevice, ADeviceDrivesARealtimeRunThroughLoopback) {
 
   // 3. Silence: once no packet came for stale_after the device is stale, the proxy holds, and
   // the force ramps to zero over force_ramp (times are simulated: exact to a step).
-  const double last_taken = r->time - kDt;  // the step that took the last packet started here
+  const double last_taken = r->time - kSceneStep;  // the step that took the last packet started here
   std::optional<DeviceReply> first_stale, zero;
   while (!zero) {
     r = device.next();
@@ -230,15 +230,15 @@ TEST(UdpDevice, ADeviceDrivesARealtimeRunThroughLoopback) {
     if (r->gain == 0.0f) zero = r;
   }
   EXPECT_GT(first_stale->time - last_taken, kStaleAfter);
-  EXPECT_LE(first_stale->time - last_taken, kStaleAfter + 2 * kDt + 1e-9);
-  EXPECT_NEAR(zero->time - first_stale->time, kRamp, 1.5 * kDt);
+  EXPECT_LE(first_stale->time - last_taken, kStaleAfter + 2 * kSceneStep + 1e-9);
+  EXPECT_NEAR(zero->time - first_stale->time, kRamp, 1.5 * kSceneStep);
   EXPECT_EQ(zero->force.norm(), 0.0);
 
   // 4. Packets again: the device is followed at once and the force ramps back up, no step.
   r = device.echo(device.send(hold));
   ASSERT_TRUE(r);
   EXPECT_FALSE(r->flags & DeviceReply::kStale);
-  EXPECT_LE(r->gain, 2 * kDt / kRamp + 1e-6);
+  EXPECT_LE(r->gain, 2 * kSceneStep / kRamp + 1e-6);
   for (int k = 0; (r->flags & DeviceReply::kRamping) && k < 20000; ++k) {
     r = device.echo(device.send(hold));
     ASSERT_TRUE(r);

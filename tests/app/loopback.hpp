@@ -15,6 +15,10 @@
 
 namespace gf::test {
 
+/// A reply not here by then means the run is gone: a hang guard of the UDP tests (ms), never a
+/// timing check.
+constexpr int kGuardMs = 20000;
+
 /// The port of an address "HOST:PORT" (as UdpDeviceBridge::address and a run's "listening on"
 /// line give it), or 0.
 inline int portOf(const std::string& address) {

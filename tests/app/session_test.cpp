@@ -19,6 +19,7 @@
 #include "app/session/expectations.hpp"
 #include "app/study/study_measure.hpp"
 #include "render/image.hpp"
+#include "tests/app/run_helpers.hpp"
 #include "tests/scratch.hpp"
 
 namespace gf::app {
@@ -26,12 +27,7 @@ namespace {
 
 namespace fs = std::filesystem;
 
-std::string readFile(const fs::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
+using gf::app::test::readFile;
 
 // A long run's rows go to disk while it runs: many rings' worth arrive whole, in order and
 // formatted as appendNumber formats them, the owner waiting for the writer when the ring is full

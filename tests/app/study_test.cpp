@@ -17,6 +17,7 @@
 #include "app/study/study_chart.hpp"
 #include "app/study/study_measure.hpp"
 #include "sim/god_finger.hpp"
+#include "tests/app/run_helpers.hpp"
 #include "tests/scratch.hpp"
 
 namespace gf::app {
@@ -24,12 +25,7 @@ namespace {
 
 namespace fs = std::filesystem;
 
-std::string readFile(const fs::path& p) {
-  std::ifstream in(p);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
+using gf::app::test::readFile;
 
 std::vector<std::string> split(const std::string& line) {
   std::vector<std::string> out;

@@ -15,7 +15,7 @@
 namespace gf::sim {
 namespace {
 
-constexpr double kPi = std::numbers::pi;
+using std::numbers::pi;
 constexpr double kRadius = 0.008;  // m
 
 // A patch: points (world), their shares (summing to 1) and depths, around `origin` in the
@@ -56,7 +56,7 @@ struct HandPatch {
 double supportToward(const HandPatch& p, const PressRows& r, const btVector3& d) {
   double best = -2.0, support = 0.0;
   for (int j = 0; j < kTiltDirections; ++j) {
-    const double a = 2.0 * kPi * j / kTiltDirections;
+    const double a = 2.0 * pi * j / kTiltDirections;
     const btVector3 D = std::cos(a) * r.tilt_axis[0] + std::sin(a) * r.tilt_axis[1];
     const btVector3 rho_dir = p.n.cross(D);
     if (rho_dir.dot(d) > best) best = rho_dir.dot(d), support = r.support[static_cast<std::size_t>(j)];
@@ -69,13 +69,13 @@ double supportToward(const HandPatch& p, const PressRows& r, const btVector3& d)
 HandPatch filledDisc(int rings, int spokes, bool half) {
   HandPatch p;
   const double step = kRadius / rings;
-  p.add(0.0, 0.0, kPi * (0.5 * step) * (0.5 * step) * (half ? 0.5 : 1.0));
+  p.add(0.0, 0.0, pi * (0.5 * step) * (0.5 * step) * (half ? 0.5 : 1.0));
   for (int k = 1; k <= rings; ++k) {
     const double inner = (k - 0.5) * step, outer = std::min(kRadius, (k + 0.5) * step);
-    const double annulus = kPi * (outer * outer - inner * inner);
+    const double annulus = pi * (outer * outer - inner * inner);
     const int count = half ? spokes / 2 + 1 : spokes;
     for (int i = 0; i < count; ++i) {
-      const double a = 2.0 * kPi * i / spokes;
+      const double a = 2.0 * pi * i / spokes;
       // A half disc's two diameter ends stand for half a spoke's sector each.
       const double w = half && (i == 0 || i == count - 1) ? 0.5 : 1.0;
       p.add(k * step * std::cos(a), k * step * std::sin(a), w * annulus / spokes);
@@ -89,7 +89,7 @@ TEST(AggregatePatch, UniformRingHasLeverRMomentHalfRSquaredAndSupportR) {
   HandPatch p;
   constexpr int kCount = 64;
   for (int i = 0; i < kCount; ++i) {
-    const double a = 0.37 + 2.0 * kPi * i / kCount;  // any phase
+    const double a = 0.37 + 2.0 * pi * i / kCount;  // any phase
     p.add(kRadius * std::cos(a), kRadius * std::sin(a), 1.0 / kCount);
   }
   btVector3 centre;
@@ -103,7 +103,7 @@ TEST(AggregatePatch, UniformRingHasLeverRMomentHalfRSquaredAndSupportR) {
   // sampling of 64 points (cos(pi / 64)).
   for (double h : r.support) {
     EXPECT_LE(h, kRadius * (1 + 1e-12));
-    EXPECT_GE(h, kRadius * std::cos(kPi / kCount));
+    EXPECT_GE(h, kRadius * std::cos(pi / kCount));
   }
   EXPECT_NEAR(r.separation, -1e-4, 1e-15);
   EXPECT_NEAR(r.stiffness, 800.0, 0.0);
@@ -120,7 +120,7 @@ TEST(AggregatePatch, FilledDiscHasLeverTwoThirdsRMomentQuarterRSquared) {
   EXPECT_NEAR(r.mean_lever / (2.0 / 3.0 * kRadius), 1.0, 1e-3);
   EXPECT_NEAR(r.tilt_moment[0] / (0.25 * kRadius * kRadius), 1.0, 1e-3);
   EXPECT_NEAR(r.tilt_moment[1] / (0.25 * kRadius * kRadius), 1.0, 1e-3);
-  for (double h : r.support) EXPECT_NEAR(h / kRadius, 1.0, 1 - std::cos(kPi / 64));
+  for (double h : r.support) EXPECT_NEAR(h / kRadius, 1.0, 1 - std::cos(pi / 64));
 }
 
 TEST(AggregatePatch, HalfDiscAtAnEdgeHasItsCentroidMomentsAndOneSidedSupport) {
@@ -129,7 +129,7 @@ TEST(AggregatePatch, HalfDiscAtAnEdgeHasItsCentroidMomentsAndOneSidedSupport) {
   const PressRows r = p.rows(centre);
   // The half disc y >= 0: centroid 4r / (3 pi) from the cut, second moments about the centroid
   // r^2/4 (across the cut's normal) and r^2/4 - (4r / 3pi)^2 (along it).
-  const double c = 4.0 * kRadius / (3.0 * kPi);
+  const double c = 4.0 * kRadius / (3.0 * pi);
   EXPECT_NEAR((centre - p.origin).dot(p.y) / c, 1.0, 2e-3);
   EXPECT_NEAR((centre - p.origin).dot(p.x), 0.0, 1e-12);
   const double low = std::min(r.tilt_moment[0], r.tilt_moment[1]), high = std::max(r.tilt_moment[0], r.tilt_moment[1]);

@@ -12,15 +12,14 @@
 #include "sim/snapshot.hpp"
 #include "sim/world.hpp"
 #include "tests/sim/pressed_box.hpp"
+#include "tests/sim/angles.hpp"
 
 namespace gf::sim {
 namespace {
 
-using pressed_box::kHalfHeight, pressed_box::kHalfWidth, pressed_box::kLoadStart, pressed_box::kMass,
-    pressed_box::kPress;
-// Moment of inertia of the box about its vertical axis (kg m^2).
-constexpr double kInertiaY = kMass * (2 * kHalfWidth) * (2 * kHalfWidth) * 2 / 12;
-constexpr double kDeg = std::numbers::pi / 180;
+using pressed_box::kHalfHeight, pressed_box::kHalfWidth, pressed_box::kInertiaY, pressed_box::kLoadStart,
+    pressed_box::kMass, pressed_box::kPress;
+using gf::test::kDeg;
 constexpr SolverChoice kAggregate = SolverChoice::kAggregate;
 
 PatchSettings model(ContactModel m, PatchFill fill = PatchFill::kRing, int n_sgo = 8,

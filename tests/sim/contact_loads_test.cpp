@@ -17,8 +17,7 @@
 namespace gf::sim {
 namespace {
 
-using pressed_box::kHalfWidth, pressed_box::kLoadStart, pressed_box::kMass;
-constexpr double kInertiaY = kMass * (2 * kHalfWidth) * (2 * kHalfWidth) * 2 / 12;  // kg m^2
+using pressed_box::kHalfWidth, pressed_box::kInertiaY, pressed_box::kLoadStart, pressed_box::kMass;
 
 struct Case {
   const char* name;

@@ -9,11 +9,12 @@
 #include <vector>
 
 #include "sim/primitives.hpp"
+#include "tests/sim/angles.hpp"
 
 namespace gf::sim {
 namespace {
 
-constexpr double kDeg = std::numbers::pi / 180.0;
+using gf::test::kDeg;
 
 PatchSettings settingsWith(int n, double alpha) {
   PatchSettings s;

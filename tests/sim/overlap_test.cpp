@@ -11,7 +11,7 @@
 namespace gf::sim {
 namespace {
 
-constexpr double kPi = std::numbers::pi;
+using std::numbers::pi;
 
 // Two equal discs of radius r at distance d: 2 r^2 acos(d / 2r) - (d / 2) sqrt(4 r^2 - d^2).
 double equalLens(double r, double d) { return 2 * r * r * std::acos(d / (2 * r)) - 0.5 * d * std::sqrt(4 * r * r - d * d); }
@@ -39,7 +39,7 @@ TEST(DiscOverlapArea, EqualDiscsMatchTheClosedFormOfTheLens) {
     const double d = f * r;
     EXPECT_NEAR(discOverlapArea(r, r, d), equalLens(r, d), 1e-12 * r * r) << "d / r = " << f;
   }
-  EXPECT_NEAR(discOverlapArea(r, r, 0.0), kPi * r * r, 1e-15);
+  EXPECT_NEAR(discOverlapArea(r, r, 0.0), pi * r * r, 1e-15);
 }
 
 TEST(DiscOverlapArea, UnequalDiscsMatchAQuadrature) {
@@ -51,11 +51,11 @@ TEST(DiscOverlapArea, UnequalDiscsMatchAQuadrature) {
 TEST(DiscOverlapArea, IsZeroApartAndTheSmallDiscInside) {
   EXPECT_EQ(discOverlapArea(0.005, 0.003, 0.008), 0.0);
   EXPECT_EQ(discOverlapArea(0.005, 0.003, 0.01), 0.0);
-  EXPECT_DOUBLE_EQ(discOverlapArea(0.005, 0.003, 0.002), kPi * 0.003 * 0.003);
+  EXPECT_DOUBLE_EQ(discOverlapArea(0.005, 0.003, 0.002), pi * 0.003 * 0.003);
   EXPECT_EQ(discOverlapArea(0.0, 0.003, 0.0), 0.0);
   // Continuous at both ends of the lens.
   EXPECT_NEAR(discOverlapArea(0.005, 0.003, 0.008 - 1e-12), 0.0, 1e-14);
-  EXPECT_NEAR(discOverlapArea(0.005, 0.003, 0.002 + 1e-12), kPi * 0.003 * 0.003, 1e-14);
+  EXPECT_NEAR(discOverlapArea(0.005, 0.003, 0.002 + 1e-12), pi * 0.003 * 0.003, 1e-14);
 }
 
 TEST(DiscOverlap, MeasuresTheDiscsInTheirCommonTangentPlane) {

@@ -14,11 +14,12 @@
 #include "sim/primitives.hpp"
 #include "sim/world.hpp"
 #include "tests/sim/pressed_box.hpp"
+#include "tests/sim/angles.hpp"
 
 namespace gf::sim {
 namespace {
 
-constexpr double kDeg = std::numbers::pi / 180.0;
+using gf::test::kDeg;
 
 PatchSettings oriented(PatchFill fill, int n = 8) {
   PatchSettings s;

@@ -10,6 +10,8 @@ constexpr double kMass = 1.0;                            // kg
 constexpr double kHalfWidth = 0.04, kHalfHeight = 0.02;  // m
 constexpr double kPress = 0.00575;  // m: device below the resting proxy (800 N/m: 4.6 N)
 constexpr double kLoadStart = 0.6;  // s: the press has settled
+// Moment of inertia of the box about its vertical axis (kg m^2).
+constexpr double kInertiaY = kMass * (2 * kHalfWidth) * (2 * kHalfWidth) * 2 / 12;
 
 /// The pressed box, turned by `yaw` about the vertical, with `load` from kLoadStart on.
 inline SceneDesc scene(const PatchSettings& patch, double yaw, const LoadDesc& load) {
