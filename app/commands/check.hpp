@@ -13,6 +13,8 @@ struct CheckOptions {
   int jobs = 1;
   std::string godfinger;           ///< the executable runs are started with
   std::vector<std::string> overrides;  ///< `--set` for every run (e.g. world.contact_solver=aggregate)
+  /// s: each run at most this long (`run --max-duration`: end-of-run limits unchecked); 0: whole
+  double max_duration = 0.0;
 };
 
 /// The scene files `paths` name, sorted within each folder. Throws InputError for a path that

@@ -22,6 +22,10 @@ class RunCommand final : public Command {
     run->add_option("--set", overrides_, "Override a scene field, e.g. --set fingers.left.n_sgo=0");
     run->add_option("--duration", duration_, "Simulated seconds (default: the scene's)")
         ->check(settingCheck(sim::sceneSettings(), "duration"));
+    run->add_option("--max-duration", max_duration_,
+                    "Simulated seconds at most: a short variant of a long scene (its end-of-run [expect] limits, "
+                    "ends_above and max_roll_ratio, are then left unchecked)")
+        ->check(settingCheck(sim::sceneSettings(), "duration"));
     run->add_flag("--realtime", realtime_, "Pace steps on the wall clock (absolute deadlines)");
     run->add_flag("--no-fifo", no_fifo_, "Realtime: do not ask for SCHED_FIFO for the haptic loop (run as a user "
                                          "without root or CAP_SYS_NICE does)");
@@ -50,6 +54,8 @@ class RunCommand final : public Command {
     SessionDesc session = loadSceneFile(resolveScenePath(scene_), overrides_);
     session.overrides = overrides_;
     if (duration_ > 0.0) session.scene.duration = duration_;
+    cut_short_ = max_duration_ > 0.0 && max_duration_ < session.scene.duration;
+    if (cut_short_) session.scene.duration = max_duration_;
     sessionCamera(session, camera_);  // an unknown camera fails before anything runs
     if (!video_.empty() && std::filesystem::is_directory(video_)) {
       throw InputError("command line", 0, 0, "--video", video_ + " is a folder; give a file such as out.mp4");
@@ -71,6 +77,7 @@ class RunCommand final : public Command {
   SessionOptions options(std::vector<ExpectFailure>& failed) const {
     SessionOptions o{out_, realtime_, !quiet_, frames_, video_, camera_};
     o.expect_failures = &failed;
+    o.cut_short = cut_short_;
     o.stop_on_interrupt = true;
     o.fifo = !no_fifo_;
     o.yield_render = !no_yield_;
@@ -85,7 +92,8 @@ class RunCommand final : public Command {
   std::string scene_;
   std::string out_ = "out";
   std::vector<std::string> overrides_;
-  double duration_ = 0.0;
+  double duration_ = 0.0, max_duration_ = 0.0;
+  bool cut_short_ = false;
   bool realtime_ = false, frames_ = false, no_fifo_ = false, no_yield_ = false, pin_ = false, quiet_ = false;
   std::string video_, camera_, serve_, token_;
   std::string expectations_ = "check";

@@ -474,7 +474,8 @@ nlohmann::json SessionRun::summary(const sim::LoopStats& stats) {
   out["interrupted"] = interrupted_;
   out["time_reached_s"] = world_->time();
   if (interrupted_) out["signal"] = interruptSignal() == SIGTERM ? "SIGTERM" : "SIGINT";
-  failed_ = expect_->finish(*world_);
+  if (options_.cut_short) out["cut_short"] = true;
+  failed_ = expect_->finish(*world_, !options_.cut_short);
   for (const ExpectFailure& f : failed_) std::fprintf(stderr, "%s: %s\n", scene_.name.c_str(), f.text().c_str());
   addExpectations(out, expect_->json(), failed_.size());
   out.update(provenanceJson(session_, options_.command_line));

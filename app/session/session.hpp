@@ -46,6 +46,10 @@ struct SessionOptions {
   /// Realtime: serve the browser view (`run --serve`): the frames, the state and `live`
   /// commands over HTTP (app/serve/web_server.hpp), frames drawn whatever else is written.
   std::optional<ServeOptions> serve{};
+  /// The scene's duration was cut short for this run (`run --max-duration`; the short variants
+  /// of the sanitizer builds): the [expect] limits taken at the end of a run are left unchecked
+  /// and summary.json says `"cut_short": true`.
+  bool cut_short = false;
   /// The command line that started the run, recorded in summary.json (empty: not recorded).
   std::vector<std::string> command_line{};
 };

@@ -8,6 +8,8 @@
 #include <filesystem>
 #include <fstream>
 #include <sstream>
+
+#include <sys/wait.h>
 #include "tests/scratch.hpp"
 
 namespace gf::app {
@@ -83,6 +85,46 @@ TEST(Command, CheckPassesTheBundledScenesAndFailsAGodObjectLift) {
 
 // `godfinger --version`: the version and commit, the physics and mesh libraries, and the GL the
 // frames are drawn with; exit 0 (no subcommand needed).
+// `--max-duration`, the sanitizer builds' short variant of a long scene: the 60 s hold cut at
+// 0.5 s runs 0.5 s, keeps its limits checked during the run and leaves `ends_above` (the lift's
+// end, 0.08 m) unchecked; `--duration 0.5` is the scene shortened as it stands, so that limit
+// fails (exit 3). A scene shorter than the cap runs whole and is not marked cut short.
+TEST(Command, MaxDurationCutsALongSceneAndLeavesItsEndOfRunLimitsUnchecked) {
+  namespace fs = std::filesystem;
+  const fs::path out = gf::test::scratchRoot() / "gf_max_duration";
+  fs::remove_all(out);
+  const std::string bin = std::string(GF_BINARY_DIR) + "/godfinger";
+  const std::string hold = bin + " run " + GF_SOURCE_DIR + "/assets/hard-cases/pinch-hold-60s.toml --quiet ";
+  ASSERT_EQ(std::system((hold + "--max-duration 0.5 --out " + (out / "cut").string() + " > /dev/null").c_str()), 0);
+  std::ifstream in(out / "cut" / "summary.json");
+  const nlohmann::json cut = nlohmann::json::parse(in);
+  EXPECT_NEAR(cut.at("time_reached_s").get<double>(), 0.5, 1e-9);
+  EXPECT_TRUE(cut.value("cut_short", false));
+  int during = 0;  // limits checked at every step: still checked
+  for (const nlohmann::json& c : cut.at("expectations").at("checks")) {
+    const std::string name = c.at("name");
+    if (name == "bodies.cylinder.ends_above") {
+      EXPECT_FALSE(c.at("checked").get<bool>()) << name;
+    }
+    if (name == "finite" || name == "max_speed" || name == "max_angular_speed" ||
+        name.find(".port_energy") != std::string::npos || name.find(".no_tunnelling") != std::string::npos) {
+      EXPECT_TRUE(c.at("checked").get<bool>()) << name;
+      ++during;
+    }
+    EXPECT_TRUE(c.at("passed").get<bool>()) << name;
+  }
+  EXPECT_EQ(during, 7) << "finite, both speeds, and each finger's port energy and tunnelling";
+  const int whole = std::system((hold + "--duration 0.5 --out " + (out / "short").string() + " > /dev/null 2>&1").c_str());
+  ASSERT_TRUE(WIFEXITED(whole));
+  EXPECT_EQ(WEXITSTATUS(whole), 3) << "ends_above fails on a run shortened without --max-duration";
+  const std::string tetra = bin + " run " + GF_SOURCE_DIR + "/assets/hard-cases/tetrahedron.toml --quiet ";
+  ASSERT_EQ(std::system((tetra + "--max-duration 100 --out " + (out / "whole").string() + " > /dev/null").c_str()), 0);
+  std::ifstream whole_in(out / "whole" / "summary.json");
+  const nlohmann::json full = nlohmann::json::parse(whole_in);
+  EXPECT_NEAR(full.at("time_reached_s").get<double>(), 1.5, 1e-9);
+  EXPECT_FALSE(full.contains("cut_short"));
+}
+
 TEST(Command, VersionNamesTheBuildAndItsLibraries) {
   const std::string command = std::string(GF_BINARY_DIR) + "/godfinger --version";
   std::FILE* p = popen(command.c_str(), "r");
