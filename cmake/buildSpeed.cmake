@@ -54,3 +54,14 @@ if(GF_CCACHE AND NOT CMAKE_CXX_COMPILER_LAUNCHER)
         CCACHE_SLOPPINESS=include_file_ctime,include_file_mtime ${GF_CCACHE_PROGRAM})
   endif()
 endif()
+
+# Precompiled headers (GF_PCH): the Eigen, Bullet and standard headers nearly every file of sim/
+# and render/ includes, parsed once per library instead of once per file.
+option(GF_PCH "Precompile the Eigen, Bullet and standard headers of gf_sim and gf_render" ON)
+
+# gf_precompile(TARGET HEADER...): TARGET's files compile against one precompiled HEADER list.
+function(gf_precompile target)
+  if(GF_PCH)
+    target_precompile_headers(${target} PRIVATE ${ARGN})
+  endif()
+endfunction()
