@@ -51,7 +51,7 @@ if(GF_CCACHE AND NOT CMAKE_CXX_COMPILER_LAUNCHER)
   find_program(GF_CCACHE_PROGRAM ccache)
   if(GF_CCACHE_PROGRAM)
     set(CMAKE_CXX_COMPILER_LAUNCHER env CCACHE_BASEDIR=${PROJECT_SOURCE_DIR} CCACHE_NOHASHDIR=1
-        CCACHE_SLOPPINESS=include_file_ctime,include_file_mtime ${GF_CCACHE_PROGRAM})
+        CCACHE_SLOPPINESS=include_file_ctime,include_file_mtime,pch_defines,time_macros ${GF_CCACHE_PROGRAM})
   endif()
 endif()
 
