@@ -274,19 +274,23 @@ TEST(Serve, StoppingTheServerEndsOpenStreams) {
   FedView fed(out("gf_serve_stop"));
   std::unique_ptr<WebServer> server = serve(fed.view(), "127.0.0.1");
   const int port = portOf(*server);
-  std::atomic<int> parts{0};
+  std::atomic<int> streaming{0};  // readers whose stream has sent them a part: each holds a place
   std::vector<std::thread> readers;
   for (int i = 0; i < kMaxStreams; ++i) {
     readers.emplace_back([&] {
       httplib::Client client("127.0.0.1", port);
+      bool first = true;
       client.Get("/stream.mjpg", [&](const char*, std::size_t) {
-        ++parts;
+        if (first) ++streaming;
+        first = false;
         return true;  // never hangs up on its own
       });
     });
   }
   httplib::Client extra("127.0.0.1", port);
-  while (parts.load() < 4 * kMaxStreams) {
+  // Every reader, not just some, streams before the extra asks: a reader still connecting could
+  // otherwise leave its place to the extra.
+  while (streaming.load() < kMaxStreams) {
     std::this_thread::yield();
   }
   // Every place is taken (the readers above run until the server stops).
