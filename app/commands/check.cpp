@@ -21,13 +21,6 @@ namespace {
 
 namespace fs = std::filesystem;
 
-// Seconds as the command line of a run takes them, exactly (17 significant digits).
-std::string formatSeconds(double s) {
-  char b[32];
-  std::snprintf(b, sizeof b, "%.17g", s);
-  return b;
-}
-
 // How close the run came to each limit: the check nearest to failing, as "name worst (limit)".
 std::string closest(const nlohmann::json& checks) {
   std::string out;
@@ -153,7 +146,7 @@ int runCheck(const CheckOptions& options) {
     names.push_back(name);
     std::vector<std::string> arguments;
     for (const std::string& o : options.overrides) arguments.insert(arguments.end(), {"--set", o});
-    if (options.max_duration > 0.0) arguments.insert(arguments.end(), {"--max-duration", formatSeconds(options.max_duration)});
+    if (options.max_duration > 0.0) arguments.insert(arguments.end(), {"--max-duration", exactSeconds(options.max_duration)});
     lines.push_back(godfingerRunLine(options.godfinger, s, (fs::path(options.out) / name).string(), arguments));
   }
   int failed = 0, passed = 0;

@@ -220,9 +220,7 @@ std::vector<std::string> CompareRun::runLines() const {
                                  std::string("record.force_chart=false")}) {
       args.insert(args.end(), {"--set", s});
     }
-    char d[32];
-    std::snprintf(d, sizeof d, "%.17g", duration_);
-    args.insert(args.end(), {"--frames", "--quiet", "--duration", d});
+    args.insert(args.end(), {"--frames", "--quiet", "--duration", exactSeconds(duration_)});
     if (!o_.camera.empty()) args.insert(args.end(), {"--camera", o_.camera});
     lines.push_back(godfingerRunLine(o_.godfinger, scene_path_, (out_ / o_.models[i]).string(), args));
   }

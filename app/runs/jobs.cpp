@@ -49,6 +49,12 @@ std::string godfingerRunLine(const std::string& godfinger, const std::string& sc
   return line + " > " + shellQuote(out + "/" + kRunLogFile) + " 2>&1";
 }
 
+std::string exactSeconds(double s) {
+  char b[32];
+  std::snprintf(b, sizeof b, "%.17g", s);
+  return b;
+}
+
 std::string formatDuration(double s) {
   char b[32];
   if (s >= 60.0) std::snprintf(b, sizeof b, "%dm%02ds", static_cast<int>(s / 60), static_cast<int>(s) % 60);

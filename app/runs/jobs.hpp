@@ -29,4 +29,8 @@ std::string godfingerRunLine(const std::string& godfinger, const std::string& sc
 /// "1m05s", "42s".
 std::string formatDuration(double seconds);
 
+/// Seconds as a run's command line takes them (`--duration`, `--max-duration`), exactly: 17
+/// significant digits.
+std::string exactSeconds(double seconds);
+
 }  // namespace gf::app
