@@ -74,6 +74,7 @@ PatchFrictionSolver::PatchFrictionSolver() {
   pool_index_.reserve(kPoints);
   arm_.reserve(kPoints);
   by_address_.reserve(kPoints);
+  kept_friction_.reserve(kPoints);
 }
 
 void PatchFrictionSolver::clearBlocks() {
@@ -101,6 +102,7 @@ btScalar PatchFrictionSolver::solveGroupCacheFriendlySetup(btCollisionObject** b
                                                            const btContactSolverInfo& info, btIDebugDraw* debug) {
   const btScalar r = btSequentialImpulseConstraintSolver::solveGroupCacheFriendlySetup(
       bodies, numBodies, manifolds, numManifolds, constraints, numConstraints, info, debug);
+  if (info.m_solverMode & SOLVER_USE_WARMSTARTING) warmStartContactFriction(info);
   bind(info);
   return r;
 }
@@ -520,6 +522,7 @@ btScalar PatchFrictionSolver::solveSingleIteration(int iteration, btCollisionObj
                                                    const btContactSolverInfo& info, btIDebugDraw* debug) {
   double residual = btSequentialImpulseConstraintSolver::solveSingleIteration(
       iteration, bodies, numBodies, manifolds, numManifolds, constraints, numConstraints, info, debug);
+  if (info.m_solverMode & SOLVER_USE_WARMSTARTING) residual = std::max(residual, limitContactFriction(info));
   for (Bound& b : bound_) {
     if (b.aggregate) residual = std::max(residual, solvePress(b));
     // The normal impulse that limits the friction (and with rolling rows, the moment the
@@ -545,7 +548,16 @@ btScalar PatchFrictionSolver::solveGroupCacheFriendlyFinish(btCollisionObject** 
     fb.solved = true;
   }
   bound_.clear();
-  return btSequentialImpulseConstraintSolver::solveGroupCacheFriendlyFinish(bodies, numBodies, info);
+  const bool warm = (info.m_solverMode & SOLVER_USE_WARMSTARTING) != 0;
+  if (warm) keepContactFriction();
+  const btScalar r = btSequentialImpulseConstraintSolver::solveGroupCacheFriendlyFinish(bodies, numBodies, info);
+  if (warm) {
+    for (const KeptFriction& k : kept_friction_) {
+      k.point->m_appliedImpulseLateral1 = static_cast<btScalar>(k.along1);
+      k.point->m_appliedImpulseLateral2 = static_cast<btScalar>(k.along2);
+    }
+  }
+  return r;
 }
 
 }  // namespace gf::sim

@@ -20,7 +20,14 @@
 // and the tilt their depths make. Their limits are the points' unilateral loads: the normal
 // impulse pushes, and the tilt moment keeps the centre of pressure within the hull of the
 // points (each point only pushes); the friction rows' limits are mu N and mu N times the
-// points' mean lever. The solve's cost no longer grows with the points. Internal to sim/.
+// points' mean lever. The solve's cost no longer grows with the points.
+//
+// Bullet's own contacts (a body on the ground, a body on a body): Bullet 3 starts their friction
+// rows from zero every step (only their normal rows are warm-started), so ten iterations never
+// quite rebuild the friction that holds a loaded body, and what they leave slips. This solver
+// warm-starts those rows too, from last step's friction impulse kept in a frame of the normal
+// (the rows' own directions follow the sliding velocity and change from step to step).
+// Internal to sim/.
 #pragma once
 
 #include <btBulletDynamicsCommon.h>
@@ -127,6 +134,9 @@ class PatchFrictionSolver final : public btSequentialImpulseConstraintSolver {
   static double relativeVelocity(const Bound& b, const Motion& m, int row);
   void apply(Bound& b, const double* delta, int first, int count);
   void bind(const btContactSolverInfo& info);
+  void warmStartContactFriction(const btContactSolverInfo& info);
+  void keepContactFriction();
+  double limitContactFriction(const btContactSolverInfo& info);
   bool findBodies(const FrictionBlock& fb, const btContactSolverInfo& info, int& proxy, int& object);
   void setRows(Bound& b) const;
   void bindPress(Bound& b, const FrictionBlock& fb, const btContactSolverInfo& info) const;
@@ -148,6 +158,14 @@ class PatchFrictionSolver final : public btSequentialImpulseConstraintSolver {
   std::vector<btVector3> arm_;    // per point of a block with rolling rows: (point - centre) x n
   std::vector<std::pair<const btManifoldPoint*, int>> by_address_;  // points sorted by address
   std::vector<Bound> bound_;
+  // Bullet's own contacts' friction impulses at the end of the solve, in the frame
+  // btPlaneSpace1 makes of each point's normal: written into the points after Bullet's
+  // write-back (keepContactFriction), read by the next step's warm start.
+  struct KeptFriction {
+    btManifoldPoint* point;
+    double along1, along2;
+  };
+  std::vector<KeptFriction> kept_friction_;
   std::vector<int> proxy_body_of_, object_body_of_;  // per block: its solver bodies, or -1
 };
 
