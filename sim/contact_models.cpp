@@ -27,6 +27,12 @@ constexpr double kCollinear = 1e-9;
 constexpr int kPressurePasses = 8;
 constexpr double kPressureTolerance = 1e-6;
 
+// A contact whose proxy side slid further than this from its anchor since it started sticking
+// has slid (m): it anchors afresh where it is. A sticking contact's slip is micrometres.
+constexpr double kAnchorReach = 1e-3;
+// Likewise a contact whose body turned further than this against the proxy (rad).
+constexpr double kAnchorTurn = 0.02;
+
 // addPointRows' torsion for a god-finger patch: from its points (patchTorsion).
 constexpr double kTorsionFromPoints = -1.0;
 
@@ -70,6 +76,34 @@ btVector3 preparePatchPoints(const ContactToSolve& in, double truth_share) {
     centre += p.load_share * c.sgo_world[i];
   }
   return centre;
+}
+
+// The block's anchor (FrictionAnchor), once its centre is known: last step's while the contact
+// kept sticking, and how far the proxy's side has slid from the body's since, across the
+// normal; a new one at the centre for a new contact, after a slide, or past kAnchorReach.
+void anchorBlock(const ContactToSolve& in, FrictionBlock& block) {
+  FingerContact& c = in.contact;
+  const btTransform& body = c.truth.object->getWorldTransform();
+  const btVector3 proxy = in.proxy->getWorldTransform().getOrigin();
+  FrictionAnchor a = in.memory ? in.memory->anchor : FrictionAnchor{};
+  btVector3 slip(0, 0, 0), turn(0, 0, 0);
+  if (a.set) {
+    slip = proxy + a.on_proxy - body * a.on_body;
+    slip -= slip.dot(block.normal) * block.normal;
+    // The body's turn since the anchor as a rotation vector; the proxy's against it is its opposite.
+    btQuaternion q = body.getRotation() * a.body_turn.inverse();
+    if (q.getW() < 0) q = -q;
+    const double angle = q.getAngle();
+    const btVector3 axis = q.getAxis();
+    turn = -angle * axis;
+    if (!(slip.length() <= kAnchorReach) || !(angle <= kAnchorTurn)) a.set = false, slip.setZero(), turn.setZero();
+  }
+  if (!a.set) a = {true, body.invXform(block.centre), block.centre - proxy, body.getRotation()};
+  c.anchor = a;
+  block.slip = slip;
+  block.turn_slip = turn;
+  block.anchor_stiffness = in.stiffness;
+  block.anchor_damping = in.damping;
 }
 
 // The load's centre moved onto the contact's tangent plane: on a curved body the points'
@@ -191,6 +225,7 @@ void addPointRows(const ContactToSolve& in, double torsion, bool rolling, SolveR
                  c.sgo_warm.data(), out.injected);
   }
   block.centre = onTangentPlane(centre, c.truth);
+  anchorBlock(in, block);
   block.torsion = torsion == kTorsionFromPoints ? patchTorsion(c, block, out.scratch) : torsion;
   block.rolling = rolling && c.sgo_count > 0 ? patchRolling(c, block) : 0.0;
   c.block = out.solver.addBlock(block);
@@ -212,6 +247,7 @@ void addAggregateRows(const ContactToSolve& in, SolveRows& out) {
   aggregatePatch(s.points.data(), s.shares.data(), s.separations.data(), p.count, block.normal,
                  c.truth.point_world, in.stiffness * p.share, in.damping * p.share, block.centre,
                  block.press, s.levers.data());
+  anchorBlock(in, block);
   block.torsion = block.friction * block.press.mean_lever;
   // The rim's pressing SGOs' levers are patchRolling's (the same points, centre and normal).
   block.rolling = !p.all && p.rim > 0 ? meanOf(s.levers.data() + p.first_sgo, p.rim) : patchRolling(c, block);
@@ -379,6 +415,10 @@ void keepSolved(FingerContact& c, const std::vector<btPersistentManifold*>& inje
   if (c.aggregate) return;
   c.solved.normal[0] = c.manifold->getContactPoint(0).m_appliedImpulse;
   for (int i = 0; i < c.sgo_count; ++i) c.solved.normal[static_cast<std::size_t>(1 + i)] = solvedImpulses(injected, c.first_injected, i).normal;
+}
+
+FrictionAnchor anchorToKeep(const FingerContact& c, const FrictionBlock& block) {
+  return block.solved && !atFrictionLimit(block) ? c.anchor : FrictionAnchor{};
 }
 
 void solvedLoads(const FingerContact& c, const FrictionBlock& block, AggregateScratch& s, ContactLoads& out) {

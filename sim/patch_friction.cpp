@@ -75,6 +75,8 @@ PatchFrictionSolver::PatchFrictionSolver() {
   arm_.reserve(kPoints);
   by_address_.reserve(kPoints);
   kept_friction_.reserve(kPoints);
+  anchors_.reserve(kPoints);
+  last_anchors_.reserve(kPoints);
 }
 
 void PatchFrictionSolver::clearBlocks() {
@@ -102,7 +104,10 @@ btScalar PatchFrictionSolver::solveGroupCacheFriendlySetup(btCollisionObject** b
                                                            const btContactSolverInfo& info, btIDebugDraw* debug) {
   const btScalar r = btSequentialImpulseConstraintSolver::solveGroupCacheFriendlySetup(
       bodies, numBodies, manifolds, numManifolds, constraints, numConstraints, info, debug);
-  if (info.m_solverMode & SOLVER_USE_WARMSTARTING) warmStartContactFriction(info);
+  if (info.m_solverMode & SOLVER_USE_WARMSTARTING) {
+    anchorContacts(manifolds, numManifolds, info);
+    warmStartContactFriction(info);
+  }
   bind(info);
   return r;
 }
@@ -155,6 +160,10 @@ void PatchFrictionSolver::bind(const btContactSolverInfo& info) {
     bool active[kFrictionRows] = {fb.friction > 0.0, fb.friction > 0.0, fb.torsion != 0.0};
     for (int row = 0; row < kFrictionRows; ++row) active[row] = active[row] && moves(K, row);
     invertActive(K, active, b.k_inv, nullptr);
+    const double pull = fb.anchor_stiffness / std::max(info.m_timeStep * fb.anchor_stiffness + fb.anchor_damping, 1e-300);
+    b.slip_bias[0] = pull * fb.slip.dot(b.t1);
+    b.slip_bias[1] = pull * fb.slip.dot(b.t2);
+    b.slip_bias[2] = pull * fb.turn_slip.dot(b.n);
     for (double& l : b.lambda) l = 0.0;
     if (fb.aggregate) bindPress(b, fb, info);
     if (b.roll >= 0) bindRolling(b, fb);
@@ -462,6 +471,8 @@ double PatchFrictionSolver::solveBlock(Bound& b, double normal) {
   double u[kFrictionRows];
   const Motion m = motion(b);
   for (int row = 0; row < kFrictionRows; ++row) u[row] = b.k_inv[row][row] != 0.0 ? relativeVelocity(b, m, row) : 0.0;
+  // A sticking contact's rows also take back its slip and turn since its anchor.
+  for (int row = 0; row < kFrictionRows; ++row) u[row] += b.k_inv[row][row] != 0.0 ? b.slip_bias[row] : 0.0;
   Eigen::Vector3d y, d = Eigen::Vector3d::Zero();
   Eigen::Matrix3d e;
   for (int row = 0; row < kFrictionRows; ++row) {

@@ -239,6 +239,7 @@ void World::Impl::rememberImpulses(Finger& f) {
     mem.rolling_impulse = block.solved ? block.rolling_impulse : btVector3(0, 0, 0);
     mem.normal_impulse = block.solved ? block.normal_impulse : 0.0;
     mem.tilt_impulse = block.solved && block.aggregate ? block.press.tilt : btVector3(0, 0, 0);
+    mem.anchor = anchorToKeep(c, block);
     keepSolved(c, injected, world.getSolverInfo().m_timeStep);
     c.manifold = nullptr;  // Bullet may free it at the next collision pass
     c.truth.object = nullptr;

@@ -61,6 +61,8 @@ void readExpect(Reader& parent, SessionDesc& s) {
     b.stays_above = optional(br, "stays_above", -1e6, 1e6);
     b.ends_above = optional(br, "ends_above", -1e6, 1e6);
     b.max_rotation_deg = optional(br, "max_rotation_deg", 0.0, 180.0);
+    b.max_drift = optional(br, "max_drift", 0.0, 1e6);
+    b.max_tilt_deg = optional(br, "max_tilt_deg", 0.0, 180.0);
     b.after = br.number("after", 0.0, 0.0, 1e6);
     b.rests_after = optional(br, "rests_after", 0.0, 1e6);
     b.rest_speed = br.number("rest_speed", b.rest_speed, 0.0, 1e6);
@@ -82,6 +84,11 @@ void readExpect(Reader& parent, SessionDesc& s) {
       f.to = v[1];
     }
     f.max_force = optional(fr, "max_force", 0.0, 1e9);
+    f.max_force_change = optional(fr, "max_force_change", 0.0, 1e9);
+    if (f.max_force_change && !fr.has("window")) {
+      fr.fail(fr.nodeOf("max_force_change"), "max_force_change",
+              "needs window = [from, to]: the change is counted from the force at `from`");
+    }
     f.max_penetration = optional(fr, "max_penetration", 0.0, 1e6);
     fr.finish();
   }

@@ -15,7 +15,12 @@ struct BodyExpect {
   std::optional<double> stays_above;        ///< m: the body's centre y never below this
   std::optional<double> ends_above;         ///< m: the body's centre y at the end at least this
   std::optional<double> max_rotation_deg;   ///< deg: rotation from its pose at `after`
-  double after = 0.0;                       ///< s: when max_rotation_deg starts counting
+  /// m: the centre's largest distance from where it was at `after` (a held body stays put)
+  std::optional<double> max_drift;
+  /// deg: the largest tilt from its orientation at `after`: how far its turn since then moves the
+  /// vertical (a spin about the vertical is no tilt)
+  std::optional<double> max_tilt_deg;
+  double after = 0.0;                       ///< s: when max_rotation_deg, max_drift and max_tilt_deg start counting
   /// s: the body rests from then on: no later step with a speed above rest_speed or a tilt rate
   /// (angular speed about a horizontal axis) above rest_tilt_rate
   std::optional<double> rests_after;
@@ -34,6 +39,9 @@ struct FingerExpect {
   std::optional<int> min_sgo;       ///< fewest SGOs (all its contacts) at any step of the window
   double from = 0.0, to = 1e300;    ///< s: the window of min_sgo
   std::optional<double> max_force;  ///< N: largest coupling force
+  /// N: the coupling force's largest change over the window from its value at the window's
+  /// start (a still finger feels a still force); needs the window
+  std::optional<double> max_force_change;
   std::optional<double> max_penetration;  ///< m: deepest the proxy goes into a body (else [expect]'s)
 };
 

@@ -139,6 +139,8 @@ json expectSchema() {
                       {"stays_above", numberSchema(-1e6, 1e6, "m: the centre's height never below")},
                       {"ends_above", numberSchema(-1e6, 1e6, "m: the centre's height at the end")},
                       {"max_rotation_deg", at_most(180.0, "deg from the pose at `after`")},
+                      {"max_drift", at_most(1e6, "m: the centre's distance from where it was at `after`")},
+                      {"max_tilt_deg", at_most(180.0, "deg: how far the vertical turned since `after`")},
                       {"after", at_most(1e6, "s: checks start then")},
                       {"rests_after", at_most(1e6, "s: no later step faster than rest_speed or tilting faster than rest_tilt_rate")},
                       {"rest_speed", at_most(1e6, "m/s (default 0.001)")},
@@ -154,6 +156,7 @@ json expectSchema() {
                         {"window", {{"type", "array"}, {"items", {{"type", "number"}}}, {"minItems", 2}, {"maxItems", 2},
                                     {"description", "[from, to] s"}}},
                         {"max_force", at_most(1e9, "N")},
+                        {"max_force_change", at_most(1e9, "N: the coupling force's change from its value at the window's start")},
                         {"max_penetration", at_most(1e6, "m")}},
                        "what a finger must do");
   return object({{"finite", {{"type", "boolean"}}},

@@ -47,6 +47,8 @@ ExpectChecker::ExpectChecker(const ExpectDesc& expect, const sim::World& world) 
     if (e.stays_above) s.above = add(p + "stays_above", *e.stays_above, false);
     if (e.max_rotation_deg) s.rotation = add(p + "max_rotation_deg", *e.max_rotation_deg, true);
     if (e.ends_above) s.ends = add(p + "ends_above", *e.ends_above, false);
+    if (e.max_drift) s.drift = add(p + "max_drift", *e.max_drift, true);
+    if (e.max_tilt_deg) s.tilt = add(p + "max_tilt_deg", *e.max_tilt_deg, true);
     if (e.rests_after) {
       s.rest_speed = add(p + "rests_after.speed", e.rest_speed, true);
       s.rest_tilt = add(p + "rests_after.tilt_rate", e.rest_tilt_rate, true);
@@ -72,6 +74,7 @@ ExpectChecker::ExpectChecker(const ExpectDesc& expect, const sim::World& world) 
     const std::string p = "fingers." + name + ".";
     if (e.min_sgo) s.sgo = add(p + "min_sgo", *e.min_sgo, false);
     if (e.max_force) s.force = add(p + "max_force", *e.max_force, true);
+    if (e.max_force_change) s.force_change = add(p + "max_force_change", *e.max_force_change, true);
     if (const auto pen = e.max_penetration ? e.max_penetration : expect.max_penetration) {
       s.penetration = add(p + "max_penetration", *pen, true);
     }
@@ -118,8 +121,13 @@ void ExpectChecker::afterStep(const sim::World& world) {
   for (BodyState& s : bodies_) {
     if (s.body >= 0) checkBody(world, s, t);
   }
-  for (const FingerState& s : fingers_) {
+  for (FingerState& s : fingers_) {
     if (s.finger < 0) continue;
+    if (s.force_change >= 0 && t >= s.from - 1e-12 && t <= s.to + 1e-12) {
+      const sim::Vec3 force = world.couplingForce(s.finger);
+      if (!s.have_force) s.start_force = force, s.have_force = true;
+      observe(checks_[static_cast<std::size_t>(s.force_change)], (force - s.start_force).norm(), t);
+    }
     if (s.sgo >= 0 && t >= s.from - 1e-12 && t <= s.to + 1e-12) {
       observe(checks_[static_cast<std::size_t>(s.sgo)], world.sgoCount(s.finger), t);
     }
@@ -170,10 +178,16 @@ void ExpectChecker::checkBody(const sim::World& world, BodyState& s, double t) {
   if (s.speed >= 0) observe(checks_[static_cast<std::size_t>(s.speed)], v.norm(), t);
   if (s.angular >= 0) observe(checks_[static_cast<std::size_t>(s.angular)], w.norm(), t);
   if (s.above >= 0) observe(checks_[static_cast<std::size_t>(s.above)], p.position.y(), t);
-  if (s.rotation >= 0 && t >= s.after - 1e-12) {
-    if (!s.have_start) s.start = p.orientation, s.have_start = true;
-    const double angle = Eigen::AngleAxisd(p.orientation * s.start.inverse()).angle() * kRadToDeg;
-    observe(checks_[static_cast<std::size_t>(s.rotation)], angle, t);
+  if ((s.rotation >= 0 || s.drift >= 0 || s.tilt >= 0) && t >= s.after - 1e-12) {
+    if (!s.have_start) s.start = p.orientation, s.start_position = p.position, s.have_start = true;
+    const Eigen::Quaterniond turn = p.orientation * s.start.inverse();
+    if (s.rotation >= 0) observe(checks_[static_cast<std::size_t>(s.rotation)], Eigen::AngleAxisd(turn).angle() * kRadToDeg, t);
+    if (s.drift >= 0) observe(checks_[static_cast<std::size_t>(s.drift)], (p.position - s.start_position).norm(), t);
+    if (s.tilt >= 0) {
+      // y is up: the angle between the vertical and where the turn since `after` takes it.
+      const sim::Vec3 up = turn * sim::Vec3::UnitY();
+      observe(checks_[static_cast<std::size_t>(s.tilt)], std::atan2(std::hypot(up.x(), up.z()), up.y()) * kRadToDeg, t);
+    }
   }
   // The poses of the roll window, selected as a study selects trace rows (to 1e-9 s).
   if (s.roll >= 0 && t >= s.roll_from - 1e-9 && t <= s.roll_to + 1e-9) {

@@ -57,19 +57,22 @@ class ExpectChecker {
   // Per body and finger: indices into checks_ (-1: not checked) and what the checks need.
   struct BodyState {
     int body = -1;
-    int speed = -1, angular = -1, above = -1, rotation = -1, ends = -1;
+    int speed = -1, angular = -1, above = -1, rotation = -1, ends = -1, drift = -1, tilt = -1;
     int rest_speed = -1, rest_tilt = -1;  // rests_after: speed and tilt rate after rests_after
     double after = 0.0, rests_after = 0.0;
     bool have_start = false;
     Eigen::Quaterniond start = Eigen::Quaterniond::Identity();
+    sim::Vec3 start_position = sim::Vec3::Zero();
     int roll = -1;  // max_roll_ratio: taken at the end over the poses of roll_window
     double roll_from = 0.0, roll_to = 0.0, roll_last = 0.0;
     RollRatio roll_ratio{0.0, sim::Vec3::UnitY()};
   };
   struct FingerState {
     int finger = -1;
-    int sgo = -1, force = -1, penetration = -1, tunnel = -1, port = -1;
+    int sgo = -1, force = -1, penetration = -1, tunnel = -1, port = -1, force_change = -1;
     double from = 0.0, to = 0.0;
+    bool have_force = false;  // max_force_change: the force at the window's start
+    sim::Vec3 start_force = sim::Vec3::Zero();
     // The plane of the contact it last pressed, in that body's frame (no_tunnelling).
     int pressed_body = -1;
     sim::Vec3 plane_point = sim::Vec3::Zero(), plane_normal = sim::Vec3::UnitY();

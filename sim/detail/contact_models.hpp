@@ -85,6 +85,10 @@ class GodFingerModel final : public FingerModel {
 /// while its manifold and `injected` points are still there; a few copies per point.
 void keepSolved(FingerContact& c, const std::vector<btPersistentManifold*>& injected, double dt);
 
+/// The anchor a contact leaves for the next step: its own while its block ended the solve
+/// sticking (inside its friction limit), none after a slide.
+FrictionAnchor anchorToKeep(const FingerContact& c, const FrictionBlock& block);
+
 /// The forces the last solve put on the body at contact `c`'s points (keepSolved), with `block`
 /// its solved friction block (valid until the next step's beforeSolve), into `out` in the
 /// body's frame. Called for snapshots only: it costs more than the rest of the contact's step. Normal loads: the points solver's own impulses; the

@@ -11,6 +11,17 @@
 
 namespace gf::sim {
 
+/// Where a contact's friction block sticks: the block's centre when the contact started sticking,
+/// as a point of the body (its frame) and as an offset from the proxy's centre (world: the proxy
+/// does not turn), and the body's orientation then. While the contact sticks its block pulls the two back together, so what the
+/// solve leaves of a sticking contact's sliding does not add up step after step.
+struct FrictionAnchor {
+  bool set = false;
+  btVector3 on_body{0, 0, 0};   ///< body frame (m)
+  btVector3 on_proxy{0, 0, 0};  ///< from the proxy's centre, world (m)
+  btQuaternion body_turn = btQuaternion::getIdentity();  ///< the body's orientation then
+};
+
 /// Points a patch injects besides the true contact: the SGOs and a filled patch's inner points.
 inline constexpr int kMaxPatchPoints = kMaxSgo * kMaxRings;
 
@@ -40,6 +51,7 @@ struct FingerContact {
   int block = -1;          ///< its friction block this step (PatchFrictionSolver::block)
   bool aggregate = false;  ///< solved as one aggregate block (no injected points, no Bullet row)
   Vec3 pad_normal = Vec3::UnitY();  ///< the pad plane's normal (world)
+  FrictionAnchor anchor;            ///< where its block sticks (set by the contact model)
   /// Its walks, carried from the body's last contact with the finger (warm-started walks).
   WalkCache walks;
   SolvedContact solved;  ///< after the solve, for snapshots
@@ -63,6 +75,7 @@ struct ContactMemory {
   btVector3 rolling_impulse{0, 0, 0};  ///< a points block's rolling impulse (N m s)
   double normal_impulse = 0.0;        ///< the contact's total normal impulse (N s)
   btVector3 tilt_impulse{0, 0, 0};    ///< an aggregate block's tilt impulse (N m s)
+  FrictionAnchor anchor;              ///< kept while the block sticks (unset after it slid)
 };
 
 /// Injected point i of a patch: its SGOs, then a filled patch's inner points.

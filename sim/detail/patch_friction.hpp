@@ -58,6 +58,16 @@ struct FrictionBlock {
   btVector3 warm_force{0, 0, 0};
   double warm_torque = 0.0;
   btVector3 warm_rolling{0, 0, 0};  ///< last step's rolling impulse (world, N m s)
+  /// How far the proxy's side of the contact has slid from the body's since the block started
+  /// sticking (its anchor; world, across the normal, m).
+  btVector3 slip{0, 0, 0};
+  /// How far the proxy has turned against the body since then (rotation vector, world, rad): the
+  /// torsion row takes back its part about the normal. (Its part about the tangents is the
+  /// pad's tilt, which the points' depths, or the aggregate's tilt rows, already push back.)
+  btVector3 turn_slip{0, 0, 0};
+  /// The spring and damper that take the slip back (N/m, N s/m: the contact's own), as Bullet's
+  /// compliant rows do: target relative velocity -k slip / (h k + d).
+  double anchor_stiffness = 0.0, anchor_damping = 0.0;
   /// Aggregate: the block carries the contact's normal and tilt rows too (`press`) and has no
   /// points; its bodies are found by their solver bodies.
   bool aggregate = false;
@@ -123,6 +133,7 @@ class PatchFrictionSolver final : public btSequentialImpulseConstraintSolver {
     double bias[3];          // pressing rows: target relative velocity is -bias - cfm lambda
     double cfm[3];
     double roll_inv[2][2];   // inverse of the rolling rows' effective mass
+    double slip_bias[3];     // the friction rows' pull back to the anchor: along t1, t2, about n
     double lambda[kRows];    // accumulated impulses
   };
   // The bodies' relative motion a block's rows read (with the impulses applied so far).
@@ -134,6 +145,7 @@ class PatchFrictionSolver final : public btSequentialImpulseConstraintSolver {
   static double relativeVelocity(const Bound& b, const Motion& m, int row);
   void apply(Bound& b, const double* delta, int first, int count);
   void bind(const btContactSolverInfo& info);
+  void anchorContacts(btPersistentManifold** manifolds, int count, const btContactSolverInfo& info);
   void warmStartContactFriction(const btContactSolverInfo& info);
   void keepContactFriction();
   double limitContactFriction(const btContactSolverInfo& info);
@@ -166,6 +178,18 @@ class PatchFrictionSolver final : public btSequentialImpulseConstraintSolver {
     double along1, along2;
   };
   std::vector<KeptFriction> kept_friction_;
+  // Bullet's own contact points' anchors (anchorContacts): the material points of both bodies
+  // that met when the point started sticking, and how far they have slid apart since; sorted by
+  // the point's address, this step's and last step's.
+  struct ContactAnchor {
+    const btManifoldPoint* point = nullptr;
+    const btCollisionObject *a = nullptr, *b = nullptr;
+    btVector3 on_a{0, 0, 0}, on_b{0, 0, 0};  // in each body's frame (m)
+    btVector3 slip{0, 0, 0};                 // A's point minus B's, across the normal (world, m)
+    bool sticks = false;                     // ended the solve inside its friction limit
+  };
+  std::vector<ContactAnchor> anchors_, last_anchors_;
+  ContactAnchor* anchorOf(const btManifoldPoint* point);
   std::vector<int> proxy_body_of_, object_body_of_;  // per block: its solver bodies, or -1
 };
 

@@ -225,7 +225,11 @@ TEST(PointLoadsPinch, MakeTheWholeMomentThatHoldsTheCylinder) {
       }
       ++samples;
     });
-    EXPECT_LT((ctx.world().bodyAngularVelocity(b) - spin).norm(), 1e-9)
+    // Held still: its spin changes by less than 1e-5 rad/s in the 0.5 s (the aggregate solver's
+    // pinch wobbles at 1.7e-6 rad/s, turning by 5e-6 degrees at most over 5 minutes): an
+    // inertial moment of about 1e-9 N m, far below the 1e-6 share of the fingers' moments the
+    // balance below allows.
+    EXPECT_LT((ctx.world().bodyAngularVelocity(b) - spin).norm(), 1e-5)
         << solver << ": the cylinder is held still";
     EXPECT_NEAR(force.y() / samples, 0.15 * 9.81, 1e-6)
         << solver << ": the fingers carry its weight (N)";

@@ -65,10 +65,12 @@ TEST(WarmWalks, EveryBundledSceneAgreesWithWalksFromTheContact) {
   }
   // The comparison is not vacuous: most walks of the scenes were carried. (A walk stopped short
   // at a threshold, as on the puck's rim, a contact moving to another face, as on the
-  // tessellated sphere, and edge and vertex contacts are walked from the contact; so is a patch
-  // sliding under a finger, as overlap-pinch's do for a second: 4 in 5 carried in all.)
+  // tessellated sphere, and edge and vertex contacts are walked from the contact: press-box's
+  // box stands still under the finger, whose contact stays on the vertex at its top face's
+  // centre; so is a patch sliding under a finger, as overlap-pinch's do for a second: 3 in 4
+  // carried in all.)
   EXPECT_GT(checked, 10'000) << "the scenes computed patches";
-  EXPECT_GT(carried, 3 * cold);
+  EXPECT_GT(carried, 2 * cold);
 }
 
 // The pinch at n_SGO 64 with filled patches (points along every path) under both solvers.
