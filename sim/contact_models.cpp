@@ -78,30 +78,15 @@ btVector3 preparePatchPoints(const ContactToSolve& in, double truth_share) {
   return centre;
 }
 
-// The block's anchor (FrictionAnchor), once its centre is known: last step's while the contact
-// kept sticking, and how far the proxy's side has slid from the body's since, across the
-// normal; a new one at the centre for a new contact, after a slide, or past kAnchorReach.
+// The block's anchor (FrictionAnchor): last step's slip and turn while the contact kept
+// sticking (within kAnchorReach and kAnchorTurn), none for a new contact or after a slide.
 void anchorBlock(const ContactToSolve& in, FrictionBlock& block) {
-  FingerContact& c = in.contact;
-  const btTransform& body = c.truth.object->getWorldTransform();
-  const btVector3 proxy = in.proxy->getWorldTransform().getOrigin();
   FrictionAnchor a = in.memory ? in.memory->anchor : FrictionAnchor{};
-  btVector3 slip(0, 0, 0), turn(0, 0, 0);
-  if (a.set) {
-    slip = proxy + a.on_proxy - body * a.on_body;
-    slip -= slip.dot(block.normal) * block.normal;
-    // The body's turn since the anchor as a rotation vector; the proxy's against it is its opposite.
-    btQuaternion q = body.getRotation() * a.body_turn.inverse();
-    if (q.getW() < 0) q = -q;
-    const double angle = q.getAngle();
-    const btVector3 axis = q.getAxis();
-    turn = -angle * axis;
-    if (!(slip.length() <= kAnchorReach) || !(angle <= kAnchorTurn)) a.set = false, slip.setZero(), turn.setZero();
-  }
-  if (!a.set) a = {true, body.invXform(block.centre), block.centre - proxy, body.getRotation()};
-  c.anchor = a;
-  block.slip = slip;
-  block.turn_slip = turn;
+  if (a.set) a.slip -= a.slip.dot(block.normal) * block.normal;
+  if (!a.set || !(a.slip.length() <= kAnchorReach) || !(std::abs(a.turn) <= kAnchorTurn)) a = FrictionAnchor{};
+  in.contact.anchor = a;
+  block.slip = a.slip;
+  block.turn_slip = a.turn;
   block.anchor_stiffness = in.stiffness;
   block.anchor_damping = in.damping;
 }
@@ -418,7 +403,19 @@ void keepSolved(FingerContact& c, const std::vector<btPersistentManifold*>& inje
 }
 
 FrictionAnchor anchorToKeep(const FingerContact& c, const FrictionBlock& block) {
-  return block.solved && !atFrictionLimit(block) ? c.anchor : FrictionAnchor{};
+  if (!block.solved) return FrictionAnchor{};
+  FrictionAnchor a = c.anchor;
+  a.set = true;
+  a.slip += block.moved;
+  a.turn += block.turned;
+  // At its limit the contact turns about its normal, and slides too unless its friction force
+  // is a small part of mu N (a patch whose points lift has a torsion limit of micrometres times
+  // N, which a still press reaches while the force stays far inside its own).
+  if (atFrictionLimit(block)) {
+    a.turn = 0.0;
+    if (!(block.force.length() < kSlipFraction * block.friction * block.normal_impulse)) a.slip.setZero();
+  }
+  return a;
 }
 
 void solvedLoads(const FingerContact& c, const FrictionBlock& block, AggregateScratch& s, ContactLoads& out) {

@@ -14,14 +14,6 @@ constexpr int kNormalRow = 3;     // aggregate: the normal row, then the two til
 // (a static body and a proxy that cannot turn have no torsion row).
 constexpr double kInactiveRow = 1e-12;
 
-btVector3 velocityOf(const btSolverBody& b) {
-  return b.m_originalBody ? b.m_linearVelocity + b.m_externalForceImpulse + b.m_deltaLinearVelocity : btVector3(0, 0, 0);
-}
-
-btVector3 spinOf(const btSolverBody& b) {
-  return b.m_originalBody ? b.m_angularVelocity + b.m_externalTorqueImpulse + b.m_deltaAngularVelocity
-                          : btVector3(0, 0, 0);
-}
 
 // The largest ratio (x, y) . d_j / (normal h_j) over the tilt limit's directions: the tilt
 // impulse (x, y) (tilt-axis coordinates) is within the hull of the points while it is <= 1.
@@ -74,12 +66,12 @@ PatchFrictionSolver::PatchFrictionSolver() {
   pool_index_.reserve(kPoints);
   arm_.reserve(kPoints);
   by_address_.reserve(kPoints);
-  kept_friction_.reserve(kPoints);
-  anchors_.reserve(kPoints);
-  last_anchors_.reserve(kPoints);
+  memos_.reserve(kPoints);
+  last_memos_.reserve(kPoints);
 }
 
 void PatchFrictionSolver::clearBlocks() {
+  rollContactMemos();
   blocks_.clear();
   points_.clear();
 }
@@ -105,8 +97,8 @@ btScalar PatchFrictionSolver::solveGroupCacheFriendlySetup(btCollisionObject** b
   const btScalar r = btSequentialImpulseConstraintSolver::solveGroupCacheFriendlySetup(
       bodies, numBodies, manifolds, numManifolds, constraints, numConstraints, info, debug);
   if (info.m_solverMode & SOLVER_USE_WARMSTARTING) {
-    anchorContacts(manifolds, numManifolds, info);
-    warmStartContactFriction(info);
+    recallContacts(manifolds, numManifolds, info);
+    warmStartContacts(info);
   }
   bind(info);
   return r;
@@ -163,7 +155,7 @@ void PatchFrictionSolver::bind(const btContactSolverInfo& info) {
     const double pull = fb.anchor_stiffness / std::max(info.m_timeStep * fb.anchor_stiffness + fb.anchor_damping, 1e-300);
     b.slip_bias[0] = pull * fb.slip.dot(b.t1);
     b.slip_bias[1] = pull * fb.slip.dot(b.t2);
-    b.slip_bias[2] = pull * fb.turn_slip.dot(b.n);
+    b.slip_bias[2] = pull * fb.turn_slip * fb.normal.dot(b.n);
     for (double& l : b.lambda) l = 0.0;
     if (fb.aggregate) bindPress(b, fb, info);
     if (b.roll >= 0) bindRolling(b, fb);
@@ -555,20 +547,15 @@ btScalar PatchFrictionSolver::solveGroupCacheFriendlyFinish(btCollisionObject** 
     fb.torque = b.lambda[2];
     fb.rolling_impulse = b.roll >= 0 ? b.lambda[b.roll] * b.t1 + b.lambda[b.roll + 1] * b.t2 : btVector3(0, 0, 0);
     fb.normal_impulse = blockNormal(b);
+    const Motion m = motion(b);
+    fb.moved = info.m_timeStep * (m.centre - m.centre.dot(b.n) * b.n);
+    fb.turned = info.m_timeStep * m.spin.dot(b.n);
     if (fb.aggregate) fb.press.tilt = b.lambda[kNormalRow + 1] * fb.press.tilt_axis[0] + b.lambda[kNormalRow + 2] * fb.press.tilt_axis[1];
     fb.solved = true;
   }
   bound_.clear();
-  const bool warm = (info.m_solverMode & SOLVER_USE_WARMSTARTING) != 0;
-  if (warm) keepContactFriction();
-  const btScalar r = btSequentialImpulseConstraintSolver::solveGroupCacheFriendlyFinish(bodies, numBodies, info);
-  if (warm) {
-    for (const KeptFriction& k : kept_friction_) {
-      k.point->m_appliedImpulseLateral1 = static_cast<btScalar>(k.along1);
-      k.point->m_appliedImpulseLateral2 = static_cast<btScalar>(k.along2);
-    }
-  }
-  return r;
+  if (info.m_solverMode & SOLVER_USE_WARMSTARTING) keepContacts(info);
+  return btSequentialImpulseConstraintSolver::solveGroupCacheFriendlyFinish(bodies, numBodies, info);
 }
 
 }  // namespace gf::sim

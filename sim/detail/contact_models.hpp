@@ -86,7 +86,8 @@ class GodFingerModel final : public FingerModel {
 void keepSolved(FingerContact& c, const std::vector<btPersistentManifold*>& injected, double dt);
 
 /// The anchor a contact leaves for the next step: its own while its block ended the solve
-/// sticking (inside its friction limit), none after a slide.
+/// sticking (inside its friction limit); at the limit, its point anchor only while its friction
+/// force is under half of mu N (it turned rather than slid); none when its block was not solved.
 FrictionAnchor anchorToKeep(const FingerContact& c, const FrictionBlock& block);
 
 /// The forces the last solve put on the body at contact `c`'s points (keepSolved), with `block`

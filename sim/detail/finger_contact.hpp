@@ -11,15 +11,16 @@
 
 namespace gf::sim {
 
-/// Where a contact's friction block sticks: the block's centre when the contact started sticking,
-/// as a point of the body (its frame) and as an offset from the proxy's centre (world: the proxy
-/// does not turn), and the body's orientation then. While the contact sticks its block pulls the two back together, so what the
-/// solve leaves of a sticking contact's sliding does not add up step after step.
+/// How far a sticking contact has slid since it started sticking: its friction block's relative
+/// motion at its centre (the proxy's side against the body's, across the normal) and about its
+/// normal, summed step by step from the solved velocities, as the positions move. While the
+/// contact sticks its block takes the slip back, so what the solve leaves of a sticking contact's
+/// sliding does not add up step after step. (Not material points: a ball rolling under a point
+/// contact slides nowhere.)
 struct FrictionAnchor {
-  bool set = false;
-  btVector3 on_body{0, 0, 0};   ///< body frame (m)
-  btVector3 on_proxy{0, 0, 0};  ///< from the proxy's centre, world (m)
-  btQuaternion body_turn = btQuaternion::getIdentity();  ///< the body's orientation then
+  bool set = false;            ///< sticking: `slip` counts
+  btVector3 slip{0, 0, 0};     ///< proxy side against the body's, world (m)
+  double turn = 0.0;           ///< the proxy's turn against the body's about the normal (rad)
 };
 
 /// Points a patch injects besides the true contact: the SGOs and a filled patch's inner points.

@@ -26,7 +26,8 @@
 // rows from zero every step (only their normal rows are warm-started), so ten iterations never
 // quite rebuild the friction that holds a loaded body, and what they leave slips. This solver
 // warm-starts those rows too, from last step's friction impulse kept in a frame of the normal
-// (the rows' own directions follow the sliding velocity and change from step to step).
+// (the rows' own directions follow the sliding velocity and change from step to step), and
+// anchors a sticking point: its friction rows take back the slip since it started sticking.
 // Internal to sim/.
 #pragma once
 
@@ -39,6 +40,16 @@
 #include "sim/detail/aggregate_patch.hpp"
 
 namespace gf::sim {
+
+/// A solver body's velocity and spin with the step's external forces and the impulses applied so
+/// far (zero for a static body).
+inline btVector3 velocityOf(const btSolverBody& b) {
+  return b.m_originalBody ? b.m_linearVelocity + b.m_externalForceImpulse + b.m_deltaLinearVelocity : btVector3(0, 0, 0);
+}
+inline btVector3 spinOf(const btSolverBody& b) {
+  return b.m_originalBody ? b.m_angularVelocity + b.m_externalTorqueImpulse + b.m_deltaAngularVelocity
+                          : btVector3(0, 0, 0);
+}
 
 /// One finger's contact with one body, as the solver sees it. Filled before the solve (World's
 /// beforeSolve), read after it.
@@ -61,10 +72,10 @@ struct FrictionBlock {
   /// How far the proxy's side of the contact has slid from the body's since the block started
   /// sticking (its anchor; world, across the normal, m).
   btVector3 slip{0, 0, 0};
-  /// How far the proxy has turned against the body since then (rotation vector, world, rad): the
-  /// torsion row takes back its part about the normal. (Its part about the tangents is the
-  /// pad's tilt, which the points' depths, or the aggregate's tilt rows, already push back.)
-  btVector3 turn_slip{0, 0, 0};
+  /// How far the proxy has turned against the body about the normal since then (rad): the
+  /// torsion row takes it back. (A turn about the tangents is the pad's tilt, which the points'
+  /// depths, or the aggregate's tilt rows, already push back.)
+  double turn_slip = 0.0;
   /// The spring and damper that take the slip back (N/m, N s/m: the contact's own), as Bullet's
   /// compliant rows do: target relative velocity -k slip / (h k + d).
   double anchor_stiffness = 0.0, anchor_damping = 0.0;
@@ -78,6 +89,10 @@ struct FrictionBlock {
   double torque = 0.0;
   btVector3 rolling_impulse{0, 0, 0};
   double normal_impulse = 0.0;
+  /// This step's relative motion, from the solved velocities times the step: the centre's across
+  /// the normal (proxy side against the body's, m) and the turn about the normal (rad).
+  btVector3 moved{0, 0, 0};
+  double turned = 0.0;
   bool solved = false;  ///< false when none of its points (or bodies) reached the solver this step
 };
 
@@ -92,7 +107,8 @@ struct FrictionPoint {
 class PatchFrictionSolver final : public btSequentialImpulseConstraintSolver {
  public:
   PatchFrictionSolver();
-  /// Empties the blocks (keeps storage). Call before adding this step's blocks.
+  /// Empties the blocks (keeps storage) and begins the step's memory of Bullet's own contacts.
+  /// Call once a step, before adding this step's blocks.
   void clearBlocks();
   /// Adds a block whose points are the next `points` added with addPoint; returns its index.
   int addBlock(const FrictionBlock& block);
@@ -145,9 +161,10 @@ class PatchFrictionSolver final : public btSequentialImpulseConstraintSolver {
   static double relativeVelocity(const Bound& b, const Motion& m, int row);
   void apply(Bound& b, const double* delta, int first, int count);
   void bind(const btContactSolverInfo& info);
-  void anchorContacts(btPersistentManifold** manifolds, int count, const btContactSolverInfo& info);
-  void warmStartContactFriction(const btContactSolverInfo& info);
-  void keepContactFriction();
+  void recallContacts(btPersistentManifold** manifolds, int count, const btContactSolverInfo& info);
+  void warmStartContacts(const btContactSolverInfo& info);
+  void keepContacts(const btContactSolverInfo& info);
+  void rollContactMemos();
   double limitContactFriction(const btContactSolverInfo& info);
   bool findBodies(const FrictionBlock& fb, const btContactSolverInfo& info, int& proxy, int& object);
   void setRows(Bound& b) const;
@@ -170,26 +187,24 @@ class PatchFrictionSolver final : public btSequentialImpulseConstraintSolver {
   std::vector<btVector3> arm_;    // per point of a block with rolling rows: (point - centre) x n
   std::vector<std::pair<const btManifoldPoint*, int>> by_address_;  // points sorted by address
   std::vector<Bound> bound_;
-  // Bullet's own contacts' friction impulses at the end of the solve, in the frame
-  // btPlaneSpace1 makes of each point's normal: written into the points after Bullet's
-  // write-back (keepContactFriction), read by the next step's warm start.
-  struct KeptFriction {
-    btManifoldPoint* point;
-    double along1, along2;
-  };
-  std::vector<KeptFriction> kept_friction_;
-  // Bullet's own contact points' anchors (anchorContacts): the material points of both bodies
-  // that met when the point started sticking, and how far they have slid apart since; sorted by
-  // the point's address, this step's and last step's.
-  struct ContactAnchor {
+  // What each of Bullet's own contact points leaves for the next step (sim/contact_friction.cpp),
+  // found again by its bodies and its point on the first (Bullet's manifolds keep most points
+  // from step to step, but a concave mesh's, GImpact's, are new every step): the impulses that
+  // warm-start it, and how far it has slid since it started sticking. This step's, sorted by the
+  // manifold point's address, and last step's, sorted by bodies.
+  struct ContactMemo {
     const btManifoldPoint* point = nullptr;
     const btCollisionObject *a = nullptr, *b = nullptr;
-    btVector3 on_a{0, 0, 0}, on_b{0, 0, 0};  // in each body's frame (m)
-    btVector3 slip{0, 0, 0};                 // A's point minus B's, across the normal (world, m)
+    btVector3 at_a{0, 0, 0};                 // the point on body A, its frame (m)
+    btVector3 slip{0, 0, 0};                 // A's side against B's since it stuck, tangential (world, m)
+    double normal = 0.0;                     // normal impulse (N s)
+    double along1 = 0.0, along2 = 0.0;       // friction impulse along btPlaneSpace1 of the normal (N s)
     bool sticks = false;                     // ended the solve inside its friction limit
+    bool kept = false;                       // reached a solve this step (keepContacts)
   };
-  std::vector<ContactAnchor> anchors_, last_anchors_;
-  ContactAnchor* anchorOf(const btManifoldPoint* point);
+  std::vector<ContactMemo> memos_, last_memos_;
+  ContactMemo* memoOf(const btManifoldPoint* point);
+  const ContactMemo* lastMemo(const btCollisionObject* a, const btCollisionObject* b, const btVector3& at_a) const;
   std::vector<int> proxy_body_of_, object_body_of_;  // per block: its solver bodies, or -1
 };
 

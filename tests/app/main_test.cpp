@@ -85,7 +85,7 @@ TEST(Command, CheckPassesTheBundledScenesAndFailsAGodObjectLift) {
 
 // `godfinger --version`: the version and commit, the physics and mesh libraries, and the GL the
 // frames are drawn with; exit 0 (no subcommand needed).
-// `--max-duration`, the sanitizer builds' short variant of a long scene: the 60 s hold cut at
+// `--max-duration`, the sanitizer builds' short variant of a long scene: the 5 min hold cut at
 // 0.5 s runs 0.5 s, keeps its limits checked during the run and leaves `ends_above` (the lift's
 // end, 0.08 m) unchecked; `--duration 0.5` is the scene shortened as it stands, so that limit
 // fails (exit 3). A scene shorter than the cap runs whole and is not marked cut short.
@@ -94,7 +94,7 @@ TEST(Command, MaxDurationCutsALongSceneAndLeavesItsEndOfRunLimitsUnchecked) {
   const fs::path out = gf::test::scratchRoot() / "gf_max_duration";
   fs::remove_all(out);
   const std::string bin = std::string(GF_BINARY_DIR) + "/godfinger";
-  const std::string hold = bin + " run " + GF_SOURCE_DIR + "/assets/hard-cases/pinch-hold-60s.toml --quiet ";
+  const std::string hold = bin + " run " + GF_SOURCE_DIR + "/assets/hard-cases/pinch-hold-5min.toml --quiet ";
   ASSERT_EQ(std::system((hold + "--max-duration 0.5 --out " + (out / "cut").string() + " > /dev/null").c_str()), 0);
   std::ifstream in(out / "cut" / "summary.json");
   const nlohmann::json cut = nlohmann::json::parse(in);

@@ -646,6 +646,8 @@ energy_growth = 0.01
 [expect.bodies.ball]
 stays_above = 0.01
 max_rotation_deg = 5.0
+max_drift = 1e-5
+max_tilt_deg = 0.01
 after = 0.1
 rests_after = 0.5
 rest_tilt_rate = 0.01
@@ -654,6 +656,7 @@ roll_window = [0.05, 0.2]
 [expect.fingers.left]
 min_sgo = 3
 window = [0.1, 0.2]
+max_force_change = 0.01
 )", "scene.toml", "");
   EXPECT_TRUE(s.expect.finite);
   EXPECT_EQ(*s.expect.max_speed, 2.0);
@@ -661,6 +664,9 @@ window = [0.1, 0.2]
   EXPECT_EQ(*s.expect.bodies.at("ball").stays_above, 0.01);
   EXPECT_EQ(*s.expect.bodies.at("ball").max_rotation_deg, 5.0);
   EXPECT_EQ(s.expect.bodies.at("ball").after, 0.1);
+  EXPECT_EQ(*s.expect.bodies.at("ball").max_drift, 1e-5);
+  EXPECT_EQ(*s.expect.bodies.at("ball").max_tilt_deg, 0.01);
+  EXPECT_EQ(*s.expect.fingers.at("left").max_force_change, 0.01);
   EXPECT_EQ(*s.expect.bodies.at("ball").rests_after, 0.5);
   EXPECT_EQ(s.expect.bodies.at("ball").rest_speed, 1e-3);  // the default
   EXPECT_EQ(s.expect.bodies.at("ball").rest_tilt_rate, 0.01);
@@ -681,6 +687,11 @@ window = [0.1, 0.2]
                "scene.toml:16:15: expect.bodies.ball.roll_window: without max_roll_ratio it checks nothing");
   EXPECT_STREQ(errorOf(kMinimal + "[expect.bodies.ball]\nmax_roll_ratio = 0.2\nroll_window = [0.2, 0.1]\n").what(),
                "scene.toml:17:15: expect.bodies.ball.roll_window: expected [from, to] in seconds, 0 <= from < to");
+  EXPECT_STREQ(errorOf(kMinimal + "[expect.fingers.left]\nmax_force_change = 0.01\n").what(),
+               "scene.toml:16:20: expect.fingers.left.max_force_change: needs window = [from, to]: the change is "
+               "counted from the force at `from`");
+  EXPECT_STREQ(errorOf(kMinimal + "[expect.bodies.ball]\nmax_tilt_deg = 200.0\n").what(),
+               "scene.toml:16:16: expect.bodies.ball.max_tilt_deg: must be in [0, 180], got 200");
   const std::string box =
       replaced("shape = \"sphere\"\nradius = 0.03", "shape = \"box\"\nhalf_extents = [0.03, 0.03, 0.03]");
   EXPECT_STREQ(errorOf(box + "[expect.bodies.ball]\nmax_roll_ratio = 0.2\n").what(),

@@ -4,11 +4,15 @@
 
 #include <gtest/gtest.h>
 
+#include <Eigen/Geometry>
+
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <map>
+#include <numbers>
 #include <sstream>
 #include <vector>
 
@@ -349,6 +353,75 @@ TEST(Session, ARestingBodyMaySpinButNotTiltOrMove) {
   ASSERT_TRUE(by_name.contains("bodies.puck.rests_after.speed"));
   EXPECT_GT(by_name["bodies.puck.rests_after.speed"].value, 1e-3);
   EXPECT_GT(by_name["bodies.puck.rests_after.speed"].time, 0.6);
+}
+
+// The holds' checks, against the run's own trace: max_drift is the puck's largest distance from
+// where it was at `after`, max_tilt_deg how far the vertical turned since, and max_force_change
+// the coupling force's largest change from its value at the window's start. The puck is pressed
+// and then pushed sideways by 2 N from 0.6 s (the finger's friction holds it: the proxy gives
+// way by about 2.5 mm); every row of the trace is a step.
+TEST(Session, HoldChecksMeasureFromTheirStartAsTheTraceDoes) {
+  SessionDesc s = loadSceneFile(resolveScenePath("pressed-puck"));
+  s.scene.duration = 1.0;
+  ASSERT_EQ(s.scene.loads.size(), 1u);
+  s.scene.loads[0].torque = sim::Vec3::Zero();
+  s.scene.loads[0].force = sim::Vec3(2.0, 0.0, 0.0);
+  s.scene.loads[0].start = 0.6;
+  BodyExpect& puck = s.expect.bodies["puck"];
+  puck.after = 0.5;
+  puck.max_drift = 1e-5;
+  puck.max_tilt_deg = 0.01;
+  const std::string finger = s.scene.fingers.at(0).name;
+  FingerExpect& f = s.expect.fingers[finger];
+  f.from = 0.5;
+  f.to = 0.9;
+  f.max_force_change = 0.01;
+  SessionOptions options = freshOutput("gf_session_hold");
+  std::vector<ExpectFailure> failed;
+  options.expect_failures = &failed;
+  runSession(s, options);
+  std::map<std::string, ExpectFailure> by_name;
+  for (const ExpectFailure& e : failed) by_name[e.name] = e;
+  ASSERT_TRUE(by_name.contains("bodies.puck.max_drift"));
+  ASSERT_TRUE(by_name.contains("fingers." + finger + ".max_force_change"));
+
+  std::ifstream trace(fs::path(options.out_dir) / "trace.csv");
+  std::string line;
+  std::getline(trace, line);
+  const std::vector<std::string> header = cellsOf(line);
+  const auto column = [&](const std::string& name) {
+    return static_cast<std::size_t>(std::find(header.begin(), header.end(), name) - header.begin());
+  };
+  const std::size_t t_at = column("t"), p_at = column("puck.px"), q_at = column("puck.qx"), f_at = column(finger + ".fx");
+  ASSERT_LT(f_at, header.size());
+  double drift = 0.0, tilt = 0.0, change = 0.0;
+  bool started = false, force_started = false;
+  sim::Vec3 p0 = sim::Vec3::Zero(), f0 = sim::Vec3::Zero();
+  Eigen::Quaterniond q0 = Eigen::Quaterniond::Identity();
+  while (std::getline(trace, line)) {
+    const std::vector<std::string> c = cellsOf(line);
+    const double t = std::stod(c[t_at]);
+    const sim::Vec3 p(std::stod(c[p_at]), std::stod(c[p_at + 1]), std::stod(c[p_at + 2]));
+    const Eigen::Quaterniond q(std::stod(c[q_at + 3]), std::stod(c[q_at]), std::stod(c[q_at + 1]), std::stod(c[q_at + 2]));
+    const sim::Vec3 force(std::stod(c[f_at]), std::stod(c[f_at + 1]), std::stod(c[f_at + 2]));
+    if (t >= 0.5 - 1e-12) {
+      if (!started) p0 = p, q0 = q, started = true;
+      drift = std::max(drift, (p - p0).norm());
+      const sim::Vec3 up = (q * q0.inverse()) * sim::Vec3::UnitY();
+      tilt = std::max(tilt, std::atan2(std::hypot(up.x(), up.z()), up.y()) * 180.0 / std::numbers::pi);
+    }
+    if (t >= 0.5 - 1e-12 && t <= 0.9 + 1e-12) {
+      if (!force_started) f0 = force, force_started = true;
+      change = std::max(change, (force - f0).norm());
+    }
+  }
+  // The trace prints 17 significant digits: the checker's values to within that rounding.
+  EXPECT_NEAR(by_name["bodies.puck.max_drift"].value, drift, 1e-12);
+  EXPECT_GT(drift, 1e-3) << "the push moved it";
+  EXPECT_NEAR(by_name["fingers." + finger + ".max_force_change"].value, change, 1e-9);
+  const double checked_tilt = by_name.contains("bodies.puck.max_tilt_deg") ? by_name["bodies.puck.max_tilt_deg"].value
+                                                                           : readJson(fs::path(options.out_dir) / "summary.json")["measures"]["bodies.puck.max_tilt_deg"].get<double>();
+  EXPECT_NEAR(checked_tilt, tilt, 1e-9);
 }
 
 // max_roll_ratio: pushed by the god-finger, the Fig. 5 ball slides (its roll ratio over the
