@@ -24,6 +24,10 @@ struct DeviceSample {
   /// Identity for a 3-DOF device, which has none; a god-finger with a pad model reads its pad
   /// axis through it (PatchSettings::pad_model).
   Quat orientation = Quat::Identity();
+  /// The first sample of a live device's stream after a dropout or a takeover: the hand is now
+  /// wherever it went meanwhile. The World does not jump there: it keeps the device where it
+  /// was and washes the difference out no faster than the port's energy allows (World::step).
+  bool resumed = false;
 };
 
 /// A device path through keyframes (time in s, position in m), held at both ends.
@@ -58,8 +62,10 @@ class DeviceSource {
   virtual ~DeviceSource() = default;
   /// The device for the step starting at simulated time t (s).
   virtual DeviceSample sample(double t) = 0;
-  /// The finger's state after that step, at simulated time t (s), the step's end.
-  virtual void feedback(double t, const DeviceFeedback& feedback) = 0;
+  /// The finger's state after that step, at simulated time t (s), the step's end. Returns the
+  /// force the device was told to render (scene frame, N: what it renders until the next
+  /// reply), which the port's passivity observer and trace.csv take (World::setToldForce).
+  virtual Vec3 feedback(double t, const DeviceFeedback& feedback) = 0;
 };
 
 }  // namespace gf::sim

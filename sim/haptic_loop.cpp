@@ -205,7 +205,8 @@ LoopStats runHapticLoop(World& world, const std::vector<DeviceTrack>& devices,
     for (std::size_t i = 0; i < settings.sources.size(); ++i) {
       if (DeviceSource* source = settings.sources[i]) {
         const int f = static_cast<int>(i);
-        source->feedback(world.time(), {world.feedbackForce(f), world.contactRadius(f), world.sgoCount(f), world.touching(f)});
+        world.setToldForce(f, source->feedback(world.time(), {world.feedbackForce(f), world.contactRadius(f),
+                                                              world.sgoCount(f), world.touching(f)}));
       }
     }
     if (LiveTimings* live = settings.live) live->recent_us[live->steps++ % live->recent_us.size()] = step_us[k];

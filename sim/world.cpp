@@ -142,6 +142,16 @@ Vec3 World::feedbackForce(int finger) const {
   return impl_->fingers[finger].sent;
 }
 
+Vec3 World::toldForce(int finger) const {
+  GF_ASSERT(finger >= 0 && finger < static_cast<int>(impl_->fingers.size()));
+  return impl_->fingers[static_cast<std::size_t>(finger)].told;
+}
+
+void World::setToldForce(int finger, const Vec3& force) {
+  GF_ASSERT(finger >= 0 && finger < static_cast<int>(impl_->fingers.size()));
+  if (force.allFinite()) impl_->fingers[static_cast<std::size_t>(finger)].told = force;
+}
+
 double World::portEnergy(int finger) const {
   GF_ASSERT_OWNER();
   return impl_->fingers[finger].port.energy;

@@ -91,9 +91,17 @@ class World {
   /// when the scene turns force feedback off), followed at most max_force_rate fast, so that it
   /// never jumps whatever the device's position or the contact does.
   Vec3 feedbackForce(int finger) const;
+  /// The force the finger's device was told to render after the last step (N, scene frame):
+  /// feedbackForce unless its device source said otherwise (setToldForce: a live device's link
+  /// fades it while the device is stale or was taken over).
+  Vec3 toldForce(int finger) const;
+  /// What the finger's device source told its device after the step (haptic thread, after
+  /// step()): the force it renders until the next step, which the port observer prices the
+  /// device's next move with. Non-finite forces are ignored.
+  void setToldForce(int finger, const Vec3& force);
   /// The passivity observer of the finger's device port (Hannaford and Ryu 2002): the work the
-  /// hand has done on the device against the force sent, the sum over steps of
-  /// -feedbackForce . (device displacement) (J), leaving out the steps where the device jumped
+  /// hand has done on the device against the force it was told, the sum over steps of
+  /// -toldForce . (device displacement) (J), leaving out the steps where the device jumped
   /// (PortObserver). A passive simulation never lets it fall below zero: it returns no more
   /// energy than it was given.
   double portEnergy(int finger) const;

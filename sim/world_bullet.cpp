@@ -116,12 +116,17 @@ void World::Impl::applyCouplings(std::span<const DeviceSample> devices, double d
     Finger& f = fingers[i];
     const CouplingSettings& cs = desc.fingers[i].coupling;
     if (i < devices.size() && devices[i].position.allFinite() && devices[i].velocity.allFinite()) {
-      const Vec3 moved = devices[i].position - f.device.position;
+      DeviceSample sample = devices[i];
+      // A resumed stream (after a dropout or a takeover) starts where the device was held.
+      if (sample.resumed) f.resume_offset = f.device.position - sample.position;
+      sample.position += f.resume_offset;
+      const Vec3 moved = sample.position - f.device.position;
       if (moved.squaredNorm() > 0.0) {
-        const bool jump = moved.norm() > cs.max_device_speed * std::max(dt, devices[i].interval);
-        f.port.observe(-f.sent.dot(moved), jump);
+        const bool jump = moved.norm() > cs.max_device_speed * std::max(dt, sample.interval);
+        f.port.observe(-f.told.dot(moved), jump);
       }
-      f.device = devices[i];
+      f.device = sample;
+      washOutResume(f, dt);
     }
     f.force = sim::couplingForce(cs, f.device.position, f.device.velocity,
                                  toEigen(f.proxy->getCenterOfMassPosition()),
@@ -131,6 +136,27 @@ void World::Impl::applyCouplings(std::span<const DeviceSample> devices, double d
     const bool push = desc.world.overlap == OverlapMode::kPushApart;
     f.proxy->applyCentralForce(toBt(push ? Vec3(f.force + f.overlap_push) : f.force));
   }
+}
+
+// A resumed device's offset (Finger::resume_offset) washed out towards the hand's position by at
+// most max(kResumeWashSpeed, |offset| / kResumeWashTime) dt a step. A step that would put energy
+// into the coupling (the device moving along the force the hand was told, -told . move > 0) is
+// energy the hand did not give, which the hand may later take back through the port: all such
+// energy put in so far (resume_spent) may not exceed the port's energy, so the port stays at or
+// above zero whatever comes back; a step that takes energy out goes on freely. A hand that
+// pressed deeper during a dropout gets no more force back than its own work paid for.
+void World::Impl::washOutResume(Finger& f, double dt) {
+  const double size = f.resume_offset.norm();
+  if (!(size > 0.0)) return;
+  double step = std::min(size, std::max(kResumeWashSpeed, size / kResumeWashTime) * dt);
+  const Vec3 toward = -f.resume_offset / size;  // the device's move: towards the hand
+  const double put_in = -f.told.dot(toward);  // J per metre put into the coupling
+  if (put_in > 0.0) step = std::min(step, std::max(0.0, f.port.energy - f.resume_spent) / put_in);
+  if (!(step > 0.0)) return;
+  f.resume_offset += step * toward;
+  if (f.resume_offset.norm() < kResumeWashDone) f.resume_offset.setZero();
+  f.device.position += step * toward;
+  if (put_in > 0.0) f.resume_spent += put_in * step;
 }
 
 // The force each finger's device is to render after this step: the coupling force's opposite
@@ -145,6 +171,7 @@ void World::Impl::slewSentForces(double dt) {
     const Vec3 change = target - f.sent;
     const double size = change.norm();
     f.sent = size > limit ? Vec3(f.sent + (limit / size) * change) : target;
+    f.told = f.sent;  // a device source may tell its device otherwise (World::setToldForce)
   }
 }
 

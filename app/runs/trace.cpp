@@ -73,7 +73,7 @@ void TraceWriter::record(const sim::World& world) {
     for (double u : {v.x(), v.y(), v.z(), w.x(), w.y(), w.z()}) *x++ = u;
   }
   for (int f = 0; f < static_cast<int>(world.desc().fingers.size()); ++f) {
-    const sim::Vec3 sent = world.feedbackForce(f);
+    const sim::Vec3 sent = world.toldForce(f);
     for (double v : {sent.x(), sent.y(), sent.z(), world.portEnergy(f)}) *x++ = v;
   }
   for (int k = 0; k < world.overlapPairCount(); ++k) *x++ = world.overlap(k).area * 1e6;

@@ -22,7 +22,8 @@ class SteeredDevice final : public sim::DeviceSource {
   void moveTo(const sim::Vec3& target, double seconds);
 
   sim::DeviceSample sample(double t) override;
-  void feedback(double, const sim::DeviceFeedback&) override {}
+  /// The browser's pointer renders no force: the force the World sends is the force told.
+  sim::Vec3 feedback(double, const sim::DeviceFeedback& f) override { return f.force; }
 
   bool web() const { return web_; }
   /// Moves taken by the haptic thread so far. Any thread.

@@ -118,8 +118,23 @@ bool DeviceLink::take(const DevicePacket& p, double t, std::uint64_t sender) {
   const bool takeover = heard_ && sender != sender_;
   if (takeover) {  // another hand on this channel: it gets the force faded in from zero
     ++counters_.takeovers;
+    // The sender displaced keeps being answered, its force fading from what it was told; the
+    // new one starts from what it was last told itself (zero, unless displaced a moment ago).
+    sim::Vec3 told = sim::Vec3::Zero();
+    for (int i = 0; i < displaced_count_; ++i) {
+      if (displaced_[static_cast<std::size_t>(i)].sender != sender) continue;
+      told = displaced_[static_cast<std::size_t>(i)].sent;
+      std::copy(displaced_.begin() + i + 1, displaced_.begin() + displaced_count_, displaced_.begin() + i);
+      --displaced_count_;
+      break;
+    }
+    if (displaced_count_ == kMaxDisplaced) {  // the oldest is dropped
+      std::copy(displaced_.begin() + 1, displaced_.end(), displaced_.begin());
+      --displaced_count_;
+    }
+    displaced_[static_cast<std::size_t>(displaced_count_++)] = {sender_, seq_, sent_};
     gain_ = 0.0;
-    sent_.setZero();
+    sent_ = told;
     ramping_ = true;
   }
   const double gap = p.time - device_time_;
@@ -139,6 +154,7 @@ bool DeviceLink::take(const DevicePacket& p, double t, std::uint64_t sender) {
   }
   if (heard_ && received_at_ == t) ++counters_.superseded;  // the previous one was never used
   if (heard_ && !resync_ && !takeover) counters_.lost += ahead - 1;
+  resumed_ = heard_ && new_stream;  // the first packet of all is the device's first position, no resume
   if (!heard_) first_packet_at_ = t;
   resync_ = false;
   position_ = position;
@@ -161,11 +177,14 @@ sim::DeviceSample DeviceLink::sample(double t) {
   if (stale_) ++counters_.stale_steps;
   sim::DeviceSample out{position_, stale_ ? sim::Vec3::Zero() : velocity_, interval_};
   out.orientation = orientation_;
+  out.resumed = resumed_ && !stale_;
+  if (!stale_) resumed_ = false;
   return out;
 }
 
 DeviceReply DeviceLink::reply(double t, const sim::DeviceFeedback& f) {
   const double step = (t - sample_time_) / desc_.force_ramp;  // of the gain's 0..1
+  ramp_step_ = step;
   gain_ = stale_ ? gain_ - step : gain_ + step;
   // Whole steps of the ramp add up to 1 only within rounding: the ends are exact.
   if (gain_ < kGainRounding) gain_ = 0.0;
@@ -190,6 +209,25 @@ DeviceReply DeviceLink::reply(double t, const sim::DeviceFeedback& f) {
   r.radius = f.radius;
   r.sgo_count = static_cast<std::uint32_t>(std::max(0, f.sgo_count));
   r.gain = static_cast<float>(gain_);
+  return r;
+}
+
+sim::Vec3 DeviceLink::sentInScene() const {
+  return desc_.force_scale > 0.0 ? sim::Vec3(sent_ / desc_.force_scale) : sim::Vec3::Zero();
+}
+
+DeviceReply DeviceLink::displacedReply(int i, double t) {
+  Displaced& d = displaced_[static_cast<std::size_t>(i)];
+  const double limit = max_force_ * desc_.force_scale * ramp_step_;
+  const double size = d.sent.norm();
+  d.sent = size > limit ? sim::Vec3(d.sent * (1.0 - limit / size)) : sim::Vec3::Zero();
+  ++counters_.displaced_replies;
+  DeviceReply r;
+  r.seq = d.seq;
+  r.channel = static_cast<std::uint32_t>(desc_.channel);
+  r.flags = DeviceReply::kDisplaced | (d.sent.isZero(0.0) ? 0u : DeviceReply::kRamping);
+  r.time = t;
+  r.force = d.sent;
   return r;
 }
 

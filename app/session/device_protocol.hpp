@@ -3,6 +3,7 @@
 // the state of one device's link (newest packet, staleness, force ramp) without the socket.
 #pragma once
 
+#include <array>
 #include <cstddef>
 #include <cstdint>
 #include <span>
@@ -38,6 +39,9 @@ struct DeviceReply {
   static constexpr std::uint32_t kStale = 1u << 0;     ///< no packet for stale_after: position held
   static constexpr std::uint32_t kTouching = 1u << 1;  ///< the proxy touches a body
   static constexpr std::uint32_t kRamping = 1u << 2;   ///< force rate-limited: ramping at the start or after a dropout
+  /// Another sender took the channel over: this sender's force fades to zero and stays there
+  /// (its next packet takes the channel back, its force fading in again).
+  static constexpr std::uint32_t kDisplaced = 1u << 3;
   std::uint32_t seq = 0;      ///< the newest packet's seq taken for this channel
   std::uint32_t channel = 0;
   std::uint32_t flags = 0;
@@ -94,6 +98,16 @@ class DeviceLink {
     long stale_periods = 0;       ///< dropouts: the device went stale after a first packet
     long stale_steps = 0;         ///< steps sampled while stale (before the first packet too)
     long takeovers = 0;           ///< packets taken from another sender than the last one's
+    long displaced_replies = 0;   ///< replies made to senders another one displaced
+  };
+
+  /// At most this many displaced senders are answered (the oldest is dropped for a new one).
+  static constexpr int kMaxDisplaced = 4;
+  /// A sender another one took the channel from: what it was last told, faded to zero.
+  struct Displaced {
+    std::uint64_t sender = 0;
+    std::uint32_t seq = 0;           ///< its newest packet's seq taken
+    sim::Vec3 sent = sim::Vec3::Zero();  ///< its last reply's force (device frame, N)
   };
 
   /// `max_force`: the finger's coupling clamp (N), the full scale of the force ramp.
@@ -108,7 +122,8 @@ class DeviceLink {
   /// last GFD2 packet's of the same stream (identity for a stream that sent none). `sender` names where it came from (an address and
   /// port): a packet taken from another sender than the last is a takeover, faded in like a
   /// device back from a dropout (the gain and the force sent start again from zero, the
-  /// velocity estimate too).
+  /// velocity estimate too). The sender displaced keeps being answered (displacedReply); a
+  /// displaced sender that takes the channel back starts from what it was last told.
   bool take(const DevicePacket& packet, double t, std::uint64_t sender = 0);
   /// The device for the step starting at t: the newest packet's position in the scene
   /// (workspace_offset + workspace_scale * position) and a low-pass velocity from successive
@@ -123,6 +138,16 @@ class DeviceLink {
   /// target by at most max_force * force_scale * dt / force_ramp a step: a device that comes
   /// back elsewhere gets the new force faded in, never a step.
   DeviceReply reply(double t, const sim::DeviceFeedback& feedback);
+  /// The force of the last reply in the scene's frame (N; its force over force_scale): what the
+  /// device renders until the next one.
+  sim::Vec3 sentInScene() const;
+  /// Senders another one displaced (after reply(t, ...) for this step): each gets, every step,
+  /// a reply flagged kDisplaced whose force fades from what it was last told to zero at the ramp's
+  /// rate (max_force * force_scale * dt / force_ramp a step) and then stays zero.
+  int displacedCount() const { return displaced_count_; }
+  const Displaced& displaced(int i) const { return displaced_[static_cast<std::size_t>(i)]; }
+  /// Displaced sender i's reply for the step that ended at t (fades its force one step).
+  DeviceReply displacedReply(int i, double t);
 
   bool heard() const { return heard_; }  ///< a packet has been taken
   bool stale() const { return stale_; }   ///< as of the last sample
@@ -137,9 +162,13 @@ class DeviceLink {
   UdpDeviceDesc desc_;
   double max_force_;
   bool heard_ = false, stale_ = true, resync_ = true, ramping_ = true;
+  bool resumed_ = false;  // a new stream after a dropout or a takeover, not sampled yet
   sim::Vec3 sent_ = sim::Vec3::Zero();  // the force of the last reply
   std::uint32_t seq_ = 0, buttons_ = 0;
   std::uint64_t sender_ = 0;
+  std::array<Displaced, kMaxDisplaced> displaced_{};
+  int displaced_count_ = 0;
+  double ramp_step_ = 0.0;  // the last reply's step of the ramp (s / force_ramp)
   double received_at_ = 0.0, device_time_ = 0.0, sample_time_ = 0.0, first_packet_at_ = 0.0, gain_ = 0.0;
   double interval_ = 0.0;  // s: device-clock gap between the last two packets of one stream
   sim::Vec3 position_, velocity_ = sim::Vec3::Zero();  // scene frame

@@ -87,25 +87,32 @@ class UdpDeviceBridge::Device final : public sim::DeviceSource {
     return link_.sample(t);
   }
 
-  void feedback(double t, const sim::DeviceFeedback& f) override {
+  sim::Vec3 feedback(double t, const sim::DeviceFeedback& f) override {
     const DeviceReply r = link_.reply(t, f);
     live_taken_.store(link_.counters().taken, std::memory_order_relaxed);
     live_flags_.store((link_.stale() ? 1 : 0) | (link_.ramping() ? 2 : 0), std::memory_order_relaxed);
     live_gain_.store(static_cast<float>(link_.gain()), std::memory_order_relaxed);
-    if (!link_.heard()) return;  // no one to answer yet
-    std::array<std::uint8_t, DeviceReply::kSize> bytes;
-    encodeDeviceReply(r, bytes);
-    const ssize_t sent = sendto(socket_.fd, bytes.data(), bytes.size(), MSG_DONTWAIT,
-                                reinterpret_cast<const sockaddr*>(&peer_), sizeof peer_);
-    if (sent == static_cast<ssize_t>(bytes.size())) ++replies_;
-    else ++send_errors_;
+    if (!link_.heard()) return link_.sentInScene();  // no one to answer yet
+    send(r, peer_);
+    // Senders another one displaced: their force fades to zero, and they keep hearing so.
+    for (int i = 0; i < link_.displacedCount(); ++i) {
+      const DeviceReply d = link_.displacedReply(i, t);
+      if (const sockaddr_in* to = addressOf(link_.displaced(i).sender)) send(d, *to);
+    }
+    return link_.sentInScene();
   }
 
   // A valid packet of this device's channel, read at step time t from `from`: the replies go
-  // to the sender of the newest packet taken.
+  // to the sender of the newest packet taken; one it displaced keeps its address.
   void take(const DevicePacket& p, double t, const sockaddr_in& from) {
-    const std::uint64_t sender = (std::uint64_t{ntohl(from.sin_addr.s_addr)} << 16) | ntohs(from.sin_port);
-    if (link_.take(p, t, sender)) peer_ = from;
+    const long takeovers = link_.counters().takeovers;
+    const std::uint64_t last = senderOf(peer_);
+    if (!link_.take(p, t, senderOf(from))) return;
+    if (link_.counters().takeovers != takeovers) {
+      std::copy(former_.begin() + 1, former_.end(), former_.begin());  // the oldest goes
+      former_.back() = {last, peer_};
+    }
+    peer_ = from;
   }
 
   const Socket& socket() const { return socket_; }
@@ -144,11 +151,30 @@ class UdpDeviceBridge::Device final : public sim::DeviceSource {
             {"stale_periods", c.stale_periods},
             {"stale_s", static_cast<double>(c.stale_steps) * dt},
             {"takeovers", c.takeovers},
+            {"displaced_replies", c.displaced_replies},
             {"replies_sent", replies_},
             {"send_errors", send_errors_}};
   }
 
  private:
+  static std::uint64_t senderOf(const sockaddr_in& a) {
+    return (std::uint64_t{ntohl(a.sin_addr.s_addr)} << 16) | ntohs(a.sin_port);
+  }
+  const sockaddr_in* addressOf(std::uint64_t sender) const {
+    for (const auto& [key, address] : former_) {
+      if (key == sender && address.sin_family == AF_INET) return &address;
+    }
+    return nullptr;
+  }
+  void send(const DeviceReply& r, const sockaddr_in& to) {
+    std::array<std::uint8_t, DeviceReply::kSize> bytes;
+    encodeDeviceReply(r, bytes);
+    const ssize_t sent = sendto(socket_.fd, bytes.data(), bytes.size(), MSG_DONTWAIT,
+                                reinterpret_cast<const sockaddr*>(&to), sizeof to);
+    if (sent == static_cast<ssize_t>(bytes.size())) ++replies_;
+    else ++send_errors_;
+  }
+
   DeviceLink link_;
   std::atomic<long> live_taken_{0};
   std::atomic<int> live_flags_{1};  // bit 0 stale, bit 1 ramping
@@ -157,6 +183,8 @@ class UdpDeviceBridge::Device final : public sim::DeviceSource {
   const std::string finger_;
   Socket& socket_;
   sockaddr_in peer_{};
+  // The addresses of senders displaced (twice DeviceLink's, so none it still answers is lost).
+  std::array<std::pair<std::uint64_t, sockaddr_in>, 2 * DeviceLink::kMaxDisplaced> former_{};
   long replies_ = 0, send_errors_ = 0;
 };
 

@@ -21,6 +21,12 @@
 
 namespace gf::sim {
 
+/// A resumed device's offset (World::Impl::washOutResume) shrinks by at least this speed (m/s),
+/// or by its size over kResumeWashTime (s) when faster, and is zero below kResumeWashDone (m).
+inline constexpr double kResumeWashSpeed = 0.02;
+inline constexpr double kResumeWashTime = 0.5;
+inline constexpr double kResumeWashDone = 1e-9;
+
 /// A finger handles at most this many touched bodies per step; further ones stay god-objects.
 inline constexpr int kMaxContactsPerFinger = 4;
 /// Collision group of proxies: they touch bodies, never each other.
@@ -42,6 +48,11 @@ struct World::Impl final : SolveHooks {
     DeviceSample device;
     Vec3 force = Vec3::Zero();  // coupling force on the proxy (N)
     Vec3 sent = Vec3::Zero();   // force the device is to render (N): -force, rate-limited
+    Vec3 told = Vec3::Zero();   // force the device was told after the last step (setToldForce)
+    // The device held where it was at a resume, less the hand's position (m): washed out to zero
+    // no faster than the port's energy pays for (applyCouplings).
+    Vec3 resume_offset = Vec3::Zero();
+    double resume_spent = 0.0;  // J the washouts put into the coupling (washOutResume)
     Vec3 overlap_push = Vec3::Zero();  // push_apart's force on the proxy from the last step's overlaps (N)
     PortObserver port;          // the energy that came in through the device port
     std::array<FingerContact, kMaxContactsPerFinger> contacts;
@@ -83,6 +94,7 @@ struct World::Impl final : SolveHooks {
   void applySettings(Finger& f, const PatchSettings& patch) const;
   void applyChangesDue(double dt);  ///< scripted changes due at this step's start
   void applyCouplings(std::span<const DeviceSample> devices, double dt);  ///< device samples, coupling forces
+  void washOutResume(Finger& f, double dt);
   void applyLoads();                ///< the scene's loads at time (N, N m)
   void slewSentForces(double dt);   ///< the forces sent after the step (max_force_rate)
   void countStep(double dt);        ///< time after a step of dt seconds, and the step counter
