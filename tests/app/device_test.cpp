@@ -192,6 +192,24 @@ SessionDesc boxUnderAUdpFinger(const std::string& box_field, const std::string& 
                         "box.toml", "");
 }
 
+// A UDP finger over a static box: its link and its World, stepped as a session steps them.
+struct LinkedBox {
+  SessionDesc session = boxUnderAUdpFinger("static = true", "");
+  const UdpDeviceDesc& d = session.udp_devices.at(0);
+  DeviceLink link{d, session.scene.fingers[0].coupling.max_force};
+  sim::World world{session.scene};
+  double limit = 40.0 * d.force_scale * kDt / d.force_ramp;  // N a step (0.4 at the defaults)
+  std::vector<sim::DeviceSample> samples = std::vector<sim::DeviceSample>(1);
+  // The step at t with what the link samples (`jump_back`: as before resumes held the device,
+  // it jumps to the hand), and the link's reply after it.
+  DeviceReply step(double t, bool jump_back = false) {
+    samples[0] = link.sample(t);
+    if (jump_back) samples[0].resumed = false;
+    world.step(kDt, samples);
+    return link.reply(world.time(), {world.feedbackForce(0), world.contactRadius(0), world.sgoCount(0), world.touching(0)});
+  }
+};
+
 // A device that falls silent a little longer than stale_after and comes back 6 mm away: the
 // gain is still near 1, but the new force is faded in at the ramp's rate (max_force / force_ramp),
 // never stepped; once caught up, the force follows the coupling again exactly.
@@ -232,12 +250,10 @@ TEST(DeviceLink, ADeviceThatComesBackElsewhereGetsItsForceFadedIn) {
 // its force faded in from zero, and no two successive replies to one sender differ by more than
 // max_force force_scale dt / force_ramp (0.4 N), the World's own max_force_rate included.
 TEST(DeviceLink, ASenderThatTakesOverGetsItsForceFadedInFromZero) {
-  const SessionDesc session = boxUnderAUdpFinger("static = true", "");
-  const UdpDeviceDesc& d = session.udp_devices.at(0);
-  DeviceLink link(d, session.scene.fingers[0].coupling.max_force);
-  sim::World world(session.scene);
-  const double limit = 40.0 * d.force_scale * kDt / d.force_ramp;  // 0.4 N a step
-  std::vector<sim::DeviceSample> samples(1);
+  LinkedBox box;
+  DeviceLink& link = box.link;
+  sim::World& world = box.world;
+  const double limit = box.limit;
   std::uint64_t last_sender = 0;
   Vec3 previous = Vec3::Zero();
   double before_takeover = 0.0, first_to_new = -1.0, largest_step = 0.0;
@@ -249,10 +265,7 @@ TEST(DeviceLink, ASenderThatTakesOverGetsItsForceFadedInFromZero) {
     const Vec3 at = second ? Vec3(0.0, 0.108 - 0.06, 0.0) : Vec3(0.0, 0.108 - 0.015, 0.0);
     const std::uint64_t sender = second ? 2 : 1;
     link.take(packet(static_cast<std::uint32_t>(second ? 100000 + k : k + 1), t, at), t, sender);
-    samples[0] = link.sample(t);
-    world.step(kDt, samples);
-    const DeviceReply r = link.reply(world.time(), {world.feedbackForce(0), world.contactRadius(0),
-                                                    world.sgoCount(0), world.touching(0)});
+    const DeviceReply r = box.step(t);
     if (sender != last_sender) {  // the first reply to a new sender
       if (second) first_to_new = r.force.norm();
     } else {
@@ -284,12 +297,11 @@ TEST(DeviceLink, ASenderThatTakesOverGetsItsForceFadedInFromZero) {
 // Over the whole run no two successive replies to one program differ by more than max_force
 // force_scale dt / force_ramp (0.4 N), and none waits a step for one.
 TEST(DeviceLink, ADisplacedSenderHearsItsForceFadeToZeroAndTakesItBack) {
-  const SessionDesc session = boxUnderAUdpFinger("static = true", "");
-  const UdpDeviceDesc& d = session.udp_devices.at(0);
-  DeviceLink link(d, session.scene.fingers[0].coupling.max_force);
-  sim::World world(session.scene);
-  const double limit = 40.0 * d.force_scale * kDt / d.force_ramp;  // 0.4 N a step
-  std::vector<sim::DeviceSample> samples(1);
+  LinkedBox box;
+  DeviceLink& link = box.link;
+  sim::World& world = box.world;
+  const UdpDeviceDesc& d = box.d;
+  const double limit = box.limit;
   std::array<std::vector<DeviceReply>, 3> heard;  // per sender 1 and 2, each step's replies
   std::uint64_t holder = 1;
   long taken_back = -1;
@@ -297,10 +309,7 @@ TEST(DeviceLink, ADisplacedSenderHearsItsForceFadeToZeroAndTakesItBack) {
     const double t = static_cast<double>(k) * kDt;
     link.take(packet(static_cast<std::uint32_t>(k + 1), t, Vec3(0.0, 0.108 - 0.015, 0.0)), t, 1);
     if (k >= 500 && k < 900) link.take(packet(static_cast<std::uint32_t>(100000 + k), t, Vec3(0.0, 0.108 - 0.06, 0.0)), t, 2);
-    samples[0] = link.sample(t);
-    world.step(kDt, samples);
-    const DeviceReply r =
-        link.reply(world.time(), {world.feedbackForce(0), world.contactRadius(0), world.sgoCount(0), world.touching(0)});
+    const DeviceReply r = box.step(t);
     const long takeovers = link.counters().takeovers;
     const std::uint64_t now = takeovers == 0 || takeovers == 2 ? 1 : 2;
     if (now == 1 && holder == 2) taken_back = k;
@@ -345,12 +354,10 @@ TEST(DeviceLink, ADisplacedSenderHearsItsForceFadeToZeroAndTakesItBack) {
 // into the box storing energy no one put in, and every move priced with the World's own force),
 // the same run went below it (the second pass prints how far).
 TEST(DeviceLink, ThePortStaysPassiveThroughRandomDropoutsWhileMoving) {
-  const SessionDesc session = boxUnderAUdpFinger("static = true", "");
-  const UdpDeviceDesc& d = session.udp_devices.at(0);
   for (const bool told : {true, false}) {
-    DeviceLink link(d, session.scene.fingers[0].coupling.max_force);
-    sim::World world(session.scene);
-    std::vector<sim::DeviceSample> samples(1);
+    LinkedBox box;
+    DeviceLink& link = box.link;
+    sim::World& world = box.world;
     std::mt19937 random(48);
     std::uniform_real_distribution<double> length(0.05, 2.0), gap(0.5, 2.0);
     double next_drop = gap(random), drop_end = -1.0;
@@ -365,10 +372,7 @@ TEST(DeviceLink, ThePortStaysPassiveThroughRandomDropoutsWhileMoving) {
       const double depth = 0.004 - 0.006 * std::cos(2.0 * M_PI * t);  // from 2 mm above the surface
       const Vec3 at(0.0, 0.108 - depth, 0.0);
       if (t >= drop_end) link.take(packet(static_cast<std::uint32_t>(k + 1), t, at), t);
-      samples[0] = link.sample(t);
-      if (!told) samples[0].resumed = false;  // as before: the device jumps to the hand at a resume
-      world.step(kDt, samples);
-      link.reply(world.time(), {world.feedbackForce(0), world.contactRadius(0), world.sgoCount(0), world.touching(0)});
+      box.step(t, !told);  // as before: the device jumps to the hand at a resume
       if (told) world.setToldForce(0, link.sentInScene());
     }
     const double lowest = world.portObserver(0).min_energy;
