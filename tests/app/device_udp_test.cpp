@@ -72,7 +72,9 @@ trace = false
 // the protocol's promises as it arrives.
 class Device {
  public:
-  explicit Device(int port) : server_(loopback(port)) { fd_ = socket(AF_INET, SOCK_DGRAM | SOCK_CLOEXEC, 0); }
+  explicit Device(int port, std::uint32_t first_seq = 0) : server_(loopback(port)), next_seq_(first_seq) {
+    fd_ = socket(AF_INET, SOCK_DGRAM | SOCK_CLOEXEC, 0);
+  }
   ~Device() { close(fd_); }
 
   // A valid packet; returns its seq.
@@ -135,7 +137,7 @@ class Device {
     EXPECT_LE(r.force.norm(), kMaxForce + 1e-9) << "at t = " << r.time;
     EXPECT_GE(r.gain, 0.0f);
     EXPECT_LE(r.gain, 1.0f);
-    if (r.gain < 1.0f) {
+    if (r.gain < 1.0f && !(r.flags & DeviceReply::kDisplaced)) {
       EXPECT_TRUE(r.flags & DeviceReply::kRamping) << "at t = " << r.time;
     }
     EXPECT_LT(r.seq, next_seq_) << "echoes a seq not sent";
@@ -143,7 +145,9 @@ class Device {
       // One reply a step, in order; the seq echoed never goes back; the gain never steps.
       EXPECT_GT(r.time, previous_->time);
       EXPECT_GE(r.seq, previous_->seq);
-      EXPECT_LE(std::abs(r.gain - previous_->gain), (r.time - previous_->time) / kRamp + 1e-5) << "gain step at t = " << r.time;
+      if (!(r.flags & DeviceReply::kDisplaced)) {  // a displaced sender's gain is 0
+        EXPECT_LE(std::abs(r.gain - previous_->gain), (r.time - previous_->time) / kRamp + 1e-5) << "gain step at t = " << r.time;
+      }
       // While ramping the force sent changes by at most max_force / force_ramp per second.
       if (r.flags & DeviceReply::kRamping) {
         EXPECT_LE((r.force - previous_->force).norm(), kMaxForce * (r.time - previous_->time) / kRamp + 1e-9)
@@ -155,7 +159,7 @@ class Device {
 
   int fd_ = -1;
   sockaddr_in server_{};
-  std::uint32_t next_seq_ = 0;
+  std::uint32_t next_seq_;
   long valid_ = 0, replies_ = 0;
   std::optional<DeviceReply> previous_;
   std::vector<std::chrono::steady_clock::time_point> sent_at_;
@@ -247,7 +251,31 @@ TEST(UdpDevice, ADeviceDrivesARealtimeRunThroughLoopback) {
   EXPECT_FALSE(r->flags & DeviceReply::kRamping);
   EXPECT_NEAR(r->force.norm(), held_force, 0.02 * held_force);
 
-  // 5. Ctrl-C: the run stops, writes its summary, and exits 130.
+  // 5. A second program takes the channel (newer seqs) where the first holds: the first is not
+  // left pushing. It hears a reply every step, flagged displaced, its force fading from the press
+  // to zero at the ramp's rate (Device::check: no step above max_force dt / force_ramp), then
+  // zero; the second gets the press faded in from zero.
+  Device second(port, device.nextSeq() + 1000);
+  r = second.echo(second.send(hold));
+  ASSERT_TRUE(r);
+  EXPECT_LE(r->force.norm(), kMaxForce * 2 * kSceneStep / kRamp + 1e-9) << "faded in from zero";
+  std::optional<DeviceReply> displaced, told_nothing;
+  for (int k = 0; k < 20000 && !told_nothing; ++k) {
+    const std::optional<DeviceReply> d = device.next();
+    ASSERT_TRUE(d) << "the displaced program waits for a reply";
+    if (!(d->flags & DeviceReply::kDisplaced)) continue;  // the steps before the takeover
+    if (!displaced) displaced = d;
+    if (d->force.norm() == 0.0) told_nothing = d;
+  }
+  ASSERT_TRUE(displaced && told_nothing);
+  EXPECT_NEAR(displaced->force.norm(), held_force, 0.4 + 0.02 * held_force) << "the fade starts from the press";
+  EXPECT_NEAR(told_nothing->time - displaced->time, held_force * kRamp / kMaxForce, 2 * kSceneStep);
+  EXPECT_FALSE(told_nothing->flags & DeviceReply::kRamping);
+  const std::optional<DeviceReply> after = device.next();
+  ASSERT_TRUE(after) << "still answered once faded";
+  EXPECT_TRUE(after->flags & DeviceReply::kDisplaced);
+
+  // 6. Ctrl-C: the run stops, writes its summary, and exits 130.
   kill(-child.pid, SIGINT);
   EXPECT_EQ(finish(child), 130);
   stop.done = true;
@@ -262,7 +290,9 @@ TEST(UdpDevice, ADeviceDrivesARealtimeRunThroughLoopback) {
   const nlohmann::json& finger = summary["udp_devices"]["fingers"][0];
   EXPECT_EQ(finger["finger"], "finger");
   EXPECT_EQ(finger["out_of_order"], 1);
-  EXPECT_EQ(finger["packets_taken"], device.validSent());
+  EXPECT_EQ(finger["packets_taken"], device.validSent() + second.validSent());
+  EXPECT_EQ(finger["takeovers"], 1);
+  EXPECT_GT(finger["displaced_replies"].get<long>(), 0);
   EXPECT_GE(finger["stale_periods"].get<long>(), 1);
   EXPECT_GE(finger["replies_sent"].get<long>(), device.replies());
   EXPECT_EQ(finger["send_errors"], 0);
