@@ -18,8 +18,8 @@ constexpr int kMaxStack = 64;
 // the closest point to a point of the triangle came out 24 nm away), but the projection of p on
 // the face's plane and on the edge's line, exact to rounding. Returns the point; `feature` and
 // `index` name the region: a corner k, an edge k (k to k+1), or the face.
-Vec3 closestOnTriangle(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& n,
-                       Feature& feature, int& index) {
+Vec3 closestByRegion(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& n,
+                     Feature& feature, int& index) {
   const Vec3 ab = b - a, ac = c - a, ap = p - a;
   const double d1 = ab.dot(ap), d2 = ac.dot(ap);
   if (d1 <= 0 && d2 <= 0) return feature = Feature::kVertex, index = 0, a;
@@ -47,6 +47,29 @@ Vec3 closestOnTriangle(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& 
   }
   feature = Feature::kFace, index = -1;
   return p - ap.dot(n) * n;
+}
+
+// closestByRegion, checked against each edge's nearest point: on a huge sliver the regions'
+// tests cancel (products of 1e36 m edges), and a point on one long edge was taken for the
+// other's region, 1.1e28 m across the sliver (fuzz_patch, a 7e36 m triangle). An edge point
+// nearer than the region's point wins; on any other triangle none is.
+Vec3 closestOnTriangle(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& n,
+                       Feature& feature, int& index) {
+  Vec3 best = closestByRegion(p, a, b, c, n, feature, index);
+  double best_d2 = (best - p).squaredNorm();
+  const Vec3* corners[3] = {&a, &b, &c};
+  for (int k = 0; k < 3; ++k) {
+    const Vec3& u = *corners[k];
+    const Vec3 e = *corners[(k + 1) % 3] - u;
+    const double t = std::clamp((p - u).dot(e) / e.squaredNorm(), 0.0, 1.0);
+    const Vec3 q = u + t * e;
+    const double d2 = (q - p).squaredNorm();
+    if (!(d2 < best_d2)) continue;
+    best = q, best_d2 = d2;
+    if (t == 0.0 || t == 1.0) feature = Feature::kVertex, index = t == 0.0 ? k : (k + 1) % 3;
+    else feature = Feature::kEdge, index = k;
+  }
+  return best;
 }
 
 double boxDistance2(const Vec3& p, const Vec3& lo, const Vec3& hi) {

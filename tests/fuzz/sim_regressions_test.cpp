@@ -148,6 +148,20 @@ TEST(FuzzRegression, ClosestPointOnASliverIsThePointItself) {
   EXPECT_LT(worst, 1e-12) << "rounding of the point itself is about 1e-17 m";
 }
 
+// fuzz_patch: on a 7e36 m sliver (its long edges 1.1e28 m apart there) the closest-point
+// regions' tests cancel, and a point on one long edge was taken for the other's region: the
+// "closest" point lay 1.1e28 m away, 1.6e-9 of the mesh's size. Each edge's nearest point now
+// checks the region's (corpus input regression-sliver-edge-region).
+TEST(FuzzRegression, APointOnAHugeSliversEdgeIsItsOwnClosestPoint) {
+  const Mesh m = buildMesh({{6.8538318532659725e+36, 0.014223783613220187, -6.0322268731608177e+32},
+                            {-169795279.99733189, 0.014223783612589802, 0.0010074474073731713},
+                            {-2.0385139284099243e+32, 0.014223783612589802, 0.0010074474073736783}},
+                           {{0, 1, 2}});
+  ASSERT_EQ(m.faceCount(), 1);
+  const Vec3 on_edge(2.6475656904411401e+36, 0.014223783612833324, -2.3302981298056594e+32);
+  EXPECT_LE(m.closestPoint(on_edge, 0.0).query_distance, 1e-9 * 6.85e36);
+}
+
 // The fuzz_patch input that found it: a 1.9e41 m sliver, pressed; every SGO lies on the surface
 // within 1e-9 of the mesh's scale.
 TEST(FuzzRegression, PatchOnAHugeSliverStaysOnTheSurface) {
