@@ -103,11 +103,21 @@ PlyHeader readPlyHeader(const std::string& path, std::ifstream& in, std::uintmax
     std::string word, a, b, c;
     l >> word >> a >> b >> c;
     ended = word == "end_header";
-    if (word == "format") h.format = a;
+    if (word == "format") {
+      // The importer read a header with a garbled format word (fuzz_mesh) for over a minute.
+      if (a != "ascii" && a != "binary_little_endian" && a != "binary_big_endian") {
+        throw MeshLoadError(path + ":" + std::to_string(number) +
+                            ": PLY format: expected ascii, binary_little_endian or binary_big_endian, got '" + a + "'");
+      }
+      h.format = a;
+    }
     if (word == "property" && !h.elements.empty()) {
       PlyProperty p;
       p.bytes = a == "list" ? plyBytes(c) : plyBytes(a);
       if (a == "list") p.count_bytes = plyBytes(b, &p.count_signed);
+      if (p.bytes == 0 || (a == "list" && p.count_bytes == 0)) {
+        throw MeshLoadError(path + ":" + std::to_string(number) + ": PLY property: unknown type in '" + line + "'");
+      }
       h.elements.back().properties.push_back(p);
     }
     if (word != "element") continue;
