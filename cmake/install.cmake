@@ -1,6 +1,6 @@
 # `cmake --install BUILD --prefix P` installs, for each library built:
 #   P/lib/libgodfinger_{sim,scene,render}.a        godfinger::sim, ::scene, ::render
-#   P/include/godfinger/{sim,app/scene,render}/*.hpp  the public headers (not sim/detail/)
+#   P/include/godfinger/{sim,app/scene,render}/**/*.hpp  the public headers (not sim/'s internal ones)
 #   P/lib/cmake/godfinger/                         find_package(godfinger [COMPONENTS ...])
 #   P/lib/pkgconfig/godfinger-{sim,scene,render}.pc
 #   P/share/godfinger/                             bundled scenes, studies, meshes, hard cases
@@ -12,9 +12,14 @@ include(CMakePackageConfigHelpers)
 set(GF_CMAKE_DIR ${CMAKE_INSTALL_LIBDIR}/cmake/godfinger)
 set(GF_INCLUDE_DIR ${CMAKE_INSTALL_INCLUDEDIR}/godfinger)
 
-# Public headers: a user includes them as "sim/world.hpp" with P/include/godfinger on the path.
-file(GLOB GF_SIM_HEADERS ${PROJECT_SOURCE_DIR}/sim/*.hpp)
-install(FILES ${GF_SIM_HEADERS} DESTINATION ${GF_INCLUDE_DIR}/sim COMPONENT dev)
+# Public headers: a user includes them as "sim/world/world.hpp" with P/include/godfinger on the path.
+# sim/'s families keep their folders (sim/world/world.hpp); its internal headers stay behind.
+file(GLOB_RECURSE GF_SIM_HEADERS RELATIVE ${PROJECT_SOURCE_DIR}/sim ${PROJECT_SOURCE_DIR}/sim/*.hpp)
+list(REMOVE_ITEM GF_SIM_HEADERS ${GF_SIM_INTERNAL_HEADERS})
+foreach(header IN LISTS GF_SIM_HEADERS)
+  cmake_path(GET header PARENT_PATH folder)
+  install(FILES ${PROJECT_SOURCE_DIR}/sim/${header} DESTINATION ${GF_INCLUDE_DIR}/sim/${folder} COMPONENT dev)
+endforeach()
 set(GF_INSTALLED_COMPONENTS sim)
 install(TARGETS gf_sim EXPORT godfinger-sim ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR} COMPONENT dev)
 install(EXPORT godfinger-sim NAMESPACE godfinger:: FILE godfinger-sim-targets.cmake DESTINATION ${GF_CMAKE_DIR}
@@ -26,6 +31,8 @@ if(GF_BUILD_SCENE)
   list(TRANSFORM GF_SCENE_HEADERS PREPEND ${PROJECT_SOURCE_DIR}/app/scene/)
   list(TRANSFORM GF_SCENE_HEADERS APPEND .hpp)
   install(FILES ${GF_SCENE_HEADERS} DESTINATION ${GF_INCLUDE_DIR}/app/scene COMPONENT dev)
+  # The view descriptions the scene reader fills (header-only; installed with render/ too).
+  install(FILES ${PROJECT_SOURCE_DIR}/render/view/view_desc.hpp DESTINATION ${GF_INCLUDE_DIR}/render/view COMPONENT dev)
   install(TARGETS gf_scene EXPORT godfinger-scene ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR} COMPONENT dev)
   install(EXPORT godfinger-scene NAMESPACE godfinger:: FILE godfinger-scene-targets.cmake DESTINATION ${GF_CMAKE_DIR}
           COMPONENT dev)
@@ -33,9 +40,12 @@ if(GF_BUILD_SCENE)
 endif()
 if(GF_BUILD_RENDER)
   list(APPEND GF_INSTALLED_COMPONENTS render)
-  file(GLOB GF_RENDER_HEADERS ${PROJECT_SOURCE_DIR}/render/*.hpp)
-  list(FILTER GF_RENDER_HEADERS EXCLUDE REGEX "/(gl|shaders)\\.hpp$")  # GL declarations and shader sources
-  install(FILES ${GF_RENDER_HEADERS} DESTINATION ${GF_INCLUDE_DIR}/render COMPONENT dev)
+  file(GLOB_RECURSE GF_RENDER_HEADERS RELATIVE ${PROJECT_SOURCE_DIR}/render ${PROJECT_SOURCE_DIR}/render/*.hpp)
+  list(REMOVE_ITEM GF_RENDER_HEADERS gl/gl.hpp gl/shaders.hpp)  # GL declarations and shader sources
+  foreach(header IN LISTS GF_RENDER_HEADERS)
+    cmake_path(GET header PARENT_PATH folder)
+    install(FILES ${PROJECT_SOURCE_DIR}/render/${header} DESTINATION ${GF_INCLUDE_DIR}/render/${folder} COMPONENT dev)
+  endforeach()
   install(TARGETS gf_render EXPORT godfinger-render ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR} COMPONENT dev)
   install(EXPORT godfinger-render NAMESPACE godfinger:: FILE godfinger-render-targets.cmake DESTINATION ${GF_CMAKE_DIR}
           COMPONENT dev)

@@ -17,11 +17,11 @@
 #include <sys/resource.h>
 #include <unistd.h>
 
-#include "render/context.hpp"
-#include "render/gl.hpp"
-#include "render/gpu.hpp"
-#include "render/imgui_layer.hpp"
-#include "render/labels.hpp"
+#include "render/gl/context.hpp"
+#include "render/gl/gl.hpp"
+#include "render/gl/gpu.hpp"
+#include "render/gl/imgui_layer.hpp"
+#include "render/overlay/labels.hpp"
 #include "sim/assert.hpp"
 
 namespace gf::render {
@@ -121,7 +121,7 @@ struct Gpu {
   float stamp_px = kMinLabelPx;
   std::unique_ptr<Framebuffer> close_up_frame;
   std::unique_ptr<ImGuiLayer> close_up_labels;
-  sim::Antialiasing antialiasing;
+  view::Antialiasing antialiasing;
   int close_up_px;
   Gpu(const sim::SceneDesc& desc, const FrameOutputSettings& s)
       : scene(desc, s.scene),
@@ -150,7 +150,7 @@ struct Gpu {
 
   // The frame of `snap` from `camera`, with the insets and labels, into `frame` (the output bound
   // after).
-  void drawScene(const sim::Snapshot& snap, const sim::Camera& camera, int width, int height) {
+  void drawScene(const sim::Snapshot& snap, const view::Camera& camera, int width, int height) {
     frame.bind();
     frame.resolve(scene.draw(snap, camera, width, height));
     GLint target = 0;
@@ -188,7 +188,7 @@ void drawCloseUps(Gpu& gpu, const sim::SceneDesc& desc, const sim::Snapshot& sna
   // frame of the same instant, drawn after them, draws its own.
   gpu.scene.redrawShadows();
   sim::Snapshot only;
-  sim::Camera camera;
+  view::Camera camera;
   for (std::size_t f = 0; f < snap.fingers.size(); ++f) {
     if (!contactCloseUp(desc, snap, f, only, camera)) continue;
     gpu.close_up_frame->bind();
@@ -215,7 +215,7 @@ void drawCloseUps(Gpu& gpu, const sim::SceneDesc& desc, const sim::Snapshot& sna
 }
 
 void drawChartFile(const ChartSpec& chart, const std::string& path) {
-  Framebuffer frame(chart.width, chart.height, sim::Antialiasing::kNone);  // ImGui smooths its own edges
+  Framebuffer frame(chart.width, chart.height, view::Antialiasing::kNone);  // ImGui smooths its own edges
   ImGuiLayer layer(chart.width, chart.height, 17.0f);
   frame.bind();
   glClearColor(1, 1, 1, 1);

@@ -7,20 +7,16 @@
 #include <string>
 #include <vector>
 
-#include "render/camera.hpp"
-#include "render/chart.hpp"
-#include "render/frame_sinks.hpp"
-#include "render/overlay.hpp"
-#include "render/patch_insets.hpp"
-#include "render/scene_renderer.hpp"
-#include "sim/settings.hpp"
-#include "sim/snapshot.hpp"
+#include "render/scene/camera.hpp"
+#include "render/chart/chart.hpp"
+#include "render/frames/frame_sinks.hpp"
+#include "render/overlay/overlay.hpp"
+#include "render/overlay/patch_insets.hpp"
+#include "render/scene/scene_renderer.hpp"
+#include "sim/scene/settings.hpp"
+#include "sim/scene/snapshot.hpp"
 
 namespace gf::render {
-
-/// The nice value of a background renderer (FrameOutputSettings::background_priority; 0..19,
-/// higher yields more).
-constexpr int kBackgroundNice = 10;
 
 /// Receives every frame of the stream as it is drawn, with the Snapshot it shows (a browser
 /// view, app/serve/). Called on the render thread right after the read-back: keep it short
@@ -35,14 +31,14 @@ class FrameTap {
 struct FrameOutputSettings {
   int width = 1280;               ///< pixels (1..1920 wide, 1..1080 high)
   int height = 720;
-  sim::Antialiasing antialiasing = sim::Antialiasing::kFxaa;
-  int msaa_samples = 4;           ///< with sim::Antialiasing::kMsaa (2..8)
+  view::Antialiasing antialiasing = view::Antialiasing::kFxaa;
+  int msaa_samples = 4;           ///< with view::Antialiasing::kMsaa (2..8)
   double fps = 60.0;              ///< frame rate of the outputs (frames per simulated second)
-  sim::Camera camera;                  ///< the camera of the frame stream
+  view::Camera camera;                  ///< the camera of the frame stream
   std::string frames_dir;         ///< PNG sequence folder; empty: none
   std::string video_path;         ///< MP4 file; empty: none
   RenderSettings scene;           ///< drawing switches (effects)
-  bool patch_insets = false;      ///< the patch_insets effect (render/patch_insets.hpp)
+  bool patch_insets = false;      ///< the patch_insets effect (render/overlay/patch_insets.hpp)
   bool overlay = false;           ///< the ImGui overlay effect
   bool time_stamp = true;         ///< the time (and arrow scale) in the frame's corner; the overlay's panel shows them instead
   OverlaySettings overlay_settings;

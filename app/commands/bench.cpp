@@ -13,13 +13,14 @@
 
 #include "app/commands/commands.hpp"
 #include "app/runs/files.hpp"
+#include "app/runs/run_reader.hpp"
 #include "app/runs/summary.hpp"
 #include "app/scene/data_folder.hpp"
 #include "app/scene/input_error.hpp"
 #include "app/scene/scene_file.hpp"
-#include "app/session/interrupt.hpp"
+#include "app/process/interrupt.hpp"
 #include "app/session/session.hpp"
-#include "sim/realtime.hpp"
+#include "sim/loop/realtime.hpp"
 
 namespace gf::app {
 namespace {
@@ -99,8 +100,7 @@ class BenchCommand final : public Command {
       options.command_line = command_line_;
       options.stop_on_interrupt = true;  // Ctrl-C: this round's run folder is finished for the time reached
       const sim::LoopStats stats = runSession(session, options);
-      std::ifstream in(fs::path(options.out_dir) / "summary.json");
-      const nlohmann::json summary = nlohmann::json::parse(in);
+      const nlohmann::json summary = requireSummary(options.out_dir);
       const double frames_per_s = summary.contains("render")
                                       ? summary["render"]["frames"].get<double>() / std::max(1e-9, stats.wall_seconds)
                                       : 0.0;

@@ -14,7 +14,7 @@
 #include "app/runs/run_reader.hpp"
 #include "app/scene/data_folder.hpp"
 #include "app/scene/scene_file.hpp"
-#include "app/session/console.hpp"
+#include "app/process/console.hpp"
 
 namespace gf::app {
 namespace {

@@ -11,7 +11,7 @@
 #include <vector>
 
 #include "app/commands/commands.hpp"
-#include "app/session/console.hpp"
+#include "app/process/console.hpp"
 
 namespace gf::app {
 

@@ -5,7 +5,7 @@
 #include <thread>
 
 #include "app/runs/summary.hpp"
-#include "render/context.hpp"
+#include "render/gl/context.hpp"
 #include "sim/about.hpp"
 
 namespace gf::app {

@@ -10,7 +10,7 @@
 #include <string_view>
 #include <vector>
 
-#include "sim/settings.hpp"
+#include "sim/scene/settings.hpp"
 
 namespace gf::app {
 

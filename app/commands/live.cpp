@@ -28,7 +28,7 @@ class LiveSubcommand final : public Command {
     options_.scene_path = resolveScenePath(options_.scene_path);
     options_.stop_on_interrupt = true;
     if (!serve_.empty()) options_.serve = parseServe(serve_, tokenOrEnvironment(token_));
-    else if (!token_.empty()) throw InputError("command line", 0, 0, "--token", "goes with --serve");
+    else if (!token_.empty()) throw commandLineError("--token", "goes with --serve");
     return runLive(options_, std::cin, std::cout);
   }
 

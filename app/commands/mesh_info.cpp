@@ -7,8 +7,8 @@
 #include "app/commands/commands.hpp"
 #include "app/scene/data_folder.hpp"
 #include "app/scene/input_error.hpp"
-#include "sim/mesh.hpp"
-#include "sim/mesh_import.hpp"
+#include "sim/mesh/mesh.hpp"
+#include "sim/mesh/mesh_import.hpp"
 
 namespace gf::app {
 namespace {
@@ -169,7 +169,7 @@ class MeshInfoCommand final : public Command {
       const nlohmann::json info = meshInfoJson(options_);
       std::fputs(json_ ? (info.dump(2) + "\n").c_str() : meshInfoText(info).c_str(), stdout);
     } catch (const sim::MeshLoadError& e) {
-      throw InputError("command line", 0, 0, "file", e.what());
+      throw commandLineError("file", e.what());
     }
     return 0;
   }

@@ -12,9 +12,9 @@
 #include "app/scene/data_folder.hpp"
 #include "app/scene/input_error.hpp"
 #include "render/render_thread.hpp"
-#include "sim/contact_record.hpp"
-#include "sim/god_finger.hpp"
-#include "sim/mesh_import.hpp"
+#include "sim/contact/contact_record.hpp"
+#include "sim/patch/god_finger.hpp"
+#include "sim/mesh/mesh_import.hpp"
 
 namespace gf::app {
 namespace {
@@ -39,12 +39,12 @@ sim::Vec3 parseVec3(const std::string& option, const std::string& text) {
   std::size_t pos = 0;
   for (int i = 0; i < 3; ++i) {
     const std::size_t end = i < 2 ? text.find(',', pos) : text.size();
-    if (end == std::string::npos) throw InputError("command line", 0, 0, option, "expected X,Y,Z, got '" + text + "'");
+    if (end == std::string::npos) throw commandLineError(option, "expected X,Y,Z, got '" + text + "'");
     const std::string cell = text.substr(pos, end - pos);
     char* stop = nullptr;
     v[i] = std::strtod(cell.c_str(), &stop);
     if (cell.empty() || *stop != '\0' || !std::isfinite(v[i])) {
-      throw InputError("command line", 0, 0, option, "expected three finite numbers X,Y,Z, got '" + text + "'");
+      throw commandLineError(option, "expected three finite numbers X,Y,Z, got '" + text + "'");
     }
     pos = end + 1;
   }
@@ -67,23 +67,6 @@ void writePatchCloseUp(const PatchArgs& a, const std::shared_ptr<const sim::Mesh
   snap.bodies.resize(1);  // the mesh frame is the world frame
   sim::toContactSnapshot(record, snap.bodies[0], snap.fingers.emplace_back().contacts.emplace_back());
   render::renderCloseUps(scene, snap, prefix, 480);
-}
-
-// The contact normal when none is given: the hit face's, or at an edge or vertex the normal of
-// the face around it that the push presses into most.
-sim::Vec3 pressedNormal(const sim::Mesh& mesh, const sim::SurfacePoint& hit, const sim::Vec3& push) {
-  if (hit.feature == sim::Feature::kFace || !(push.norm() > 0.0)) return mesh.faceNormal(hit.face);
-  const auto& tri = mesh.triangles()[static_cast<std::size_t>(hit.face)];
-  const std::int32_t v = tri[static_cast<std::size_t>(hit.feature_index)];
-  const std::int32_t w = hit.feature == sim::Feature::kEdge ? tri[static_cast<std::size_t>((hit.feature_index + 1) % 3)] : v;
-  sim::Vec3 best = mesh.faceNormal(hit.face);
-  double most = -best.dot(push);
-  for (const std::int32_t* f = mesh.vertexFacesBegin(v); f != mesh.vertexFacesEnd(v); ++f) {
-    const auto& t = mesh.triangles()[static_cast<std::size_t>(*f)];
-    if (t[0] != w && t[1] != w && t[2] != w) continue;
-    if (const double press = -mesh.faceNormal(*f).dot(push); press > most) most = press, best = mesh.faceNormal(*f);
-  }
-  return best;
 }
 
 class PatchCommand final : public Command {
@@ -131,10 +114,10 @@ int PatchCommand::run() {
   record.contact = {point, a.normal.empty() ? sim::Vec3::Zero() : parseVec3("--normal", a.normal), 0.0, a.rounding};
   const sim::Vec3 push = parseVec3("--push", a.push);
   if (!a.normal.empty() && record.contact.outward_normal_local.norm() < 1e-9) {
-    throw InputError("command line", 0, 0, "--normal", "must not be zero");
+    throw commandLineError("--normal", "must not be zero");
   }
   if (a.finger.patch.n_sgo < sim::kMinSgo) {
-    throw InputError("command line", 0, 0, "--n-sgo", "a patch needs at least " + std::to_string(sim::kMinSgo) + " SGOs");
+    throw commandLineError("--n-sgo", "a patch needs at least " + std::to_string(sim::kMinSgo) + " SGOs");
   }
   sim::setGiven(fingerSetting("tau_a"), a.finger, a.tau_a_deg);
   const sim::PatchSettings& settings = a.finger.patch;
@@ -143,20 +126,20 @@ int PatchCommand::run() {
     a.mesh = resolveDataPath(a.mesh);
     mesh = std::make_shared<const sim::Mesh>(sim::loadMesh(a.mesh, a.scale));
   } catch (const sim::MeshLoadError& e) {
-    throw InputError("command line", 0, 0, "--mesh", e.what());
+    throw commandLineError("--mesh", e.what());
   }
   // The point must lie on the surface (within --max-distance); without --normal, the closest
   // face's normal is the contact normal.
   const sim::SurfacePoint closest = mesh->closestPoint(point, settings.feature_tolerance);
-  if (closest.face < 0) throw InputError("command line", 0, 0, "--mesh", a.mesh + ": no faces");
+  if (closest.face < 0) throw commandLineError("--mesh", a.mesh + ": no faces");
   if (closest.query_distance > a.max_distance) {
     char text[256];
     std::snprintf(text, sizeof text,
                   "is %.6g m from the mesh surface (closest surface point %.6g,%.6g,%.6g; --max-distance %.6g m)",
                   closest.query_distance, closest.point.x(), closest.point.y(), closest.point.z(), a.max_distance);
-    throw InputError("command line", 0, 0, "--point", text);
+    throw commandLineError("--point", text);
   }
-  if (a.normal.empty()) record.contact.outward_normal_local = pressedNormal(*mesh, closest, push);
+  if (a.normal.empty()) record.contact.outward_normal_local = sim::pressedNormal(*mesh, closest, push);
   record.contact.outward_normal_local.normalize();
   sim::computePatch(*mesh, record.contact, push, settings, record.patch);
   record.press_depth = record.patch.press_depth;

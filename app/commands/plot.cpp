@@ -10,7 +10,7 @@
 
 #include "app/commands/commands.hpp"
 #include "app/runs/run_reader.hpp"
-#include "render/chart.hpp"
+#include "render/chart/chart.hpp"
 #include "render/render_thread.hpp"
 
 namespace gf::app {

@@ -5,7 +5,7 @@
 #include "app/commands/commands.hpp"
 #include "app/scene/data_folder.hpp"
 #include "app/scene/scene_file.hpp"
-#include "app/session/interrupt.hpp"
+#include "app/process/interrupt.hpp"
 #include "app/session/session.hpp"
 
 namespace gf::app {
@@ -58,7 +58,7 @@ class RunCommand final : public Command {
     if (cut_short_) session.scene.duration = max_duration_;
     sessionCamera(session, camera_);  // an unknown camera fails before anything runs
     if (!video_.empty() && std::filesystem::is_directory(video_)) {
-      throw InputError("command line", 0, 0, "--video", video_ + " is a folder; give a file such as out.mp4");
+      throw commandLineError("--video", video_ + " is a folder; give a file such as out.mp4");
     }
     std::vector<ExpectFailure> failed;
     const sim::LoopStats stats = runSession(session, options(failed));
@@ -85,7 +85,7 @@ class RunCommand final : public Command {
     o.spin_us = spin_us_;
     o.command_line = redactedToken(command_line_);
     if (!serve_.empty()) o.serve = parseServe(serve_, tokenOrEnvironment(token_));
-    else if (!token_.empty()) throw InputError("command line", 0, 0, "--token", "goes with --serve");
+    else if (!token_.empty()) throw commandLineError("--token", "goes with --serve");
     return o;
   }
 

@@ -3,8 +3,8 @@
 #include <filesystem>
 
 #include "app/commands/commands.hpp"
-#include "app/session/screenshots.hpp"
-#include "render/image.hpp"
+#include "app/compare/screenshots.hpp"
+#include "render/frames/image.hpp"
 
 namespace gf::app {
 namespace {

@@ -44,12 +44,12 @@ class StudyCommand final : public Command {
     std::vector<std::string> overrides = a.overrides;
     if (!a.collect.empty()) {
       if (!std::filesystem::is_directory(a.collect)) {
-        throw InputError("command line", 0, 0, "--collect", a.collect + ": no such folder");
+        throw commandLineError("--collect", a.collect + ": no such folder");
       }
       // The runs' folder names come from the grid: collect the grid they were made with.
       if (const std::optional<StudyGrid> grid = readStudyGrid(a.collect)) {
         if ((a.quick && !grid->quick) || (!a.overrides.empty() && a.overrides != grid->extra)) {
-          throw InputError("command line", 0, 0, "--collect",
+          throw commandLineError("--collect",
                            a.collect + " holds runs made " + (grid->quick ? "with" : "without") + " --quick and " +
                                std::to_string(grid->extra.size()) + " --set (see its grid.json); give the same or none");
         }

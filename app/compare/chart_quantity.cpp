@@ -9,7 +9,7 @@
 #include "app/runs/run_reader.hpp"
 #include "app/runs/trace.hpp"
 #include "app/scene/input_error.hpp"
-#include "sim/settings.hpp"
+#include "sim/scene/settings.hpp"
 
 namespace gf::app {
 namespace {
@@ -52,9 +52,9 @@ void styleModelSeries(render::ChartSeries& s, const std::string& model, std::siz
 }
 
 std::string modelTitle(const std::string& model) {
-  if (model == "god_object") return "god-object";
-  if (model == "soft_finger") return "soft finger";
-  if (model == "god_finger") return "god-finger";
+  for (std::size_t i = 0; i < std::size(sim::kContactModelNames); ++i) {
+    if (model == sim::kContactModelNames[i]) return std::string(sim::kContactModelLabels[i]);
+  }
   if (model == "god_finger_3dof") return "god-finger 3-DOF";
   if (model == "god_finger_6dof") return "god-finger 6-DOF";
   return model;
@@ -93,11 +93,11 @@ Quantity chartQuantity(const SessionDesc& session, const std::string& chart, con
     if (std::find(columns.begin(), columns.end(), chart) == columns.end()) {
       std::string known;
       for (const std::string& c : columns) known.append(known.empty() ? "" : ", ").append(c);
-      throw InputError("command line", 0, 0, "--chart",
+      throw commandLineError("--chart",
                        "'" + chart + "' is neither rotation, tilt, height, speed nor a trace.csv column of this scene (" +
                            known + ")");
     }
-    if (!body.empty()) throw InputError("command line", 0, 0, "--body", "a trace column names its body itself: drop --body");
+    if (!body.empty()) throw commandLineError("--body", "a trace column names its body itself: drop --body");
     q.kind = Quantity::kColumn;
     q.column = chart;
     q.label = chart;
@@ -110,12 +110,12 @@ Quantity chartQuantity(const SessionDesc& session, const std::string& chart, con
     if (body.empty() ? q.body < 0 : bodies[b].name == body) q.body = static_cast<int>(b);
   }
   if (q.body < 0 && body.empty()) {
-    throw InputError("command line", 0, 0, "--chart",
+    throw commandLineError("--chart",
                      (chart.empty() ? std::string("the default chart (tilt or rotation)") : chart) +
                          " is of a dynamic body and the scene has none: chart a trace.csv column (e.g. a finger's .fy)");
   }
   if (q.body < 0) {
-    throw InputError("command line", 0, 0, "--body", "no dynamic body '" + body + "' (the scene's: " + dynamic + ")");
+    throw commandLineError("--body", "no dynamic body '" + body + "' (the scene's: " + dynamic + ")");
   }
   q.body_name = bodies[static_cast<std::size_t>(q.body)].name;
   const bool sphere = bodies[static_cast<std::size_t>(q.body)].shape == sim::ShapeKind::kSphere;

@@ -10,8 +10,8 @@
 #include <vector>
 
 #include "app/scene/session_desc.hpp"
-#include "render/chart.hpp"
-#include "sim/mesh.hpp"
+#include "render/chart/chart.hpp"
+#include "sim/mesh/mesh.hpp"
 
 namespace gf::app {
 

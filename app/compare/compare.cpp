@@ -19,15 +19,15 @@
 #include "app/runs/run_reader.hpp"
 #include "app/scene/data_folder.hpp"
 #include "app/scene/scene_file.hpp"
-#include "app/session/console.hpp"
-#include "app/session/interrupt.hpp"
+#include "app/process/console.hpp"
+#include "app/process/interrupt.hpp"
 #include "app/session/session.hpp"
-#include "render/context.hpp"
-#include "render/frame_sinks.hpp"
+#include "render/gl/context.hpp"
+#include "render/frames/frame_sinks.hpp"
 #include "render/render_thread.hpp"
-#include "sim/haptic_loop.hpp"
-#include "sim/settings.hpp"
-#include "sim/world.hpp"
+#include "sim/loop/haptic_loop.hpp"
+#include "sim/scene/settings.hpp"
+#include "sim/world/world.hpp"
 
 namespace gf::app {
 namespace {
@@ -55,17 +55,17 @@ std::vector<std::string> modelOverrides(const SessionDesc& session, const std::s
 // The models, checked: 1..4 known contact models or pad models, none twice.
 void checkModels(const std::vector<std::string>& models) {
   if (models.empty() || models.size() > 4) {
-    throw InputError("command line", 0, 0, "--models", "give 1 to 4 contact models, e.g. god_object,god_finger");
+    throw commandLineError("--models", "give 1 to 4 contact models, e.g. god_object,god_finger");
   }
   for (std::size_t i = 0; i < models.size(); ++i) {
     const bool pad = padModelOf(models[i]) != nullptr;
     if (!pad && sim::choiceIndex(contactModelSetting(), models[i]) < 0) {
-      throw InputError("command line", 0, 0, "--models",
+      throw commandLineError("--models",
                        "unknown contact model '" + models[i] + "' (one of " + sim::choiceList(contactModelSetting()) +
                            ", god_finger_3dof, god_finger_6dof)");
     }
     if (std::find(models.begin(), models.begin() + static_cast<long>(i), models[i]) != models.begin() + static_cast<long>(i)) {
-      throw InputError("command line", 0, 0, "--models", "'" + models[i] + "' is given twice");
+      throw commandLineError("--models", "'" + models[i] + "' is given twice");
     }
   }
 }

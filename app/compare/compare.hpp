@@ -9,8 +9,8 @@
 #include <string>
 #include <vector>
 
-#include "render/compare_view.hpp"
-#include "render/image.hpp"
+#include "render/chart/compare_view.hpp"
+#include "render/frames/image.hpp"
 
 namespace gf::app {
 

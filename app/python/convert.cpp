@@ -3,8 +3,6 @@
 #include <pybind11/numpy.h>
 
 #include <charconv>
-#include <fstream>
-#include <sstream>
 #include <stdexcept>
 
 #include "app/runs/files.hpp"
@@ -41,26 +39,6 @@ std::string tomlValue(const py::handle& value, const std::string& key, bool in_a
                        py::str(py::type::of(value).attr("__name__")).cast<std::string>());
 }
 
-// The cells of one CSV line (double quotes around a cell that holds a comma or a quote).
-std::vector<std::string> csvCells(const std::string& line) {
-  std::vector<std::string> cells(1);
-  bool quoted = false;
-  for (std::size_t i = 0; i < line.size(); ++i) {
-    const char c = line[i];
-    if (quoted && c == '"' && i + 1 < line.size() && line[i + 1] == '"') {
-      cells.back() += '"';
-      ++i;
-    } else if (c == '"') {
-      quoted = !quoted;
-    } else if (c == ',' && !quoted) {
-      cells.emplace_back();
-    } else {
-      cells.back() += c;
-    }
-  }
-  return cells;
-}
-
 bool readNumber(const std::string& text, double& x) {
   const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), x);
   return ec == std::errc() && end == text.data() + text.size() && !text.empty();
@@ -78,31 +56,6 @@ py::object columnArray(const std::vector<std::vector<std::string>>& rows, std::s
     }
   }
   return numbers;
-}
-
-// A numbers-only CSV (trace.csv: every step) read straight into its arrays.
-py::dict numericColumns(const std::vector<std::string>& header, std::istream& in, const std::string& path) {
-  std::vector<std::vector<double>> columns(header.size());
-  std::string line;
-  for (long number = 2; std::getline(in, line); ++number) {
-    const char* p = line.data();
-    const char* end = p + line.size();
-    for (std::size_t c = 0; c < header.size(); ++c) {
-      double x = 0.0;
-      const auto r = std::from_chars(p, end, x);
-      if (r.ec != std::errc() || (r.ptr != end && *r.ptr != ',') || (c + 1 < header.size()) == (r.ptr == end)) {
-        throw std::runtime_error(path + ":" + std::to_string(number) + ": not a row of " +
-                                 std::to_string(header.size()) + " numbers");
-      }
-      columns[c].push_back(x);
-      p = r.ptr + 1;
-    }
-  }
-  py::dict out;
-  for (std::size_t c = 0; c < header.size(); ++c) {
-    out[py::str(header[c])] = py::array_t<double>(static_cast<py::ssize_t>(columns[c].size()), columns[c].data());
-  }
-  return out;
 }
 
 py::array_t<double> vec3(const sim::Vec3& v) {
@@ -159,32 +112,22 @@ std::vector<std::string> overridesFromDict(const py::dict& set) {
   return out;
 }
 
-py::dict readCsvColumns(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::string line;
-  if (!in || !std::getline(in, line)) throw std::runtime_error(path + ": cannot read");
-  const std::vector<std::string> header = csvCells(line);
-  // A file of numbers only (no quote, no letter beyond the exponent and nan/inf) reads fast.
-  std::ostringstream rest;
-  rest << in.rdbuf();
-  const std::string body = rest.str();
-  if (body.find_first_not_of("0123456789.,-+eEnaif\n") == std::string::npos) {
-    std::istringstream numbers(body);
-    return numericColumns(header, numbers, path);
-  }
-  std::vector<std::vector<std::string>> rows;
-  std::istringstream lines(body);
-  while (std::getline(lines, line)) {
-    rows.push_back(csvCells(line));
-    if (rows.back().size() != header.size()) {
-      throw std::runtime_error(path + ":" + std::to_string(rows.size() + 1) + ": expected " +
-                               std::to_string(header.size()) + " cells");
-    }
-  }
+py::dict columnsDict(const CsvTable& table) {
   py::dict out;
-  for (std::size_t c = 0; c < header.size(); ++c) out[py::str(header[c])] = columnArray(rows, c);
+  for (std::size_t c = 0; c < table.names.size(); ++c) {
+    const std::vector<double>& column = table.columns[c];
+    out[py::str(table.names[c])] = py::array_t<double>(static_cast<py::ssize_t>(column.size()), column.data());
+  }
   return out;
 }
+
+py::dict columnsDict(const CsvText& table) {
+  py::dict out;
+  for (std::size_t c = 0; c < table.names.size(); ++c) out[py::str(table.names[c])] = columnArray(table.rows, c);
+  return out;
+}
+
+py::object jsonObject(const nlohmann::json& value) { return parseJson(value.dump()); }
 
 py::object parseJson(const std::string& text) { return py::module_::import("json").attr("loads")(text); }
 

@@ -7,8 +7,9 @@
 #include <string>
 #include <vector>
 
-#include "sim/scene_desc.hpp"
-#include "sim/snapshot.hpp"
+#include "app/runs/run_reader.hpp"
+#include "sim/scene/scene_desc.hpp"
+#include "sim/scene/snapshot.hpp"
 
 namespace gf::app::python {
 
@@ -23,10 +24,16 @@ std::vector<std::string> overridesFromDict(const py::dict& set);
 /// The shortest decimal that reads back as exactly `x`.
 std::string shortestNumber(double x);
 
-/// A CSV file of a run as {column: numpy array}, in the file's column order: a column whose
-/// cells all read as numbers becomes float64 (read back exactly: the files hold shortest
-/// round-trip decimals), any other an array of str. Throws std::runtime_error naming the file.
-py::dict readCsvColumns(const std::string& path);
+/// A CSV file of numbers (trace.csv) as {column: float64 numpy array}, in the file's order.
+py::dict columnsDict(const CsvTable& table);
+
+/// A CSV file with text (a study's results.csv) as {column: numpy array}, in the file's order: a
+/// column whose cells all read as numbers becomes float64 (read back exactly: the files hold
+/// shortest round-trip decimals), any other an array of str.
+py::dict columnsDict(const CsvText& table);
+
+/// A JSON value (summary.json, a contact snapshot) as Python objects.
+py::object jsonObject(const nlohmann::json& value);
 
 /// JSON text as Python objects (json.loads).
 py::object parseJson(const std::string& text);

@@ -9,9 +9,7 @@
 
 #include <cstdlib>
 #include <filesystem>
-#include <fstream>
 #include <optional>
-#include <sstream>
 
 #include "app/python/convert.hpp"
 #include "app/runs/run_folder.hpp"
@@ -20,7 +18,7 @@
 #include "app/scene/scene_file.hpp"
 #include "app/session/session.hpp"
 #include "app/study/study.hpp"
-#include "sim/settings.hpp"
+#include "sim/scene/settings.hpp"
 
 namespace fs = std::filesystem;
 
@@ -96,25 +94,11 @@ class Scratch {
   bool owned_ = false;
 };
 
-std::string fileText(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::ostringstream text;
-  text << in.rdbuf();
-  if (!in) throw std::runtime_error(path.string() + ": cannot read");
-  return text.str();
-}
-
 // trace.csv, summary.json and contacts/*.json of a finished run folder.
 void readRunFolder(const fs::path& dir, RunResult& r) {
-  if (fs::exists(dir / "trace.csv")) r.trace = readCsvColumns((dir / "trace.csv").string());
-  if (fs::exists(dir / "summary.json")) r.summary = parseJson(fileText(dir / "summary.json"));
-  if (!fs::is_directory(dir / kContactsFolder)) return;
-  std::vector<fs::path> files;
-  for (const fs::directory_entry& e : fs::directory_iterator(dir / kContactsFolder)) {
-    if (e.path().extension() == ".json") files.push_back(e.path());
-  }
-  std::sort(files.begin(), files.end());
-  for (const fs::path& f : files) r.contacts[py::str(f.stem().string())] = parseJson(fileText(f));
+  if (fs::exists(dir / kTraceFile)) r.trace = columnsDict(readTrace(dir));
+  if (const nlohmann::json summary = readSummary(dir); !summary.is_null()) r.summary = jsonObject(summary);
+  for (const fs::path& f : contactFiles(dir)) r.contacts[py::str(f.stem().string())] = jsonObject(readJsonFile(f));
 }
 
 RunResult run(const std::string& scene, std::optional<double> duration, const py::dict& set,
@@ -173,7 +157,7 @@ py::dict study(const std::string& name_or_file, int jobs, bool quick, const py::
     throw std::runtime_error("study " + desc.name + ": not every run succeeded and was measured (exit " +
                              std::to_string(code) + "); see " + options.out + "/report.md and runs/*/run.log");
   }
-  return readCsvColumns((fs::path(options.out) / "results.csv").string());
+  return columnsDict(readCsvText((fs::path(options.out) / kResultsFile).string()));
 }
 
 }  // namespace

@@ -2,7 +2,7 @@
 
 #include <cmath>
 
-#include "sim/settings.hpp"
+#include "sim/scene/settings.hpp"
 
 namespace gf::app {
 namespace {

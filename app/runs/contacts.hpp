@@ -6,9 +6,9 @@
 
 #include <string>
 
-#include "sim/god_finger.hpp"
-#include "sim/scene_desc.hpp"
-#include "sim/snapshot.hpp"
+#include "sim/patch/god_finger.hpp"
+#include "sim/scene/scene_desc.hpp"
+#include "sim/scene/snapshot.hpp"
 
 namespace gf::app {
 

@@ -7,8 +7,8 @@
 #include <vector>
 
 #include "app/runs/files.hpp"
-#include "render/chart.hpp"
-#include "sim/world.hpp"
+#include "render/chart/chart.hpp"
+#include "sim/world/world.hpp"
 
 namespace gf::app {
 

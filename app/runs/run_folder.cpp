@@ -13,7 +13,7 @@
 #include <sys/statvfs.h>
 #include <unistd.h>
 
-#include "render/video_file.hpp"
+#include "render/frames/video_file.hpp"
 
 namespace gf::app {
 namespace {

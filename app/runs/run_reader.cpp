@@ -60,6 +60,37 @@ std::string readText(const fs::path& path, const std::string& missing) {
   return s.str();
 }
 
+// The cells of one CSV line with quoting: a cell in double quotes may hold commas and doubled
+// quotes (a trailing carriage return dropped).
+std::vector<std::string> quotedCells(std::string_view line) {
+  if (!line.empty() && line.back() == '\r') line.remove_suffix(1);
+  std::vector<std::string> cells(1);
+  bool quoted = false;
+  for (std::size_t i = 0; i < line.size(); ++i) {
+    const char c = line[i];
+    if (quoted && c == '"' && i + 1 < line.size() && line[i + 1] == '"') {
+      cells.back() += '"';
+      ++i;
+    } else if (c == '"') {
+      quoted = !quoted;
+    } else if (c == ',' && !quoted) {
+      cells.emplace_back();
+    } else {
+      cells.back() += c;
+    }
+  }
+  return cells;
+}
+
+// The open file at `path` and its header line. Throws InputError naming the file.
+std::ifstream openCsv(const std::string& path, std::string& header) {
+  if (fs::is_directory(path)) throw InputError(path, 0, 0, "file", "is a folder; give a CSV file");
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw InputError(path, 0, 0, "file", "cannot read");
+  if (!std::getline(in, header)) throw InputError(path, 1, 0, "header", "empty file: expected a header row");
+  return in;
+}
+
 nlohmann::json parseJson(const fs::path& path) {
   const std::string text = readText(path, "missing (did the run finish?)");
   try {
@@ -76,11 +107,8 @@ const std::vector<double>& CsvTable::column(const std::string& name) const {
 }
 
 CsvTable readCsv(const std::string& path, const std::vector<std::string>& only) {
-  if (fs::is_directory(path)) throw InputError(path, 0, 0, "file", "is a folder; give a CSV file");
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw InputError(path, 0, 0, "file", "cannot read");
   std::string line;
-  if (!std::getline(in, line)) throw InputError(path, 1, 0, "header", "empty file: expected a header row");
+  std::ifstream in = openCsv(path, line);
   CsvTable header{path, {}, {}};
   for (std::string_view name : splitRow(line)) header.names.emplace_back(name);
   for (const std::string& name : only) columnIndex(path, header.names, name);  // fails naming the ones there are
@@ -108,6 +136,21 @@ std::vector<std::vector<double>> readCsvColumns(const std::string& path, const s
   return out;
 }
 
+CsvText readCsvText(const std::string& path) {
+  std::string line;
+  std::ifstream in = openCsv(path, line);
+  CsvText t{path, quotedCells(line), {}};
+  for (int row = 2; std::getline(in, line); ++row) {
+    if (line.empty() || line == "\r") continue;
+    t.rows.push_back(quotedCells(line));
+    if (t.rows.back().size() != t.names.size()) {
+      throw InputError(path, row, 0, "row", "expected " + std::to_string(t.names.size()) + " cells, got " +
+                                               std::to_string(t.rows.back().size()));
+    }
+  }
+  return t;
+}
+
 CsvTable readTrace(const fs::path& dir) { return readCsv((dir / kTraceFile).string()); }
 
 nlohmann::json readSummary(const fs::path& dir) {
@@ -123,6 +166,18 @@ nlohmann::json requireSummary(const fs::path& dir) { return parseJson(dir / kSum
 nlohmann::json readContacts(const fs::path& dir, double t) {
   return parseJson(dir / kContactsFolder / (contactStem(t) + ".json"));
 }
+
+std::vector<fs::path> contactFiles(const fs::path& dir) {
+  std::vector<fs::path> files;
+  if (!fs::is_directory(dir / kContactsFolder)) return files;
+  for (const fs::directory_entry& e : fs::directory_iterator(dir / kContactsFolder)) {
+    if (e.path().extension() == ".json") files.push_back(e.path());
+  }
+  std::sort(files.begin(), files.end());
+  return files;
+}
+
+nlohmann::json readJsonFile(const fs::path& path) { return parseJson(path); }
 
 std::string lastLogLine(const fs::path& dir) {
   std::ifstream in(dir / kRunLogFile);

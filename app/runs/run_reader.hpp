@@ -30,6 +30,18 @@ CsvTable readCsv(const std::string& path, const std::vector<std::string>& only =
 /// The columns `names` of the CSV at `path`, in that order. Throws as readCsv and CsvTable::column.
 std::vector<std::vector<double>> readCsvColumns(const std::string& path, const std::vector<std::string>& names);
 
+/// A CSV file as text: the header row and every row's cells, for files with text columns (a
+/// study's results.csv). A cell in double quotes may hold commas and doubled quotes.
+struct CsvText {
+  std::string path;
+  std::vector<std::string> names;              ///< the header row
+  std::vector<std::vector<std::string>> rows;  ///< as many cells as names each
+};
+
+/// Reads `path`. Throws InputError naming the file, and the line of a row whose cells do not
+/// match the header's count.
+CsvText readCsvText(const std::string& path);
+
 /// The trace.csv of the run in `dir`. Throws InputError as readCsv.
 CsvTable readTrace(const std::filesystem::path& dir);
 
@@ -44,6 +56,13 @@ nlohmann::json requireSummary(const std::filesystem::path& dir);
 /// The contact snapshot the run in `dir` took at `t` seconds (contacts/t0.500.json). Throws
 /// std::runtime_error naming the file when it is missing or not JSON.
 nlohmann::json readContacts(const std::filesystem::path& dir, double t);
+
+/// The contact snapshots the run in `dir` took (contacts/*.json), sorted by name.
+std::vector<std::filesystem::path> contactFiles(const std::filesystem::path& dir);
+
+/// The JSON file at `path`. Throws std::runtime_error naming the file when it is missing or not
+/// JSON.
+nlohmann::json readJsonFile(const std::filesystem::path& path);
 
 /// The last line a child run wrote into dir/run.log (a progress line's carriage returns
 /// dropped), "" when there is none: what to show for a run that failed.

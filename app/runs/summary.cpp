@@ -9,8 +9,8 @@
 #include "app/runs/contacts.hpp"
 #include "godfinger_commit.hpp"
 #include "sim/about.hpp"
-#include "sim/mesh_import.hpp"
-#include "sim/settings.hpp"
+#include "sim/mesh/mesh_import.hpp"
+#include "sim/scene/settings.hpp"
 
 namespace gf::app {
 namespace {

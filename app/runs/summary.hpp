@@ -10,8 +10,8 @@
 
 #include "app/scene/session_desc.hpp"
 #include "render/render_thread.hpp"
-#include "sim/haptic_loop.hpp"
-#include "sim/world.hpp"
+#include "sim/loop/haptic_loop.hpp"
+#include "sim/world/world.hpp"
 
 namespace gf::app {
 

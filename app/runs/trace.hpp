@@ -5,7 +5,7 @@
 #include <vector>
 
 #include "app/runs/files.hpp"
-#include "sim/world.hpp"
+#include "sim/world/world.hpp"
 
 namespace gf::app {
 

@@ -9,7 +9,7 @@
 #include <memory>
 #include <numbers>
 
-#include "sim/settings.hpp"
+#include "sim/scene/settings.hpp"
 
 namespace gf::app {
 namespace {

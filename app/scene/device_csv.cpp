@@ -8,7 +8,7 @@
 #include <fstream>
 
 #include "app/scene/input_error.hpp"
-#include "sim/settings.hpp"
+#include "sim/scene/settings.hpp"
 
 namespace gf::app {
 

@@ -4,7 +4,7 @@
 #include <algorithm>
 #include <optional>
 
-#include "sim/settings.hpp"
+#include "sim/scene/settings.hpp"
 
 namespace gf::app {
 namespace {

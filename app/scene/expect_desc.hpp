@@ -27,7 +27,7 @@ struct BodyExpect {
   double rest_speed = 1e-3;      ///< m/s
   double rest_tilt_rate = 0.05;  ///< rad/s
   /// A sphere's roll ratio over roll_window: the angle it turned times its radius over the
-  /// distance it went along the ground (1 rolling, 0 sliding; app/study/roll_ratio.hpp, as the
+  /// distance it went along the ground (1 rolling, 0 sliding; app/measures/roll_ratio.hpp, as the
   /// studies' roll_ratio measure takes it). A ball that went less than 1 % of its radius has none
   /// and fails.
   std::optional<double> max_roll_ratio;

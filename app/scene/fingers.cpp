@@ -9,7 +9,7 @@
 #include <optional>
 
 #include "app/scene/scene_file.hpp"
-#include "sim/settings.hpp"
+#include "sim/scene/settings.hpp"
 
 namespace gf::app {
 namespace {

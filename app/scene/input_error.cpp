@@ -23,4 +23,8 @@ InputError::InputError(const std::string& file, int line, int column, const std:
       field_(field),
       reason_(reason) {}
 
+InputError commandLineError(const std::string& option, const std::string& reason) {
+  return InputError("command line", 0, 0, option, reason);
+}
+
 }  // namespace gf::app

@@ -28,4 +28,7 @@ class InputError : public std::runtime_error {
   std::string reason_;
 };
 
+/// Bad input given on the command line: what() reads "command line: OPTION: reason".
+InputError commandLineError(const std::string& option, const std::string& reason);
+
 }  // namespace gf::app

@@ -9,7 +9,7 @@
 #include <sstream>
 
 #include "app/scene/sections.hpp"
-#include "sim/settings.hpp"
+#include "sim/scene/settings.hpp"
 
 namespace gf::app {
 

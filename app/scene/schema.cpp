@@ -5,7 +5,7 @@
 #include <cmath>
 
 #include "app/scene/sections.hpp"
-#include "sim/settings.hpp"
+#include "sim/scene/settings.hpp"
 
 namespace gf::app {
 namespace {

@@ -3,7 +3,7 @@
 
 #include <algorithm>
 
-#include "sim/settings.hpp"
+#include "sim/scene/settings.hpp"
 
 namespace gf::app {
 namespace {

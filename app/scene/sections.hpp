@@ -11,7 +11,7 @@
 
 #include "app/scene/session_desc.hpp"
 #include "app/scene/toml_reader.hpp"
-#include "sim/mesh_import.hpp"
+#include "sim/mesh/mesh_import.hpp"
 
 namespace gf::app {
 
@@ -36,7 +36,7 @@ void readEffects(Reader& r, sim::EffectSet& e, ViewSettings& view);
 /// [render]: frame size, anti-aliasing and scripted overlay input (after the fingers are read).
 void readView(Reader& parent, SessionDesc& s);
 /// [cameras.NAME].
-sim::Camera readCamera(const std::string& name, const toml::table& t, const Reader& parent);
+view::Camera readCamera(const std::string& name, const toml::table& t, const Reader& parent);
 /// [record]: what a run writes besides summary.json.
 void readRecord(Reader& parent, SessionDesc& s);
 /// [expect]: invariants of the run (app/scene/expect_desc.hpp).

@@ -5,8 +5,8 @@
 #include <vector>
 
 #include "app/scene/expect_desc.hpp"
-#include "sim/scene_desc.hpp"
-#include "sim/view_desc.hpp"
+#include "sim/scene/scene_desc.hpp"
+#include "render/view/view_desc.hpp"
 
 namespace gf::app {
 
@@ -30,9 +30,9 @@ struct ViewSettings {
   bool overlay = false;          ///< effect: the ImGui overlay
   int width = 1280;              ///< frame size (pixels, up to 1920 x 1080)
   int height = 720;
-  sim::Antialiasing antialiasing = sim::Antialiasing::kFxaa;
+  view::Antialiasing antialiasing = view::Antialiasing::kFxaa;
   int msaa_samples = 4;          ///< samples with antialiasing = "msaa" (2..8)
-  std::vector<sim::WidgetAction> actions;  ///< scripted overlay input, by time
+  std::vector<view::WidgetAction> actions;  ///< scripted overlay input, by time
 };
 
 /// A finger driven by a live device over UDP (docs/device-protocol.md); its sim track holds
@@ -75,7 +75,7 @@ struct SessionDesc {
   RecordSettings record;
   ExpectDesc expect;  ///< [expect]: what the run must show
   ViewSettings view;
-  std::vector<sim::Camera> cameras;  ///< [cameras.NAME]: one is rendered per output stream
+  std::vector<view::Camera> cameras;  ///< [cameras.NAME]: one is rendered per output stream
   std::vector<UdpDeviceDesc> udp_devices;  ///< fingers with a live UDP device
   std::vector<WebDeviceDesc> web_devices;  ///< fingers the browser view's pointer drives
 };

@@ -13,7 +13,7 @@
 #include <vector>
 
 #include "app/scene/input_error.hpp"
-#include "sim/settings.hpp"
+#include "sim/scene/settings.hpp"
 
 namespace gf::app {
 
@@ -45,7 +45,7 @@ std::string join(const Names& choices) {
 
 // One TOML table being read: typed getters that name file, line and dotted field on error, and
 // a check that every key was used (unknown fields are errors, not silently ignored). Values of
-// description settings are checked by their validator in sim/settings.hpp.
+// description settings are checked by their validator in sim/scene/settings.hpp.
 class Reader {
  public:
   Reader(const toml::table& t, std::string prefix, std::string file)

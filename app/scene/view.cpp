@@ -5,8 +5,8 @@
 #include <cmath>
 #include <cstdlib>
 
-#include "sim/settings.hpp"
-#include "sim/view_desc.hpp"
+#include "sim/scene/settings.hpp"
+#include "render/view/view_desc.hpp"
 
 namespace gf::app {
 namespace {
@@ -25,16 +25,16 @@ constexpr ViewEffect kViewEffects[] = {
 
 // widget = "FINGER/FIELD" names a finger of the scene and a widget of its panel; the value is
 // one the widget's setting accepts (in the unit the widget shows).
-void checkWidget(Reader& r, const sim::SceneDesc& scene, const sim::WidgetAction& a) {
+void checkWidget(Reader& r, const sim::SceneDesc& scene, const view::WidgetAction& a) {
   const std::size_t slash = a.widget.find('/');
   const std::string finger = a.widget.substr(0, slash);
   const std::string field = slash == std::string::npos ? "" : a.widget.substr(slash + 1);
   const bool known_finger = std::any_of(scene.fingers.begin(), scene.fingers.end(),
                                         [&](const sim::FingerDesc& f) { return f.name == finger; });
-  const sim::OverlayWidget* widget = sim::findOverlayWidget(field);
+  const view::OverlayWidget* widget = view::findOverlayWidget(field);
   if (!known_finger || !widget) {
     std::vector<std::string_view> names;
-    for (const sim::OverlayWidget& w : sim::kOverlayWidgets) names.push_back(w.field);
+    for (const view::OverlayWidget& w : view::kOverlayWidgets) names.push_back(w.field);
     r.fail(r.find("widget"), "widget", "expected FINGER/FIELD with a finger of the scene and FIELD one of " + join(names));
   }
   if (field == "god_finger") {
@@ -89,8 +89,8 @@ void readView(Reader& parent, SessionDesc& s) {
     Reader r(*n->as_table(), "render", parent.file());
     v.width = r.integer("width", v.width, 16, 1920);
     v.height = r.integer("height", v.height, 16, 1080);
-    const std::string aa = r.string("antialiasing", sim::antialiasingName(v.antialiasing));
-    if (const std::optional<sim::Antialiasing> parsed = sim::parseAntialiasing(aa)) {
+    const std::string aa = r.string("antialiasing", view::antialiasingName(v.antialiasing));
+    if (const std::optional<view::Antialiasing> parsed = view::parseAntialiasing(aa)) {
       v.antialiasing = *parsed;
     } else {
       r.fail(r.find("antialiasing"), "antialiasing", "expected \"fxaa\", \"msaa\" or \"none\"");
@@ -102,7 +102,7 @@ void readView(Reader& parent, SessionDesc& s) {
       for (const toml::node& e : *a) {
         if (!e.is_table()) r.fail(&e, "actions", "expected {t = s, widget = \"FINGER/FIELD\", value = \"...\"}");
         Reader ar(*e.as_table(), r.field("actions"), r.file());
-        sim::WidgetAction act;
+        view::WidgetAction act;
         act.time = ar.requiredNumber("t", 0.0, s.scene.duration);
         act.widget = ar.string("widget", "");
         act.value = ar.string("value", "");
@@ -119,9 +119,9 @@ void readView(Reader& parent, SessionDesc& s) {
   }
 }
 
-sim::Camera readCamera(const std::string& name, const toml::table& t, const Reader& parent) {
+view::Camera readCamera(const std::string& name, const toml::table& t, const Reader& parent) {
   Reader r(t, parent.field("cameras." + name), parent.file());
-  sim::Camera c;
+  view::Camera c;
   c.name = name;
   c.position = r.vec3("position", c.position);
   c.target = r.vec3("target", c.target);

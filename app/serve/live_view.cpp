@@ -3,9 +3,9 @@
 #include <filesystem>
 
 #include "app/runs/run_folder.hpp"
-#include "app/session/live_command.hpp"
-#include "render/camera.hpp"
-#include "render/draw_list.hpp"
+#include "app/live/live_command.hpp"
+#include "render/scene/camera.hpp"
+#include "render/scene/draw_list.hpp"
 
 namespace gf::app {
 namespace {
@@ -15,7 +15,7 @@ nlohmann::json vec(const sim::Vec3& v) { return nlohmann::json::array({v.x(), v.
 // The live settings' controls, from the overlay's widget table: what each spans and shows.
 nlohmann::json widgetsJson() {
   nlohmann::json out = nlohmann::json::array();
-  for (const sim::OverlayWidget& w : sim::kOverlayWidgets) {
+  for (const view::OverlayWidget& w : view::kOverlayWidgets) {
     nlohmann::json j = {{"field", w.field}, {"label", w.label}, {"lo", w.lo}, {"hi", w.hi},
                         {"shown_per_unit", w.shown_per_unit}};
     if (const sim::Setting<sim::FingerDesc>* s = sim::findSetting(sim::fingerSettings(), w.field)) {
@@ -27,7 +27,7 @@ nlohmann::json widgetsJson() {
   return out;
 }
 
-nlohmann::json describeScene(const SessionDesc& session, const sim::Camera& camera, const std::string& mode) {
+nlohmann::json describeScene(const SessionDesc& session, const view::Camera& camera, const std::string& mode) {
   const sim::SceneDesc& scene = session.scene;
   nlohmann::json fingers = nlohmann::json::array();
   for (std::size_t i = 0; i < scene.fingers.size(); ++i) {
@@ -59,7 +59,7 @@ nlohmann::json describeScene(const SessionDesc& session, const sim::Camera& came
 
 }  // namespace
 
-LiveView::LiveView(const SessionDesc& session, const sim::Camera& camera, std::string mode, std::string out_dir,
+LiveView::LiveView(const SessionDesc& session, const view::Camera& camera, std::string mode, std::string out_dir,
                    bool background)
     : scene_(session.scene), out_dir_(std::move(out_dir)), scene_json_(describeScene(session, camera, mode)), jpeg_(80, background) {}
 

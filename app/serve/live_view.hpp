@@ -12,8 +12,8 @@
 #include <string>
 
 #include "app/scene/session_desc.hpp"
-#include "render/frame_sinks.hpp"
-#include "render/jpeg_stream.hpp"
+#include "render/frames/frame_sinks.hpp"
+#include "render/frames/jpeg_stream.hpp"
 #include "render/render_thread.hpp"
 
 namespace gf::app {
@@ -22,7 +22,7 @@ class LiveView final : public render::FrameTap {
  public:
   /// `mode`: "realtime" (a `run --realtime`) or "live" (`godfinger live`, stepped on command).
   /// Recordings go to out_dir/frames/. `background`: the JPEG encoder runs at nice 10.
-  LiveView(const SessionDesc& session, const sim::Camera& camera, std::string mode, std::string out_dir, bool background);
+  LiveView(const SessionDesc& session, const view::Camera& camera, std::string mode, std::string out_dir, bool background);
   ~LiveView() override;
 
   /// Render thread: keeps the snapshot, hands the image to the JPEG encoder and the recording.
@@ -37,7 +37,7 @@ class LiveView final : public render::FrameTap {
   /// first frame. Any thread.
   std::string stateText() const;
   /// What the page needs once: the scene's name, mode, frame size, camera, fingers (name,
-  /// colour, web or not), bodies and the live settings' widgets (sim/view_desc.hpp). Any thread.
+  /// colour, web or not), bodies and the live settings' widgets (render/view/view_desc.hpp). Any thread.
   const nlohmann::json& sceneJson() const { return scene_json_; }
   /// Frames drawn, the JPEG encoder's counts, the recording. Any thread.
   nlohmann::json statsJson() const;

@@ -1,10 +1,10 @@
 #include "app/serve/served_run.hpp"
 
-#include "app/session/live_command.hpp"
+#include "app/live/live_command.hpp"
 
 namespace gf::app {
 
-ServedRun::ServedRun(const SessionDesc& session, const ServeOptions& options, const sim::Camera& camera,
+ServedRun::ServedRun(const SessionDesc& session, const ServeOptions& options, const view::Camera& camera,
                      const std::string& out_dir, bool background)
     : session_(session), out_dir_(out_dir), view_(session, camera, "realtime", out_dir, background) {
   const sim::SceneDesc& scene = session.scene;

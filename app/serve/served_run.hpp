@@ -12,9 +12,9 @@
 #include <vector>
 
 #include "app/serve/live_view.hpp"
-#include "app/serve/steered_device.hpp"
+#include "app/device/steered_device.hpp"
 #include "app/serve/web_server.hpp"
-#include "sim/world.hpp"
+#include "sim/world/world.hpp"
 
 namespace gf::app {
 
@@ -22,7 +22,7 @@ class ServedRun {
  public:
   /// Binds the server now (throws when it cannot, before anything is written). `camera`: the
   /// frame stream's. `background`: the JPEG encoder at nice 10.
-  ServedRun(const SessionDesc& session, const ServeOptions& options, const sim::Camera& camera,
+  ServedRun(const SessionDesc& session, const ServeOptions& options, const view::Camera& camera,
             const std::string& out_dir, bool background);
   ~ServedRun();
   ServedRun(const ServedRun&) = delete;

@@ -80,19 +80,19 @@ ServeOptions parseServe(const std::string& serve, const std::string& token) {
   if (o.host == "localhost") o.host = "127.0.0.1";
   in_addr address{};
   if (inet_pton(AF_INET, o.host.c_str(), &address) != 1) {
-    throw InputError("command line", 0, 0, "--serve",
+    throw commandLineError("--serve",
                      "'" + o.host + "' is not an IPv4 address (such as 127.0.0.1, or 0.0.0.0 for every interface)");
   }
   int port = -1;
   const auto [end, error] = std::from_chars(port_text.data(), port_text.data() + port_text.size(), port);
   if (error != std::errc() || end != port_text.data() + port_text.size() || port < 0 || port > 65535) {
-    throw InputError("command line", 0, 0, "--serve",
+    throw commandLineError("--serve",
                      "expected [HOST:]PORT with PORT a whole number in 0..65535 (0: any free port), got '" + serve + "'");
   }
   o.port = port;
   for (char c : token) {
     if (!std::isalnum(static_cast<unsigned char>(c)) && c != '-' && c != '_' && c != '.') {
-      throw InputError("command line", 0, 0, "--token", "use letters, digits, '-', '_' and '.' only");
+      throw commandLineError("--token", "use letters, digits, '-', '_' and '.' only");
     }
   }
   o.token = token;

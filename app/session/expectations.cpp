@@ -7,8 +7,8 @@
 #include <cstdio>
 #include <numbers>
 
-#include "sim/scene_desc.hpp"
-#include "sim/world.hpp"
+#include "sim/scene/scene_desc.hpp"
+#include "sim/world/world.hpp"
 
 namespace gf::app {
 namespace {

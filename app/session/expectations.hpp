@@ -11,8 +11,8 @@
 #include <vector>
 
 #include "app/scene/expect_desc.hpp"
-#include "app/study/roll_ratio.hpp"
-#include "sim/mesh.hpp"
+#include "app/measures/roll_ratio.hpp"
+#include "sim/mesh/mesh.hpp"
 
 namespace gf::sim {
 class World;

@@ -10,16 +10,16 @@ constexpr double kTimeEps = 1e-9;  // s: a step this close to a frame time is on
 }  // namespace
 
 FrameDriver::FrameDriver(render::RenderThread& renderer, double fps, bool realtime,
-                         const std::vector<sim::WidgetAction>& actions, const sim::LiveTimings* live)
+                         const std::vector<view::WidgetAction>& actions, const sim::LiveTimings* live)
     : renderer_(renderer), fps_(fps), realtime_(realtime), live_(live) {
-  for (const sim::WidgetAction& a : actions) {
+  for (const view::WidgetAction& a : actions) {
     sync_first_frames_.push_back(static_cast<long>(std::ceil(a.time * fps - kTimeEps)));
   }
 }
 
 bool FrameDriver::isSyncFrame(long k) const {
   for (long first : sync_first_frames_) {
-    if (k >= first && k < first + sim::kActionFrames) return true;
+    if (k >= first && k < first + view::kActionFrames) return true;
   }
   return false;
 }

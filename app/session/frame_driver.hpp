@@ -5,8 +5,8 @@
 #include <vector>
 
 #include "render/render_thread.hpp"
-#include "sim/haptic_loop.hpp"
-#include "sim/world.hpp"
+#include "sim/loop/haptic_loop.hpp"
+#include "sim/world/world.hpp"
 
 namespace gf::app {
 
@@ -23,7 +23,7 @@ struct AppliedChange {
 class FrameDriver {
  public:
   FrameDriver(render::RenderThread& renderer, double fps, bool realtime,
-              const std::vector<sim::WidgetAction>& actions, const sim::LiveTimings* live);
+              const std::vector<view::WidgetAction>& actions, const sim::LiveTimings* live);
   /// Frame 0, before the first step.
   void start(sim::World& world);
   /// After every step of `dt` seconds.

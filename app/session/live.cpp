@@ -16,10 +16,10 @@
 
 #include "app/scene/scene_file.hpp"
 #include "app/serve/live_view.hpp"
-#include "app/session/interrupt.hpp"
-#include "app/session/live_command.hpp"
+#include "app/process/interrupt.hpp"
+#include "app/live/live_command.hpp"
 #include "app/session/session.hpp"
-#include "sim/world.hpp"
+#include "sim/world/world.hpp"
 
 namespace gf::app {
 namespace {

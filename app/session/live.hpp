@@ -8,7 +8,7 @@
 
 #include "app/scene/session_desc.hpp"
 #include "app/serve/web_server.hpp"
-#include "sim/world.hpp"
+#include "sim/world/world.hpp"
 
 namespace gf::render {
 class RenderThread;
@@ -74,7 +74,7 @@ class LiveSession {
 
 /// Runs commands from `in` until `quit` or end of input, answering each on `out`:
 ///   move FINGER X Y Z [SECONDS]   device to (X, Y, Z) m, straight, over SECONDS (default 0)
-///   set fingers.NAME.FIELD=VALUE  a live finger setting of sim/settings.hpp (n_sgo, r_max, d0,
+///   set fingers.NAME.FIELD=VALUE  a live finger setting of sim/scene/settings.hpp (n_sgo, r_max, d0,
 ///                                 alpha, stretch_length, max_stretch, tau_a in
 ///                                 degrees, friction), checked by its validator
 ///   step [N]                      N haptic steps (default 1), then the state

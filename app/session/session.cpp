@@ -25,10 +25,10 @@
 #include "app/scene/input_error.hpp"
 #include "app/serve/served_run.hpp"
 #include "app/session/frame_driver.hpp"
-#include "app/session/interrupt.hpp"
-#include "app/session/udp_device.hpp"
-#include "sim/settings.hpp"
-#include "sim/world.hpp"
+#include "app/process/interrupt.hpp"
+#include "app/device/udp_device.hpp"
+#include "sim/scene/settings.hpp"
+#include "sim/world/world.hpp"
 
 namespace gf::app {
 namespace {
@@ -204,7 +204,7 @@ void addOverlapWarnings(const sim::World& world, std::vector<std::string>& warni
 // A live device's packets arrive in wall-clock time: it needs the realtime clock; so does a page.
 void requireRealtimeForLiveDevices(const SessionDesc& session, const SessionOptions& options) {
   if (options.serve && !options.realtime) {
-    throw InputError("command line", 0, 0, "--serve",
+    throw commandLineError("--serve",
                      "the browser view follows a run in real time: add --realtime (or use `godfinger live --serve`)");
   }
   if (session.udp_devices.empty() || options.realtime) return;
@@ -509,18 +509,18 @@ void SessionRun::addRenderSummary(nlohmann::json& out) {
 
 }  // namespace
 
-sim::Camera sessionCamera(const SessionDesc& session, const std::string& name) {
+view::Camera sessionCamera(const SessionDesc& session, const std::string& name) {
   if (name.empty() && !session.cameras.empty()) return session.cameras.front();
-  for (const sim::Camera& c : session.cameras) {
+  for (const view::Camera& c : session.cameras) {
     if (c.name == name) return c;
   }
   if (!name.empty()) {
     std::string known;
-    for (const sim::Camera& c : session.cameras) known.append(known.empty() ? "" : ", ").append(c.name);
+    for (const view::Camera& c : session.cameras) known.append(known.empty() ? "" : ", ").append(c.name);
     throw InputError(session.source, 0, 0, "cameras." + name,
                      "no such camera (the scene has: " + (known.empty() ? "none" : known) + ")");
   }
-  sim::Camera c;  // no camera in the scene: look at the origin from the front and above
+  view::Camera c;  // no camera in the scene: look at the origin from the front and above
   c.name = "default";
   return c;
 }

@@ -9,7 +9,7 @@
 #include "app/serve/web_server.hpp"
 #include "app/session/expectations.hpp"
 #include "render/render_thread.hpp"
-#include "sim/haptic_loop.hpp"
+#include "sim/loop/haptic_loop.hpp"
 
 namespace gf::app {
 
@@ -56,7 +56,7 @@ struct SessionOptions {
 
 /// The camera called `name` in the session (the first when empty; a default view of the scene
 /// when it has none). Throws InputError naming the camera when there is no such camera.
-sim::Camera sessionCamera(const SessionDesc& session, const std::string& name);
+view::Camera sessionCamera(const SessionDesc& session, const std::string& name);
 
 /// The render thread's settings for this session and these options.
 render::FrameOutputSettings frameSettings(const SessionDesc& session, const SessionOptions& options);

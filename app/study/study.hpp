@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "sim/mesh.hpp"
+#include "sim/mesh/mesh.hpp"
 
 namespace gf::app {
 
@@ -49,6 +49,9 @@ enum class MeasureKind {
   kTipMoment,       ///< applied torque about `axis` minus I times the angular acceleration when the
                     ///< body has turned kTipAngleDeg about it: the moment the contact held (N m)
 };
+
+/// The study folder's table of every run's measures, one row a run (report.md beside it).
+inline constexpr char kResultsFile[] = "results.csv";
 
 /// The turn (deg) about a tip_moment measure's axis at which the body has tipped.
 inline constexpr double kTipAngleDeg = 1.0;

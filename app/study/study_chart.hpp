@@ -9,7 +9,7 @@
 
 #include "app/study/study.hpp"
 #include "app/study/study_measure.hpp"
-#include "render/chart.hpp"
+#include "render/chart/chart.hpp"
 
 namespace gf::app {
 

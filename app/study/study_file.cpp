@@ -13,7 +13,7 @@
 #include "app/scene/data_folder.hpp"
 #include "app/scene/scene_file.hpp"
 #include "app/scene/toml_reader.hpp"
-#include "app/study/contact_whole.hpp"
+#include "app/measures/contact_whole.hpp"
 #include "app/study/study.hpp"
 
 namespace gf::app {
@@ -248,7 +248,7 @@ SessionDesc checkRun(const StudyDesc& study, const StudyRun& run) {
       const bool same = e.field() == key || e.field().rfind(key + ".", 0) == 0 || key.rfind(e.field() + ".", 0) == 0 ||
                         (!parent.empty() && e.field().rfind(parent, 0) == 0) || e.file().rfind("--set " + o->text, 0) == 0;
       if (!same) continue;
-      if (o->source.line == 0) throw InputError("command line", 0, 0, "--set " + o->text, e.field() + ": " + e.reason());
+      if (o->source.line == 0) throw commandLineError("--set " + o->text, e.field() + ": " + e.reason());
       // A field the scene does not have is the axis' fault, a bad value the value's.
       const bool unknown = e.reason().rfind("unknown field", 0) == 0 || e.reason().find("is not a table") != std::string::npos;
       const StudySource& at = unknown && o->field_source.line > 0 ? o->field_source : o->source;

@@ -11,10 +11,10 @@
 
 #include "app/runs/run_folder.hpp"
 #include "app/runs/run_reader.hpp"
-#include "app/study/contact_whole.hpp"
-#include "app/study/roll_ratio.hpp"
-#include "sim/effective_settings.hpp"
-#include "sim/god_finger.hpp"
+#include "app/measures/contact_whole.hpp"
+#include "app/measures/roll_ratio.hpp"
+#include "sim/scene/effective_settings.hpp"
+#include "sim/patch/god_finger.hpp"
 
 namespace gf::app {
 namespace {
@@ -104,7 +104,7 @@ class View {
     }
   }
   // Fails at the first row of the window where the finger's contact is no longer whole on the
-  // face it presses (app/study/contact_whole.hpp): a friction limit measured while the contact
+  // face it presses (app/measures/contact_whole.hpp): a friction limit measured while the contact
   // hangs over the edge is partly the edge's. The window must end before it.
   void checkWhole() const {
     const std::string f = finger_->name;
@@ -227,7 +227,7 @@ struct Value {
 };
 
 // Rotation angle times the radius over the distance travelled across the axis
-// (app/study/roll_ratio.hpp, as [expect] max_roll_ratio takes it); none for a body at rest.
+// (app/measures/roll_ratio.hpp, as [expect] max_roll_ratio takes it); none for a body at rest.
 Value rollRatio(const StudyMeasure& m, const View& v) {
   RollRatio roll(v.body().radius, m.axis);
   for (std::size_t r : v.rows()) roll.add(v.bodyVector(r, ".px", ".py", ".pz"), v.orientation(r));

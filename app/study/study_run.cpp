@@ -19,8 +19,8 @@
 #include "app/study/study_chart.hpp"
 #include "app/study/study_measure.hpp"
 #include "render/render_thread.hpp"
-#include "sim/effective_settings.hpp"
-#include "sim/settings.hpp"
+#include "sim/scene/effective_settings.hpp"
+#include "sim/scene/settings.hpp"
 
 namespace gf::app {
 namespace {
@@ -326,7 +326,7 @@ int collectStudy(const StudyPlan& plan, const std::string& runs_dir, const std::
   std::error_code ec;
   fs::create_directories(out, ec);
   if (ec) throw std::runtime_error(out + ": cannot create folder: " + ec.message());
-  writeFileAtomically((fs::path(out) / "results.csv").string(), resultsCsv(plan, rows));
+  writeFileAtomically((fs::path(out) / kResultsFile).string(), resultsCsv(plan, rows));
   writeFileAtomically((fs::path(out) / "report.md").string(), reportMd(plan, rows, parallel_times));
   render::writeChartPng(workPrecisionChart(plan, rows), (fs::path(out) / "work-precision.png").string());
   std::string also;

@@ -9,8 +9,8 @@
 #include <cstdio>
 #include <vector>
 
-#include "sim/snapshot.hpp"
-#include "sim/world.hpp"
+#include "sim/scene/snapshot.hpp"
+#include "sim/world/world.hpp"
 
 using gf::sim::Vec3;
 

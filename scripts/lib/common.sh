@@ -18,6 +18,7 @@ GF_PACKAGES=(
   python3-dev pybind11-dev python3-numpy python3-pytest  # the Python module (app/python/), its tests
   mkdocs                      # the manual (docs/), built with --strict by ctest Docs.*
   chromium                    # headless, for the browser tests (tests/browser/, ctest Browser.*)
+  nodejs                      # the page's script checked (node --check, ctest House.PageScriptParses)
   slurm-wlm munge             # a one-node Slurm cluster for the study test (tests/cluster/, ctest Cluster.*)
 )
 

@@ -15,8 +15,8 @@
 #include "app/scene/data_folder.hpp"
 #include "app/runs/run_reader.hpp"
 #include "app/scene/scene_file.hpp"
-#include "render/image.hpp"
-#include "sim/settings.hpp"
+#include "render/frames/image.hpp"
+#include "sim/scene/settings.hpp"
 #include "tests/app/run_helpers.hpp"
 
 namespace gf::app {

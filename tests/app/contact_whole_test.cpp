@@ -5,7 +5,7 @@
 #include <cmath>
 #include <numbers>
 
-#include "app/study/contact_whole.hpp"
+#include "app/measures/contact_whole.hpp"
 
 namespace gf::app {
 namespace {

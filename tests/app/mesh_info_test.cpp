@@ -9,7 +9,7 @@
 
 #include "app/scene/scene_file.hpp"
 #include "app/session/session.hpp"
-#include "sim/mesh_import.hpp"
+#include "sim/mesh/mesh_import.hpp"
 #include "tests/scratch.hpp"
 
 namespace gf::app {

@@ -23,11 +23,11 @@
 #include "app/scene/input_error.hpp"
 #include "app/scene/scene_file.hpp"
 #include "app/serve/live_view.hpp"
-#include "app/serve/steered_device.hpp"
+#include "app/device/steered_device.hpp"
 #include "app/serve/web_server.hpp"
-#include "app/session/live_command.hpp"
+#include "app/live/live_command.hpp"
 #include "app/session/session.hpp"
-#include "render/jpeg_stream.hpp"
+#include "render/frames/jpeg_stream.hpp"
 #include "tests/app/run_helpers.hpp"
 #include "tests/scratch.hpp"
 
@@ -409,6 +409,39 @@ TEST(Serve, AWebDeviceIsCheckedInTheSceneAndTheRunSaysWhatItNeeds) {
   EXPECT_FALSE(fs::exists(fs::path(o.out_dir) / "summary.json")) << "refused before anything is written";
 }
 
+// Polls frames and the state until the state's time is past `t` (each look after a new frame; a
+// 429, polled faster than the server takes, is asked again).
+void waitForStateAfter(httplib::Client& client, double t) {
+  for (;;) {
+    client.Get("/frame.jpg");
+    const auto state = client.Get("/state.json");
+    ASSERT_TRUE(state);
+    if (state->status == 429) continue;
+    const nlohmann::json j = nlohmann::json::parse(state->body);
+    if (j.contains("t") && j["t"].get<double>() > t) return;
+  }
+}
+
+// The answer to `command`, sent again while refused with 429 (an address's burst of requests
+// used up: it is back within milliseconds).
+std::string postCommand(httplib::Client& client, const char* command) {
+  for (;;) {
+    const auto res = client.Post("/command", command, "text/plain");
+    if (!res) return "no answer";
+    if (res->status != 429) return res->body;
+  }
+}
+
+// Waits until the server runs at least `n` commands (/server.json's commands_running).
+bool commandsRunning(httplib::Client& client, long n) {
+  for (;;) {
+    const auto stats = client.Get("/server.json");
+    if (!stats) return false;
+    if (stats->status == 429) continue;
+    if (nlohmann::json::parse(stats->body)["commands_running"].get<long>() >= n) return true;
+  }
+}
+
 // `live --serve`: the page's commands and standard input's run in turn on one session; `quit`
 // comes only from standard input; the end of input does not end the session, Ctrl-C does.
 TEST(Serve, LiveTakesThePagesCommandsInTurnWithStandardInput) {
@@ -441,50 +474,28 @@ TEST(Serve, LiveTakesThePagesCommandsInTurnWithStandardInput) {
   EXPECT_NE(answer.find("\"t\":0.15"), std::string::npos) << "stdin's step follows the page's: " << answer;
   // A frame of t = 0.15 s is drawn and its state served (each look after a new frame: the
   // address's burst of requests is kept for the commands below).
-  for (;;) {
-    client.Get("/frame.jpg");
-    const auto state = client.Get("/state.json");
-    ASSERT_TRUE(state);
-    if (state->status == 429) continue;  // polled faster than the server takes
-    const nlohmann::json j = nlohmann::json::parse(state->body);
-    if (j.contains("t") && j["t"].get<double>() > 0.149) break;
-  }
+  ASSERT_NO_FATAL_FAILURE(waitForStateAfter(client, 0.149));
   std::fclose(input);  // end of input: the session goes on for the page
   EXPECT_FALSE(test::lineWith(child.lines, "ok input ended; serving until Ctrl-C").empty());
   // The polling above may have used this address's burst of requests: a refused (429) command
   // was not taken and is sent again; it is back within milliseconds.
-  const auto post = [](httplib::Client& c, const char* command) {
-    for (;;) {
-      const auto res = c.Post("/command", command, "text/plain");
-      if (!res) return std::string("no answer");
-      if (res->status != 429) return res->body;
-    }
-  };
-  EXPECT_EQ(post(client, "state").rfind("ok {", 0), 0u);
+  EXPECT_EQ(postCommand(client, "state").rfind("ok {", 0), 0u);
   // Ctrl-C while the page has a long step running and another command waiting: the step stops,
   // both are answered, and the session ends (it used to wait for ever on the waiting one). Each
   // is sent once the server has taken the one before (/server.json's commands_running).
-  const auto running = [&](long n) {
-    for (;;) {
-      const auto stats = client.Get("/server.json");
-      if (!stats) return false;
-      if (stats->status == 429) continue;
-      if (nlohmann::json::parse(stats->body)["commands_running"].get<long>() >= n) return true;
-    }
-  };
   std::string long_step, waiting;
   std::thread first([&] {
     httplib::Client c("127.0.0.1", port);
     c.set_read_timeout(120, 0);
-    long_step = post(c, "step 10000000");
+    long_step = postCommand(c, "step 10000000");
   });
-  const bool one = running(1);
+  const bool one = commandsRunning(client, 1);
   std::thread second([&] {
     httplib::Client c("127.0.0.1", port);
     c.set_read_timeout(120, 0);
-    waiting = post(c, "state");
+    waiting = postCommand(c, "state");
   });
-  const bool both = one && running(2);
+  const bool both = one && commandsRunning(client, 2);
   kill(-child.pid, SIGINT);
   first.join();
   second.join();

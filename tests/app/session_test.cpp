@@ -22,7 +22,7 @@
 #include "app/scene/scene_file.hpp"
 #include "app/session/expectations.hpp"
 #include "app/study/study_measure.hpp"
-#include "render/image.hpp"
+#include "render/frames/image.hpp"
 #include "tests/app/run_helpers.hpp"
 #include "tests/scratch.hpp"
 

@@ -16,7 +16,7 @@
 #include "app/study/study.hpp"
 #include "app/study/study_chart.hpp"
 #include "app/study/study_measure.hpp"
-#include "sim/god_finger.hpp"
+#include "sim/patch/god_finger.hpp"
 #include "tests/app/run_helpers.hpp"
 #include "tests/scratch.hpp"
 

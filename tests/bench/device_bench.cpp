@@ -10,9 +10,9 @@
 #include <unistd.h>
 
 #include "app/scene/scene_file.hpp"
-#include "app/session/device_protocol.hpp"
-#include "app/session/udp_device.hpp"
-#include "tests/app/loopback.hpp"
+#include "app/device/device_protocol.hpp"
+#include "app/device/udp_device.hpp"
+#include "tests/app/device/loopback.hpp"
 
 namespace {
 

@@ -26,8 +26,8 @@
 #include <string>
 #include <vector>
 
-#include "sim/coupling.hpp"
-#include "sim/haptic_loop.hpp"
+#include "sim/scene/coupling.hpp"
+#include "sim/loop/haptic_loop.hpp"
 #include "tests/sim/test_context.hpp"
 
 namespace {

@@ -17,7 +17,7 @@
 #include "app/scene/data_folder.hpp"
 #include "app/scene/scene_file.hpp"
 #include "app/session/session.hpp"
-#include "sim/realtime.hpp"
+#include "sim/loop/realtime.hpp"
 
 namespace {
 

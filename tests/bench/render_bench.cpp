@@ -7,15 +7,15 @@
 
 #include "app/scene/data_folder.hpp"
 #include "app/scene/scene_file.hpp"
-#include "app/session/screenshots.hpp"
+#include "app/compare/screenshots.hpp"
 #include "app/session/session.hpp"
-#include "render/context.hpp"
-#include "render/gl.hpp"
-#include "render/gpu.hpp"
-#include "render/imgui_layer.hpp"
-#include "render/labels.hpp"
-#include "render/patch_insets.hpp"
-#include "render/scene_renderer.hpp"
+#include "render/gl/context.hpp"
+#include "render/gl/gl.hpp"
+#include "render/gl/gpu.hpp"
+#include "render/gl/imgui_layer.hpp"
+#include "render/overlay/labels.hpp"
+#include "render/overlay/patch_insets.hpp"
+#include "render/scene/scene_renderer.hpp"
 
 namespace {
 
@@ -34,7 +34,7 @@ Prepared prepare(const std::string& scene, double time) {
 
 // Draw + anti-aliasing + read-back of one frame, repeated; `aa` overrides the scene's choice.
 void drawFrames(benchmark::State& state, const char* scene, double time,
-                std::optional<sim::Antialiasing> aa = std::nullopt) {
+                std::optional<view::Antialiasing> aa = std::nullopt) {
   const Prepared p = prepare(scene, time);
   render::GlContext context;
   const render::FrameOutputSettings f = app::frameSettings(p.session, {});
@@ -60,12 +60,12 @@ BENCHMARK_CAPTURE(BM_RenderFrame1280x720, fig8, "fig8-pinch-oscillation", 4.0)->
 BENCHMARK_CAPTURE(BM_RenderFrame1280x720, concave_mesh, "concave-mesh", 1.5)->Unit(benchmark::kMillisecond);
 
 // What anti-aliasing costs: fig8 drawn without, with FXAA (the default) and with 4x MSAA.
-void BM_RenderAntialiasing1280x720(benchmark::State& state, sim::Antialiasing aa) {
+void BM_RenderAntialiasing1280x720(benchmark::State& state, view::Antialiasing aa) {
   drawFrames(state, "fig8-pinch-oscillation", 4.0, aa);
 }
-BENCHMARK_CAPTURE(BM_RenderAntialiasing1280x720, none, sim::Antialiasing::kNone)->Unit(benchmark::kMillisecond);
-BENCHMARK_CAPTURE(BM_RenderAntialiasing1280x720, fxaa, sim::Antialiasing::kFxaa)->Unit(benchmark::kMillisecond);
-BENCHMARK_CAPTURE(BM_RenderAntialiasing1280x720, msaa4, sim::Antialiasing::kMsaa)->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_RenderAntialiasing1280x720, none, view::Antialiasing::kNone)->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_RenderAntialiasing1280x720, fxaa, view::Antialiasing::kFxaa)->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_RenderAntialiasing1280x720, msaa4, view::Antialiasing::kMsaa)->Unit(benchmark::kMillisecond);
 
 void BM_PngEncode1280x720(benchmark::State& state) {
   const Prepared p = prepare("fig8-pinch-oscillation", 4.0);

@@ -4,9 +4,9 @@
 
 #include <algorithm>
 
-#include "sim/god_finger.hpp"
-#include "sim/primitives.hpp"
-#include "sim/snapshot.hpp"
+#include "sim/patch/god_finger.hpp"
+#include "sim/mesh/primitives.hpp"
+#include "sim/scene/snapshot.hpp"
 #include "tests/sim/test_context.hpp"
 
 namespace {

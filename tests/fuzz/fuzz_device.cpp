@@ -14,7 +14,7 @@
 #include <cstdlib>
 #include <span>
 
-#include "app/session/device_protocol.hpp"
+#include "app/device/device_protocol.hpp"
 
 namespace {
 

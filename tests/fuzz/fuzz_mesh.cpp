@@ -8,7 +8,7 @@
 #include <fstream>
 #include <string>
 
-#include "sim/mesh_import.hpp"
+#include "sim/mesh/mesh_import.hpp"
 
 namespace {
 

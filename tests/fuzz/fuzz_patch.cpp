@@ -12,8 +12,8 @@
 #include <numbers>
 #include <vector>
 
-#include "sim/god_finger.hpp"
-#include "sim/mesh.hpp"
+#include "sim/patch/god_finger.hpp"
+#include "sim/mesh/mesh.hpp"
 
 namespace {
 
@@ -106,7 +106,7 @@ gf::sim::PatchContact decodeContact(FuzzedDataProvider& in, const gf::sim::Mesh&
   return c;
 }
 
-// Step 3: every live setting within the range sim/settings.cpp accepts (fingerSettings), the
+// Step 3: every live setting within the range sim/scene/settings.cpp accepts (fingerSettings), the
 // filled patch's rings, and the effect switches.
 gf::sim::PatchSettings decodeSettings(FuzzedDataProvider& in) {
   gf::sim::PatchSettings s;

@@ -10,9 +10,9 @@
 #include <stdexcept>
 #include <string>
 
-#include "sim/god_finger.hpp"
-#include "sim/mesh.hpp"
-#include "sim/mesh_import.hpp"
+#include "sim/patch/god_finger.hpp"
+#include "sim/mesh/mesh.hpp"
+#include "sim/mesh/mesh_import.hpp"
 #include "tests/scratch.hpp"
 
 namespace gf::sim {

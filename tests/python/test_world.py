@@ -90,7 +90,7 @@ def test_snapshot_gives_each_sgos_position_and_load_as_arrays():
     (box,) = [b for b in snap["bodies"] if b["name"] == "box"]
     assert contact["sgos"][:, 1] == pytest.approx(box["position"][1] + 0.02, abs=1e-6)
     assert np.linalg.norm(contact["sgos"] - contact["point"], axis=1).max() <= contact["radius"] * 1.001
-    # The points' loads add up to the contact's force (sim/snapshot.hpp's PointLoad).
+    # The points' loads add up to the contact's force (sim/scene/snapshot.hpp's PointLoad).
     n = contact["outward_normal"]
     total = (-np.outer(contact["normal_loads"], n) + contact["tangential_loads"]).sum(axis=0)
     total += -contact["point_load"]["normal"] * n + contact["point_load"]["tangential"]

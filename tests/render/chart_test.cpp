@@ -1,7 +1,7 @@
 // Charts drawn to PNG through writeChartPng: where points land on fitted log axes, what is not
 // drawn (values a log axis cannot show, unlabelled series in the legend, labels off the plot),
 // fixed y ranges, coinciding curves, the cursor's label, bands and notes. Positions are found from the plot's frame in the image.
-#include "render/chart.hpp"
+#include "render/chart/chart.hpp"
 
 #include <gtest/gtest.h>
 
@@ -11,7 +11,7 @@
 #include <string>
 #include <vector>
 
-#include "render/image.hpp"
+#include "render/frames/image.hpp"
 #include "render/render_thread.hpp"
 #include "tests/scratch.hpp"
 

@@ -1,14 +1,14 @@
 // How the pictures read a contact's load, without GL: the viridis scale, each point's load over
 // the contact's mean point load, the contact's force split along its normal, and the sizes of
 // the labels' text and scale bars.
-#include "render/contact_load.hpp"
+#include "render/scene/contact_load.hpp"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
 
-#include "render/labels.hpp"
-#include "render/patch_insets.hpp"
+#include "render/overlay/labels.hpp"
+#include "render/overlay/patch_insets.hpp"
 
 namespace gf::render {
 namespace {

@@ -1,11 +1,11 @@
 // The GL context: which thread may use GL.
-#include "render/context.hpp"
+#include "render/gl/context.hpp"
 
 #include <gtest/gtest.h>
 
 #include <thread>
 
-#include "render/gpu.hpp"
+#include "render/gl/gpu.hpp"
 
 namespace gf::render {
 namespace {

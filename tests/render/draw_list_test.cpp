@@ -4,7 +4,7 @@
 // springs before the patches so these cover them, ghosts as outlines), dots coloured by load with
 // slipping ones ringed, arrows kept inside the view, what the switches leave out, and that a
 // rebuild is the same.
-#include "render/draw_list.hpp"
+#include "render/scene/draw_list.hpp"
 
 #include <gtest/gtest.h>
 
@@ -13,10 +13,10 @@
 
 #include "app/scene/data_folder.hpp"
 #include "app/scene/scene_file.hpp"
-#include "render/camera.hpp"
-#include "render/contact_load.hpp"
-#include "render/geometry.hpp"
-#include "sim/world.hpp"
+#include "render/scene/camera.hpp"
+#include "render/scene/contact_load.hpp"
+#include "render/scene/geometry.hpp"
+#include "sim/world/world.hpp"
 
 namespace gf::render {
 namespace {

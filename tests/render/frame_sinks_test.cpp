@@ -1,6 +1,6 @@
 // The PNG sequence sink: every frame a file named by its index, equal frames written from the
 // bytes of the one before without encoding them again.
-#include "render/frame_sinks.hpp"
+#include "render/frames/frame_sinks.hpp"
 
 #include <gtest/gtest.h>
 

@@ -1,5 +1,5 @@
 // Image comparison of the visual-regression test.
-#include "render/image_compare.hpp"
+#include "render/frames/image_compare.hpp"
 
 #include <gtest/gtest.h>
 

@@ -1,5 +1,5 @@
 // PNG files: encoding round trip and errors that name the file.
-#include "render/image.hpp"
+#include "render/frames/image.hpp"
 
 #include <gtest/gtest.h>
 

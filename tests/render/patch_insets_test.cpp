@@ -1,6 +1,6 @@
 // The patch_insets effect's geometry, without GL: where each finger's inset goes in a frame, and
 // the close-up view of one finger's contact (its contacts alone, the camera down the normal).
-#include "render/patch_insets.hpp"
+#include "render/overlay/patch_insets.hpp"
 
 #include <gtest/gtest.h>
 
@@ -9,7 +9,7 @@
 
 #include "app/scene/data_folder.hpp"
 #include "app/scene/scene_file.hpp"
-#include "sim/world.hpp"
+#include "sim/world/world.hpp"
 
 namespace gf::render {
 namespace {
@@ -45,7 +45,7 @@ TEST(PatchInsets, TheCloseUpLooksDownTheNormalAtOneFingersContact) {
   sim::Snapshot before;
   world.snapshot(before);
   sim::Snapshot only;
-  sim::Camera camera;
+  view::Camera camera;
   EXPECT_FALSE(contactCloseUp(session.scene, before, 0, only, camera)) << "nothing touched at t = 0";
   for (int k = 0; k < 800; ++k) {  // squeezing
     for (std::size_t i = 0; i < devices.size(); ++i) samples[i] = devices[i].sample(world.time());

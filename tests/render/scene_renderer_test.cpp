@@ -1,19 +1,19 @@
 // Frames drawn by the scene renderer: anti-aliasing, the cached backdrop, close-ups without the
 // proxies' shadows, the time stamp, and the overlay's layout in a 640x360 frame.
-#include "render/scene_renderer.hpp"
+#include "render/scene/scene_renderer.hpp"
 
 #include <gtest/gtest.h>
 
 #include <filesystem>
 
 #include "app/scene/scene_file.hpp"
-#include "app/session/screenshots.hpp"
+#include "app/compare/screenshots.hpp"
 #include "app/session/session.hpp"
-#include "render/context.hpp"
-#include "render/gpu.hpp"
-#include "render/image.hpp"
-#include "render/overlay.hpp"
-#include "render/patch_insets.hpp"
+#include "render/gl/context.hpp"
+#include "render/gl/gpu.hpp"
+#include "render/frames/image.hpp"
+#include "render/overlay/overlay.hpp"
+#include "render/overlay/patch_insets.hpp"
 #include "render/render_thread.hpp"
 
 namespace gf {
@@ -28,14 +28,14 @@ class Frames : public ::testing::Test {
         settings_(app::frameSettings(session_, {})),
         renderer_(session_.scene, settings_.scene) {}
 
-  render::Image draw(render::Framebuffer& frame, const sim::Camera& camera) {
+  render::Image draw(render::Framebuffer& frame, const view::Camera& camera) {
     frame.bind();
     frame.resolve(renderer_.draw(snapshot_, camera, frame.width(), frame.height()));
     render::Image image;
     frame.read(image);
     return image;
   }
-  render::Image draw(sim::Antialiasing aa) {
+  render::Image draw(view::Antialiasing aa) {
     render::Framebuffer frame(kWidth, kHeight, aa);
     return draw(frame, settings_.camera);
   }
@@ -51,8 +51,8 @@ class Frames : public ::testing::Test {
 // Anti-aliasing only touches pixels at edges: a few percent of the frame change, and none in
 // the top-left corner (sky and far ground, where the frame has no geometric edge).
 TEST_F(Frames, AntialiasingChangesOnlyEdgePixels) {
-  const render::Image none = draw(sim::Antialiasing::kNone);
-  for (const sim::Antialiasing aa : {sim::Antialiasing::kFxaa, sim::Antialiasing::kMsaa}) {
+  const render::Image none = draw(view::Antialiasing::kNone);
+  for (const view::Antialiasing aa : {view::Antialiasing::kFxaa, view::Antialiasing::kMsaa}) {
     const render::Image smooth = draw(aa);
     ASSERT_EQ(smooth.rgb.size(), none.rgb.size());
     int changed = 0, changed_corner = 0;
@@ -65,19 +65,19 @@ TEST_F(Frames, AntialiasingChangesOnlyEdgePixels) {
       changed_corner += differs && x < kWidth / 4 && y < kHeight / 2;
     }
     const double share = double(changed) / (kWidth * kHeight);
-    EXPECT_GT(share, 0.002) << sim::antialiasingName(aa);
-    EXPECT_LT(share, 0.08) << sim::antialiasingName(aa);
-    EXPECT_EQ(changed_corner, 0) << sim::antialiasingName(aa);
+    EXPECT_GT(share, 0.002) << view::antialiasingName(aa);
+    EXPECT_LT(share, 0.08) << view::antialiasingName(aa);
+    EXPECT_EQ(changed_corner, 0) << view::antialiasingName(aa);
   }
 }
 
 // The backdrop is cached per camera: drawing again gives the same frame, and a frame after a
 // different camera's frame is the same as before (the cache was rebuilt for each view).
 TEST_F(Frames, CachedBackdropFollowsTheCamera) {
-  render::Framebuffer frame(kWidth, kHeight, sim::Antialiasing::kFxaa);
+  render::Framebuffer frame(kWidth, kHeight, view::Antialiasing::kFxaa);
   const render::Image first = draw(frame, settings_.camera);
   EXPECT_EQ(draw(frame, settings_.camera).rgb, first.rgb);
-  sim::Camera other = settings_.camera;
+  view::Camera other = settings_.camera;
   other.position += sim::Vec3(0.05, 0.02, 0.0);
   const render::Image moved = draw(frame, other);
   EXPECT_NE(moved.rgb, first.rgb);
@@ -93,10 +93,10 @@ TEST(CloseUps, AViewWithoutFingersShowsNoProxyShadow) {
   const sim::Snapshot snapshot = app::snapshotAt(session, 2.5);
   const render::FrameOutputSettings settings = app::frameSettings(session, {});
   render::SceneRenderer renderer(session.scene, settings.scene);
-  render::Framebuffer frame(320, 180, sim::Antialiasing::kNone);
-  render::Framebuffer inset(120, 120, sim::Antialiasing::kNone);
+  render::Framebuffer frame(320, 180, view::Antialiasing::kNone);
+  render::Framebuffer inset(120, 120, view::Antialiasing::kNone);
   sim::Snapshot only;
-  sim::Camera camera;
+  view::Camera camera;
   ASSERT_TRUE(render::contactCloseUp(session.scene, snapshot, 1, only, camera));
   const auto close = [&] {
     render::RenderSettings s = settings.scene;
@@ -195,7 +195,7 @@ TEST(Stills, TheOverlayFitsTheFrame) {
   const app::SessionDesc session = app::loadSceneFile(std::string(GF_SOURCE_DIR) + "/assets/scenes/overlay-demo.toml");
   const sim::Snapshot snapshot = app::snapshotAt(session, 0.5);
   for (const auto& [w, h] : {std::pair{640, 360}, std::pair{1280, 720}}) {
-    render::Framebuffer frame(w, h, sim::Antialiasing::kNone);
+    render::Framebuffer frame(w, h, view::Antialiasing::kNone);
     frame.bind();
     render::Overlay overlay(session.scene, {}, w, h);
     overlay.draw(snapshot, {});

@@ -7,8 +7,8 @@
 #include <filesystem>
 #include <ostream>
 
-#include "app/session/screenshots.hpp"
-#include "render/image_compare.hpp"
+#include "app/compare/screenshots.hpp"
+#include "render/frames/image_compare.hpp"
 
 namespace gf::app {
 

@@ -2,7 +2,7 @@
 // from kLoadStart on: the scene of the contact-accuracy and allocation tests.
 #pragma once
 
-#include "sim/scene_desc.hpp"
+#include "sim/scene/scene_desc.hpp"
 
 namespace gf::sim::pressed_box {
 

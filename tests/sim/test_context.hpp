@@ -9,8 +9,8 @@
 
 #include "app/scene/data_folder.hpp"
 #include "app/scene/scene_file.hpp"
-#include "sim/haptic_loop.hpp"
-#include "sim/world.hpp"
+#include "sim/loop/haptic_loop.hpp"
+#include "sim/world/world.hpp"
 
 namespace gf::test_support {
 

@@ -1,0 +1,43 @@
+#include "app/device/steered_device.hpp"
+
+namespace gf::app {
+
+void SteeredDevice::moveTo(const sim::Vec3& target, double seconds) {
+  std::lock_guard lock(mutex_);
+  posted_target_ = target;
+  posted_seconds_ = seconds;
+  posted_.store(true, std::memory_order_release);
+}
+
+sim::DeviceSample SteeredDevice::sample(double t) {
+  if (posted_.load(std::memory_order_acquire)) {
+    std::unique_lock lock(mutex_, std::try_to_lock);
+    if (lock.owns_lock()) {  // otherwise taken at the next step
+      from_ = steered_ ? last_ : track_.sample(t).position;
+      to_ = posted_target_;
+      t0_ = t;
+      t1_ = t + posted_seconds_;
+      steered_ = true;
+      posted_.store(false, std::memory_order_relaxed);
+      moves_.fetch_add(1, std::memory_order_relaxed);
+    }
+  }
+  if (!steered_) {
+    const sim::DeviceSample s = track_.sample(t);
+    last_ = s.position;
+    return s;
+  }
+  sim::DeviceSample s;
+  s.orientation = track_.sample(t).orientation;  // the page moves the position only
+  if (t >= t1_) {
+    s.position = to_;
+  } else {
+    const double span = t1_ - t0_;
+    s.position = from_ + (to_ - from_) * ((t - t0_) / span);
+    s.velocity = (to_ - from_) / span;
+  }
+  last_ = s.position;
+  return s;
+}
+
+}  // namespace gf::app

@@ -1,0 +1,47 @@
+// A finger's device that the browser view (or a `move` posted to it) steers while a realtime
+// session runs: the scene's track until the first move, then straight lines to each target;
+// its orientation stays the track's (for a `web` device its tilt) whatever the moves.
+// The server thread posts targets; the haptic thread samples without blocking or allocating.
+#pragma once
+
+#include <atomic>
+#include <mutex>
+
+#include "sim/scene/device.hpp"
+
+namespace gf::app {
+
+class SteeredDevice final : public sim::DeviceSource {
+ public:
+  /// `track`: the scene's device track (kept by reference: it outlives the run). `web`: the
+  /// finger's device is the page's pointer (`[fingers.NAME.device] web = true`).
+  SteeredDevice(const sim::DeviceTrack& track, bool web) : track_(track), web_(web) {}
+
+  /// From the next step on, moves the device from where it is straight to `target` (m) over
+  /// `seconds` (0: at once). Any thread but the haptic one.
+  void moveTo(const sim::Vec3& target, double seconds);
+
+  sim::DeviceSample sample(double t) override;
+  /// The browser's pointer renders no force: the force the World sends is the force told.
+  sim::Vec3 feedback(double, const sim::DeviceFeedback& f) override { return f.force; }
+
+  bool web() const { return web_; }
+  /// Moves taken by the haptic thread so far. Any thread.
+  long moves() const { return moves_.load(std::memory_order_relaxed); }
+
+ private:
+  const sim::DeviceTrack& track_;
+  const bool web_;
+  // Posted by the server, taken by the haptic thread (try_lock: it never waits).
+  std::mutex mutex_;
+  std::atomic<bool> posted_{false};
+  sim::Vec3 posted_target_ = sim::Vec3::Zero();
+  double posted_seconds_ = 0.0;
+  // Haptic thread only.
+  bool steered_ = false;
+  sim::Vec3 from_ = sim::Vec3::Zero(), to_ = sim::Vec3::Zero(), last_ = sim::Vec3::Zero();
+  double t0_ = 0.0, t1_ = 0.0;
+  std::atomic<long> moves_{0};
+};
+
+}  // namespace gf::app

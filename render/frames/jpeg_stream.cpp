@@ -1,0 +1,137 @@
+#include "render/frames/jpeg_stream.hpp"
+
+#include <turbojpeg.h>
+
+#include <pthread.h>
+#include <sys/resource.h>
+#include <unistd.h>
+
+#include "render/frames/frame_sinks.hpp"
+
+namespace gf::render {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+}  // namespace
+
+// libjpeg-turbo's compressor: made by the constructor (which throws when it cannot), used by the
+// encoder thread only.
+class JpegStream::Compressor {
+ public:
+  Compressor() : handle_(tjInitCompress()) {
+    if (!handle_) throw ImageError(std::string("libjpeg-turbo: ") + tjGetErrorStr2(nullptr));
+  }
+  ~Compressor() { tjDestroy(handle_); }
+  Compressor(const Compressor&) = delete;
+  Compressor& operator=(const Compressor&) = delete;
+
+  // `image` as a baseline JPEG (4:2:0, fast DCT) into `out`, whose storage is reused.
+  void encode(const Image& image, int quality, std::vector<std::uint8_t>& out) {
+    out.resize(tjBufSize(image.width, image.height, TJSAMP_420));
+    unsigned char* data = out.data();
+    unsigned long size = out.size();
+    if (tjCompress2(handle_, image.rgb.data(), image.width, 0, image.height, TJPF_RGB, &data, &size, TJSAMP_420,
+                    quality, TJFLAG_FASTDCT | TJFLAG_NOREALLOC) != 0) {
+      throw ImageError(std::string("libjpeg-turbo: ") + tjGetErrorStr2(handle_));
+    }
+    out.resize(size);
+  }
+
+ private:
+  tjhandle handle_;
+};
+
+JpegStream::JpegStream(int quality, bool background) : quality_(quality), background_(background) {
+  if (quality < 1 || quality > 100) throw ImageError("JPEG quality must be 1..100");
+  compressor_ = std::make_unique<Compressor>();
+  thread_ = std::thread([this] { run(); });
+}
+
+JpegStream::~JpegStream() { close(); }
+
+void JpegStream::push(const Image& image, long number, double time) {
+  std::lock_guard lock(mutex_);
+  ++stats_.pushed;
+  if (closing_ || (waiting_ == 0 && newest_.number > 0)) return;
+  pending_.width = image.width;
+  pending_.height = image.height;
+  pending_.rgb.assign(image.rgb.begin(), image.rgb.end());
+  pending_time_ = time;
+  pending_number_ = number;
+  has_pending_ = true;
+  changed_.notify_all();
+}
+
+JpegFrame JpegStream::newest() const {
+  std::lock_guard lock(mutex_);
+  return newest_;
+}
+
+JpegFrame JpegStream::waitNewer(long after, std::chrono::milliseconds timeout) {
+  std::unique_lock lock(mutex_);
+  ++waiting_;
+  changed_.wait_for(lock, timeout, [&] { return newest_.number > after || closing_; });
+  --waiting_;
+  return newest_;
+}
+
+void JpegStream::close() {
+  {
+    std::lock_guard lock(mutex_);
+    closing_ = true;
+    changed_.notify_all();
+  }
+  if (thread_.joinable()) thread_.join();
+}
+
+int JpegStream::waiting() const {
+  std::lock_guard lock(mutex_);
+  return waiting_;
+}
+
+bool JpegStream::closed() const {
+  std::lock_guard lock(mutex_);
+  return closing_;
+}
+
+JpegStats JpegStream::stats() const {
+  std::lock_guard lock(mutex_);
+  return stats_;
+}
+
+void JpegStream::run() {
+  pthread_setname_np(pthread_self(), "gf-jpeg");
+  if (background_) setpriority(PRIO_PROCESS, static_cast<id_t>(gettid()), kBackgroundNice);
+  Image frame;
+  std::vector<std::uint8_t> bytes;
+  for (;;) {
+    double time = 0.0;
+    long number = 0;
+    {
+      std::unique_lock lock(mutex_);
+      changed_.wait(lock, [&] { return has_pending_ || closing_; });
+      if (closing_) return;
+      std::swap(frame, pending_);
+      time = pending_time_;
+      number = pending_number_;
+      has_pending_ = false;
+    }
+    const auto begin = Clock::now();
+    try {
+      compressor_->encode(frame, quality_, bytes);
+    } catch (const ImageError&) {
+      continue;  // a frame that does not encode is skipped; the next one may
+    }
+    auto shared = std::make_shared<const std::vector<std::uint8_t>>(bytes);
+    const double seconds = std::chrono::duration<double>(Clock::now() - begin).count();
+    std::lock_guard lock(mutex_);
+    newest_ = {std::move(shared), number, time};
+    ++stats_.encoded;
+    stats_.encode_seconds += seconds;
+    stats_.bytes += static_cast<long>(newest_.bytes->size());
+    changed_.notify_all();
+  }
+}
+
+}  // namespace gf::render

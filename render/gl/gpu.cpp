@@ -1,0 +1,404 @@
+#include "render/gl/gpu.hpp"
+
+#include <algorithm>
+#include <cstring>
+#include <string_view>
+#include <unordered_map>
+
+#include "render/gl/context.hpp"
+#include "render/gl/gl.hpp"
+#include "render/gl/shaders.hpp"
+
+namespace gf::render {
+namespace {
+
+unsigned compile(const char* name, GLenum kind, const char* source, const char* defines) {
+  if (std::strncmp(source, "#version", 8) == 0) source = std::strchr(source, '\n');
+  const char* parts[] = {"#version 330 core\n", defines, "\n", source ? source : ""};
+  const unsigned shader = glCreateShader(kind);
+  glShaderSource(shader, 4, parts, nullptr);
+  glCompileShader(shader);
+  GLint ok = 0;
+  glGetShaderiv(shader, GL_COMPILE_STATUS, &ok);
+  if (ok) return shader;
+  char log[2048] = {};
+  glGetShaderInfoLog(shader, sizeof log, nullptr, log);
+  glDeleteShader(shader);
+  std::string message = name;
+  throw GlError(message.append(kind == GL_VERTEX_SHADER ? " vertex" : " fragment")
+                    .append(" shader: ").append(log));
+}
+
+}  // namespace
+
+Program::Program(const char* name, const char* vertex_source, const char* fragment_source,
+                 const char* defines) {
+  GF_ASSERT_GL_THREAD();
+  const unsigned vs = compile(name, GL_VERTEX_SHADER, vertex_source, defines);
+  unsigned fs = 0;
+  try {
+    fs = compile(name, GL_FRAGMENT_SHADER, fragment_source, defines);
+  } catch (const GlError&) {
+    glDeleteShader(vs);
+    throw;
+  }
+  id_ = glCreateProgram();
+  glAttachShader(id_, vs);
+  glAttachShader(id_, fs);
+  glLinkProgram(id_);
+  glDeleteShader(vs);
+  glDeleteShader(fs);
+  GLint ok = 0;
+  glGetProgramiv(id_, GL_LINK_STATUS, &ok);
+  if (ok) return;
+  char log[2048] = {};
+  glGetProgramInfoLog(id_, sizeof log, nullptr, log);
+  glDeleteProgram(id_);
+  std::string message = name;
+  throw GlError(message.append(" program: ").append(log));
+}
+
+Program::~Program() {
+  GF_ASSERT_GL_THREAD();
+  glDeleteProgram(id_);
+}
+
+void Program::use() const {
+  GF_ASSERT_GL_THREAD();
+  glUseProgram(id_);
+}
+
+int Program::uniform(const char* name) const { return glGetUniformLocation(id_, name); }
+
+GpuMesh::GpuMesh(const std::vector<Vertex>& vertices, bool dynamic) : dynamic_(dynamic) {
+  GF_ASSERT_GL_THREAD();
+  glGenVertexArrays(1, &vao_);
+  glGenBuffers(1, &vbo_);
+  glBindVertexArray(vao_);
+  glBindBuffer(GL_ARRAY_BUFFER, vbo_);
+  glEnableVertexAttribArray(0);
+  glVertexAttribPointer(0, 3, GL_FLOAT, GL_FALSE, sizeof(Vertex), nullptr);
+  glEnableVertexAttribArray(1);
+  glVertexAttribPointer(1, 3, GL_FLOAT, GL_FALSE, sizeof(Vertex),
+                        reinterpret_cast<const void*>(offsetof(Vertex, normal)));
+  if (!dynamic && !vertices.empty()) {
+    // Static meshes share equal vertices through an index buffer: llvmpipe transforms each
+    // distinct vertex once instead of three times per smooth-shaded corner.
+    std::vector<Vertex> unique;
+    std::vector<std::uint32_t> indices;
+    indices.reserve(vertices.size());
+    std::unordered_map<std::string_view, std::uint32_t> seen;
+    seen.reserve(vertices.size());
+    for (const Vertex& v : vertices) {
+      const std::string_view key(reinterpret_cast<const char*>(&v), sizeof(Vertex));
+      const auto [it, added] = seen.try_emplace(key, static_cast<std::uint32_t>(unique.size()));
+      if (added) unique.push_back(v);
+      indices.push_back(it->second);
+    }
+    glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(unique.size() * sizeof(Vertex)), unique.data(), GL_STATIC_DRAW);
+    glGenBuffers(1, &ebo_);
+    glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, ebo_);
+    glBufferData(GL_ELEMENT_ARRAY_BUFFER, static_cast<GLsizeiptr>(indices.size() * sizeof(std::uint32_t)),
+                 indices.data(), GL_STATIC_DRAW);
+    count_ = static_cast<int>(indices.size());
+  }
+  glBindVertexArray(0);
+}
+
+GpuMesh::~GpuMesh() {
+  GF_ASSERT_GL_THREAD();
+  glDeleteBuffers(1, &vbo_);
+  if (ebo_) glDeleteBuffers(1, &ebo_);
+  glDeleteVertexArrays(1, &vao_);
+}
+
+void GpuMesh::upload(const std::vector<Vertex>& vertices) {
+  GF_ASSERT_GL_THREAD();
+  if (!dynamic_) throw GlError("upload() on a static mesh");
+  glBindBuffer(GL_ARRAY_BUFFER, vbo_);
+  const std::size_t bytes = vertices.size() * sizeof(Vertex);
+  if (bytes > capacity_) {
+    capacity_ = std::max<std::size_t>(bytes, 2 * capacity_);
+    glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(capacity_), nullptr, GL_STREAM_DRAW);
+  }
+  if (bytes > 0) glBufferSubData(GL_ARRAY_BUFFER, 0, static_cast<GLsizeiptr>(bytes), vertices.data());
+  count_ = static_cast<int>(vertices.size());
+}
+
+void GpuMesh::draw(unsigned mode) const {
+  GF_ASSERT_GL_THREAD();
+  if (count_ == 0) return;
+  glBindVertexArray(vao_);
+  if (ebo_) {
+    glDrawElements(mode, count_, GL_UNSIGNED_INT, nullptr);
+  } else {
+    glDrawArrays(mode, 0, count_);
+  }
+  glBindVertexArray(0);
+}
+
+void GpuMesh::draw(unsigned mode, int first, int count) const {
+  GF_ASSERT_GL_THREAD();
+  GF_ASSERT(!ebo_ && first >= 0 && first + count <= count_ && "a range of a dynamic mesh's vertices");
+  if (count <= 0) return;
+  glBindVertexArray(vao_);
+  glDrawArrays(mode, first, count);
+  glBindVertexArray(0);
+}
+
+namespace {
+
+unsigned renderbuffer(GLenum format, int width, int height, int samples) {
+  unsigned id = 0;
+  glGenRenderbuffers(1, &id);
+  glBindRenderbuffer(GL_RENDERBUFFER, id);
+  // Mesa rounds a request for one sample up to its smallest multisample count: ask for none.
+  if (samples > 1) {
+    glRenderbufferStorageMultisample(GL_RENDERBUFFER, samples, format, width, height);
+  } else {
+    glRenderbufferStorage(GL_RENDERBUFFER, format, width, height);
+  }
+  return id;
+}
+
+// A single-level 2D texture with linear filtering and the given edge behaviour.
+unsigned texture2D(GLenum internal_format, int width, int height, GLenum format, GLenum type, GLenum wrap) {
+  unsigned id = 0;
+  glGenTextures(1, &id);
+  glBindTexture(GL_TEXTURE_2D, id);
+  glTexImage2D(GL_TEXTURE_2D, 0, static_cast<GLint>(internal_format), width, height, 0, format, type, nullptr);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, static_cast<GLint>(wrap));
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, static_cast<GLint>(wrap));
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAX_LEVEL, 0);
+  return id;
+}
+
+void requireComplete(const char* what) {
+  if (glCheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE) {
+    throw GlError(std::string(what) + " framebuffer incomplete");
+  }
+}
+
+// A framebuffer with an RGBA8 colour and a 24-bit depth renderbuffer of `samples` each; returns
+// the framebuffer and leaves it bound.
+unsigned colourDepthTarget(int width, int height, int samples, unsigned& colour, unsigned& depth, const char* what) {
+  unsigned fbo = 0;
+  glGenFramebuffers(1, &fbo);
+  glBindFramebuffer(GL_FRAMEBUFFER, fbo);
+  colour = renderbuffer(GL_RGBA8, width, height, samples);
+  glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, colour);
+  depth = renderbuffer(GL_DEPTH_COMPONENT24, width, height, samples);
+  glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, depth);
+  requireComplete(what);
+  return fbo;
+}
+
+}  // namespace
+
+// The FXAA pass: its program and a colour texture holding a copy of the pixels it filters.
+struct Framebuffer::Fxaa {
+  Program program{"fxaa", shaders::kFullScreenVertex, shaders::kFxaaFragment};
+  unsigned vao = 0, fbo = 0, copy = 0;
+  Fxaa(int width, int height) {
+    glGenVertexArrays(1, &vao);
+    copy = texture2D(GL_RGBA8, width, height, GL_RGBA, GL_UNSIGNED_BYTE, GL_CLAMP_TO_EDGE);
+    glGenFramebuffers(1, &fbo);
+    glBindFramebuffer(GL_FRAMEBUFFER, fbo);
+    glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, copy, 0);
+    requireComplete("fxaa copy");
+  }
+  ~Fxaa() {
+    glDeleteFramebuffers(1, &fbo);
+    glDeleteTextures(1, &copy);
+    glDeleteVertexArrays(1, &vao);
+  }
+};
+
+Framebuffer::Framebuffer(int width, int height, view::Antialiasing aa, int msaa_samples)
+    : width_(width), height_(height), aa_(aa) {
+  GF_ASSERT_GL_THREAD();
+  if (width < 1 || height < 1 || width > 4096 || height > 4096) {
+    throw GlError("frame size must be 1..4096 pixels each way");
+  }
+  const int samples = aa == view::Antialiasing::kMsaa ? std::clamp(msaa_samples, 2, 8) : 1;
+  scene_fbo_ = colourDepthTarget(width, height, samples, scene_colour_, scene_depth_, "scene");
+  if (aa == view::Antialiasing::kMsaa) {
+    glGenFramebuffers(1, &output_fbo_);
+    glBindFramebuffer(GL_FRAMEBUFFER, output_fbo_);
+    output_colour_ = renderbuffer(GL_RGBA8, width, height, 1);
+    glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, output_colour_);
+    requireComplete("output");
+  }
+  if (aa == view::Antialiasing::kFxaa) fxaa_ = std::make_unique<Fxaa>(width, height);
+  glBindFramebuffer(GL_FRAMEBUFFER, 0);
+  checkGl("framebuffer");
+}
+
+Framebuffer::~Framebuffer() {
+  GF_ASSERT_GL_THREAD();
+  fxaa_.reset();
+  const unsigned fbos[] = {scene_fbo_, output_fbo_};
+  glDeleteFramebuffers(2, fbos);
+  const unsigned buffers[] = {scene_colour_, scene_depth_, output_colour_};
+  glDeleteRenderbuffers(3, buffers);
+}
+
+void Framebuffer::bind() {
+  GF_ASSERT_GL_THREAD();
+  glBindFramebuffer(GL_FRAMEBUFFER, scene_fbo_);
+  glViewport(0, 0, width_, height_);
+  resolved_ = false;
+}
+
+void Framebuffer::resolve(const std::optional<PixelRect>& edges) {
+  GF_ASSERT_GL_THREAD();
+  resolved_ = true;
+  glViewport(0, 0, width_, height_);
+  if (aa_ == view::Antialiasing::kMsaa) {
+    glBindFramebuffer(GL_READ_FRAMEBUFFER, scene_fbo_);
+    glBindFramebuffer(GL_DRAW_FRAMEBUFFER, output_fbo_);
+    glBlitFramebuffer(0, 0, width_, height_, 0, 0, width_, height_, GL_COLOR_BUFFER_BIT, GL_NEAREST);
+    glBindFramebuffer(GL_FRAMEBUFFER, output_fbo_);
+    return;
+  }
+  glBindFramebuffer(GL_FRAMEBUFFER, scene_fbo_);
+  if (aa_ == view::Antialiasing::kNone) return;
+  PixelRect r = edges.value_or(PixelRect{0, 0, width_, height_});
+  r = {std::max(r.x0 - 2, 0), std::max(r.y0 - 2, 0), std::min(r.x1 + 2, width_), std::min(r.y1 + 2, height_)};
+  if (r.empty()) return;
+  // The filter reads at most 4 pixels away: copy a margin of 8 around what it writes.
+  const PixelRect c{std::max(r.x0 - 8, 0), std::max(r.y0 - 8, 0), std::min(r.x1 + 8, width_),
+                    std::min(r.y1 + 8, height_)};
+  glBindFramebuffer(GL_READ_FRAMEBUFFER, scene_fbo_);
+  glBindFramebuffer(GL_DRAW_FRAMEBUFFER, fxaa_->fbo);
+  glBlitFramebuffer(c.x0, c.y0, c.x1, c.y1, c.x0, c.y0, c.x1, c.y1, GL_COLOR_BUFFER_BIT, GL_NEAREST);
+  glBindFramebuffer(GL_FRAMEBUFFER, scene_fbo_);
+  GLboolean depth_test = GL_FALSE, blend = GL_FALSE;
+  glGetBooleanv(GL_DEPTH_TEST, &depth_test);
+  glGetBooleanv(GL_BLEND, &blend);
+  glDisable(GL_DEPTH_TEST);
+  glDisable(GL_BLEND);
+  glEnable(GL_SCISSOR_TEST);
+  glScissor(r.x0, r.y0, r.x1 - r.x0, r.y1 - r.y0);
+  fxaa_->program.use();
+  glUniform1i(fxaa_->program.uniform("u_scene"), 0);
+  glUniform2f(fxaa_->program.uniform("u_texel"), 1.0f / width_, 1.0f / height_);
+  glActiveTexture(GL_TEXTURE0);
+  glBindTexture(GL_TEXTURE_2D, fxaa_->copy);
+  glBindVertexArray(fxaa_->vao);
+  glDrawArrays(GL_TRIANGLES, 0, 3);
+  glBindVertexArray(0);
+  glDisable(GL_SCISSOR_TEST);
+  if (depth_test) glEnable(GL_DEPTH_TEST);
+  if (blend) glEnable(GL_BLEND);
+}
+
+void Framebuffer::copyInto(unsigned target, int x, int y) {
+  GF_ASSERT_GL_THREAD();
+  if (!resolved_) resolve();
+  glBindFramebuffer(GL_READ_FRAMEBUFFER, aa_ == view::Antialiasing::kMsaa ? output_fbo_ : scene_fbo_);
+  glBindFramebuffer(GL_DRAW_FRAMEBUFFER, target);
+  glBlitFramebuffer(0, 0, width_, height_, x, y, x + width_, y + height_, GL_COLOR_BUFFER_BIT, GL_NEAREST);
+  glBindFramebuffer(GL_FRAMEBUFFER, target);
+}
+
+void Framebuffer::read(Image& out) {
+  GF_ASSERT_GL_THREAD();
+  if (!resolved_) resolve();
+  glBindFramebuffer(GL_READ_FRAMEBUFFER, aa_ == view::Antialiasing::kMsaa ? output_fbo_ : scene_fbo_);
+  out.width = width_;
+  out.height = height_;
+  const std::size_t w = static_cast<std::size_t>(width_), h = static_cast<std::size_t>(height_);
+  // RGBA is Mesa's fast read path; dropping alpha while flipping is one pass of our own.
+  std::vector<std::uint8_t>& rgba = rgba_;
+  rgba.resize(4 * w * h);
+  glPixelStorei(GL_PACK_ALIGNMENT, 1);
+  glReadPixels(0, 0, width_, height_, GL_RGBA, GL_UNSIGNED_BYTE, rgba.data());
+  out.rgb.resize(3 * w * h);
+  for (std::size_t y = 0; y < h; ++y) {  // GL's rows run bottom to top; images top to bottom
+    const std::uint8_t* src = rgba.data() + 4 * w * (h - 1 - y);
+    std::uint8_t* dst = out.rgb.data() + 3 * w * y;
+    // Four bytes per pixel stored 3 apart, each store's alpha overwritten by the next pixel;
+    // the row's last pixel is copied bytewise so nothing is written past the row.
+    for (std::size_t x = 0; x + 1 < w; ++x) std::memcpy(dst + 3 * x, src + 4 * x, 4);
+    std::memcpy(dst + 3 * (w - 1), src + 4 * (w - 1), 3);
+  }
+  glBindFramebuffer(GL_FRAMEBUFFER, 0);
+}
+
+Backdrop::Backdrop(int width, int height, int samples) : width_(width), height_(height), samples_(samples) {
+  GF_ASSERT_GL_THREAD();
+  fbo_ = colourDepthTarget(width, height, samples, colour_, depth_, "backdrop");
+}
+
+Backdrop::~Backdrop() {
+  GF_ASSERT_GL_THREAD();
+  glDeleteFramebuffers(1, &fbo_);
+  const unsigned buffers[] = {colour_, depth_};
+  glDeleteRenderbuffers(2, buffers);
+}
+
+void Backdrop::bind() const {
+  GF_ASSERT_GL_THREAD();
+  glBindFramebuffer(GL_FRAMEBUFFER, fbo_);
+  glViewport(0, 0, width_, height_);
+}
+
+void Backdrop::restoreInto(unsigned target) const {
+  GF_ASSERT_GL_THREAD();
+  glBindFramebuffer(GL_READ_FRAMEBUFFER, fbo_);
+  glBindFramebuffer(GL_DRAW_FRAMEBUFFER, target);
+  glBlitFramebuffer(0, 0, width_, height_, 0, 0, width_, height_, GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT,
+                    GL_NEAREST);
+  glBindFramebuffer(GL_FRAMEBUFFER, target);
+  glViewport(0, 0, width_, height_);
+}
+
+ShadowMap::ShadowMap(int size) : size_(size) {
+  GF_ASSERT_GL_THREAD();
+  depth_ = texture2D(GL_DEPTH_COMPONENT24, size, size, GL_DEPTH_COMPONENT, GL_FLOAT, GL_CLAMP_TO_BORDER);
+  const float white[] = {1, 1, 1, 1};
+  glTexParameterfv(GL_TEXTURE_2D, GL_TEXTURE_BORDER_COLOR, white);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_COMPARE_MODE, GL_COMPARE_REF_TO_TEXTURE);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_COMPARE_FUNC, GL_LEQUAL);
+  glGenFramebuffers(1, &fbo_);
+  glBindFramebuffer(GL_FRAMEBUFFER, fbo_);
+  glFramebufferTexture2D(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_TEXTURE_2D, depth_, 0);
+  glDrawBuffer(GL_NONE);
+  glReadBuffer(GL_NONE);
+  if (glCheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE) {
+    throw GlError("shadow framebuffer incomplete");
+  }
+  glBindFramebuffer(GL_FRAMEBUFFER, 0);
+}
+
+ShadowMap::~ShadowMap() {
+  GF_ASSERT_GL_THREAD();
+  glDeleteFramebuffers(1, &fbo_);
+  glDeleteTextures(1, &depth_);
+}
+
+void ShadowMap::bindForDrawing() const {
+  GF_ASSERT_GL_THREAD();
+  glBindFramebuffer(GL_FRAMEBUFFER, fbo_);
+  glViewport(0, 0, size_, size_);
+}
+
+void ShadowMap::copyFrom(const ShadowMap& other) const {
+  GF_ASSERT_GL_THREAD();
+  GF_ASSERT(other.size_ == size_ && "shadow maps of one size");
+  glBindFramebuffer(GL_READ_FRAMEBUFFER, other.fbo_);
+  glBindFramebuffer(GL_DRAW_FRAMEBUFFER, fbo_);
+  glBlitFramebuffer(0, 0, size_, size_, 0, 0, size_, size_, GL_DEPTH_BUFFER_BIT, GL_NEAREST);
+  bindForDrawing();
+}
+
+void ShadowMap::bindTexture(int unit) const {
+  GF_ASSERT_GL_THREAD();
+  glActiveTexture(GL_TEXTURE0 + unit);
+  glBindTexture(GL_TEXTURE_2D, depth_);
+}
+
+}  // namespace gf::render

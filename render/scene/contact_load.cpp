@@ -1,0 +1,55 @@
+#include "render/scene/contact_load.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+
+namespace gf::render {
+namespace {
+
+// Viridis at u = 0, 0.1, ..., 1 (matplotlib's _viridis_data, sRGB display values), interpolated
+// linearly between these eleven keys: the map is smooth enough for dots of a few pixels.
+constexpr std::array<std::array<float, 3>, 11> kViridis = {{
+    {0.267004f, 0.004874f, 0.329415f}, {0.282623f, 0.140926f, 0.457517f}, {0.253935f, 0.265254f, 0.529983f},
+    {0.206756f, 0.371758f, 0.553117f}, {0.163625f, 0.471133f, 0.558148f}, {0.127568f, 0.566949f, 0.550556f},
+    {0.134692f, 0.658636f, 0.517649f}, {0.266941f, 0.748751f, 0.440573f}, {0.477504f, 0.821444f, 0.318195f},
+    {0.741388f, 0.873449f, 0.149561f}, {0.993248f, 0.906157f, 0.143936f},
+}};
+constexpr double kMinPressN = 1e-6;   // N: below this a contact's loads press nothing
+constexpr double kMinForceN = 1e-12;  // N: a contact force this small was not filled in
+
+}  // namespace
+
+Eigen::Vector3f viridis(double u) {
+  const double x = std::clamp(std::isfinite(u) ? u : 0.0, 0.0, 1.0) * (kViridis.size() - 1);
+  const std::size_t k = std::min(static_cast<std::size_t>(x), kViridis.size() - 2);
+  const float t = static_cast<float>(x - static_cast<double>(k));
+  const Eigen::Vector3f a(kViridis[k][0], kViridis[k][1], kViridis[k][2]);
+  const Eigen::Vector3f b(kViridis[k + 1][0], kViridis[k + 1][1], kViridis[k + 1][2]);
+  const Eigen::Vector3f display = (1.0f - t) * a + t * b;
+  return display.cwiseProduct(display);  // the display gamma 2 undone
+}
+
+ContactLoads contactLoads(const sim::ContactSnapshot& c) {
+  ContactLoads out;
+  if (c.loads.empty() || c.loads.size() != c.sgos_world.size()) return out;
+  double total = std::max(0.0, c.point_load.normal);
+  for (const sim::PointLoad& l : c.loads) total += std::max(0.0, l.normal);
+  if (!(total > kMinPressN)) return out;
+  out.shown = true;
+  out.mean_normal = total / static_cast<double>(c.loads.size() + 1);  // the SGOs and c_p
+  return out;
+}
+
+ContactForce contactForce(const sim::FingerSnapshot& f, const sim::ContactSnapshot& c) {
+  ContactForce out;
+  out.from_solver = c.force.squaredNorm() > kMinForceN * kMinForceN;
+  const sim::Vec3 on_body = out.from_solver ? c.force : sim::Vec3(-f.feedback_force);
+  const sim::Vec3& n = c.outward_normal_world;
+  const double along = on_body.dot(n);
+  out.normal = std::max(0.0, -along);
+  out.tangential = on_body - along * n;
+  return out;
+}
+
+}  // namespace gf::render

@@ -1,0 +1,49 @@
+// The load on a contact as the pictures show it, plain data without GL: each point's normal
+// load relative to the contact's mean point load on one perceptually uniform colour scale
+// (viridis), and the contact's force split into its normal and tangential parts.
+#pragma once
+
+#include <Eigen/Core>
+
+#include "sim/scene/snapshot.hpp"
+
+namespace gf::render {
+
+/// The top of the load scale: a point pressing twice the contact's mean point load or more is
+/// drawn in the scale's top colour, so a uniform press sits mid-scale (1).
+inline constexpr double kLoadScaleTop = 2.0;
+
+/// Viridis (matplotlib's perceptually uniform map, dark purple to yellow) at `u` in 0..1
+/// (clamped), as linear RGB: the display gamma 2 of the shaders and of imguiColour() undone, so
+/// what is shown is viridis itself.
+Eigen::Vector3f viridis(double u);
+
+/// How one contact's points are coloured.
+struct ContactLoads {
+  /// Per-point loads known and the contact pressing: the dots are coloured. Otherwise they are
+  /// drawn uniformly (finger colour, the contact point white), as before the solver filled loads.
+  bool shown = false;
+  double mean_normal = 0.0;  ///< N: the normal load over the contact's points (SGOs, filled points, c_p)
+  /// A point's normal load (N) over the mean: 1 for a uniform press, 0 for a point that carries nothing.
+  double share(double normal) const { return mean_normal > 0.0 ? normal / mean_normal : 0.0; }
+  /// The colour of a point with normal load `normal` (N), linear RGB.
+  Eigen::Vector3f colour(double normal) const { return viridis(share(normal) / kLoadScaleTop); }
+};
+
+/// The colouring of contact `c`'s points: shown when `c.loads` has one load per SGO and the
+/// loads press (their normal sum is above 1 µN).
+ContactLoads contactLoads(const sim::ContactSnapshot& c);
+
+/// A contact's force on the body it touches, split along its outward normal.
+struct ContactForce {
+  double normal = 0.0;                          ///< F_n: pressing into the body (N, >= 0)
+  sim::Vec3 tangential = sim::Vec3::Zero();     ///< friction on the body, in the tangent plane (N, world)
+  bool from_solver = false;                     ///< the contact's own force; false: the finger's feedback
+};
+
+/// The force of contact `c` of finger `f` on the body: the solver's `c.force` when it has one,
+/// else the reaction of the force rendered to the device (-f.feedback_force), which is the
+/// finger's whole contact force when it touches one thing.
+ContactForce contactForce(const sim::FingerSnapshot& f, const sim::ContactSnapshot& c);
+
+}  // namespace gf::render

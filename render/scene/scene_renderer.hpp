@@ -1,0 +1,60 @@
+// Draws one Snapshot of a scene: shaded bodies, the ground grid with soft shadows, each finger
+// (proxy, device ghost, coupling spring), and each contact's highlighted patch with its SGOs,
+// normal and force arrow. Render thread only.
+#pragma once
+
+#include <Eigen/Core>
+#include <memory>
+
+#include "render/scene/camera.hpp"
+#include "render/scene/draw_list.hpp"
+#include "render/gl/gpu.hpp"
+#include "sim/scene/scene_desc.hpp"
+#include "sim/scene/snapshot.hpp"
+
+namespace gf::render {
+
+/// What a scene draws and how. The switches are effects: what is off is not built.
+struct RenderSettings {
+  bool shadows = true;               ///< shadow map from the key light (soft: 2 bilinear taps)
+  bool patch_highlight = true;       ///< contact patches, SGO dots, normals, force arrows
+  bool fingers = true;               ///< proxies, device ghosts, springs; off: no proxy shadows either
+  bool contact_arrows = true;        ///< contact normals and force arrows (off in close-ups down the normal)
+  bool ground = true;                ///< ground planes (close-ups from under a lifted body hide them)
+  int shadow_map_size = 1024;        ///< texels per side (the map covers 3 scene radii)
+  double force_arrow_m_per_n = 0.01; ///< arrow length per newton of coupling force (m/N)
+  double max_arrow_m = 0.08;         ///< longest force arrow (m)
+  double max_arrow_view_share = 0.25; ///< longest force arrow, as a share of the view's height at its proxy
+};
+
+/// Draws snapshots of one scene. Construction builds every body's render surface (meshes come
+/// from the description, loaded once per run) and makes the GL objects (allocates; throws
+/// sim::MeshLoadError or GlError). draw() reuses its vertex and scratch buffers from frame to
+/// frame; they grow to the largest patch drawn.
+class SceneRenderer {
+ public:
+  SceneRenderer(const sim::SceneDesc& scene, const RenderSettings& settings);
+  ~SceneRenderer();
+  SceneRenderer(const SceneRenderer&) = delete;
+  SceneRenderer& operator=(const SceneRenderer&) = delete;
+
+  /// Draws `snapshot` seen from `camera` into the bound framebuffer of `width` x `height`.
+  /// Returns the pixels where it drew anything but the backdrop (what anti-aliasing must see).
+  /// The shadow map is drawn once per instant (snapshot time and step): further views of the
+  /// same instant, such as the patch insets, reuse it. It is kept twice, with and without the
+  /// proxies: a view without fingers casts no proxy shadows.
+  PixelRect draw(const sim::Snapshot& snapshot, const view::Camera& camera, int width, int height);
+  /// Changes the switches for the next draw (close-ups hide the fingers).
+  void setSettings(const RenderSettings& settings);
+  /// The next draw draws the shadow map again, even for the instant it was last drawn for: a
+  /// view whose map differs from the frame's (a close-up's, without the fingers) neither reuses
+  /// nor leaves one for a frame of the same instant.
+  void redrawShadows();
+  const RenderSettings& settings() const;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace gf::render

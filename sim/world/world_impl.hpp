@@ -1,0 +1,163 @@
+// World's private state, and its jobs each in a source of its own: world_bullet.cpp (the Bullet
+// world: construction, bodies, proxies, a finger's settings, couplings, loads and time),
+// world_contacts.cpp (the contact pipeline between collision detection and the solve: proxy
+// manifolds gathered, contact records, patches, each contact's rows by its finger's model,
+// impulses remembered) and world_safety.cpp (a step that is not finite rolled back, tunnelling
+// proxies stopped); world.cpp keeps the public API. Haptic thread only. Internal to sim/.
+#pragma once
+
+#include <btBulletDynamicsCommon.h>
+
+#include <array>
+#include <memory>
+#include <span>
+#include <thread>
+#include <vector>
+
+#include "sim/world/body_factory.hpp"
+#include "sim/contact/contact_models.hpp"
+#include "sim/contact/contact_algorithms.hpp"
+#include "sim/world/world.hpp"
+
+namespace gf::sim {
+
+/// A resumed device's offset (World::Impl::washOutResume) shrinks by at least this speed (m/s),
+/// or by its size over kResumeWashTime (s) when faster, and is zero below kResumeWashDone (m).
+inline constexpr double kResumeWashSpeed = 0.02;
+inline constexpr double kResumeWashTime = 0.5;
+inline constexpr double kResumeWashDone = 1e-9;
+
+/// A finger handles at most this many touched bodies per step; further ones stay god-objects.
+inline constexpr int kMaxContactsPerFinger = 4;
+/// Collision group of proxies: they touch bodies, never each other.
+inline constexpr int kFingerGroup = 1 << 6;
+/// Bullet user index marking a proxy (bodies carry their index, >= 0).
+inline constexpr int kProxyTag = -1;
+
+struct World::Impl final : SolveHooks {
+  struct Body {
+    BodyShapes shapes;
+    std::unique_ptr<btRigidBody> rigid;
+  };
+  struct Finger {
+    std::unique_ptr<btSphereShape> shape;
+    std::unique_ptr<btRigidBody> proxy;
+    EffectiveSettings settings;          // after the scene's effect switches (applySettings)
+    PatchSettings given;                 // as given (applySettings), for snapshots
+    const FingerModel* model = nullptr;  // the model of settings.patch.model
+    DeviceSample device;
+    Vec3 force = Vec3::Zero();  // coupling force on the proxy (N)
+    Vec3 sent = Vec3::Zero();   // force the device is to render (N): -force, rate-limited
+    Vec3 told = Vec3::Zero();   // force the device was told after the last step (setToldForce)
+    // The device held where it was at a resume, less the hand's position (m): washed out to zero
+    // no faster than the port's energy pays for (applyCouplings).
+    Vec3 resume_offset = Vec3::Zero();
+    double resume_spent = 0.0;  // J the washouts put into the coupling (washOutResume)
+    Vec3 overlap_push = Vec3::Zero();  // push_apart's force on the proxy from the last step's overlaps (N)
+    PortObserver port;          // the energy that came in through the device port
+    std::array<FingerContact, kMaxContactsPerFinger> contacts;
+    int contact_count = 0;
+    std::array<ContactMemory, kMaxContactsPerFinger> memory;
+    int memory_count = 0;
+    // memory[k]'s walks (warm_walk.hpp), swapped with its contact's during a step.
+    std::array<WalkCache, kMaxContactsPerFinger> memory_walks;
+
+    const ContactMemory* memoryOf(int body) const {
+      for (int k = 0; k < memory_count; ++k) {
+        if (memory[k].body == body) return &memory[k];
+      }
+      return nullptr;
+    }
+  };
+  // Two fingers' patches on one body (world_overlap.cpp): fingers a < b, summed over bodies.
+  struct OverlapPair {
+    int a = -1, b = -1;
+    double area = 0.0;      // m^2 this step
+    double peak = 0.0;      // m^2 so far
+    double integral = 0.0;  // m^2 s so far
+  };
+  // Last finite state of a rigid body, for rolling back a step that produced NaN.
+  struct SavedState {
+    btTransform transform;
+    btVector3 linear, angular;
+  };
+
+  // The Bullet world (world_bullet.cpp). Construction allocates; the rest does not.
+  /// Checks the description (requireValid), builds bodies, proxies and the solver's settings.
+  explicit Impl(const SceneDesc& d);
+  /// Removes every body from the Bullet world before Bullet's parts are destroyed.
+  ~Impl() override;
+  void configureSolver();  ///< iterations, warm starting and the randomized row order
+  void addBody(int index, const BodyDesc& d);
+  void addFinger(int index, const FingerDesc& d);
+  /// The finger's settings from now on: effectiveSettings and its model, once per change.
+  void applySettings(Finger& f, const PatchSettings& patch) const;
+  void applyChangesDue(double dt);  ///< scripted changes due at this step's start
+  void applyCouplings(std::span<const DeviceSample> devices, double dt);  ///< device samples, coupling forces
+  void washOutResume(Finger& f, double dt);
+  void applyLoads();                ///< the scene's loads at time (N, N m)
+  void slewSentForces(double dt);   ///< the forces sent after the step (max_force_rate)
+  void countStep(double dt);        ///< time after a step of dt seconds, and the step counter
+  Pose bodyFrame(int body) const;   ///< body i's frame: that of its walk mesh (world)
+  std::vector<btRigidBody*> allRigidBodies() const;  ///< bodies, then proxies (allocates)
+  bool ownedHere() const { return std::this_thread::get_id() == owner; }
+
+  // The contact pipeline (world_contacts.cpp): between collision detection and the solve.
+  void beforeSolve() override;  ///< gathers each proxy's contacts, adds their rows
+  void afterSolve() override;   ///< remembers the impulses, releases injected manifolds
+  /// Keeps the deepest point of a proxy's manifold as its finger's contact with that body.
+  void gatherProxyManifold(btPersistentManifold& m, const btCollisionObject* proxy);
+  /// One contact: its record and its patch if the finger's model wants one (rows: beforeSolve).
+  void handleContact(Finger& f, FingerContact& c);
+  void recordContact(const Finger& f, const ContactMemory* mem, FingerContact& c) const;
+  void computeContactPatch(const Finger& f, FingerContact& c, const ContactMemory* mem);
+  void placePatchPoints(FingerContact& c, const ContactMemory* mem);  ///< world points, depths
+  void checkWalks(const Mesh& mesh, const Finger& f, FingerContact& c);  ///< checkWarmWalks
+  void rememberImpulses(Finger& f);  ///< each contact's ContactMemory for the next step
+
+  // Overlapping patches (world_overlap.cpp), between the patches and the rows of a step.
+  void makeOverlapPairs();  ///< one OverlapPair per two fingers (construction; allocates)
+  /// Each pair's overlap this step; push_apart's forces for the next step; merge's shares.
+  void handleOverlaps();
+  /// merge: coinciding points of a's and b's patches share one point's load, split by `share_a`.
+  void mergeCoinciding(FingerContact& a, FingerContact& b, double share_a) const;
+
+  // Step safety (world_safety.cpp).
+  void saveStates();   ///< every body's and proxy's state before the step
+  void checkStep();    ///< rolls a step that is not finite back, else stops tunnelling proxies
+  bool statesFinite() const;
+  void restoreStates();  ///< the saved states, at rest
+  void stopTunnelling();  ///< puts a proxy whose step's path entered a body back on its surface
+
+  SceneDesc desc;
+  std::thread::id owner = std::this_thread::get_id();
+  // Bullet's parts, each declared after what it points to: the world is destroyed first, and
+  // ~Impl removes every body from it before that.
+  btDefaultCollisionConfiguration config;
+  ContactAlgorithms contact_algorithms;  // our collision tests (registered in the constructor)
+  btCollisionDispatcher dispatcher{&config};
+  btDbvtBroadphase broadphase;
+  PatchFrictionSolver solver;
+  GodFingerDynamicsWorld world{&dispatcher, &broadphase, &solver, &config, this};
+  std::vector<Body> bodies;
+  std::vector<Finger> fingers;
+  std::vector<OverlapPair> overlaps;
+  std::vector<btPersistentManifold*> injected;
+  AggregateScratch aggregate_scratch;
+  // World::snapshot's storage for splitting each contact's loads over its points (solvedLoads).
+  mutable AggregateScratch snapshot_scratch;
+  mutable ContactLoads snapshot_loads;
+  SolveRows rows{solver, dispatcher, injected, aggregate_scratch};  // where the models add rows
+  std::vector<SavedState> saved;
+  double time = 0.0;
+  // Time is counted in steps of one dt from the last change of dt, so k steps of 1 ms read
+  // exactly k / 1000 s instead of a running sum's rounding.
+  double time_base = 0.0, steps_dt = 0.0;
+  long steps_since_base = 0;
+  std::size_t next_change = 0;  // desc.changes[next_change] is the first not yet applied
+  WorldCounters counters;
+  bool check_walks = false;  // checkWarmWalks: each patch computed from scratch too, into check_patch
+  Patch check_patch;
+};
+
+}  // namespace gf::sim
