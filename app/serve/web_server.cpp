@@ -1,16 +1,18 @@
 #include "app/serve/web_server.hpp"
 
-#include <httplib.h>
-
 #include <arpa/inet.h>
 #include <sys/socket.h>
 
 #include <atomic>
+#include <condition_variable>
+#include <deque>
 #include <charconv>
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
 #include <mutex>
+#include <optional>
+#include <vector>
 #include <random>
 #include <thread>
 
@@ -21,11 +23,12 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 constexpr char kBoundary[] = "gfframe";
-// A stream with no new frame for this long writes nothing and checks its client again; after
-// kStreamResend without a frame it sends the newest again, so a client that hung up is found
-// (an idle `live` session draws nothing) and its place freed.
-constexpr std::chrono::milliseconds kStreamPoll{500};
-constexpr std::chrono::seconds kStreamResend{2};
+// How long the frame pump waits for a newer frame before it looks at its watchers again, and how
+// long a /frame.jpg request waits for a first frame before 503.
+constexpr std::chrono::milliseconds kFramePoll{100};
+constexpr std::chrono::milliseconds kFrameWait{2500};
+// The answer to a command that comes, or still waits, when the session ends.
+constexpr char kEnded[] = "error: the session has ended";
 
 // Equal strings, in a time that does not depend on where they differ.
 bool sameSecret(const std::string& a, const std::string& b) {
@@ -99,152 +102,283 @@ ServeOptions parseServe(const std::string& serve, const std::string& token) {
   return o;
 }
 
+namespace {
+
+HttpAnswer textAnswer(int status, std::string text, std::string type = "text/plain") {
+  HttpAnswer a;
+  a.status = status;
+  a.body = std::move(text);
+  a.type = std::move(type);
+  return a;
+}
+
+}  // namespace
+
 struct WebServer::Impl {
   ServeOptions options;
   LiveView& view;
   CommandHandler command;
   bool generated = false;
-  httplib::Server server;
-  std::thread thread;
   RequestRate limit;
-  std::atomic<int> streams{0};
-  std::atomic<long> served{0}, unauthorized{0}, limited{0}, foreign{0}, busy{0}, stream_frames{0};
+  std::atomic<long> served{0}, unauthorized{0}, limited{0}, foreign{0}, stream_frames{0};
   std::atomic<long> commands{0}, answered{0};  // posted to /command; answered of them
   std::atomic<bool> stopping{false};
+  // The frames' watchers: streams and /frame.jpg requests, fed by the pump thread.
+  struct Stream {
+    std::weak_ptr<HttpExchange> exchange;
+    long sent = 0;  // the newest frame's number sent it
+  };
+  struct FrameWaiter {
+    std::shared_ptr<HttpExchange> exchange;
+    Clock::time_point until;
+  };
+  mutable std::mutex frames_mutex;
+  std::condition_variable frames_changed;
+  std::vector<Stream> streams;
+  std::vector<FrameWaiter> frame_waiters;
+  bool fresh_wanted = false;  // a newcomer needs the newest frame drawn, not the next one
+  std::thread pump;
+  // The commands, answered in turn on a thread of their own.
+  std::mutex commands_mutex;
+  std::condition_variable commands_changed;
+  std::deque<std::pair<std::string, std::shared_ptr<HttpExchange>>> command_queue;
+  std::thread commander;
+  std::unique_ptr<HttpFront> front;
 
   Impl(const ServeOptions& o, LiveView& v, CommandHandler c) : options(o), view(v), command(std::move(c)) {}
 
-  // Requests served and refused, streams, and the commands posted: `commands_running` are taken
-  // and not yet answered (under `live`, the one being run and those waiting behind it).
+  // Requests served and refused, the front's counts, streams, and the commands posted:
+  // `commands_running` are taken and not yet answered (the one being run and those behind it).
   nlohmann::json stats() const {
     const long done = answered.load(), taken = commands.load();  // in this order: never fewer taken
+    const HttpCounts c = front ? front->counts() : HttpCounts{};
     return {{"url", "http://" + options.host + ":" + std::to_string(options.port) + "/"},
             {"token", !options.token.empty()},
             {"requests", served.load()},
             {"unauthorized", unauthorized.load()},
             {"rate_limited", limited.load()},
             {"foreign", foreign.load()},
-            {"streams_refused", busy.load()},
-            {"streams_open", streams.load()},
+            {"connections", c.connections},
+            {"connections_open", c.open},
+            {"connections_refused", c.refused},
+            {"connections_evicted", c.evicted},
+            {"timed_out", c.timed_out},
+            {"malformed", c.malformed},
+            {"too_large", c.too_large},
+            {"streams_refused", c.streams_refused},
+            {"streams_open", streamsOpen()},
             {"stream_frames_sent", stream_frames.load()},
             {"commands", taken},
             {"commands_running", taken - done}};
   }
 
-  bool authorized(const httplib::Request& req) const {
+  long streamsOpen() const {
+    std::lock_guard lock(frames_mutex);
+    long n = 0;
+    for (const Stream& s : streams) {
+      const std::shared_ptr<HttpExchange> x = s.exchange.lock();
+      n += x && x->open();
+    }
+    return n;
+  }
+
+  bool authorized(const HttpRequest& req) const {
     if (options.token.empty()) return true;
-    if (req.has_param("token") && sameSecret(req.get_param_value("token"), options.token)) return true;
-    return sameSecret(req.get_header_value("Authorization"), "Bearer " + options.token);
+    if (!req.token.empty() && sameSecret(req.token, options.token)) return true;
+    return sameSecret(req.authorization, "Bearer " + options.token);
   }
 
   // A page of another site must not steer or read a session on loopback through the visitor's
   // browser: on loopback the Host must be this server's (no DNS rebinding), and a request a page
   // sends with an Origin must come from this server's own.
-  bool sameSite(const httplib::Request& req) const {
+  bool sameSite(const HttpRequest& req) const {
     const std::string port = std::string(":").append(std::to_string(options.port));  // (GCC 12: no ":" + s)
-    const std::string host = req.get_header_value("Host");
-    if (isLoopback(options.host) && host != options.host + port && host != std::string("localhost").append(port)) {
+    if (isLoopback(options.host) && req.host != options.host + port && req.host != std::string("localhost").append(port)) {
       return false;
     }
-    const std::string origin = req.get_header_value("Origin");
-    return origin.empty() || origin == std::string("http://").append(host);
+    return req.origin.empty() || req.origin == std::string("http://").append(req.host);
   }
 
-  httplib::Server::HandlerResponse refuse(httplib::Response& res, int status, const char* text, std::atomic<long>& count) {
-    ++count;
-    res.status = status;
-    res.set_content(text, "text/plain");
-    return httplib::Server::HandlerResponse::Handled;
-  }
-
-  httplib::Server::HandlerResponse gate(const httplib::Request& req, httplib::Response& res) {
+  // Before a body is read: the rate, the token, the site.
+  std::optional<HttpAnswer> gate(const HttpRequest& req) {
     ++served;
-    if (!limit.allow(req.remote_addr, Clock::now())) return refuse(res, 429, "429: too many requests\n", limited);
-    if (!authorized(req)) {
-      return refuse(res, 401, "401: this server needs its token (?token=... or Authorization: Bearer ...)\n",
-                    unauthorized);
+    if (!limit.allow(req.address, Clock::now())) {
+      ++limited;
+      return textAnswer(429, "429: too many requests\n");
     }
-    if (!sameSite(req)) return refuse(res, 403, "403: not from this server's own page or address\n", foreign);
-    res.set_header("Cache-Control", "no-store");
-    return httplib::Server::HandlerResponse::Unhandled;
+    if (!authorized(req)) {
+      ++unauthorized;
+      return textAnswer(401, "401: this server needs its token (?token=... or Authorization: Bearer ...)\n");
+    }
+    if (!sameSite(req)) {
+      ++foreign;
+      return textAnswer(403, "403: not from this server's own page or address\n");
+    }
+    return std::nullopt;
   }
 
-  // One part of the MJPEG stream: the newest frame after `last`, or nothing after kStreamPoll
-  // (the newest again after kStreamResend without one).
-  bool streamPart(long& last, Clock::time_point& sent, httplib::DataSink& sink) {
-    const render::JpegFrame f = view.jpeg().waitNewer(last, kStreamPoll);
-    if (stopping.load() || view.jpeg().closed()) return false;
-    if (!f.bytes) return sink.is_writable();
-    if (f.number <= last && Clock::now() - sent < kStreamResend) return sink.is_writable();
-    last = f.number;
-    sent = Clock::now();
+  void dispatch(const HttpRequest& req, const std::shared_ptr<HttpExchange>& x) {
+    if (req.path == "/command") {
+      if (req.method != "POST") return x->answer(textAnswer(405, "405: POST a command\n"));
+      return postCommand(req.body, x);
+    }
+    if (req.method != "GET") return x->answer(textAnswer(405, "405: only GET here\n"));
+    if (req.path == "/") return x->answer(textAnswer(200, webPage(), "text/html; charset=utf-8"));
+    if (req.path == "/scene.json") return x->answer(textAnswer(200, view.sceneJson().dump(), "application/json"));
+    if (req.path == "/state.json") return x->answer(textAnswer(200, view.stateText(), "application/json"));
+    if (req.path == "/server.json") return x->answer(textAnswer(200, stats().dump(), "application/json"));
+    if (req.path == "/stream.mjpg") return startStream(x);
+    if (req.path == "/frame.jpg") return waitForFrame(x);
+    x->answer(textAnswer(404, "404: no such page\n"));
+  }
+
+  void postCommand(const std::string& body, const std::shared_ptr<HttpExchange>& x) {
+    const std::size_t newline = body.find('\n');
+    if (newline != std::string::npos && newline + 1 < body.size()) {
+      return x->answer(textAnswer(400, "error: one command per request\n"));
+    }
+    std::string line = body;
+    while (!line.empty() && (line.back() == '\n' || line.back() == '\r')) line.pop_back();
+    std::lock_guard lock(commands_mutex);
+    if (stopping.load()) return x->answer(textAnswer(503, std::string(kEnded) + "\n"));
+    if (commands.load() - answered.load() >= kMaxCommandsWaiting) {
+      return x->answer(textAnswer(429, "429: " + std::to_string(kMaxCommandsWaiting) + " commands are waiting already\n"));
+    }
+    ++commands;
+    command_queue.emplace_back(std::move(line), x);
+    commands_changed.notify_one();
+  }
+
+  void runCommands() {
+    pthread_setname_np(pthread_self(), "gf-http-cmd");
+    std::unique_lock lock(commands_mutex);
+    for (;;) {
+      commands_changed.wait(lock, [&] { return stopping.load() || !command_queue.empty(); });
+      if (stopping.load()) {  // those still waiting are answered, never left hanging
+        for (auto& [line, x] : command_queue) x->answer(textAnswer(503, std::string(kEnded) + "\n"));
+        answered += static_cast<long>(command_queue.size());
+        command_queue.clear();
+        return;
+      }
+      auto [line, x] = std::move(command_queue.front());
+      command_queue.pop_front();
+      lock.unlock();
+      const std::string answer = command(line);
+      ++answered;
+      x->answer(textAnswer(answer.rfind("error", 0) == 0 ? 400 : 200, answer + "\n"));
+      lock.lock();
+    }
+  }
+
+  void startStream(const std::shared_ptr<HttpExchange>& x) {
+    const std::string head = std::string("HTTP/1.1 200 OK\r\nContent-Type: multipart/x-mixed-replace; boundary=") +
+                             kBoundary + "\r\nCache-Control: no-store\r\nConnection: close\r\n\r\n";
+    if (!x->startStream(head)) return;
+    std::lock_guard lock(frames_mutex);
+    streams.push_back({x, 0});
+    fresh_wanted = true;
+    frames_changed.notify_one();
+  }
+
+  void waitForFrame(const std::shared_ptr<HttpExchange>& x) {
+    std::lock_guard lock(frames_mutex);
+    if (static_cast<int>(frame_waiters.size()) >= kMaxFrameWaiters) {
+      return x->answer(textAnswer(429, "429: " + std::to_string(kMaxFrameWaiters) + " frame requests wait already\n"));
+    }
+    frame_waiters.push_back({x, Clock::now() + kFrameWait});
+    fresh_wanted = true;
+    frames_changed.notify_one();
+  }
+
+  static std::shared_ptr<const StreamPart> partOf(const render::JpegFrame& f) {
+    auto part = std::make_shared<StreamPart>();
     char head[200];
     const int n = std::snprintf(head, sizeof head,
                                 "--%s\r\nContent-Type: image/jpeg\r\nContent-Length: %zu\r\nX-Frame: %ld\r\n"
                                 "X-Sim-Time: %.4f\r\n\r\n",
                                 kBoundary, f.bytes->size(), f.number, f.time);
-    if (!sink.write(head, static_cast<std::size_t>(n))) return false;
-    if (!sink.write(reinterpret_cast<const char*>(f.bytes->data()), f.bytes->size())) return false;
-    ++stream_frames;
-    return sink.write("\r\n", 2);
+    part->head.assign(head, static_cast<std::size_t>(n));
+    part->bytes = f.bytes;
+    part->tail = "\r\n";
+    return part;
   }
 
-  void stream(httplib::Response& res) {
-    if (streams.fetch_add(1) >= kMaxStreams) {
-      --streams;
-      ++busy;
-      res.status = 503;
-      res.set_content("503: " + std::to_string(kMaxStreams) + " streams are open already\n", "text/plain");
-      return;
+  // Frames lock held: `f` to every stream not sent it yet and to every waiting /frame.jpg; the
+  // waiters whose time is up get 503.
+  void deliver(const render::JpegFrame& f) {
+    std::shared_ptr<const StreamPart> part;
+    for (Stream& s : streams) {
+      const std::shared_ptr<HttpExchange> x = s.exchange.lock();
+      if (!f.bytes || !x || s.sent >= f.number) continue;
+      if (!part) part = partOf(f);
+      x->sendPart(part);
+      s.sent = f.number;
+      ++stream_frames;
     }
-    auto last = std::make_shared<std::pair<long, Clock::time_point>>(0, Clock::now());
-    res.set_content_provider(
-        std::string("multipart/x-mixed-replace; boundary=") + kBoundary,
-        [this, last](std::size_t, httplib::DataSink& sink) { return streamPart(last->first, last->second, sink); },
-        [this](bool) { --streams; });
-  }
-
-  void frame(httplib::Response& res) {
-    // A frame drawn after the request (the encoder skips frames nobody waits for).
-    const render::JpegFrame before = view.jpeg().newest();
-    render::JpegFrame f = view.jpeg().waitNewer(before.number, std::chrono::milliseconds(500));
-    if (f.number == before.number) f = view.jpeg().waitNewer(0, std::chrono::milliseconds(2000));
-    if (!f.bytes) {
-      res.status = 503;
-      res.set_content("503: no frame drawn yet\n", "text/plain");
-      return;
-    }
-    res.set_content(reinterpret_cast<const char*>(f.bytes->data()), f.bytes->size(), "image/jpeg");
-  }
-
-  void routes() {
-    server.set_pre_routing_handler([this](const httplib::Request& req, httplib::Response& res) { return gate(req, res); });
-    server.Get("/", [](const httplib::Request&, httplib::Response& res) { res.set_content(webPage(), "text/html; charset=utf-8"); });
-    server.Get("/scene.json", [this](const httplib::Request&, httplib::Response& res) {
-      res.set_content(view.sceneJson().dump(), "application/json");
-    });
-    server.Get("/state.json", [this](const httplib::Request&, httplib::Response& res) {
-      res.set_content(view.stateText(), "application/json");
-    });
-    server.Get("/server.json", [this](const httplib::Request&, httplib::Response& res) {
-      res.set_content(stats().dump(), "application/json");
-    });
-    server.Get("/stream.mjpg", [this](const httplib::Request&, httplib::Response& res) { stream(res); });
-    server.Get("/frame.jpg", [this](const httplib::Request&, httplib::Response& res) { frame(res); });
-    server.Post("/command", [this](const httplib::Request& req, httplib::Response& res) {
-      if (req.body.find('\n') != std::string::npos && req.body.find('\n') + 1 < req.body.size()) {
-        res.status = 400;
-        res.set_content("error: one command per request\n", "text/plain");
-        return;
+    const Clock::time_point now = Clock::now();
+    std::erase_if(frame_waiters, [&](const FrameWaiter& w) {
+      if (f.bytes) {
+        HttpAnswer a;
+        a.type = "image/jpeg";
+        a.bytes = f.bytes;
+        a.headers = {{"X-Frame", std::to_string(f.number)}, {"X-Sim-Time", shortestTime(f.time)}};
+        w.exchange->answer(std::move(a));
+        return true;
       }
-      std::string line = req.body;
-      while (!line.empty() && (line.back() == '\n' || line.back() == '\r')) line.pop_back();
-      ++commands;
-      const std::string answer = command(line);
-      ++answered;
-      if (answer.rfind("error", 0) == 0) res.status = 400;
-      res.set_content(answer + "\n", "text/plain");
+      if (now < w.until) return false;
+      w.exchange->answer(textAnswer(503, "503: no frame drawn yet\n"));
+      return true;
     });
+  }
+
+  static std::string shortestTime(double t) {
+    char text[32];
+    std::snprintf(text, sizeof text, "%.4f", t);
+    return text;
+  }
+
+  // The pump: while anyone watches, the newest frame encoded, handed to the watchers.
+  void pumpFrames() {
+    pthread_setname_np(pthread_self(), "gf-http-frames");
+    long last = 0;
+    std::unique_lock lock(frames_mutex);
+    while (!stopping.load()) {
+      std::erase_if(streams, [](const Stream& s) {
+        const std::shared_ptr<HttpExchange> x = s.exchange.lock();
+        return !x || !x->open();
+      });
+      if (streams.empty() && frame_waiters.empty()) {
+        frames_changed.wait(lock);
+        continue;
+      }
+      const bool fresh = std::exchange(fresh_wanted, false);
+      lock.unlock();
+      const render::JpegFrame f = view.jpeg().waitNewer(fresh ? 0 : last, kFramePoll);
+      lock.lock();
+      if (stopping.load()) break;
+      deliver(f);
+      last = std::max(last, f.number);
+    }
+    for (const FrameWaiter& w : frame_waiters) w.exchange->answer(textAnswer(503, "503: the server is stopping\n"));
+    frame_waiters.clear();
+  }
+
+  void stop() {
+    if (stopping.exchange(true)) return;
+    view.jpeg().close();  // wakes the pump
+    {
+      std::scoped_lock lock(frames_mutex, commands_mutex);
+      frames_changed.notify_all();
+      commands_changed.notify_all();
+    }
+    // The pump and the commands answer what waits; the front then writes those answers out.
+    if (pump.joinable()) pump.join();
+    if (commander.joinable()) commander.join();
+    if (front) front->stop();
+    // The exchanges go before the front that made them.
+    streams.clear();
+    frame_waiters.clear();
+    command_queue.clear();
   }
 };
 
@@ -255,34 +389,13 @@ WebServer::WebServer(const ServeOptions& options, LiveView& view, CommandHandler
     s.options.token = generatedToken();
     s.generated = true;
   }
-  // SO_REUSEADDR only: httplib's default adds SO_REUSEPORT, with which a second run would share the
-  // port (the kernel splitting connections between them) instead of being told it is in use.
-  s.server.set_socket_options([](int sock) {
-    const int yes = 1;
-    setsockopt(sock, SOL_SOCKET, SO_REUSEADDR, &yes, sizeof yes);
-  });
-  s.server.set_payload_max_length(kMaxRequestBytes);
-  s.server.set_read_timeout(5, 0);
-  s.server.set_write_timeout(5, 0);
-  s.server.set_keep_alive_timeout(2);  // an idle browser connection holds stop() up to this long
-  s.routes();
-  if (s.options.port == 0) {
-    s.options.port = s.server.bind_to_any_port(s.options.host);
-    if (s.options.port < 0) s.options.port = 0;
-  } else if (!s.server.bind_to_port(s.options.host, s.options.port)) {
-    s.options.port = 0;
-  }
-  if (s.options.port <= 0) {
-    throw std::runtime_error("--serve: cannot listen on " + options.host + ":" + std::to_string(options.port) +
-                             " (in use, or not an address of this machine)");
-  }
-  s.thread = std::thread([&s] {
-    pthread_setname_np(pthread_self(), "gf-http");
-    s.server.listen_after_bind();
-  });
-  // httplib's stop() does nothing before its loop runs: wait for it (bounded), so a server
-  // stopped at once (a later start-up step failing) stops.
-  for (int i = 0; i < 5000 && !s.server.is_running(); ++i) std::this_thread::sleep_for(std::chrono::milliseconds(1));
+  s.front = std::make_unique<HttpFront>(
+      s.options.host, s.options.port, s.options.limits, [&s](const HttpRequest& r) { return s.gate(r); },
+      [&s](const HttpRequest& r, const std::shared_ptr<HttpExchange>& x) { s.dispatch(r, x); });
+  s.options.port = s.front->port();
+  s.pump = std::thread([&s] { s.pumpFrames(); });
+  s.commander = std::thread([&s] { s.runCommands(); });
+  s.front->start();
 }
 
 WebServer::~WebServer() { stop(); }
@@ -293,17 +406,17 @@ std::string WebServer::url() const {
   return s.options.token.empty() ? u : u + "?token=" + s.options.token;
 }
 
+std::string WebServer::shownUrl() const {
+  const Impl& s = *impl_;
+  if (s.options.token.empty() || s.generated) return url();
+  return "http://" + s.options.host + ":" + std::to_string(s.options.port) + "/?token=***";
+}
+
 bool WebServer::loopback() const { return isLoopback(impl_->options.host); }
 
 bool WebServer::tokenGenerated() const { return impl_->generated; }
 
-void WebServer::stop() {
-  Impl& s = *impl_;
-  if (s.stopping.exchange(true)) return;
-  s.view.jpeg().close();  // wakes every stream, which then ends
-  s.server.stop();
-  if (s.thread.joinable()) s.thread.join();
-}
+void WebServer::stop() { impl_->stop(); }
 
 nlohmann::json WebServer::statsJson() const { return impl_->stats(); }
 

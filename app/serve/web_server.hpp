@@ -1,7 +1,8 @@
-// The browser view's HTTP server (cpp-httplib, threads of its own): the page, the frames as
-// MJPEG, the newest state, and `live` commands. It reads a LiveView and hands command lines to
-// the session's handler; it never touches the haptic thread. Loopback unless a host is given;
-// any other address needs a token. No file is served from disk.
+// The browser view's HTTP server: the page, the frames as MJPEG, the newest state, and `live`
+// commands, behind the bounded front of http_front.hpp. It reads a LiveView and hands command
+// lines to the session's handler on a thread of its own; it never touches the haptic thread.
+// Loopback unless a host is given; any other address needs a token, checked before a body is
+// read. No file is served from disk.
 #pragma once
 
 #include <chrono>
@@ -12,6 +13,7 @@
 #include <string>
 #include <vector>
 
+#include "app/serve/http_front.hpp"
 #include "app/serve/live_view.hpp"
 
 namespace gf::app {
@@ -23,6 +25,7 @@ struct ServeOptions {
   /// Required from every request (`?token=` or `Authorization: Bearer`) when not empty. A bind
   /// beyond loopback without one gets a generated token.
   std::string token;
+  HttpLimits limits;  ///< what a request and a connection may take
 };
 
 /// Parses `--serve`'s value ("8080", "127.0.0.1:8080", "0.0.0.0:8080") and `--token`. Throws
@@ -37,9 +40,10 @@ std::vector<std::string> redactedToken(std::vector<std::string> argv);
 
 /// Requests one client may make a second, and in a burst, before it gets 429.
 inline constexpr double kRequestsPerSecond = 300.0, kRequestBurst = 600.0;
-/// Streams open at once (a fifth gets 503), and the largest request body taken (bytes).
-inline constexpr int kMaxStreams = 4;
-inline constexpr std::size_t kMaxRequestBytes = 4096;
+/// Commands taken and not yet answered (the one running and those behind it); one more gets 429.
+inline constexpr int kMaxCommandsWaiting = 16;
+/// Requests for /frame.jpg waiting for a frame; one more gets 429.
+inline constexpr int kMaxFrameWaiters = 16;
 
 /// Token buckets per client address: kRequestsPerSecond, in bursts of kRequestBurst. Any thread.
 class RequestRate {
@@ -71,14 +75,18 @@ class WebServer {
 
   /// "http://HOST:PORT/", with "?token=..." when a token is required.
   std::string url() const;
+  /// What to print: url(), but a token the user gave (--token, $GODFINGER_TOKEN) as "***"; a
+  /// generated one is shown, once, since nobody else knows it.
+  std::string shownUrl() const;
   bool loopback() const;
   /// Generated (not given) token, printed once at the start.
   bool tokenGenerated() const;
   /// Ends every stream, stops listening, joins the threads. Idempotent; never waits on the
   /// haptic thread.
   void stop();
-  /// Requests served, refused (401, 429, 503), streams open, stream frames sent and commands
-  /// posted (and not yet answered), for summary.json and `GET /server.json`. Any thread.
+  /// Requests served, refused (401, 403, 429), the front's counts (connections, evicted, timed
+  /// out, malformed, too large), streams, stream frames sent and commands posted (and not yet
+  /// answered), for summary.json and `GET /server.json`. Any thread.
   nlohmann::json statsJson() const;
 
   struct Impl;

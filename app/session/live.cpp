@@ -206,7 +206,7 @@ int runServed(LiveSession& live, const LiveOptions& options, std::istream& in, s
   const auto queue_ptr = std::make_shared<LiveQueue>();
   LiveQueue& queue = *queue_ptr;
   WebServer server(*options.serve, view, [&](const std::string& line) { return postAndWait(queue, line); });
-  out << "ok ready, serving " << server.url() << " (help lists the commands)" << std::endl;
+  out << "ok ready, serving " << server.shownUrl() << " (help lists the commands)" << std::endl;
   std::thread reader([queue_ptr, &in] {
     int number = 0;
     for (std::string line; std::getline(in, line);) queue_ptr->push({line, ++number, nullptr, false});

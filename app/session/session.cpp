@@ -276,7 +276,7 @@ void SessionRun::bindDevices() {
     served_ = std::make_unique<ServedRun>(session_, *options_.serve, sessionCamera(session_, options_.camera),
                                           options_.out_dir, options_.yield_render);
     const WebServer& server = served_->server();
-    std::fprintf(stderr, "%s: serving %s%s\n", scene_.name.c_str(), server.url().c_str(),
+    std::fprintf(stderr, "%s: serving %s%s\n", scene_.name.c_str(), server.shownUrl().c_str(),
                  server.loopback() ? "" : "  (beyond loopback: every request needs this token)");
   }
   if (session_.udp_devices.empty()) return;

@@ -6,6 +6,8 @@
 #include <sys/resource.h>
 #include <unistd.h>
 
+#include <algorithm>
+
 #include "render/frames/frame_sinks.hpp"
 
 namespace gf::render {
@@ -53,15 +55,18 @@ JpegStream::~JpegStream() { close(); }
 void JpegStream::push(const Image& image, long number, double time) {
   std::lock_guard lock(mutex_);
   ++stats_.pushed;
-  if (closing_ || (waiting_ == 0 && newest_.number > 0)) return;
+  if (closing_) return;
+  // Kept as the newest drawn (its storage reused), encoded only when a reader asks for it.
   pending_.width = image.width;
   pending_.height = image.height;
   pending_.rgb.assign(image.rgb.begin(), image.rgb.end());
   pending_time_ = time;
   pending_number_ = number;
   has_pending_ = true;
-  changed_.notify_all();
+  if (encodeWanted()) changed_.notify_all();
 }
+
+bool JpegStream::encodeWanted() const { return has_pending_ && (waiting_ > 0 || newest_.number == 0); }
 
 JpegFrame JpegStream::newest() const {
   std::lock_guard lock(mutex_);
@@ -70,8 +75,11 @@ JpegFrame JpegStream::newest() const {
 
 JpegFrame JpegStream::waitNewer(long after, std::chrono::milliseconds timeout) {
   std::unique_lock lock(mutex_);
+  // Newer than `after`, and no older than the newest pushed now: a newcomer sees what is drawn.
+  const long wanted = std::max(after + 1, has_pending_ ? pending_number_ : encoding_number_);
   ++waiting_;
-  changed_.wait_for(lock, timeout, [&] { return newest_.number > after || closing_; });
+  if (encodeWanted()) changed_.notify_all();
+  changed_.wait_for(lock, timeout, [&] { return newest_.number >= wanted || closing_; });
   --waiting_;
   return newest_;
 }
@@ -110,11 +118,12 @@ void JpegStream::run() {
     long number = 0;
     {
       std::unique_lock lock(mutex_);
-      changed_.wait(lock, [&] { return has_pending_ || closing_; });
+      changed_.wait(lock, [&] { return encodeWanted() || closing_; });
       if (closing_) return;
       std::swap(frame, pending_);
       time = pending_time_;
       number = pending_number_;
+      encoding_number_ = number;
       has_pending_ = false;
     }
     const auto begin = Clock::now();

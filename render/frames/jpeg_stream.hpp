@@ -1,7 +1,9 @@
 // The newest frame as a JPEG, for watchers of a running session (a browser, ffplay, VLC): an
 // encoder thread of its own takes the newest frame pushed, encodes it with libjpeg-turbo and
-// hands the bytes to every reader. Frames pushed faster than it encodes are dropped, and so are
-// frames no reader waits for: a slow reader gets the newest frame, never a backlog.
+// hands the bytes to every reader. Frames pushed faster than it encodes are dropped; the newest
+// one pushed is kept, and encoded when a reader asks, so a newcomer gets what is drawn now (a
+// session stepped on command may draw nothing more for a long time) and a slow reader never a
+// backlog. Nobody watching, nothing is encoded.
 #pragma once
 
 #include <chrono>
@@ -41,13 +43,14 @@ class JpegStream {
   JpegStream& operator=(const JpegStream&) = delete;
 
   /// The newest frame, number `number` (greater than every number pushed before) at simulated
-  /// time `time`: copied when a reader is waiting for a newer one or none has been encoded yet,
-  /// otherwise dropped. Any one thread (the render thread).
+  /// time `time`: copied in place of the one kept (storage reused), and encoded at once when a
+  /// reader waits or none has been encoded yet. Any one thread (the render thread).
   void push(const Image& image, long number, double time);
   /// The newest encoded frame (number 0 when none yet). Any thread.
   JpegFrame newest() const;
-  /// Waits until a frame newer than `after` is encoded, the stream closes or `timeout` passes;
-  /// returns the newest (check `number > after`). Any thread.
+  /// Waits until a frame newer than `after`, and no older than the newest pushed before the
+  /// call, is encoded, the stream closes or `timeout` passes; returns the newest (check
+  /// `number > after`). waitNewer(0, ...) is the frame drawn now. Any thread.
   JpegFrame waitNewer(long after, std::chrono::milliseconds timeout);
   /// Readers waiting in waitNewer now (for tests). Any thread.
   int waiting() const;
@@ -58,6 +61,7 @@ class JpegStream {
 
  private:
   void run();
+  bool encodeWanted() const;  // mutex_ held
   class Compressor;
   std::unique_ptr<Compressor> compressor_;
   int quality_;
@@ -68,6 +72,7 @@ class JpegStream {
   double pending_time_ = 0.0;
   long pending_number_ = 0;
   bool has_pending_ = false;
+  long encoding_number_ = 0;  // the frame the encoder took last
   int waiting_ = 0;         // readers in waitNewer
   bool closing_ = false;
   JpegFrame newest_;

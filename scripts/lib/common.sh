@@ -10,7 +10,8 @@ GF_PACKAGES=(
   libbullet-dev libbullet-extras-dev libeigen3-dev libassimp-dev
   libosmesa6-dev libimgui-dev libstb-dev libdeflate-dev
   libgtest-dev libgmock-dev libbenchmark-dev
-  libcpp-httplib-dev libturbojpeg0-dev  # the browser view (--serve): HTTP server, JPEG frames
+  libboost-dev libturbojpeg0-dev  # the browser view (--serve): HTTP front (Beast, Asio), JPEG frames
+  libcpp-httplib-dev          # the serve tests' HTTP client
   libcli11-dev libtomlplusplus-dev nlohmann-json3-dev
   ffmpeg
   parallel

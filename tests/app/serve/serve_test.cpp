@@ -29,6 +29,7 @@
 #include "app/session/session.hpp"
 #include "render/frames/jpeg_stream.hpp"
 #include "tests/app/run_helpers.hpp"
+#include "tests/app/serve/served_view.hpp"
 #include "tests/scratch.hpp"
 
 // After Eigen: httplib.h brings <resolv.h>, whose `_res` macro breaks Eigen's headers after it.
@@ -38,57 +39,10 @@ namespace gf::app {
 namespace {
 
 namespace fs = std::filesystem;
-
-// A LiveView of live-view fed frames (a flat grey changing each time) by a thread standing in for
-// the render thread, as fast as it goes, until it is destroyed.
-class FedView {
- public:
-  explicit FedView(const std::string& out) : session_(loadSceneFile(resolveScenePath("live-view"))),
-        view_(session_, sessionCamera(session_, ""), "realtime", out, false) {
-    feeder_ = std::thread([this] {
-      render::Image image{64, 36, std::vector<std::uint8_t>(64 * 36 * 3)};
-      sim::Snapshot snap;
-      for (int k = 0; !stop_.load(); ++k) {
-        std::fill(image.rgb.begin(), image.rgb.end(), static_cast<std::uint8_t>(k));
-        snap.time = 0.001 * k;
-        snap.step = k;
-        view_.frame(image, snap, 1.0f);
-        std::this_thread::yield();
-      }
-    });
-  }
-  ~FedView() {
-    stop_.store(true);
-    feeder_.join();
-  }
-  LiveView& view() { return view_; }
-  const SessionDesc& session() const { return session_; }
-
- private:
-  SessionDesc session_;
-  LiveView view_;
-  std::atomic<bool> stop_{false};
-  std::thread feeder_;
-};
-
-// A server on `host`:0 in front of `view`: commands echoed as "ok LINE".
-std::unique_ptr<WebServer> serve(LiveView& view, const std::string& host, const std::string& token = "") {
-  ServeOptions o;
-  o.host = host;
-  o.token = token;
-  return std::make_unique<WebServer>(o, view, [](const std::string& line) { return "ok " + line; });
-}
-
-int portOf(const WebServer& server) {
-  const std::string url = server.url();
-  return std::stoi(url.substr(url.rfind(':') + 1));
-}
-
-std::string out(const std::string& name) {
-  const fs::path dir = gf::test::scratchRoot() / name;
-  fs::remove_all(dir);
-  return dir.string();
-}
+using served::FedView;
+using served::out;
+using served::portOf;
+using served::serve;
 
 TEST(Serve, ParsesPortsAndHostsAndNamesTheOptionItRefuses) {
   EXPECT_EQ(parseServe("8080", "").host, "127.0.0.1");
@@ -145,21 +99,25 @@ TEST(Serve, ALoopbackServerRefusesOtherSitesPages) {
   EXPECT_EQ(server->statsJson()["foreign"].get<long>(), 2);
 }
 
-// A reader that does not wait gets no backlog: frames pushed meanwhile are dropped, and the next
-// reader to wait gets the newest frame pushed after it began to wait.
-TEST(Serve, ASlowReaderGetsTheNewestFrameNeverABacklog) {
+// A reader gets the newest frame drawn, never a backlog: frames pushed while nobody waits are not
+// encoded, the newest of them is kept, and the next reader gets it at once.
+TEST(Serve, AReaderGetsTheNewestFrameDrawnNeverABacklog) {
   render::JpegStream stream;
   const render::Image image{16, 16, std::vector<std::uint8_t>(16 * 16 * 3, 100)};
   stream.push(image, 1, 0.001);  // the first frame is encoded whoever waits
   EXPECT_EQ(stream.waitNewer(0, std::chrono::seconds(30)).number, 1);
   for (long k = 2; k <= 10; ++k) stream.push(image, k, 0.001 * static_cast<double>(k));  // nobody waits
+  EXPECT_EQ(stream.stats().encoded, 1) << "frames were encoded while nobody watched";
+  const render::JpegFrame newest = stream.waitNewer(0, std::chrono::seconds(30));
+  EXPECT_EQ(newest.number, 10) << "a newcomer was not given the frame drawn last";
+  EXPECT_DOUBLE_EQ(newest.time, 0.010);
   long got = 0;
-  std::thread reader([&] { got = stream.waitNewer(1, std::chrono::seconds(30)).number; });
+  std::thread reader([&] { got = stream.waitNewer(10, std::chrono::seconds(30)).number; });
   while (stream.waiting() == 0) std::this_thread::yield();
   stream.push(image, 11, 0.011);
   reader.join();
-  EXPECT_EQ(got, 11) << "frames 2..10, pushed while nobody waited, were not kept for the reader";
-  EXPECT_EQ(stream.stats().encoded, 2);
+  EXPECT_EQ(got, 11);
+  EXPECT_EQ(stream.stats().encoded, 3) << "frames 2..9 were encoded for nobody";
   EXPECT_EQ(stream.stats().pushed, 11);
 }
 
@@ -196,12 +154,12 @@ TEST(Serve, ThePageIsSelfContained) {
   EXPECT_EQ(client.Get("/../CMakeLists.txt")->status, 404);
 }
 
-// Requests are bounded: a body over kMaxRequestBytes is refused, one command per request.
+// Requests are bounded: a body over HttpLimits::body_bytes is refused, one command per request.
 TEST(Serve, RequestsAreBoundedInSize) {
   FedView fed(out("gf_serve_bounds"));
   std::unique_ptr<WebServer> server = serve(fed.view(), "127.0.0.1");
   httplib::Client client("127.0.0.1", portOf(*server));
-  EXPECT_EQ(client.Post("/command", std::string(kMaxRequestBytes + 1, 'x'), "text/plain")->status, 413);
+  EXPECT_EQ(client.Post("/command", std::string(HttpLimits{}.body_bytes + 1, 'x'), "text/plain")->status, 413);
   EXPECT_EQ(client.Post("/command", "state\nstate\n", "text/plain")->status, 400);
   EXPECT_EQ(client.Post("/command", "state\n", "text/plain")->status, 200);
 }
@@ -242,11 +200,12 @@ std::vector<long> readStream(httplib::Client& client, int parts) {
   return frames;
 }
 
-// The stream sends each frame once, newest first; at most kMaxStreams at once, and a client that
-// hangs up mid-stream gives its place back.
+// The stream sends each frame once, newest first; at most HttpLimits::streams_per_address from
+// one address at once, and a client that hangs up mid-stream gives its place back.
 TEST(Serve, StreamsSendNewerFramesAndFreeTheirPlaceWhenTheClientLeaves) {
   FedView fed(out("gf_serve_stream"));
   std::unique_ptr<WebServer> server = serve(fed.view(), "127.0.0.1");
+  const int kMaxStreams = HttpLimits{}.streams_per_address;
   for (int round = 0; round < 3; ++round) {  // more clients than places, one after the other
     std::vector<std::thread> readers;
     std::vector<std::vector<long>> got(kMaxStreams);
@@ -264,13 +223,13 @@ TEST(Serve, StreamsSendNewerFramesAndFreeTheirPlaceWhenTheClientLeaves) {
       for (std::size_t k = 1; k < frames.size(); ++k) EXPECT_LT(frames[k - 1], frames[k]);
     }
   }
-  const render::JpegStats stats = fed.view().jpeg().stats();
-  EXPECT_LT(stats.encoded, stats.pushed) << "frames nobody waited for are not encoded";
   EXPECT_EQ(server->statsJson()["streams_refused"].get<long>(), 0);
 }
 
-// Stopping the server ends open streams at once: stop() returns, and so do the readers.
+// Stopping the server ends open streams at once: stop() returns, and so do the readers. One more
+// stream from the same address than its cap is refused with 429.
 TEST(Serve, StoppingTheServerEndsOpenStreams) {
+  const int kMaxStreams = HttpLimits{}.streams_per_address;
   FedView fed(out("gf_serve_stop"));
   std::unique_ptr<WebServer> server = serve(fed.view(), "127.0.0.1");
   const int port = portOf(*server);
@@ -296,7 +255,7 @@ TEST(Serve, StoppingTheServerEndsOpenStreams) {
   // Every place is taken (the readers above run until the server stops).
   const auto refused = extra.Get("/stream.mjpg");
   ASSERT_TRUE(refused);
-  EXPECT_EQ(refused->status, 503);
+  EXPECT_EQ(refused->status, 429);
   server->stop();
   for (std::thread& t : readers) t.join();
   EXPECT_FALSE(extra.Get("/scene.json")) << "the server no longer listens";
