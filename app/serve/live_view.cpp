@@ -84,6 +84,11 @@ void LiveView::frame(const render::Image& image, const sim::Snapshot& snapshot, 
       if (recording_) recorder = recorder_;
     }
     jpeg_.push(image, number, snapshot.time);
+    {
+      std::lock_guard lock(mutex_);
+      drawn_step_ = snapshot.step;
+    }
+    drawn_.notify_all();
     if (recorder) {  // outside the lock: push waits while the writer's queue is full
       render::Image copy = recorder->spare();
       copy.width = image.width;
@@ -97,6 +102,11 @@ void LiveView::frame(const render::Image& image, const sim::Snapshot& snapshot, 
     std::lock_guard lock(mutex_);
     recording_ = false;  // a recording that fails stops; finish() reports why
   }
+}
+
+bool LiveView::waitDrawn(long step, std::chrono::milliseconds within) {
+  std::unique_lock lock(mutex_);
+  return drawn_.wait_for(lock, within, [&] { return drawn_step_ >= step; });
 }
 
 bool LiveView::latest(sim::Snapshot& out, long* frame) const {

@@ -6,6 +6,8 @@
 
 #include <nlohmann/json.hpp>
 
+#include <chrono>
+#include <condition_variable>
 #include <functional>
 #include <memory>
 #include <mutex>
@@ -49,6 +51,9 @@ class LiveView final : public render::FrameTap {
   /// go to out_dir/frames/NNNNNN.png, numbered on across recordings. Throws std::runtime_error
   /// when the folder cannot be made. Any thread.
   std::string record(bool on);
+  /// Waits until a frame of haptic step `step` or later has been drawn and handed to the JPEG
+  /// encoder, or `within` passes; false then. Any thread but the render thread.
+  bool waitDrawn(long step, std::chrono::milliseconds within);
   /// Stops the encoder and finishes the recording (rethrows a PNG writer's error).
   void finish();
 
@@ -59,6 +64,8 @@ class LiveView final : public render::FrameTap {
   render::JpegStream jpeg_;
   std::function<nlohmann::json()> devices_;
   mutable std::mutex mutex_;
+  std::condition_variable drawn_;
+  long drawn_step_ = -1;  // the step of the newest frame handed to the encoder
   sim::Snapshot latest_;
   bool has_latest_ = false;
   long frames_ = 0;

@@ -41,6 +41,10 @@ LiveSession::LiveSession(const LiveOptions& o)
   samples_.resize(devices_.size());
 }
 
+namespace {
+constexpr std::chrono::milliseconds kDrawnWithin{2000};
+}  // namespace
+
 void LiveSession::show(render::RenderThread* renderer, LiveView* view) {
   renderer_ = renderer;
   view_ = view;
@@ -110,8 +114,16 @@ std::string LiveSession::move(const LiveCommand& c) {
 
 std::string LiveSession::state() { return "ok " + stateJson(snapshot(), session_.scene).dump(); }
 
+// The world to the renderer; with a browser view, the answer waits (at most kDrawnWithin) until
+// it is drawn, so the page, /frame.jpg and the stream show the state the answer gives.
 void LiveSession::publish() {
-  if (renderer_) renderer_->publishLatest([&](sim::Snapshot& slot) { world_.snapshot(slot); });
+  if (!renderer_) return;
+  long step = 0;
+  renderer_->publishLatest([&](sim::Snapshot& slot) {
+    world_.snapshot(slot);
+    step = slot.step;
+  });
+  if (view_) view_->waitDrawn(step, kDrawnWithin);
 }
 
 namespace {

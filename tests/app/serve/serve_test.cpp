@@ -423,6 +423,10 @@ TEST(Serve, LiveTakesThePagesCommandsInTurnWithStandardInput) {
   ASSERT_TRUE(stepped);
   EXPECT_EQ(stepped->status, 200);
   EXPECT_NE(stepped->body.find("\"t\":0.1"), std::string::npos) << stepped->body;
+  // The step is drawn before it is answered: a newcomer's frame is of t = 0.1 s.
+  const auto frame = client.Get("/frame.jpg");
+  ASSERT_TRUE(frame);
+  EXPECT_EQ(frame->get_header_value("X-Sim-Time"), "0.1000");
   const auto quit = client.Post("/command", "quit", "text/plain");
   EXPECT_EQ(quit->status, 400);
   EXPECT_EQ(quit->body.rfind("error: quit: only on the session's standard input", 0), 0u) << quit->body;
