@@ -12,6 +12,7 @@
 #include <thread>
 
 #include "app/commands/commands.hpp"
+#include "app/runs/run_folder.hpp"
 #include "app/runs/files.hpp"
 #include "app/runs/run_reader.hpp"
 #include "app/runs/summary.hpp"
@@ -72,7 +73,7 @@ class BenchCommand final : public Command {
     realtime_->add_flag("--no-short-slice", no_short_slice_,
                         "Do not ask the scheduler for a short slice for the haptic loop (to see what it gives)");
     realtime_->add_flag("--pin", pin_, "Keep the haptic loop alone on the last CPU, the rest on the others");
-    realtime_->add_option("--out", out_, "Folder for the sessions' run folders and bench.json");
+    realtime_->add_option("--out", out_, "Folder for the sessions' run folders and bench.json (default: out/bench-realtime)");
     return bench;
   }
 
@@ -135,7 +136,7 @@ class BenchCommand final : public Command {
  private:
   CLI::App* realtime_ = nullptr;
   std::string scene_ = "fig8-pinch-oscillation";
-  std::string out_ = "bench-realtime";
+  std::string out_ = defaultOutFolder("bench-realtime");
   double duration_ = 10.0;
   int rounds_ = 2, load_ = 0;
   bool no_frames_ = false, no_fifo_ = false, no_short_slice_ = false, pin_ = false;

@@ -175,7 +175,7 @@ class CheckCommand final : public Command {
     CLI::App* c = app.add_subcommand("check", "Run scenes offline and check their [expect] tables; one line each, "
                                               "exit 1 if any fails");
     c->add_option("paths", o.paths, "Scene files, folders of them, or bundled scene names")->required();
-    c->add_option("--out", o.out, "Folder for the runs (default: check)");
+    c->add_option("--out", o.out, "Folder for the runs (default: out/check)");
     c->add_option("--set", o.overrides, "Override a field of every scene, e.g. --set world.contact_solver=aggregate");
     c->add_option("--jobs", o.jobs, "Scenes at a time (default: the number of cores)")->check(CLI::Range(1, 256));
     c->add_option("--max-duration", o.max_duration,

@@ -9,7 +9,7 @@ namespace gf::app {
 
 struct CheckOptions {
   std::vector<std::string> paths;  ///< scene files, folders of them (searched recursively) or bundled names
-  std::string out = "check";       ///< each scene's run folder goes under it
+  std::string out = "out/check";   ///< each scene's run folder goes under it (defaultOutFolder("check"))
   int jobs = 1;
   std::string godfinger;           ///< the executable runs are started with
   std::vector<std::string> overrides;  ///< `--set` for every run (e.g. world.contact_solver=aggregate)

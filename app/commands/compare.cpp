@@ -23,7 +23,7 @@ class CompareCommand final : public Command {
         ->default_val("god_object,soft_finger,god_finger");
     c->add_option("--set", o.overrides, "Override a scene field in every run");
     c->add_option("--duration", o.duration, "Simulated seconds (default: the scene's)")->check(CLI::Range(1e-3, 3600.0));
-    c->add_option("--out", o.out, "Folder for the runs, compare.json and frames (default: compare-SCENE)");
+    c->add_option("--out", o.out, "Folder for the runs, compare.json and frames (default: out/compare-SCENE)");
     c->add_option("--video", o.video, "Write the comparison as an MP4 (H.264, via ffmpeg)");
     c->add_flag("--frames", o.frames, "Write the comparison's frames/000000.png ... (always without --video)");
     c->add_flag("--keep-run-frames", o.keep_run_frames, "Keep each run's own frames (MODEL/frames)");

@@ -6,6 +6,7 @@
 #include "app/scene/data_folder.hpp"
 #include "app/scene/scene_file.hpp"
 #include "app/process/interrupt.hpp"
+#include "app/runs/run_folder.hpp"
 #include "app/session/session.hpp"
 
 namespace gf::app {
@@ -18,7 +19,7 @@ class RunCommand final : public Command {
   CLI::App* add(CLI::App& app) override {
     CLI::App* run = app.add_subcommand("run", "Run a scene; write trace.csv, summary.json and contacts/");
     run->add_option("scene", scene_, "Scene file, or the name of a bundled scene (godfinger list)")->required();
-    run->add_option("--out", out_, "Output folder (created if missing)");
+    run->add_option("--out", out_, "Output folder (created if missing; default: out/run-SCENE)");
     run->add_option("--set", overrides_, "Override a scene field, e.g. --set fingers.left.n_sgo=0");
     run->add_option("--duration", duration_, "Simulated seconds (default: the scene's)")
         ->check(settingCheck(sim::sceneSettings(), "duration"));
@@ -53,6 +54,7 @@ class RunCommand final : public Command {
   int run() override {
     SessionDesc session = loadSceneFile(resolveScenePath(scene_), overrides_);
     session.overrides = overrides_;
+    if (out_.empty()) out_ = defaultOutFolder("run-" + session.scene.name);
     if (duration_ > 0.0) session.scene.duration = duration_;
     cut_short_ = max_duration_ > 0.0 && max_duration_ < session.scene.duration;
     if (cut_short_) session.scene.duration = max_duration_;
@@ -90,7 +92,7 @@ class RunCommand final : public Command {
   }
 
   std::string scene_;
-  std::string out_ = "out";
+  std::string out_;  // default: out/run-SCENE
   std::vector<std::string> overrides_;
   double duration_ = 0.0, max_duration_ = 0.0;
   bool cut_short_ = false;

@@ -4,6 +4,7 @@
 
 #include "app/commands/commands.hpp"
 #include "app/compare/screenshots.hpp"
+#include "app/runs/run_folder.hpp"
 #include "render/frames/image.hpp"
 
 namespace gf::app {
@@ -13,7 +14,7 @@ class ScreenshotsCommand final : public Command {
  public:
   CLI::App* add(CLI::App& app) override {
     CLI::App* s = app.add_subcommand("screenshots", "Render the reference pictures (visual-regression goldens) into --out");
-    s->add_option("--out", out_, "Folder (default: screenshots, the goldens when run from the repository)");
+    s->add_option("--out", out_, "Folder (default: out/screenshots; --out screenshots from the repository root re-blesses the goldens)");
     return s;
   }
 
@@ -30,7 +31,7 @@ class ScreenshotsCommand final : public Command {
   }
 
  private:
-  std::string out_ = "screenshots";
+  std::string out_ = defaultOutFolder("screenshots");
 };
 
 }  // namespace

@@ -15,7 +15,8 @@ struct StudyArgs {
   std::string study, out, emit_jobs, collect;
   std::vector<std::string> overrides;
   int jobs = defaultJobs();
-  bool quick = false;
+  int stop_after = 0;
+  bool quick = false, restart = false;
 };
 
 class StudyCommand final : public Command {
@@ -25,7 +26,7 @@ class StudyCommand final : public Command {
     CLI::App* s = app.add_subcommand("study", "Run an accuracy study: every configuration as a `godfinger run`; write "
                                                "results.csv, work-precision.png and report.md");
     s->add_option("study", a.study, "Study file, or the name of a bundled study (assets/studies)")->required();
-    s->add_option("--out", a.out, "Output folder (default: study-NAME; with --collect, the collected folder)");
+    s->add_option("--out", a.out, "Output folder (default: out/study-NAME; with --collect, the collected folder)");
     s->add_option("--jobs", a.jobs, "Runs at a time (default: the number of cores); --jobs 1 for published step times")
         ->check(CLI::Range(1, 256));
     s->add_option("--set", a.overrides, "Override a scene field in every run, e.g. --set duration=2");
@@ -33,7 +34,13 @@ class StudyCommand final : public Command {
     s->add_option("--emit-jobs", a.emit_jobs, "Write one shell command line per run into this file (for GNU parallel "
                                               "or a Slurm array) instead of running");
     s->add_option("--collect", a.collect, "Collect the run folders a job runner wrote under this folder");
+    s->add_flag("--restart", a.restart, "Run every configuration again, even those an earlier run into --out "
+                                         "finished with the same executable, scene file and settings (kept otherwise)");
+    // Hidden (no group): start at most N runs, then collect and exit 130 as if interrupted; for
+    // the tests of resuming.
+    s->add_option("--stop-after", a.stop_after, "")->check(CLI::Range(1, 1000000))->group("");
     s->get_option("--emit-jobs")->excludes("--collect");
+    s->get_option("--restart")->excludes("--collect")->excludes("--emit-jobs");
     return s;
   }
 
@@ -61,9 +68,11 @@ class StudyCommand final : public Command {
     // The --quick grid's own overrides are checked too, whichever grid runs.
     if (!quick) expandStudy(study, true, overrides);
     StudyOptions options;
-    options.out = a.out.empty() ? (a.collect.empty() ? "study-" + study.name : a.collect) : a.out;
+    options.out = a.out.empty() ? (a.collect.empty() ? defaultOutFolder("study-" + study.name) : a.collect) : a.out;
     options.jobs = a.jobs;
     options.godfinger = selfExecutable();
+    options.restart = a.restart;
+    options.stop_after = a.stop_after;
     const RunFolder folder(options.out);  // the study's folder is this command's while it writes
     if (!a.emit_jobs.empty()) {
       emitStudyJobs(plan, options, a.emit_jobs);

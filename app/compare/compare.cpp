@@ -195,7 +195,7 @@ void CompareRun::prepare() {
                          " x " + std::to_string(height_) + ")");
   }
   layout_ = render::compareLayout(width_, height_, static_cast<int>(o_.models.size()));
-  out_ = fs::absolute(o_.out.empty() ? "compare-" + base_->scene.name : o_.out);
+  out_ = fs::absolute(o_.out.empty() ? defaultOutFolder("compare-" + base_->scene.name) : o_.out);
   video_path_ = o_.video.empty() ? fs::path() : fs::absolute(o_.video);
   frames_ = o_.frames || o_.video.empty();
   if (!o_.video.empty()) requireVideoPath(video_path_.string());

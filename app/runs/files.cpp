@@ -11,6 +11,7 @@
 #include <mutex>
 #include <stdexcept>
 #include <thread>
+#include <utility>
 #include <vector>
 
 namespace gf::app {
@@ -38,6 +39,28 @@ void writeFileAtomically(const std::string& path, const std::string& text) {
   if (ec) throw std::runtime_error(path + ": cannot replace: " + ec.message());
 }
 
+std::uint64_t fnv1a64(std::uint64_t h, std::string_view bytes) {
+  for (const char c : bytes) h = (h ^ static_cast<unsigned char>(c)) * 0x100000001b3ull;
+  return h;
+}
+
+std::string hex64(std::uint64_t h) {
+  char text[17];
+  std::snprintf(text, sizeof text, "%016llx", static_cast<unsigned long long>(h));
+  return text;
+}
+
+std::string fileFnv1a64(const std::string& path) {
+  std::FILE* f = std::fopen(path.c_str(), "rb");
+  if (!f) return {};
+  std::uint64_t h = kFnv1a64Basis;
+  std::vector<char> buffer(65536);
+  for (std::size_t n; (n = std::fread(buffer.data(), 1, buffer.size(), f)) > 0;) h = fnv1a64(h, {buffer.data(), n});
+  const bool read = std::ferror(f) == 0;
+  std::fclose(f);
+  return read ? hex64(h) : std::string();
+}
+
 namespace {
 // The writer's text is handed to the file once it holds this much.
 constexpr std::size_t kWriteBytes = std::size_t{1} << 20;
@@ -48,70 +71,117 @@ constexpr auto kWriterPoll = std::chrono::milliseconds(10);
 struct RowFile::Writer {
   std::string path, tmp;
   std::ofstream out;
-  std::size_t columns = 0, ring_rows = 0;
+  std::size_t columns = 0;
+  RowFileOptions options;
   std::vector<double> ring;                 // ring_rows rows of `columns` numbers
   alignas(64) std::atomic<std::size_t> head{0};  // rows pushed (owner)
   alignas(64) std::atomic<std::size_t> tail{0};  // rows formatted (writer)
   std::atomic<bool> failed{false};          // set by the writer, seen by the owner at its next push
   long waits = 0;                           // owner only
+  // Writer thread, then close(): what is on disk for sure (whole rows, the header included).
+  std::uint64_t written_bytes = 0, formatted_bytes = 0;
+  std::size_t written_rows = 0;
   std::mutex mutex;                         // close() only: never taken by push()
   std::condition_variable closing_changed;
   bool closing = false;
   bool closed = false;
+  bool watched = false;                     // on_rows was called
   std::thread thread;
 
-  void writeText(std::string& text) {
+  // Appends `text` (`rows` whole rows) to the file and flushes it, so a failure is seen at the
+  // chunk it hit and every byte before it is known to be written.
+  void writeText(std::string& text, std::size_t rows) {
     if (!failed && !text.empty()) {
-      out.write(text.data(), static_cast<std::streamsize>(text.size()));
-      if (!out) failed = true;
+      const std::uint64_t limit = options.fail_after_bytes;
+      if (limit > 0 && written_bytes + text.size() > limit) {  // a full disk, as a test asks for
+        out.write(text.data(), static_cast<std::streamsize>(limit - written_bytes));
+        out.flush();
+        failed = true;
+      } else {
+        out.write(text.data(), static_cast<std::streamsize>(text.size()));
+        out.flush();
+        if (!out) failed = true;
+        else written_bytes += text.size(), written_rows += rows;
+      }
     }
     text.clear();
   }
 
+  // After a failed write, the length of the file up to the last whole row that reached the disk
+  // (a chunk that failed may be there in part) and the rows before it.
+  std::pair<std::uint64_t, std::size_t> wholeRows() const {
+    std::error_code ec;
+    const std::uint64_t size = std::filesystem::file_size(tmp, ec);
+    if (ec || size <= written_bytes) return {written_bytes, written_rows};
+    std::ifstream in(tmp, std::ios::binary);
+    in.seekg(static_cast<std::streamoff>(written_bytes));
+    std::string rest(size - written_bytes, '\0');
+    in.read(rest.data(), static_cast<std::streamsize>(rest.size()));
+    rest.resize(static_cast<std::size_t>(std::max<std::streamsize>(0, in.gcount())));
+    const std::size_t last = rest.rfind('\n');
+    if (last == std::string::npos) return {written_bytes, written_rows};
+    const auto lines = static_cast<std::size_t>(std::count(rest.begin(), rest.begin() + static_cast<std::ptrdiff_t>(last) + 1, '\n'));
+    // With nothing written before, the first line is the header.
+    return {written_bytes + last + 1, written_rows + lines - (written_bytes == 0 ? 1 : 0)};
+  }
+
+  void watch(std::size_t rows) {
+    if (watched || !options.on_rows || rows < options.watch_rows) return;
+    watched = true;
+    options.on_rows(rows, formatted_bytes);
+  }
+
   void run() {
     std::string text;
+    std::size_t rows = 0;  // in `text`
     text.reserve(kWriteBytes + 64 * 1024);
     for (;;) {
       const std::size_t h = head.load(std::memory_order_acquire);
       std::size_t t = tail.load(std::memory_order_relaxed);
       if (t == h) {
-        writeText(text);
+        writeText(text, std::exchange(rows, 0));
         std::unique_lock lock(mutex);
         if (closing && tail.load(std::memory_order_relaxed) == head.load(std::memory_order_acquire)) return;
         closing_changed.wait_for(lock, kWriterPoll);
         continue;
       }
       for (; t != h; ++t) {
-        const double* row = &ring[(t % ring_rows) * columns];
+        const std::size_t before = text.size();
+        const double* row = &ring[(t % options.ring_rows) * columns];
         for (std::size_t c = 0; c < columns; ++c) {
           if (c > 0) text += ',';
           appendNumber(text, row[c]);
         }
         text += '\n';
+        formatted_bytes += text.size() - before;
+        ++rows;
         if (text.size() >= kWriteBytes) {
           tail.store(t + 1, std::memory_order_release);
-          writeText(text);
+          writeText(text, std::exchange(rows, 0));
         }
       }
       tail.store(t, std::memory_order_release);
+      watch(t);
     }
   }
 };
 
-RowFile::RowFile(std::string path, const std::vector<std::string>& columns, std::size_t ring_rows)
+RowFile::RowFile(std::string path, const std::vector<std::string>& columns, RowFileOptions options)
     : writer_(std::make_unique<Writer>()) {
   Writer& w = *writer_;
   w.path = std::move(path);
   w.tmp = w.path + ".tmp";
+  w.options = std::move(options);
+  w.options.ring_rows = std::max<std::size_t>(1, w.options.ring_rows);
   w.out.open(w.tmp, std::ios::binary | std::ios::trunc);
   if (!w.out) throw std::runtime_error(w.tmp + ": cannot create");
   std::string header;
   for (const std::string& c : columns) header.append(header.empty() ? "" : ",").append(c);
   header += '\n';
-  w.writeText(header);
+  w.formatted_bytes = header.size();
+  w.writeText(header, 0);
   w.columns = columns.size();
-  w.ring_rows = std::max<std::size_t>(1, ring_rows);
-  w.ring.assign(w.ring_rows * w.columns, 0.0);  // touched now, so the run takes no page fault in it
+  w.ring.assign(w.options.ring_rows * w.columns, 0.0);  // touched now, so the run takes no page fault in it
   w.thread = std::thread([&w] { w.run(); });
 }
 
@@ -131,14 +201,14 @@ void RowFile::push(const double* row) {
   // A write that failed (a full disk) stops the owner now, not at close().
   if (w.failed.load(std::memory_order_relaxed)) throw std::runtime_error(w.path + ": cannot write (disk full?)");
   const std::size_t h = w.head.load(std::memory_order_relaxed);
-  if (h - w.tail.load(std::memory_order_acquire) == w.ring_rows) {
+  if (h - w.tail.load(std::memory_order_acquire) == w.options.ring_rows) {
     ++w.waits;  // the writer is a whole ring behind: wait for it rather than lose a row
-    while (h - w.tail.load(std::memory_order_acquire) == w.ring_rows) {
+    while (h - w.tail.load(std::memory_order_acquire) == w.options.ring_rows) {
       if (w.failed.load(std::memory_order_relaxed)) throw std::runtime_error(w.path + ": cannot write (disk full?)");
       std::this_thread::yield();
     }
   }
-  std::copy(row, row + w.columns, &w.ring[(h % w.ring_rows) * w.columns]);
+  std::copy(row, row + w.columns, &w.ring[(h % w.options.ring_rows) * w.columns]);
   w.head.store(h + 1, std::memory_order_release);
 }
 
@@ -153,14 +223,21 @@ void RowFile::close() {
   w.closing_changed.notify_one();
   w.thread.join();
   w.out.close();
-  if (w.failed || !w.out) {
-    std::error_code ignored;
-    std::filesystem::remove(w.tmp, ignored);
-    throw std::runtime_error(w.path + ": cannot write (disk full?); its rows could not be kept");
-  }
   std::error_code ec;
-  std::filesystem::rename(w.tmp, w.path, ec);
+  const bool failed = w.failed || !w.out;
+  // After a failure, what reached the disk up to its last whole row (the header included).
+  const auto [length, rows] = failed ? w.wholeRows() : std::pair<std::uint64_t, std::size_t>{0, 0};
+  if (failed && length == 0) {  // not even the header: nothing worth keeping
+    std::filesystem::remove(w.tmp, ec);
+    throw std::runtime_error(w.path + ": cannot write (disk full?); nothing could be kept");
+  }
+  if (failed) std::filesystem::resize_file(w.tmp, length, ec);
+  if (!ec) std::filesystem::rename(w.tmp, w.path, ec);
   if (ec) throw std::runtime_error(w.path + ": cannot replace: " + ec.message());
+  if (failed) {
+    throw std::runtime_error(w.path + ": cannot write (disk full?); kept its first " + std::to_string(rows) +
+                             " rows (a valid CSV up to its last whole row)");
+  }
 }
 
 }  // namespace gf::app

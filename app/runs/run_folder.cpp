@@ -9,6 +9,7 @@
 #include <vector>
 
 #include <fcntl.h>
+#include <signal.h>
 #include <sys/file.h>
 #include <sys/statvfs.h>
 #include <unistd.h>
@@ -44,19 +45,40 @@ bool isContactName(const std::string& name) {
          (stem.ends_with(".json") || stem.ends_with(".png"));
 }
 
-// Removes the files of `folder` whose names are `ours`, nothing else. Throws std::runtime_error
-// naming a file it cannot remove.
-void sweep(const fs::path& folder, bool (*ours)(const std::string&)) {
+// Removes the files of `folder` whose names are `ours`, nothing else; returns how many of them
+// were temporary (.part, .tmp: a run that died writing them). Throws std::runtime_error naming a
+// file it cannot remove.
+int sweep(const fs::path& folder, bool (*ours)(const std::string&)) {
   std::error_code ec;
-  if (!fs::is_directory(folder, ec)) return;
+  if (!fs::is_directory(folder, ec)) return 0;
   std::vector<fs::path> doomed;
   for (const fs::directory_entry& e : fs::directory_iterator(folder, ec)) {
     if (e.is_regular_file(ec) && ours(e.path().filename().string())) doomed.push_back(e.path());
   }
+  int temporary = 0;
   for (const fs::path& p : doomed) {
     if (!fs::remove(p, ec) && ec) throw std::runtime_error(p.string() + ": cannot remove an earlier run's file: " + ec.message());
+    temporary += withoutTemporarySuffix(p.filename().string()) != p.filename().string();
   }
+  return temporary;
 }
+
+// The pid in a video's temporary name (NAME.mp4.PID.part, as render::VideoWriter names it), or -1
+// when `name` is not one.
+pid_t videoPartPid(const std::string& name) {
+  if (!name.ends_with(".part")) return -1;
+  const std::string stem = name.substr(0, name.size() - 5);
+  const std::size_t dot = stem.rfind('.');
+  if (dot == std::string::npos || dot + 1 == stem.size() || !render::videoContainer(stem.substr(0, dot))) return -1;
+  const std::string digits = stem.substr(dot + 1);
+  if (digits.size() > 9 || !std::all_of(digits.begin(), digits.end(), [](char c) { return c >= '0' && c <= '9'; })) {
+    return -1;
+  }
+  return static_cast<pid_t>(std::stol(digits));
+}
+
+// Whether a process `pid` exists (one of another user's counts: EPERM).
+bool processAlive(pid_t pid) { return pid > 0 && (kill(pid, 0) == 0 || errno == EPERM); }
 
 // The pid written into a held lock file, or "" when it cannot be read.
 std::string lockHolder(int fd) {
@@ -101,6 +123,8 @@ std::string megabytes(std::uintmax_t bytes) {
 }
 
 }  // namespace
+
+std::string defaultOutFolder(const std::string& name) { return (fs::path(kDefaultOutRoot) / name).string(); }
 
 std::string contactStem(double t) {
   char name[48];
@@ -167,12 +191,30 @@ void requireRoom(const fs::path& folder, std::uintmax_t bytes, const std::string
 }
 
 void clearRunOutputs(const fs::path& dir) {
-  sweep(dir, isRunFileName);
-  sweep(dir / kFramesFolder, isFrameName);
-  sweep(dir / kContactsFolder, isContactName);
+  const int temporary = sweep(dir, isRunFileName) + sweep(dir / kFramesFolder, isFrameName) +
+                        sweep(dir / kContactsFolder, isContactName);
+  if (temporary > 0) {
+    std::fprintf(stderr, "[godfinger] %s: removed %d unfinished file%s (.part, .tmp) of an earlier run that ended "
+                 "without finishing them\n", dir.c_str(), temporary, temporary == 1 ? "" : "s");
+  }
 }
 
 void clearFrames(const fs::path& folder) { sweep(folder, isFrameName); }
+
+int removeStaleVideoParts(const fs::path& folder) {
+  std::error_code ec;
+  int removed = 0;
+  for (const fs::directory_entry& e : fs::directory_iterator(folder, ec)) {
+    const pid_t pid = videoPartPid(e.path().filename().string());
+    if (pid < 0 || pid == getpid() || processAlive(pid) || !e.is_regular_file(ec)) continue;
+    std::error_code gone;
+    if (!fs::remove(e.path(), gone)) continue;  // removed meanwhile, or not ours to remove: left
+    std::fprintf(stderr, "[godfinger] %s: removed the unfinished video of a run that is gone (pid %d)\n",
+                 e.path().c_str(), static_cast<int>(pid));
+    ++removed;
+  }
+  return removed;
+}
 
 std::uintmax_t runOutputBytes(const fs::path& dir) {
   return bytesOf(dir, isRunFileName) + bytesOf(dir / kFramesFolder, isFrameName) +
@@ -190,7 +232,9 @@ void requireVideoPath(const std::string& path) {
   std::error_code ec;
   if (fs::is_directory(video, ec)) throw std::runtime_error(path + " is a folder; give a file such as out.mp4");
   if (!render::videoContainer(path)) throw std::runtime_error(path + ": the video's name must end in .mp4, .mkv or .mov");
-  requireWritableFolder(video.parent_path().empty() ? fs::path(".") : video.parent_path(), "the video");
+  const fs::path folder = video.parent_path().empty() ? fs::path(".") : video.parent_path();
+  requireWritableFolder(folder, "the video");
+  removeStaleVideoParts(folder);
 }
 
 }  // namespace gf::app

@@ -19,6 +19,14 @@ inline constexpr char kContactsFolder[] = "contacts";    ///< contacts/t0.500.js
 inline constexpr char kFramesFolder[] = "frames";        ///< frames/000000.png ...
 inline constexpr char kLockFile[] = ".godfinger.lock";   ///< the owner's lock, holding its pid
 
+/// Where every command writes when it is given no --out: `out/` of the current folder.
+inline constexpr char kDefaultOutRoot[] = "out";
+
+/// The folder a command writes into without --out: "out/NAME" (run-SCENE, compare-SCENE,
+/// study-NAME, check, live-SCENE, bench-realtime, screenshots), relative to the current folder,
+/// never the source tree's or the data's.
+std::string defaultOutFolder(const std::string& name);
+
 /// The name stem of the contact snapshot at `t` seconds ("t0.500"): contacts/t0.500.json.
 std::string contactStem(double t);
 
@@ -50,8 +58,8 @@ void requireRoom(const std::filesystem::path& folder, std::uintmax_t bytes, cons
 
 /// Removes what an earlier run left in `dir` of the kinds of output a run writes (trace.csv,
 /// forces.csv, forces.png, summary.json, the frame sequence, contact snapshots and close-ups,
-/// and their temporary names), nothing else. Throws std::runtime_error naming a file it cannot
-/// remove.
+/// and their temporary names), nothing else; says on stderr how many temporary ones (a run that
+/// died writing them) it removed. Throws std::runtime_error naming a file it cannot remove.
 void clearRunOutputs(const std::filesystem::path& dir);
 
 /// Removes a frame sequence an earlier run left in `folder` (000000.png ... and their temporary
@@ -64,8 +72,15 @@ std::uintmax_t runOutputBytes(const std::filesystem::path& dir);
 /// The name of frame `k` of a frame sequence: "000042.png".
 std::string frameFileName(long k);
 
+/// Removes from `folder` the videos a run left unfinished when it died (`kill -9`): temporary
+/// names NAME.mp4.PID.part (.mkv, .mov; as render::VideoWriter writes them) whose PID is no
+/// running process, each said on stderr. A name of a live process (another run writing its video
+/// there) stays. Returns how many were removed.
+int removeStaleVideoParts(const std::filesystem::path& folder);
+
 /// Checks a video path before any work: not a folder, ends in .mp4, .mkv or .mov, its folder
-/// created and writable. Throws std::runtime_error naming the path.
+/// created and writable; then removes the stale temporary videos there (removeStaleVideoParts).
+/// Throws std::runtime_error naming the path.
 void requireVideoPath(const std::string& path);
 
 }  // namespace gf::app

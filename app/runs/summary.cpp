@@ -7,6 +7,7 @@
 #include <unistd.h>
 
 #include "app/runs/contacts.hpp"
+#include "app/runs/files.hpp"
 #include "godfinger_commit.hpp"
 #include "sim/about.hpp"
 #include "sim/mesh/mesh_import.hpp"
@@ -25,21 +26,6 @@ nlohmann::json effectsJson(const sim::EffectSet& e) {
   nlohmann::json out = nlohmann::json::object();
   for (const sim::EffectSwitch& s : sim::effectSwitches()) out[std::string(s.name)] = e.*s.on;
   return out;
-}
-
-// 64-bit FNV-1a of a file's bytes as 16 hex digits; empty when it cannot be read.
-std::string fileHash(const std::string& path) {
-  std::FILE* f = std::fopen(path.c_str(), "rb");
-  if (!f) return {};
-  std::uint64_t h = 0xcbf29ce484222325ull;
-  unsigned char buffer[65536];
-  for (std::size_t n; (n = std::fread(buffer, 1, sizeof buffer, f)) > 0;) {
-    for (std::size_t i = 0; i < n; ++i) h = (h ^ buffer[i]) * 0x100000001b3ull;
-  }
-  std::fclose(f);
-  char text[17];
-  std::snprintf(text, sizeof text, "%016llx", static_cast<unsigned long long>(h));
-  return text;
 }
 
 std::string hostName() {
@@ -190,7 +176,7 @@ nlohmann::json realtimeJson(const sim::LoopStats& stats, bool fifo_requested) {
 nlohmann::json provenanceJson(const SessionDesc& session, const std::vector<std::string>& command_line) {
   return {{"godfinger", {{"version", versionString()}, {"commit", commitString()}}},
           {"command_line", command_line},
-          {"scene_file_fnv1a64", fileHash(session.source)}};
+          {"scene_file_fnv1a64", fileFnv1a64(session.source)}};
 }
 
 void addExpectations(nlohmann::json& summary, const nlohmann::json& checks, std::size_t failed) {

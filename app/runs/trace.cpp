@@ -1,5 +1,9 @@
 #include "app/runs/trace.hpp"
 
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+
 #include "sim/assert.hpp"
 
 namespace gf::app {
@@ -40,8 +44,52 @@ std::vector<std::string> traceColumns(const sim::SceneDesc& d) {
   return out;
 }
 
-TraceWriter::TraceWriter(const sim::World& world, const std::string& path)
-    : file_(path, traceColumns(world.desc())), row_(file_.columns()) {
+int traceStride(double haptic_rate_hz, double trace_rate_hz) {
+  if (!(trace_rate_hz > 0.0)) return 1;
+  return std::max(1, static_cast<int>(std::lround(haptic_rate_hz / trace_rate_hz)));
+}
+
+std::string traceSizeWarning(double haptic_rate_hz, double duration_s, int every_steps, double bytes_per_row) {
+  const double rows_per_s = haptic_rate_hz / every_steps, bytes_per_s = bytes_per_row * rows_per_s;
+  const double at_end = bytes_per_s * duration_s;
+  if (at_end < kTraceWarnBytes) return "";
+  // A tenth of the rows, at a rate that divides the haptic rate (1 kHz: 100 Hz).
+  const int thinner = every_steps * 10;
+  char text[400];
+  std::snprintf(text, sizeof text,
+                "trace.csv grows %.0f bytes a row at %g rows/s: %.2f GB an hour, about %.0f MB by the run's end "
+                "(%g s); thin it with --set record.trace_rate=%g (a row every %d steps) or drop it with --set "
+                "record.trace=false",
+                bytes_per_row, rows_per_s, bytes_per_s * 3600.0 / 1e9, at_end / 1e6, duration_s,
+                haptic_rate_hz / thinner, thinner);
+  return text;
+}
+
+namespace {
+
+// The writer thread's size check: after kTraceWatchRows rows, the projection, warned once.
+RowFileOptions traceFileOptions(const sim::SceneDesc& scene, const TraceOptions& o,
+                                const std::shared_ptr<std::string>& warning) {
+  RowFileOptions out;
+  out.fail_after_bytes = o.fail_after_bytes;
+  if (!o.warn_size) return out;
+  out.watch_rows = kTraceWatchRows;
+  out.on_rows = [name = scene.name, rate = scene.world.haptic_rate_hz, duration = scene.duration,
+                 every = std::max(1, o.every_steps), warning](std::size_t rows, std::uint64_t bytes) {
+    const std::string text = traceSizeWarning(rate, duration, every, static_cast<double>(bytes) / static_cast<double>(rows));
+    if (text.empty()) return;
+    std::fprintf(stderr, "%s: warning: %s\n", name.c_str(), text.c_str());
+    *warning = text;
+  };
+  return out;
+}
+
+}  // namespace
+
+TraceWriter::TraceWriter(const sim::World& world, const std::string& path, TraceOptions options)
+    : every_steps_(std::max(1, options.every_steps)),
+      file_(path, traceColumns(world.desc()), traceFileOptions(world.desc(), options, size_warning_)),
+      row_(file_.columns()) {
   const sim::SceneDesc& d = world.desc();
   for (std::size_t b = 0; b < d.bodies.size(); ++b) {
     if (d.bodies[b].mass > 0.0) dynamic_bodies_.push_back(static_cast<int>(b));
@@ -52,6 +100,7 @@ TraceWriter::TraceWriter(const sim::World& world, const std::string& path)
 }
 
 void TraceWriter::record(const sim::World& world) {
+  if (++steps_ % every_steps_ != 0) return;  // record.trace_rate: not one of the rows
   double* x = row_.data();
   *x++ = world.time();
   for (int b : dynamic_bodies_) {

@@ -3,6 +3,7 @@
 #include "app/scene/sections.hpp"
 
 #include <charconv>
+#include <cstdio>
 
 namespace gf::app {
 namespace {
@@ -46,9 +47,46 @@ void requireKnownOrNew(const toml::table& group, const std::vector<std::string>&
   }
 }
 
+// `text` with its control characters written out (\n, \r, \xNN), for a message on one line.
+std::string visible(const std::string& text) {
+  std::string out;
+  for (const char c : text) {
+    const auto u = static_cast<unsigned char>(c);
+    if (u >= 0x20 && u != 0x7f) out += c;
+    else if (c == '\n') out += "\\n";
+    else if (c == '\r') out += "\\r";
+    else if (c == '\t') out += "\\t";
+    else {
+      char hex[8];
+      std::snprintf(hex, sizeof hex, "\\x%02x", u);
+      out += hex;
+    }
+  }
+  return out;
+}
+
+// One --set is one field and one value on one line: a control character other than a tab (TOML's
+// whitespace) would cut the text (a newline starts another TOML line: "8\nfingers.index.r_max =
+// 0.5" set a second field unseen) or hide in a string. Refused, naming --set and the field.
+void requireNoControlCharacters(const std::string& text) {
+  for (std::size_t i = 0; i < text.size(); ++i) {
+    const auto u = static_cast<unsigned char>(text[i]);
+    if ((u >= 0x20 && u != 0x7f) || u == '\t') continue;
+    const std::size_t eq = text.find('=');
+    const std::string field = visible(eq == std::string::npos ? text : text.substr(0, eq));
+    char code[8];
+    std::snprintf(code, sizeof code, "0x%02x", u);
+    throw InputError("--set " + visible(text), 0, 0, field,
+                     std::string("holds a control character (") + code + (u == '\n' ? ", a newline" : "") +
+                         ") at byte " + std::to_string(i) +
+                         ": one --set sets one field to one value on one line; give each field its own --set");
+  }
+}
+
 }  // namespace
 
 void applyOverride(toml::table& root, const std::string& text) {
+  requireNoControlCharacters(text);
   const std::string where = "--set " + text;
   const std::size_t eq = text.find('=');
   if (eq == std::string::npos || eq == 0) throw InputError(where, 0, 0, text, "expected FIELD=VALUE");

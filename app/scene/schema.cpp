@@ -202,6 +202,8 @@ nlohmann::json sceneSchema() {
   properties["changes"] = {{"type", "array"}, {"items", object(change, "a scripted change of live settings", {"finger", "t"})}};
   properties["record"] = object(
       {{"trace", {{"type", "boolean"}}},
+       {"trace_rate", numberSchema(kMinTraceRateHz, 1e5, "trace.csv rows a second (Hz); haptic_rate_hz / trace_rate "
+                                                         "must be whole; default: every haptic step")},
        {"contacts", {{"type", "array"}, {"items", {{"type", "number"}, {"minimum", 0}}}, {"description", "snapshot times (s)"}}},
        {"forces", {{"type", "array"}, {"items", {{"type", "string"}}}, {"description", "dynamic bodies for forces.csv"}}},
        {"force_chart", {{"type", "boolean"}}},

@@ -10,9 +10,15 @@
 
 namespace gf::app {
 
+/// Hz: the lowest record.trace_rate (a row a minute).
+inline constexpr double kMinTraceRateHz = 1.0 / 60.0;
+
 /// What a session writes besides summary.json.
 struct RecordSettings {
   bool trace = true;                         ///< trace.csv, one row per haptic step
+  /// Hz: trace.csv rows a second of simulated time, a row every haptic_rate_hz / trace_rate
+  /// steps (a whole number); 0 (the default): every haptic step.
+  double trace_rate = 0.0;
   std::vector<double> contact_times;         ///< s: contacts/t<time>.json at these times
   std::vector<std::string> force_bodies;     ///< forces.csv: non-gravity force on these bodies
   /// forces.png: the y force on the first force body against time, this scene with god-fingers

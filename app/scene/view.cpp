@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <cstdlib>
 
 #include "sim/scene/settings.hpp"
@@ -131,12 +132,32 @@ view::Camera readCamera(const std::string& name, const toml::table& t, const Rea
   return c;
 }
 
+namespace {
+
+// record.trace_rate: rows at a whole fraction of the haptic rate, so each row is a step's state at
+// its exact time (a 1 kHz run at 100 Hz: t = 0.01, 0.02, ...).
+void readTraceRate(Reader& r, SessionDesc& s) {
+  const double haptic = s.scene.world.haptic_rate_hz;
+  s.record.trace_rate = r.number("trace_rate", 0.0, kMinTraceRateHz, haptic);
+  if (s.record.trace_rate == 0.0) return;
+  const double every = haptic / s.record.trace_rate;
+  if (std::abs(every - std::round(every)) > 1e-9 * every) {
+    char text[200];
+    std::snprintf(text, sizeof text, "%g Hz does not divide the haptic_rate (%g Hz): a row every %g steps; give a "
+                  "rate whose steps are whole, e.g. %g Hz", s.record.trace_rate, haptic, every, haptic / std::round(every));
+    r.fail(r.find("trace_rate"), "trace_rate", text);
+  }
+}
+
+}  // namespace
+
 void readRecord(Reader& parent, SessionDesc& s) {
   const toml::node* n = parent.find("record");
   if (!n) return;
   if (!n->is_table()) parent.fail(n, "record", "expected a table");
   Reader r(*n->as_table(), "record", parent.file());
   s.record.trace = r.boolean("trace", true);
+  readTraceRate(r, s);
   s.record.contact_times = r.numbers("contacts");
   for (const auto& [body, node] : r.strings("forces")) {
     const bool known = std::any_of(s.scene.bodies.begin(), s.scene.bodies.end(),

@@ -148,7 +148,10 @@ std::uintmax_t estimatedOutputBytes(const SessionDesc& session, const SessionOpt
                                        [&](double t) { return t <= scene.duration; });
   double bytes = kSummaryBytes + kContactSnapshotBytes * static_cast<double>(snapshots);
   if (session.record.force_chart) bytes += kForceChartBytes;
-  if (session.record.trace) bytes += rows * static_cast<double>(traceColumns(scene).size()) * kBytesPerNumber;
+  if (session.record.trace) {
+    const double every = traceStride(scene.world.haptic_rate_hz, session.record.trace_rate);
+    bytes += rows / every * static_cast<double>(traceColumns(scene).size()) * kBytesPerNumber;
+  }
   bytes += rows * static_cast<double>(1 + 3 * session.record.force_bodies.size()) * kBytesPerNumber;
   if (options.frames) {
     const double frames = std::floor(scene.duration * render::FrameOutputSettings{}.fps) + 1.0;
@@ -330,7 +333,11 @@ void SessionRun::startThreads() {
     renderer_ = std::make_unique<render::RenderThread>(scene_, fo);
   }
   clearRunOutputs(dir_);
-  if (session_.record.trace) trace_.emplace(*world_, (dir_ / kTraceFile).string());
+  if (session_.record.trace) {
+    const TraceOptions o{traceStride(scene_.world.haptic_rate_hz, session_.record.trace_rate), true,
+                         options_.trace_fail_after_bytes};
+    trace_.emplace(*world_, (dir_ / kTraceFile).string(), o);
+  }
   forces_.emplace(*world_, session_.record.force_bodies, steps_, (dir_ / kForcesFile).string());
   if (stream) frames_ = std::make_unique<FrameDriver>(*renderer_, 60.0, options_.realtime, session_.view.actions, &live_);
   if (frames_) frames_->start(*world_);
@@ -417,6 +424,8 @@ void SessionRun::finish(Write&& write) {
     write();
   } catch (const std::exception& e) {
     if (failure_ == e.what()) return;  // the failure that stopped the run, reported already
+    // The same failure told in full when its file was closed (trace.csv: the rows it kept).
+    if (!failure_.empty() && std::string_view(e.what()).starts_with(failure_)) failure_ = e.what();
     if (failure_.empty()) failure_ = e.what();
     std::fprintf(stderr, "%s: %s\n", scene_.name.c_str(), e.what());
   }
@@ -455,7 +464,10 @@ void SessionRun::finishOutputs(const sim::LoopStats& stats) {
 }
 
 void SessionRun::finishFiles(const sim::LoopStats& stats) {
-  if (trace_) finish([&] { trace_->close(); });
+  if (trace_) {
+    finish([&] { trace_->close(); });
+    if (!trace_->sizeWarning().empty()) warnings_.push_back(trace_->sizeWarning());
+  }
   finish([&] { forces_->close(); });
   for (const std::pair<double, sim::Snapshot>& snap : contact_snaps_) {  // (no structured binding: clang 14 lambdas)
     finish([&] {

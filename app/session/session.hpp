@@ -1,6 +1,7 @@
 // A recorded session: run a scene through the haptic loop and write what it asks to record.
 #pragma once
 
+#include <cstdint>
 #include <optional>
 #include <string>
 #include <vector>
@@ -52,6 +53,9 @@ struct SessionOptions {
   bool cut_short = false;
   /// The command line that started the run, recorded in summary.json (empty: not recorded).
   std::vector<std::string> command_line{};
+  /// Tests only: trace.csv's writes fail once it would pass this many bytes, as on a disk that
+  /// fills during the run (0: never).
+  std::uint64_t trace_fail_after_bytes = 0;
 };
 
 /// The camera called `name` in the session (the first when empty; a default view of the scene

@@ -149,6 +149,10 @@ struct StudyPlan {
 /// runs. A grid of more than 1000 runs is refused before it is listed. Throws InputError.
 StudyPlan expandStudy(const StudyDesc& study, bool quick, const std::vector<std::string>& extra);
 
+/// The arguments of one run's `godfinger run` after the scene and --out: `--expectations report`
+/// and its overrides as `--set` pairs.
+std::vector<std::string> runArguments(const StudyRun& run);
+
 /// The shell command line of one run, writing into `out_dir`/runs/<id>/ (absolute paths, so it
 /// works from any folder), its output in run.log there.
 std::string runCommandLine(const std::string& godfinger, const std::string& out_dir, const StudyRun& run);
@@ -158,10 +162,17 @@ struct StudyOptions {
   int jobs = 1;
   bool progress = true;   ///< progress lines on stderr
   std::string godfinger;  ///< the executable runs are started with
+  /// Redo every run, even those a run before finished with the same key (app/study/study_resume.hpp).
+  bool restart = false;
+  /// Start at most this many runs, then collect and return 130 as if interrupted (0: all). For
+  /// tests of resuming (`godfinger study --stop-after N`, hidden).
+  int stop_after = 0;
 };
 
-/// Runs every configuration (jobs at a time), then collects. Returns the process exit code:
-/// 0 when every run succeeded and was measured.
+/// Runs every configuration (jobs at a time), then collects. A run a run before finished into
+/// the same folder with the same key (same scene file, overrides and executable; its outputs
+/// whole) is kept, not run again, unless `options.restart`; how many are kept is printed.
+/// Returns the process exit code: 0 when every run succeeded and was measured.
 int runStudy(const StudyPlan& plan, const StudyOptions& options);
 
 /// How a study's grid was made: recorded as DIR/grid.json by a run or an emit, so that --collect

@@ -481,11 +481,15 @@ StudyPlan expandStudy(const StudyDesc& study, bool quick, const std::vector<std:
   return plan;
 }
 
-std::string runCommandLine(const std::string& godfinger, const std::string& out_dir, const StudyRun& run) {
+std::vector<std::string> runArguments(const StudyRun& run) {
   // A study measures: the scene's [expect] is recorded, not a failure.
   std::vector<std::string> arguments = {"--expectations", "report"};
   for (const StudyOverride& o : run.overrides) arguments.insert(arguments.end(), {"--set", o.text});
-  return godfingerRunLine(godfinger, run.scene, (fs::path(out_dir) / "runs" / run.id).string(), arguments);
+  return arguments;
+}
+
+std::string runCommandLine(const std::string& godfinger, const std::string& out_dir, const StudyRun& run) {
+  return godfingerRunLine(godfinger, run.scene, (fs::path(out_dir) / "runs" / run.id).string(), runArguments(run));
 }
 
 }  // namespace gf::app

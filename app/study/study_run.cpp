@@ -18,6 +18,7 @@
 #include "app/study/study.hpp"
 #include "app/study/study_chart.hpp"
 #include "app/study/study_measure.hpp"
+#include "app/study/study_resume.hpp"
 #include "render/render_thread.hpp"
 #include "sim/scene/effective_settings.hpp"
 #include "sim/scene/settings.hpp"
@@ -378,22 +379,61 @@ void emitStudyJobs(const StudyPlan& plan, const StudyOptions& options, const std
               options.out.c_str(), options.out.c_str());
 }
 
+namespace {
+
+// Says what a rerun keeps: "resuming: 42 of 104 runs kept, 62 to run", and why records were
+// not kept.
+void reportResume(const StudyPlan& plan, const StudyOptions& options, const StudyResume& resume) {
+  const std::size_t total = plan.runs.size(), kept = static_cast<std::size_t>(resume.kept_count);
+  if (kept > 0) {
+    std::printf("resuming: %zu of %zu runs kept, %zu to run (--restart runs them all)\n", kept, total, total - kept);
+  } else if (options.restart) {
+    std::printf("restarting: all %zu runs to run\n", total);
+  }
+  if (resume.other_key > 0) {
+    std::fprintf(stderr, "godfinger study: %d finished runs in %s were made with another executable, scene file or "
+                 "settings: run again\n", resume.other_key, options.out.c_str());
+  }
+  if (resume.broken > 0) {
+    std::fprintf(stderr, "godfinger study: %d finished runs in %s have missing, changed or unfinished files: run "
+                 "again\n", resume.broken, options.out.c_str());
+  }
+  std::fflush(stdout);
+}
+
+}  // namespace
+
 int runStudy(const StudyPlan& plan, const StudyOptions& options) {
   std::error_code ec;
   fs::create_directories(fs::path(options.out) / "runs", ec);
   if (ec) throw std::runtime_error(options.out + ": cannot create folder: " + ec.message());
   writeStudyGrid(options.out, {plan.study.source, plan.quick, plan.extra});
+  const StudyResume resume = planResume(plan, options.out, options.godfinger, options.restart);
+  reportResume(plan, options, resume);
+  // The runs to run: each loses its record first, so one cut short is never kept.
+  std::vector<std::size_t> todo;
   std::vector<std::string> lines;
-  for (const StudyRun& r : plan.runs) lines.push_back(runCommandLine(options.godfinger, options.out, r));
+  for (std::size_t i = 0; i < plan.runs.size(); ++i) {
+    if (resume.kept[i]) continue;
+    const std::string dir = (fs::path(options.out) / "runs" / plan.runs[i].id).string();
+    forgetFinishedRun(dir);
+    todo.push_back(i);
+    lines.push_back(runCommandLine(options.godfinger, options.out, plan.runs[i]));
+  }
+  const bool stopped = options.stop_after > 0 && lines.size() > static_cast<std::size_t>(options.stop_after);
+  if (stopped) lines.resize(static_cast<std::size_t>(options.stop_after));
   const auto start = std::chrono::steady_clock::now();
   std::size_t finished = 0;
   int failed = 0;
-  const bool interrupted = runJobs(lines, options.jobs, [&](std::size_t i, int code) {
+  const bool interrupted = runJobs(lines, options.jobs, [&](std::size_t k, int code) {
+    const StudyRun& run = plan.runs[todo[k]];
+    const std::string dir = (fs::path(options.out) / "runs" / run.id).string();
     ++finished;
+    if (code == 0) recordFinishedRun(dir, resume.keys[todo[k]]);
     if (code != 0) {
       ++failed;
-      std::fprintf(stderr, "godfinger study: run %s failed (exit %d); see %s\n", plan.runs[i].id.c_str(), code,
-                   (fs::path(options.out) / "runs" / plan.runs[i].id / kRunLogFile).c_str());
+      std::fprintf(stderr, "godfinger study: run %s failed (exit %d); see %s\n", run.id.c_str(), code,
+                   (fs::path(dir) / kRunLogFile).c_str());
     }
     if (options.progress) {
       const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -403,8 +443,12 @@ int runStudy(const StudyPlan& plan, const StudyOptions& options) {
     }
   });
   if (interrupted) std::fprintf(stderr, "godfinger study: interrupted; collecting the runs that finished\n");
+  if (stopped) {
+    std::fprintf(stderr, "godfinger study: stopped after %d runs (--stop-after); run again to resume\n",
+                 options.stop_after);
+  }
   const int collected = collectStudy(plan, options.out, options.out, false);
-  if (interrupted) return 130;
+  if (interrupted || stopped) return 130;
   return failed == 0 && collected == 0 ? 0 : 1;
 }
 

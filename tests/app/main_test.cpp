@@ -7,7 +7,10 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <sstream>
+#include <string>
+#include <vector>
 
 #include <sys/wait.h>
 #include "tests/scratch.hpp"
@@ -204,6 +207,46 @@ TEST(Command, BenchRealtimeReportsTheLoopBesideTheSleeper) {
   EXPECT_DOUBLE_EQ(b["difference_points"].get<double>(),
                    b["loop_late_percent"].get<double>() - b["sleeper_late_percent"].get<double>());
   EXPECT_NE(std::system((bin + "--rounds 0 --out " + out.string() + " 2>/dev/null").c_str()), 0);
+}
+
+// `--set` with a control character (a newline would start a second TOML line and set a field
+// unseen) is refused naming --set and the field, the character written out; a tab (TOML's
+// whitespace) is taken. Nothing is written.
+TEST(Command, ASetWithANewlineIsRefusedNamingTheField) {
+  namespace fs = std::filesystem;
+  const fs::path out = gf::test::scratchRoot() / "gf_set_newline";
+  fs::remove_all(out);
+  const std::string run = std::string(GF_BINARY_DIR) + "/godfinger run press-box --quiet --out " + out.string() + " ";
+  const std::string log = out.string() + ".txt";
+  EXPECT_EQ(WEXITSTATUS(std::system((run + "--set \"$(printf 'duration=0.05\\nfingers.index.r_max = 0.5')\" 2> " + log).c_str())), 1);
+  std::ifstream in(log);
+  const std::string said((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  EXPECT_NE(said.find("--set duration=0.05\\nfingers.index.r_max = 0.5: duration: holds a control character (0x0a, "
+                      "a newline) at byte 13"),
+            std::string::npos)
+      << said;
+  EXPECT_FALSE(fs::exists(out / "summary.json"));
+  EXPECT_NE(WEXITSTATUS(std::system((run + "--set \"$(printf 'duration=0.05\\r')\" 2> /dev/null").c_str())), 0);
+  EXPECT_NE(WEXITSTATUS(std::system((run + "--set \"$(printf 'duration=0.05\\177')\" 2> /dev/null").c_str())), 0);
+  EXPECT_EQ(WEXITSTATUS(std::system((run + "--set \"$(printf 'duration=\\t0.05')\" > /dev/null 2>&1").c_str())), 0);
+}
+
+// Without --out, every command writes under out/ of the folder it runs in: `run` into
+// out/run-SCENE, `check` into out/check (never the source tree or the data's folder).
+TEST(Command, DefaultOutputsGoUnderOutOfTheCurrentFolder) {
+  namespace fs = std::filesystem;
+  const fs::path here = gf::test::scratchRoot() / "gf_default_out";
+  fs::remove_all(here);
+  fs::create_directories(here);
+  const std::string bin = std::string(GF_BINARY_DIR) + "/godfinger";
+  const std::string cd = "cd '" + here.string() + "' && " + bin;
+  ASSERT_EQ(WEXITSTATUS(std::system((cd + " run press-box --quiet --duration 0.05 > /dev/null").c_str())), 0);
+  EXPECT_TRUE(fs::exists(here / "out" / "run-press-box" / "summary.json"));
+  ASSERT_EQ(WEXITSTATUS(std::system((cd + " check press-box --max-duration 0.05 > /dev/null").c_str())), 0);
+  EXPECT_TRUE(fs::exists(here / "out" / "check" / "press-box" / "summary.json"));
+  std::vector<std::string> top;
+  for (const fs::directory_entry& e : fs::directory_iterator(here)) top.push_back(e.path().filename().string());
+  EXPECT_EQ(top, std::vector<std::string>{"out"});
 }
 
 }  // namespace

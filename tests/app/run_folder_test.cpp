@@ -204,5 +204,49 @@ TEST(CommandOutput, AClosedPipeEndsTheCommandQuietlyWith141) {
   EXPECT_EQ(readFile(log), "");
 }
 
+// The pid of a process that has ended (and been waited for).
+pid_t deadPid() {
+  const char* argv[] = {"/bin/true", nullptr};
+  pid_t pid = 0;
+  if (posix_spawn(&pid, "/bin/true", nullptr, nullptr, const_cast<char* const*>(argv), environ) != 0) return -1;
+  waitpid(pid, nullptr, 0);
+  return pid;
+}
+
+// A `kill -9` leaves the video's temporary file (NAME.mp4.PID.part) beside it: the next run with a
+// video into that folder removes it, saying so, but not a live process's (another run writing its
+// video there) nor a file that is not a video's temporary one. A temporary file a dead run left in
+// the run folder is removed with a message too.
+TEST(RunFolder, AStaleVideoPartOfADeadRunIsRemovedByTheNextRun) {
+  const fs::path dir = freshFolder("gf_folder_stale_part");
+  const pid_t dead = deadPid();
+  ASSERT_GT(dead, 0);
+  const std::string stale = "v.mp4." + std::to_string(dead) + ".part", ours = "v.mp4." + std::to_string(getpid()) + ".part";
+  for (const std::string& name : {stale, ours, std::string("w.mkv.1.part"), "notes." + std::to_string(dead) + ".part"}) {
+    std::ofstream(dir / name) << "partial\n";
+  }
+  EXPECT_EQ(removeStaleVideoParts(dir), 1);
+  EXPECT_FALSE(fs::exists(dir / stale));
+  EXPECT_EQ(countFiles(dir), 3) << "the live processes' and the other file stay";
+  // Through a run: the stale video part and an unfinished trace.csv.tmp go, each said.
+  std::ofstream(dir / stale) << "partial\n";
+  const fs::path out = dir / "out", log = dir / "stderr.txt";
+  fs::create_directories(out);
+  std::ofstream(out / "trace.csv.tmp") << "t\n0.001,";
+  ASSERT_EQ(exitStatus(kBin + " run press-box --quiet --duration 0.05 --out " + out.string() + " --video " +
+                       (dir / "v.mp4").string() + " > /dev/null 2> " + log.string()),
+            0)
+      << readFile(log);
+  const std::string said = readFile(log);
+  EXPECT_NE(said.find((dir / stale).string() + ": removed the unfinished video of a run that is gone (pid " +
+                      std::to_string(dead) + ")"),
+            std::string::npos)
+      << said;
+  EXPECT_NE(said.find(out.string() + ": removed 1 unfinished file (.part, .tmp)"), std::string::npos) << said;
+  EXPECT_FALSE(fs::exists(dir / stale));
+  EXPECT_TRUE(fs::exists(dir / "v.mp4"));
+  EXPECT_TRUE(fs::exists(dir / ours));
+}
+
 }  // namespace
 }  // namespace gf::app

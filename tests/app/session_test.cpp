@@ -44,7 +44,9 @@ TEST(RowFile, RowsOfManyRingsArriveInOrderAndReplaceTheFileOnlyAtClose) {
   }
   std::string expected = "i,x\n";
   {
-    RowFile file(path.string(), {"i", "x"}, 1024);
+    RowFileOptions small;
+    small.ring_rows = 1024;
+    RowFile file(path.string(), {"i", "x"}, small);
     ASSERT_EQ(file.columns(), 2u);
     for (int i = 0; i < 100000; ++i) {  // about 100 rings of 1024 rows
       const double row[2] = {static_cast<double>(i), 1.0 / (i + 3)};

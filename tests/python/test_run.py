@@ -72,6 +72,14 @@ def test_a_bad_field_raises_input_error_with_the_command_lines_message(cli):
     assert isinstance(raised.value, ValueError)
 
 
+def test_a_set_value_with_a_newline_is_refused_as_the_command_line_refuses_it(cli):
+    said = cli_error(cli("run", "press-box", "--set", "duration=0.05\nfingers.index.r_max = 0.5", check=False))
+    assert "duration: holds a control character (0x0a, a newline)" in said
+    with pytest.raises(godfinger.InputError) as raised:
+        godfinger.run("press-box", set={"duration": "0.05\nfingers.index.r_max = 0.5"})
+    assert str(raised.value) == said
+
+
 def test_an_unknown_scene_raises_input_error_with_the_command_lines_message(cli):
     said = cli_error(cli("run", "no-such-scene", check=False))
     with pytest.raises(godfinger.InputError, match="no-such-scene") as raised:
