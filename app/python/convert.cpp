@@ -3,6 +3,8 @@
 #include <pybind11/numpy.h>
 
 #include <charconv>
+#include <cmath>
+#include <cstdint>
 #include <stdexcept>
 
 #include "app/runs/files.hpp"
@@ -127,9 +129,40 @@ py::dict columnsDict(const CsvText& table) {
   return out;
 }
 
-py::object jsonObject(const nlohmann::json& value) { return parseJson(value.dump()); }
+std::string pathText(const py::handle& value, const std::string& what) {
+  const py::module_ os = py::module_::import("os");
+  if (!py::isinstance<py::str>(value) && !py::isinstance<py::bytes>(value) && !py::isinstance(value, os.attr("PathLike"))) {
+    throw py::type_error(what + ": expected a str or an os.PathLike, got " +
+                         py::str(py::type::of(value).attr("__name__")).cast<std::string>());
+  }
+  const std::string text = os.attr("fsencode")(value).cast<std::string>();
+  if (text.find('\0') != std::string::npos) throw py::value_error(what + ": embedded null byte");
+  return text;
+}
 
-py::object parseJson(const std::string& text) { return py::module_::import("json").attr("loads")(text); }
+py::object jsonObject(const nlohmann::json& value) {
+  switch (value.type()) {
+    case nlohmann::json::value_t::object: {
+      py::dict out;
+      for (const auto& [key, item] : value.items()) out[py::str(key)] = jsonObject(item);
+      return out;
+    }
+    case nlohmann::json::value_t::array: {
+      py::list out(value.size());
+      for (std::size_t i = 0; i < value.size(); ++i) out[i] = jsonObject(value[i]);
+      return out;
+    }
+    case nlohmann::json::value_t::string: return py::str(value.get_ref<const std::string&>());
+    case nlohmann::json::value_t::boolean: return py::bool_(value.get<bool>());
+    case nlohmann::json::value_t::number_integer: return py::int_(value.get<std::int64_t>());
+    case nlohmann::json::value_t::number_unsigned: return py::int_(value.get<std::uint64_t>());
+    case nlohmann::json::value_t::number_float: {
+      const double x = value.get<double>();
+      return std::isfinite(x) ? py::object(py::float_(x)) : py::object(py::none());
+    }
+    default: return py::none();  // null, and what JSON text cannot hold
+  }
+}
 
 py::dict snapshotDict(const sim::Snapshot& snap, const sim::SceneDesc& scene) {
   py::list fingers;

@@ -21,6 +21,10 @@ namespace py = pybind11;
 /// key for a value of another type.
 std::vector<std::string> overridesFromDict(const py::dict& set);
 
+/// A path argument (`what` names it in errors) as text: a str, bytes or os.PathLike (pathlib.Path),
+/// as os.fsencode gives its bytes. Throws TypeError for another type, ValueError for a NUL byte.
+std::string pathText(const py::handle& value, const std::string& what);
+
 /// The shortest decimal that reads back as exactly `x`.
 std::string shortestNumber(double x);
 
@@ -32,11 +36,9 @@ py::dict columnsDict(const CsvTable& table);
 /// shortest round-trip decimals), any other an array of str.
 py::dict columnsDict(const CsvText& table);
 
-/// A JSON value (summary.json, a contact snapshot) as Python objects.
+/// A JSON value (summary.json, a contact snapshot) as Python objects: what json.loads gives for
+/// its dump (a number that is not finite, which dump writes as null, as None), without the text.
 py::object jsonObject(const nlohmann::json& value);
-
-/// JSON text as Python objects (json.loads).
-py::object parseJson(const std::string& text);
 
 /// A world's snapshot with per-SGO arrays: time, step; per finger its device, proxy, forces, SGO
 /// count and contacts, each contact's SGO positions (N x 3), the solver's loads on them (normal

@@ -8,6 +8,7 @@
 #include <pybind11/stl.h>
 
 #include <cstdlib>
+#include <exception>
 #include <filesystem>
 #include <optional>
 
@@ -101,8 +102,16 @@ void readRunFolder(const fs::path& dir, RunResult& r) {
   for (const fs::path& f : contactFiles(dir)) r.contacts[py::str(f.stem().string())] = jsonObject(readJsonFile(f));
 }
 
-RunResult run(const std::string& scene, std::optional<double> duration, const py::dict& set,
-              const std::optional<std::string>& out, bool close_ups) {
+// An optional path argument: None, or a str, bytes or os.PathLike.
+std::optional<std::string> optionalPath(const py::object& value, const std::string& what) {
+  if (value.is_none()) return std::nullopt;
+  return pathText(value, what);
+}
+
+RunResult run(const py::object& scene_arg, std::optional<double> duration, const py::dict& set,
+              const py::object& out_arg, bool close_ups) {
+  const std::string scene = pathText(scene_arg, "run: scene");
+  const std::optional<std::string> out = optionalPath(out_arg, "run: out");
   const std::vector<std::string> overrides = overridesFromDict(set);
   SessionDesc session = loadSceneFile(resolveScenePath(scene), overrides);
   session.overrides = overrides;
@@ -133,8 +142,10 @@ RunResult run(const std::string& scene, std::optional<double> duration, const py
   return r;
 }
 
-py::dict study(const std::string& name_or_file, int jobs, bool quick, const py::dict& set,
-               const std::optional<std::string>& out, bool progress) {
+py::dict study(const py::object& name_arg, int jobs, bool quick, const py::dict& set, const py::object& out_arg,
+               bool progress) {
+  const std::string name_or_file = pathText(name_arg, "study: name_or_file");
+  const std::optional<std::string> out = optionalPath(out_arg, "study: out");
   if (jobs < 1 || jobs > 256) throw InputError("godfinger.study", 0, 0, "jobs", "must be in 1..256, got " + std::to_string(jobs));
   const StudyDesc desc = loadStudyFile(name_or_file);
   const std::vector<std::string> overrides = overridesFromDict(set);
@@ -170,6 +181,18 @@ PYBIND11_MODULE(godfinger, m) {
   using namespace pybind11::literals;
   m.doc() = "godfinger: the god-finger contact method on Bullet (runs, live worlds, studies)";
   py::register_exception<gf::app::InputError>(m, "InputError", PyExc_ValueError);
+  // Its message may hold a path's bytes that are not UTF-8 (a bytes path): decoded with
+  // replacement characters rather than lost.
+  py::register_exception_translator([](std::exception_ptr raised) {
+    try {
+      if (raised) std::rethrow_exception(raised);
+    } catch (const gf::app::InputError& e) {
+      const std::string what = e.what();
+      const auto text = py::reinterpret_steal<py::object>(
+          PyUnicode_DecodeUTF8(what.data(), static_cast<py::ssize_t>(what.size()), "replace"));
+      PyErr_SetObject(py::module_::import("godfinger").attr("InputError").ptr(), text.ptr());
+    }
+  });
   findDataBesideModule();
   py::class_<RunResult>(m, "Run", "What a run wrote: trace, summary, contacts")
       .def_readonly("trace", &RunResult::trace, "trace.csv as {column: numpy array}")

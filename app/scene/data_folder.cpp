@@ -45,9 +45,10 @@ std::string resolveDataPath(const std::string& path) {
 
 std::string resolveScenePath(const std::string& given) {
   const std::string scene = resolveDataPath(given);
-  if (fs::is_regular_file(scene)) return scene;
+  std::error_code unreadable;  // a name too long for a path, say: no such file either
+  if (fs::is_regular_file(scene, unreadable)) return scene;
   const fs::path bundled = fs::path(bundledSceneDir()) / (scene + ".toml");
-  if (scene.find('/') == std::string::npos && fs::is_regular_file(bundled)) return bundled.string();
+  if (scene.find('/') == std::string::npos && fs::is_regular_file(bundled, unreadable)) return bundled.string();
   throw InputError(scene, 0, 0, "", "no such scene file, and no bundled scene of that name (see `godfinger list`)");
 }
 

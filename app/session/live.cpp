@@ -12,6 +12,7 @@
 #include <optional>
 #include <ostream>
 #include <thread>
+#include <utility>
 #include <vector>
 
 #include "app/scene/scene_file.hpp"
@@ -28,8 +29,10 @@ using K = LiveCommand::Kind;
 
 }  // namespace
 
-LiveSession::LiveSession(const LiveOptions& o)
-    : options_(o), session_(loadSceneFile(o.scene_path, o.overrides)), world_(session_.scene) {
+LiveSession::LiveSession(const LiveOptions& o) : LiveSession(o, loadSceneFile(o.scene_path, o.overrides)) {}
+
+LiveSession::LiveSession(const LiveOptions& o, SessionDesc session)
+    : options_(o), session_(std::move(session)), world_(session_.scene) {
   // Live steps when told to; a UDP device's packets come in wall-clock time.
   if (!session_.udp_devices.empty()) {
     const UdpDeviceDesc& d = session_.udp_devices.front();

@@ -43,9 +43,17 @@ class LiveSession {
   /// Loads options.scene_path with options.overrides. Throws InputError when the scene cannot be
   /// loaded or follows a UDP device (live steps on command, a UDP device in wall-clock time).
   explicit LiveSession(const LiveOptions& options);
+  /// A session of a scene already loaded (`session` as loadSceneFile gave it for
+  /// options.scene_path and options.overrides): no file is read, so the same `session` starts
+  /// the same world again, bit for bit (the Python World's reset and restore). Throws
+  /// InputError for a UDP device, as above. Allocates.
+  LiveSession(const LiveOptions& options, SessionDesc session);
 
+  /// The scene as loaded, with the `set` commands' changes since.
   const SessionDesc& session() const { return session_; }
   double time() const { return world_.time(); }
+  /// The world itself, for reads between steps (the session's thread).
+  const sim::World& world() const { return world_; }
   /// --serve: the frames go to `renderer` after every command, and `record` to `view`.
   void show(render::RenderThread* renderer, LiveView* view);
   /// Runs one line, checked whole before anything runs; the answer goes into `answer`. Returns

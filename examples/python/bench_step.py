@@ -9,17 +9,13 @@ them) and `steps` calls of `world.step()` (one Python call per step). Prints the
 each way, the fastest round's and the median round's, and their ratios: the fastest rounds are
 the ones the machine's other work disturbed least. A benchmark, not a test: wall-clock times."""
 import argparse
-import os
 import statistics
 import sys
 import time
 
-try:
-    import godfinger
-except ImportError:
-    root = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
-    sys.path.insert(0, os.path.join(root, "build", "release", "python"))
-    import godfinger
+from godfinger_guard import import_godfinger
+
+godfinger = import_godfinger()
 
 
 def main():
