@@ -81,4 +81,5 @@ def study(
     set: Mapping[str, SetValue] = ...,
     out: Optional[StrPath] = None,
     progress: bool = False,
+    restart: bool = False,
 ) -> dict[str, npt.NDArray[Any]]: ...

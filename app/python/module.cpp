@@ -143,7 +143,7 @@ RunResult run(const py::object& scene_arg, std::optional<double> duration, const
 }
 
 py::dict study(const py::object& name_arg, int jobs, bool quick, const py::dict& set, const py::object& out_arg,
-               bool progress) {
+               bool progress, bool restart) {
   const std::string name_or_file = pathText(name_arg, "study: name_or_file");
   const std::optional<std::string> out = optionalPath(out_arg, "study: out");
   if (jobs < 1 || jobs > 256) throw InputError("godfinger.study", 0, 0, "jobs", "must be in 1..256, got " + std::to_string(jobs));
@@ -156,6 +156,7 @@ py::dict study(const py::object& name_arg, int jobs, bool quick, const py::dict&
   options.out = folder.path();
   options.jobs = jobs;
   options.progress = progress;
+  options.restart = restart;
   options.godfinger = godfingerExecutable();
   int code = 0;
   {
@@ -204,7 +205,8 @@ PYBIND11_MODULE(godfinger, m) {
   m.def("run", &run, "scene"_a, py::kw_only(), "duration"_a = py::none(), "set"_a = py::dict(), "out"_a = py::none(),
         "close_ups"_a = false, "Runs a scene as `godfinger run` does; returns its trace, summary and contacts");
   m.def("study", &study, "name_or_file"_a, py::kw_only(), "jobs"_a = 1, "quick"_a = false, "set"_a = py::dict(),
-        "out"_a = py::none(), "progress"_a = false,
-        "Runs an accuracy study as `godfinger study` does; returns results.csv as {column: numpy array}");
+        "out"_a = py::none(), "progress"_a = false, "restart"_a = false,
+        "Runs an accuracy study as `godfinger study` does (into `out`, the runs already finished there kept "
+        "unless restart=True); returns results.csv as {column: numpy array}");
   bindWorld(m);
 }

@@ -43,3 +43,24 @@ def test_an_unknown_study_raises_input_error_with_the_command_lines_message(cli)
 def test_jobs_out_of_range_raises_input_error():
     with pytest.raises(godfinger.InputError, match="jobs"):
         godfinger.study(STUDY, jobs=0)
+
+
+def test_a_study_into_its_folder_again_keeps_its_runs_unless_restart(tmp_path):
+    """A second study() into the same folder keeps the finished runs (their files untouched, the
+    results equal, step times included, since they are the kept runs' own); restart=True runs
+    them all again."""
+    out = tmp_path / "study"
+    first = godfinger.study(STUDY, quick=True, jobs=1, out=out)
+    summaries = sorted(out.glob("runs/*/summary.json"))
+    assert summaries, "the study left no run folders"
+    stamps = [p.stat().st_mtime_ns for p in summaries]
+    again = godfinger.study(STUDY, quick=True, jobs=1, out=out)
+    assert [p.stat().st_mtime_ns for p in summaries] == stamps, "a finished run was run again"
+    assert list(again) == list(first)
+    for column in first:
+        if first[column].dtype == np.float64:
+            assert again[column].tobytes() == first[column].tobytes(), column
+        else:
+            assert list(again[column]) == list(first[column]), column
+    godfinger.study(STUDY, quick=True, jobs=1, out=out, restart=True)
+    assert all(p.stat().st_mtime_ns != s for p, s in zip(summaries, stamps)), "restart=True kept a run"
