@@ -36,7 +36,7 @@ SOURCE_SUFFIXES = (".cpp", ".hpp", ".js")
 FLOORS = [
     ["sim"],                                      # the library's base: math types, asserts, version
     ["sim/mesh"],                                 # triangle meshes: files, queries, primitives
-    ["sim/patch"],                                # the god-finger patch on a mesh (Eq. 1, 2, Alg. 1)
+    ["sim/patch", "sim/soft"],                    # the god-finger patch (Eq. 1, 2, Alg. 1); soft solids (FEM)
     ["sim/scene"],                                # descriptions in (scene, settings), snapshots out
     ["sim/contact"],                              # contact models and their solver rows (Bullet)
     ["sim/world"],                                # the World: bodies, fingers, steps

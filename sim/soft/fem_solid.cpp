@@ -1,0 +1,193 @@
+#include "sim/soft/fem_solid.hpp"
+
+#include <Eigen/SVD>
+
+#include <cmath>
+#include <stdexcept>
+#include <string>
+
+namespace gf::sim {
+namespace {
+
+using Mat12 = Eigen::Matrix<double, 12, 12>;
+using Vec12 = Eigen::Matrix<double, 12, 1>;
+
+constexpr int kFixed = -1, kFree = -2;  // before numbering: held in place, or to be numbered
+
+// The rotation of `f` (its polar decomposition's), a proper one even when `f` is inverted.
+Eigen::Matrix3d rotationOf(const Eigen::Matrix3d& f) {
+  const Eigen::JacobiSVD<Eigen::Matrix3d> svd(f, Eigen::ComputeFullU | Eigen::ComputeFullV);
+  Eigen::Matrix3d u = svd.matrixU();
+  if ((u * svd.matrixV().transpose()).determinant() < 0.0) u.col(2) *= -1.0;
+  return u * svd.matrixV().transpose();
+}
+
+// Isotropic elasticity in Voigt order (xx, yy, zz, xy, yz, zx), engineering shear strains.
+Eigen::Matrix<double, 6, 6> elasticity(const FemMaterial& m) {
+  const double mu = m.young_pa / (2.0 * (1.0 + m.poisson));
+  const double lambda = m.young_pa * m.poisson / ((1.0 + m.poisson) * (1.0 - 2.0 * m.poisson));
+  Eigen::Matrix<double, 6, 6> c = Eigen::Matrix<double, 6, 6>::Zero();
+  c.topLeftCorner<3, 3>().setConstant(lambda);
+  for (int i = 0; i < 3; ++i) {
+    c(i, i) = lambda + 2.0 * mu;
+    c(i + 3, i + 3) = mu;
+  }
+  return c;
+}
+
+// The strain-displacement matrix of a tetrahedron whose inverse edge matrix is `dm_inverse`.
+Eigen::Matrix<double, 6, 12> strainMatrix(const Eigen::Matrix3d& dm_inverse) {
+  Eigen::Matrix<double, 4, 3> grad;  // each node's shape function gradient, a row each
+  grad.bottomRows<3>() = dm_inverse;
+  grad.row(0) = -dm_inverse.colwise().sum();
+  Eigen::Matrix<double, 6, 12> b = Eigen::Matrix<double, 6, 12>::Zero();
+  for (int a = 0; a < 4; ++a) {
+    const double gx = grad(a, 0), gy = grad(a, 1), gz = grad(a, 2);
+    b(0, 3 * a) = gx;
+    b(1, 3 * a + 1) = gy;
+    b(2, 3 * a + 2) = gz;
+    b(3, 3 * a) = gy;
+    b(3, 3 * a + 1) = gx;
+    b(4, 3 * a + 1) = gz;
+    b(4, 3 * a + 2) = gy;
+    b(5, 3 * a) = gz;
+    b(5, 3 * a + 2) = gx;
+  }
+  return b;
+}
+
+}  // namespace
+
+struct FemSolid::Element {
+  Eigen::Matrix3d dm_inverse;
+  Mat12 stiffness;  // at rest, K0 = V Bᵀ C B
+};
+
+void validateMaterial(const FemMaterial& m) {
+  const auto require = [](bool ok, const char* field, const std::string& what) {
+    if (!ok) throw std::invalid_argument(std::string("pad.") + field + ": " + what);
+  };
+  require(m.young_pa >= 1e3 && m.young_pa <= 1e8, "young_pa", "must be in 1e3..1e8 Pa, got " + std::to_string(m.young_pa));
+  require(m.poisson >= 0.0 && m.poisson <= 0.49, "poisson", "must be in 0..0.49, got " + std::to_string(m.poisson));
+  require(m.density_kg_m3 >= 100.0 && m.density_kg_m3 <= 1e4, "density_kg_m3",
+          "must be in 100..10000 kg/m³, got " + std::to_string(m.density_kg_m3));
+  require(m.damping_s >= 0.0 && m.damping_s <= 0.1, "damping_s", "must be in 0..0.1 s, got " + std::to_string(m.damping_s));
+}
+
+FemSolid::FemSolid(const TetMesh& mesh, const FemMaterial& material)
+    : tets_(mesh.tets), rest_(mesh.nodes), x_(mesh.nodes), v_(mesh.nodes.size(), Vec3::Zero()),
+      mass_(mesh.nodes.size(), 0.0), material_(material), unknown_(mesh.nodes.size(), kFree) {
+  validateMaterial(material);
+  const Eigen::Matrix<double, 6, 6> c = elasticity(material);
+  for (const std::array<int, 4>& t : tets_) {
+    Eigen::Matrix3d dm;
+    for (int k = 0; k < 3; ++k) dm.col(k) = rest_[static_cast<std::size_t>(t[k + 1])] - rest_[static_cast<std::size_t>(t[0])];
+    const double volume = dm.determinant() / 6.0;
+    if (!(volume > 0.0)) throw std::invalid_argument("FemSolid: a tetrahedron of no volume (or inverted)");
+    Element e;
+    e.dm_inverse = dm.inverse();
+    const Eigen::Matrix<double, 6, 12> b = strainMatrix(e.dm_inverse);
+    e.stiffness = volume * b.transpose() * c * b;
+    elements_.push_back(e);
+    for (int a : t) mass_[static_cast<std::size_t>(a)] += material.density_kg_m3 * volume / 4.0;  // lumped
+  }
+}
+
+FemSolid::~FemSolid() = default;
+
+void FemSolid::setBone(const std::vector<int>& nodes, double mass_kg) {
+  bone_nodes_ = nodes;
+  bone_mass_ = mass_kg;
+  has_bone_ = true;
+  for (int n : nodes) unknown_[static_cast<std::size_t>(n)] = 0;
+}
+
+void FemSolid::fixNodes(const std::vector<int>& nodes) {
+  for (int n : nodes) unknown_[static_cast<std::size_t>(n)] = kFixed;
+}
+
+std::vector<Vec3> FemSolid::elasticForces() const {
+  std::vector<Vec3> out(x_.size(), Vec3::Zero());
+  for (std::size_t e = 0; e < tets_.size(); ++e) {
+    const std::array<int, 4>& t = tets_[e];
+    Eigen::Matrix3d ds;
+    for (int k = 0; k < 3; ++k) ds.col(k) = x_[static_cast<std::size_t>(t[k + 1])] - x_[static_cast<std::size_t>(t[0])];
+    const Eigen::Matrix3d r = rotationOf(ds * elements_[e].dm_inverse);
+    Vec12 u;
+    for (int a = 0; a < 4; ++a) {
+      const std::size_t n = static_cast<std::size_t>(t[a]);
+      u.segment<3>(3 * a) = r.transpose() * x_[n] - rest_[n];
+    }
+    const Vec12 f = elements_[e].stiffness * u;
+    for (int a = 0; a < 4; ++a) out[static_cast<std::size_t>(t[a])] -= r * f.segment<3>(3 * a);
+  }
+  return out;
+}
+
+// The system (M + (dt β + dt²) K) v' = M v + dt f of one implicit Euler step, in the unknowns'
+// velocities: f the elastic, node and bone forces at the step's start, K the corotated stiffness.
+void FemSolid::assemble(double dt, const std::vector<Vec3>& node_forces, const Vec3& bone_force) {
+  const double k_scale = dt * material_.damping_s + dt * dt;
+  rhs_.setZero(3 * unknowns_);
+  triplets_.clear();
+  const std::vector<Vec3> elastic = elasticForces();
+  for (std::size_t n = 0; n < x_.size(); ++n) {
+    const int u = unknown_[n];
+    if (u < 0) continue;
+    const Vec3 f = elastic[n] + (node_forces.empty() ? Vec3::Zero() : node_forces[n]);
+    rhs_.segment<3>(3 * u) += mass_[n] * (u == 0 && has_bone_ ? bone_v_ : v_[n]) + dt * f;
+    for (int i = 0; i < 3; ++i) triplets_.emplace_back(3 * u + i, 3 * u + i, mass_[n]);
+  }
+  if (has_bone_) {
+    rhs_.head<3>() += bone_mass_ * bone_v_ + dt * bone_force;
+    for (int i = 0; i < 3; ++i) triplets_.emplace_back(i, i, bone_mass_);
+  }
+  for (std::size_t e = 0; e < tets_.size(); ++e) {
+    const std::array<int, 4>& t = tets_[e];
+    Eigen::Matrix3d ds;
+    for (int k = 0; k < 3; ++k) ds.col(k) = x_[static_cast<std::size_t>(t[k + 1])] - x_[static_cast<std::size_t>(t[0])];
+    const Eigen::Matrix3d r = rotationOf(ds * elements_[e].dm_inverse);
+    for (int a = 0; a < 4; ++a) {
+      const int ua = unknownOf(t[a]);
+      if (ua < 0) continue;
+      for (int b = 0; b < 4; ++b) {
+        const int ub = unknownOf(t[b]);
+        if (ub < 0) continue;
+        const Eigen::Matrix3d block = k_scale * r * elements_[e].stiffness.block<3, 3>(3 * a, 3 * b) * r.transpose();
+        for (int i = 0; i < 3; ++i) {
+          for (int j = 0; j < 3; ++j) triplets_.emplace_back(3 * ua + i, 3 * ub + j, block(i, j));
+        }
+      }
+    }
+  }
+  system_.resize(3 * unknowns_, 3 * unknowns_);
+  system_.setFromTriplets(triplets_.begin(), triplets_.end());
+}
+
+void FemSolid::step(double dt, const std::vector<Vec3>& node_forces, const Vec3& bone_force) {
+  if (!analysed_) {  // number the unknowns: the bone first, then each free node
+    unknowns_ = has_bone_ ? 1 : 0;
+    for (int& u : unknown_) {
+      if (u == kFree) u = unknowns_++;
+    }
+    solver_ = std::make_unique<Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>>>();
+  }
+  assemble(dt, node_forces, bone_force);
+  if (!analysed_) {
+    solver_->analyzePattern(system_);
+    analysed_ = true;
+  }
+  solver_->factorize(system_);
+  solution_ = solver_->solve(rhs_);
+  if (has_bone_) {
+    bone_v_ = solution_.head<3>();
+    bone_offset_ += dt * bone_v_;
+  }
+  for (std::size_t n = 0; n < x_.size(); ++n) {
+    const int u = unknown_[n];
+    v_[n] = u < 0 ? Vec3::Zero() : u == 0 && has_bone_ ? bone_v_ : Vec3(solution_.segment<3>(3 * u));
+    x_[n] += dt * v_[n];
+  }
+}
+
+}  // namespace gf::sim
