@@ -126,7 +126,8 @@ std::vector<Vec3> FemSolid::elasticForces() const {
 
 // The system (M + (dt β + dt²) K) v' = M v + dt f of one implicit Euler step, in the unknowns'
 // velocities: f the elastic, node and bone forces at the step's start, K the corotated stiffness.
-void FemSolid::assemble(double dt, const std::vector<Vec3>& node_forces, const Vec3& bone_force) {
+void FemSolid::assemble(double dt, const std::vector<Vec3>& node_forces, const Vec3& bone_force,
+                        const std::vector<FemContact>& contacts) {
   const double k_scale = dt * material_.damping_s + dt * dt;
   rhs_.setZero(3 * unknowns_);
   triplets_.clear();
@@ -137,6 +138,16 @@ void FemSolid::assemble(double dt, const std::vector<Vec3>& node_forces, const V
     const Vec3 f = elastic[n] + (node_forces.empty() ? Vec3::Zero() : node_forces[n]);
     rhs_.segment<3>(3 * u) += mass_[n] * (u == 0 && has_bone_ ? bone_v_ : v_[n]) + dt * f;
     for (int i = 0; i < 3; ++i) triplets_.emplace_back(3 * u + i, 3 * u + i, mass_[n]);
+  }
+  // Contacts: the spring's force k d n at the step's start, and its stiffness k n nᵀ in the step.
+  for (const FemContact& c : contacts) {
+    const int u = unknownOf(c.node);
+    if (u < 0 || !(c.depth > 0.0)) continue;
+    rhs_.segment<3>(3 * u) += dt * contact_stiffness_ * c.depth * c.normal;
+    const Eigen::Matrix3d block = dt * dt * contact_stiffness_ * c.normal * c.normal.transpose();
+    for (int i = 0; i < 3; ++i) {
+      for (int j = 0; j < 3; ++j) triplets_.emplace_back(3 * u + i, 3 * u + j, block(i, j));
+    }
   }
   if (has_bone_) {
     rhs_.head<3>() += bone_mass_ * bone_v_ + dt * bone_force;
@@ -164,7 +175,8 @@ void FemSolid::assemble(double dt, const std::vector<Vec3>& node_forces, const V
   system_.setFromTriplets(triplets_.begin(), triplets_.end());
 }
 
-void FemSolid::step(double dt, const std::vector<Vec3>& node_forces, const Vec3& bone_force) {
+void FemSolid::step(double dt, const std::vector<Vec3>& node_forces, const Vec3& bone_force,
+                    const std::vector<FemContact>& contacts) {
   if (!analysed_) {  // number the unknowns: the bone first, then each free node
     unknowns_ = has_bone_ ? 1 : 0;
     for (int& u : unknown_) {
@@ -172,7 +184,7 @@ void FemSolid::step(double dt, const std::vector<Vec3>& node_forces, const Vec3&
     }
     solver_ = std::make_unique<Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>>>();
   }
-  assemble(dt, node_forces, bone_force);
+  assemble(dt, node_forces, bone_force, contacts);
   if (!analysed_) {
     solver_->analyzePattern(system_);
     analysed_ = true;
@@ -187,6 +199,13 @@ void FemSolid::step(double dt, const std::vector<Vec3>& node_forces, const Vec3&
     const int u = unknown_[n];
     v_[n] = u < 0 ? Vec3::Zero() : u == 0 && has_bone_ ? bone_v_ : Vec3(solution_.segment<3>(3 * u));
     x_[n] += dt * v_[n];
+  }
+  // Each contact's spring at the step's end: the depth less what the node moved out.
+  contact_forces_.assign(contacts.size(), Vec3::Zero());
+  for (std::size_t i = 0; i < contacts.size(); ++i) {
+    const FemContact& c = contacts[i];
+    const double depth = c.depth - dt * v_[static_cast<std::size_t>(c.node)].dot(c.normal);
+    if (c.depth > 0.0 && depth > 0.0 && unknownOf(c.node) >= 0) contact_forces_[i] = contact_stiffness_ * depth * c.normal;
   }
 }
 

@@ -25,6 +25,14 @@ struct FemMaterial {
   double damping_s = 0.002;       ///< Rayleigh stiffness-proportional damping (s)
 };
 
+/// A node pressed into a rigid surface: `depth` (m, > 0) below it along -`normal` (unit, out of
+/// the surface) at the step's start.
+struct FemContact {
+  int node = 0;
+  Vec3 normal = Vec3::UnitY();
+  double depth = 0.0;
+};
+
 /// Throws std::invalid_argument naming the field when `m` is not a material the solid can take.
 void validateMaterial(const FemMaterial& m);
 
@@ -43,9 +51,17 @@ class FemSolid {
   /// Holds `nodes` where they are (zero velocity). Call before the first step.
   void fixNodes(const std::vector<int>& nodes);
 
-  /// One implicit Euler step of `dt` s under `node_forces` (N per node; empty for none) and
-  /// `bone_force` (N). Allocates nothing once the first step has sized its storage.
-  void step(double dt, const std::vector<Vec3>& node_forces, const Vec3& bone_force);
+  /// Each contact a stiff spring of `n_per_m` (N/m) along its normal, implicit in the step
+  /// (k n nᵀ in the system, so a stiff one stays stable), pushing while the node is below.
+  void setContactStiffness(double n_per_m) { contact_stiffness_ = n_per_m; }
+  /// One implicit Euler step of `dt` s under `node_forces` (N per node; empty for none),
+  /// `bone_force` (N) and `contacts` (the nodes pressed into rigid surfaces at its start).
+  /// Allocates nothing once the first step has sized its storage.
+  void step(double dt, const std::vector<Vec3>& node_forces, const Vec3& bone_force,
+            const std::vector<FemContact>& contacts = {});
+  /// The force each contact of the last step put on its node at the step's end (N, along its
+  /// normal: k × the depth then, never pulling); its opposite is the force on the surface.
+  const std::vector<Vec3>& contactForces() const { return contact_forces_; }
 
   /// The elastic forces on the nodes now (N per node), corotational. Allocates.
   std::vector<Vec3> elasticForces() const;
@@ -62,7 +78,8 @@ class FemSolid {
 
  private:
   struct Element;
-  void assemble(double dt, const std::vector<Vec3>& node_forces, const Vec3& bone_force);
+  void assemble(double dt, const std::vector<Vec3>& node_forces, const Vec3& bone_force,
+                const std::vector<FemContact>& contacts);
   int unknownOf(int node) const { return unknown_[static_cast<std::size_t>(node)]; }
 
   std::vector<std::array<int, 4>> tets_;
@@ -76,6 +93,8 @@ class FemSolid {
   double bone_mass_ = 0.0;
   Vec3 bone_offset_ = Vec3::Zero(), bone_v_ = Vec3::Zero();
   int unknowns_ = 0;
+  double contact_stiffness_ = 1e5;
+  std::vector<Vec3> contact_forces_;
   bool has_bone_ = false;
   bool analysed_ = false;
   std::vector<Eigen::Triplet<double>> triplets_;
