@@ -1,7 +1,8 @@
 #include "sim/soft/fem_solid.hpp"
 
-#include <Eigen/SVD>
+#include <Eigen/Geometry>
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 #include <string>
@@ -14,12 +15,20 @@ using Vec12 = Eigen::Matrix<double, 12, 1>;
 
 constexpr int kFixed = -1, kFree = -2;  // before numbering: held in place, or to be numbered
 
-// The rotation of `f` (its polar decomposition's), a proper one even when `f` is inverted.
-Eigen::Matrix3d rotationOf(const Eigen::Matrix3d& f) {
-  const Eigen::JacobiSVD<Eigen::Matrix3d> svd(f, Eigen::ComputeFullU | Eigen::ComputeFullV);
-  Eigen::Matrix3d u = svd.matrixU();
-  if ((u * svd.matrixV().transpose()).determinant() < 0.0) u.col(2) *= -1.0;
-  return u * svd.matrixV().transpose();
+// The rotation nearest to `f`, found by turning `q` (the element's last one, so a step or two
+// suffices) by the torque that pulls its axes onto f's columns until the turn is under 1e-12
+// rad. A proper rotation even for an inverted `f`; no decomposition to fail.
+Eigen::Quaterniond nearestRotation(const Eigen::Matrix3d& f, Eigen::Quaterniond q) {
+  for (int pass = 0; pass < 100; ++pass) {
+    const Eigen::Matrix3d r = q.toRotationMatrix();
+    const Vec3 torque = r.col(0).cross(f.col(0)) + r.col(1).cross(f.col(1)) + r.col(2).cross(f.col(2));
+    const double scale = std::abs(r.col(0).dot(f.col(0)) + r.col(1).dot(f.col(1)) + r.col(2).dot(f.col(2))) + 1e-9;
+    const Vec3 omega = torque / scale;
+    const double angle = omega.norm();
+    if (angle < 1e-12) break;
+    q = (Eigen::Quaterniond(Eigen::AngleAxisd(angle, omega / angle)) * q).normalized();
+  }
+  return q;
 }
 
 // Isotropic elasticity in Voigt order (xx, yy, zz, xy, yz, zx), engineering shear strains.
@@ -61,6 +70,7 @@ Eigen::Matrix<double, 6, 12> strainMatrix(const Eigen::Matrix3d& dm_inverse) {
 struct FemSolid::Element {
   Eigen::Matrix3d dm_inverse;
   Mat12 stiffness;  // at rest, K0 = V Bᵀ C B
+  Eigen::Quaterniond rotation = Eigen::Quaterniond::Identity();  // this step's (and the next's start)
 };
 
 void validateMaterial(const FemMaterial& m) {
@@ -106,73 +116,120 @@ void FemSolid::fixNodes(const std::vector<int>& nodes) {
   for (int n : nodes) unknown_[static_cast<std::size_t>(n)] = kFixed;
 }
 
+Eigen::Matrix3d FemSolid::deformation(std::size_t e) const {
+  const std::array<int, 4>& t = tets_[e];
+  Eigen::Matrix3d ds;
+  for (int k = 0; k < 3; ++k) ds.col(k) = x_[static_cast<std::size_t>(t[k + 1])] - x_[static_cast<std::size_t>(t[0])];
+  return ds * elements_[e].dm_inverse;
+}
+
+// Element e's corotated force, −R K0 (Rᵀ x − X), added to `out`.
+void FemSolid::addElementForce(std::size_t e, const Eigen::Matrix3d& r, std::vector<Vec3>& out) const {
+  const std::array<int, 4>& t = tets_[e];
+  Vec12 u;
+  for (int a = 0; a < 4; ++a) {
+    const std::size_t n = static_cast<std::size_t>(t[a]);
+    u.segment<3>(3 * a) = r.transpose() * x_[n] - rest_[n];
+  }
+  const Vec12 f = elements_[e].stiffness * u;
+  for (int a = 0; a < 4; ++a) out[static_cast<std::size_t>(t[a])] -= r * f.segment<3>(3 * a);
+}
+
 std::vector<Vec3> FemSolid::elasticForces() const {
   std::vector<Vec3> out(x_.size(), Vec3::Zero());
   for (std::size_t e = 0; e < tets_.size(); ++e) {
-    const std::array<int, 4>& t = tets_[e];
-    Eigen::Matrix3d ds;
-    for (int k = 0; k < 3; ++k) ds.col(k) = x_[static_cast<std::size_t>(t[k + 1])] - x_[static_cast<std::size_t>(t[0])];
-    const Eigen::Matrix3d r = rotationOf(ds * elements_[e].dm_inverse);
-    Vec12 u;
-    for (int a = 0; a < 4; ++a) {
-      const std::size_t n = static_cast<std::size_t>(t[a]);
-      u.segment<3>(3 * a) = r.transpose() * x_[n] - rest_[n];
-    }
-    const Vec12 f = elements_[e].stiffness * u;
-    for (int a = 0; a < 4; ++a) out[static_cast<std::size_t>(t[a])] -= r * f.segment<3>(3 * a);
+    addElementForce(e, nearestRotation(deformation(e), elements_[e].rotation).toRotationMatrix(), out);
   }
   return out;
 }
 
+// The system's pattern, once: every block two unknowns share in an element, and the slot of each
+// of its entries in the compressed matrix, so a step adds values in place.
+void FemSolid::buildPattern() {
+  std::vector<Eigen::Triplet<double>> pattern;
+  for (const std::array<int, 4>& t : tets_) {
+    for (int a : t) {
+      for (int b : t) {
+        const int ua = unknownOf(a), ub = unknownOf(b);
+        if (ua < 0 || ub < 0) continue;
+        for (int i = 0; i < 3; ++i) {
+          for (int j = 0; j < 3; ++j) pattern.emplace_back(3 * ua + i, 3 * ub + j, 1.0);
+        }
+      }
+    }
+  }
+  for (int u = 0; u < unknowns_; ++u) {
+    for (int i = 0; i < 3; ++i) {
+      for (int j = 0; j < 3; ++j) pattern.emplace_back(3 * u + i, 3 * u + j, 1.0);
+    }
+  }
+  system_.resize(3 * unknowns_, 3 * unknowns_);
+  system_.setFromTriplets(pattern.begin(), pattern.end());
+  system_.makeCompressed();
+  const auto slot = [&](int row, int col) {
+    const int* begin = system_.innerIndexPtr() + system_.outerIndexPtr()[col];
+    const int* end = system_.innerIndexPtr() + system_.outerIndexPtr()[col + 1];
+    return static_cast<int>(std::lower_bound(begin, end, row) - system_.innerIndexPtr());
+  };
+  block_slots_.assign(tets_.size() * 16 * 9, -1);
+  for (std::size_t e = 0; e < tets_.size(); ++e) {
+    for (int a = 0; a < 4; ++a) {
+      for (int b = 0; b < 4; ++b) {
+        const int ua = unknownOf(tets_[e][a]), ub = unknownOf(tets_[e][b]);
+        if (ua < 0 || ub < 0) continue;
+        for (int k = 0; k < 9; ++k) block_slots_[(e * 16 + a * 4 + b) * 9 + k] = slot(3 * ua + k / 3, 3 * ub + k % 3);
+      }
+    }
+  }
+  diagonal_slots_.resize(static_cast<std::size_t>(unknowns_) * 9);
+  for (int u = 0; u < unknowns_; ++u) {
+    for (int k = 0; k < 9; ++k) diagonal_slots_[static_cast<std::size_t>(u) * 9 + k] = slot(3 * u + k / 3, 3 * u + k % 3);
+  }
+}
+
 // The system (M + (dt β + dt²) K) v' = M v + dt f of one implicit Euler step, in the unknowns'
-// velocities: f the elastic, node and bone forces at the step's start, K the corotated stiffness.
+// velocities: f the elastic, node, bone and contact forces at the step's start, K the corotated
+// stiffness (and each contact's k n nᵀ), its values added in place in the pattern's slots.
 void FemSolid::assemble(double dt, const std::vector<Vec3>& node_forces, const Vec3& bone_force,
                         const std::vector<FemContact>& contacts) {
   const double k_scale = dt * material_.damping_s + dt * dt;
+  double* values = system_.valuePtr();
+  std::fill(values, values + system_.nonZeros(), 0.0);
   rhs_.setZero(3 * unknowns_);
-  triplets_.clear();
-  const std::vector<Vec3> elastic = elasticForces();
+  std::fill(forces_.begin(), forces_.end(), Vec3::Zero());
+  const auto addDiagonal = [&](int u, const Eigen::Matrix3d& block) {
+    for (int k = 0; k < 9; ++k) values[diagonal_slots_[static_cast<std::size_t>(u) * 9 + k]] += block(k / 3, k % 3);
+  };
+  for (std::size_t e = 0; e < tets_.size(); ++e) {
+    Element& el = elements_[e];
+    el.rotation = nearestRotation(deformation(e), el.rotation);
+    const Eigen::Matrix3d r = el.rotation.toRotationMatrix();
+    addElementForce(e, r, forces_);
+    for (std::size_t ab = 0; ab < 16; ++ab) {
+      const int* slots = &block_slots_[(e * 16 + ab) * 9];
+      if (slots[0] < 0) continue;
+      const Eigen::Matrix3d block = k_scale * r * el.stiffness.block<3, 3>(3 * (ab / 4), 3 * (ab % 4)) * r.transpose();
+      for (int k = 0; k < 9; ++k) values[slots[k]] += block(k / 3, k % 3);
+    }
+  }
   for (std::size_t n = 0; n < x_.size(); ++n) {
     const int u = unknown_[n];
     if (u < 0) continue;
-    const Vec3 f = elastic[n] + (node_forces.empty() ? Vec3::Zero() : node_forces[n]);
+    const Vec3 f = forces_[n] + (node_forces.empty() ? Vec3::Zero() : node_forces[n]);
     rhs_.segment<3>(3 * u) += mass_[n] * (u == 0 && has_bone_ ? bone_v_ : v_[n]) + dt * f;
-    for (int i = 0; i < 3; ++i) triplets_.emplace_back(3 * u + i, 3 * u + i, mass_[n]);
+    addDiagonal(u, mass_[n] * Eigen::Matrix3d::Identity());
   }
   // Contacts: the spring's force k d n at the step's start, and its stiffness k n nᵀ in the step.
   for (const FemContact& c : contacts) {
     const int u = unknownOf(c.node);
     if (u < 0 || !(c.depth > 0.0)) continue;
     rhs_.segment<3>(3 * u) += dt * contact_stiffness_ * c.depth * c.normal;
-    const Eigen::Matrix3d block = dt * dt * contact_stiffness_ * c.normal * c.normal.transpose();
-    for (int i = 0; i < 3; ++i) {
-      for (int j = 0; j < 3; ++j) triplets_.emplace_back(3 * u + i, 3 * u + j, block(i, j));
-    }
+    addDiagonal(u, dt * dt * contact_stiffness_ * c.normal * c.normal.transpose());
   }
   if (has_bone_) {
     rhs_.head<3>() += bone_mass_ * bone_v_ + dt * bone_force;
-    for (int i = 0; i < 3; ++i) triplets_.emplace_back(i, i, bone_mass_);
+    addDiagonal(0, bone_mass_ * Eigen::Matrix3d::Identity());
   }
-  for (std::size_t e = 0; e < tets_.size(); ++e) {
-    const std::array<int, 4>& t = tets_[e];
-    Eigen::Matrix3d ds;
-    for (int k = 0; k < 3; ++k) ds.col(k) = x_[static_cast<std::size_t>(t[k + 1])] - x_[static_cast<std::size_t>(t[0])];
-    const Eigen::Matrix3d r = rotationOf(ds * elements_[e].dm_inverse);
-    for (int a = 0; a < 4; ++a) {
-      const int ua = unknownOf(t[a]);
-      if (ua < 0) continue;
-      for (int b = 0; b < 4; ++b) {
-        const int ub = unknownOf(t[b]);
-        if (ub < 0) continue;
-        const Eigen::Matrix3d block = k_scale * r * elements_[e].stiffness.block<3, 3>(3 * a, 3 * b) * r.transpose();
-        for (int i = 0; i < 3; ++i) {
-          for (int j = 0; j < 3; ++j) triplets_.emplace_back(3 * ua + i, 3 * ub + j, block(i, j));
-        }
-      }
-    }
-  }
-  system_.resize(3 * unknowns_, 3 * unknowns_);
-  system_.setFromTriplets(triplets_.begin(), triplets_.end());
 }
 
 void FemSolid::step(double dt, const std::vector<Vec3>& node_forces, const Vec3& bone_force,
@@ -183,6 +240,8 @@ void FemSolid::step(double dt, const std::vector<Vec3>& node_forces, const Vec3&
       if (u == kFree) u = unknowns_++;
     }
     solver_ = std::make_unique<Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>>>();
+    forces_.assign(x_.size(), Vec3::Zero());
+    buildPattern();
   }
   assemble(dt, node_forces, bone_force, contacts);
   if (!analysed_) {

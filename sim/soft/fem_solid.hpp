@@ -80,6 +80,9 @@ class FemSolid {
   struct Element;
   void assemble(double dt, const std::vector<Vec3>& node_forces, const Vec3& bone_force,
                 const std::vector<FemContact>& contacts);
+  void buildPattern();
+  Eigen::Matrix3d deformation(std::size_t e) const;
+  void addElementForce(std::size_t e, const Eigen::Matrix3d& r, std::vector<Vec3>& out) const;
   int unknownOf(int node) const { return unknown_[static_cast<std::size_t>(node)]; }
 
   std::vector<std::array<int, 4>> tets_;
@@ -97,7 +100,9 @@ class FemSolid {
   std::vector<Vec3> contact_forces_;
   bool has_bone_ = false;
   bool analysed_ = false;
-  std::vector<Eigen::Triplet<double>> triplets_;
+  std::vector<int> block_slots_;     // per element, per node pair, the 9 entries' value slots
+  std::vector<int> diagonal_slots_;  // per unknown, its 3×3 diagonal block's value slots
+  std::vector<Vec3> forces_;         // this step's elastic forces
   Eigen::SparseMatrix<double> system_;
   Eigen::VectorXd rhs_, solution_;
   std::unique_ptr<Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>>> solver_;
