@@ -35,6 +35,26 @@ TetMesh boxMesh(int nx, int ny, int nz, double cell) {
   return m;
 }
 
+// Node (i, j) of the top face of boxMesh(n, layers, n, ...).
+int topNode(int n, int layers, int i, int j) { return (layers * (n + 1) + j) * (n + 1) + i; }
+
+// A load `force` (N, down) spread evenly over the top face of boxMesh(n, layers, n, cell): each
+// of its triangles (the split's diagonal on every face runs from its lowest corner to its
+// highest) takes a third of its share at each corner.
+void addTopLoad(int n, int layers, double cell, double force, std::vector<Vec3>& load) {
+  const double share = force * (cell * cell / 2.0) / ((n * cell) * (n * cell)) / 3.0;
+  for (int j = 0; j < n; ++j) {
+    for (int i = 0; i < n; ++i) {
+      for (const auto& tri : {std::array<int, 3>{topNode(n, layers, i, j), topNode(n, layers, i + 1, j),
+                                                 topNode(n, layers, i + 1, j + 1)},
+                              std::array<int, 3>{topNode(n, layers, i, j), topNode(n, layers, i + 1, j + 1),
+                                                 topNode(n, layers, i, j + 1)}}) {
+        for (int node : tri) load[static_cast<std::size_t>(node)].y() -= share;
+      }
+    }
+  }
+}
+
 // With ν = 0 a column under a uniform load on its top is in uniaxial stress even with its base
 // held: the top moves F H / (E A), which linear tetrahedra reproduce exactly (the patch test).
 // Steps of 10 s are quasi-static: the mass term is 1e-8 of the stiffness.
@@ -50,17 +70,8 @@ TEST(FemSolid, AColumnUnderLoadShortensByFHOverEA) {
     if (mesh.nodes[node].y() == 0.0) base.push_back(node);
   }
   solid.fixNodes(base);
-  // The top face's triangles (the split's diagonal on every face runs from its lowest corner to
-  // its highest) each take a third of their share of the load at each corner.
-  const auto top = [&](int i, int j) { return (layers * (n + 1) + j) * (n + 1) + i; };
-  for (int j = 0; j < n; ++j) {
-    for (int i = 0; i < n; ++i) {
-      for (const auto& tri : {std::array<int, 3>{top(i, j), top(i + 1, j), top(i + 1, j + 1)},
-                              std::array<int, 3>{top(i, j), top(i + 1, j + 1), top(i, j + 1)}}) {
-        for (int node : tri) load[static_cast<std::size_t>(node)].y() -= force * (cell * cell / 2.0) / area / 3.0;
-      }
-    }
-  }
+  const auto top = [&](int i, int j) { return topNode(n, layers, i, j); };
+  addTopLoad(n, layers, cell, force, load);
   for (int s = 0; s < 5; ++s) solid.step(10.0, load, Vec3::Zero());
   const double expected = -force * height / (young * area);
   for (int j = 0; j <= n; ++j) {
@@ -128,15 +139,8 @@ TEST(FemSolid, AColumnOnContactsCarriesItsLoadAndShortensByFHOverEA) {
   solid.setContactStiffness(1e8);
   std::vector<Vec3> load(mesh.nodes.size(), Vec3::Zero());
   const double area = (n * cell) * (n * cell), height = layers * cell;
-  const auto top = [&](int i, int j) { return (layers * (n + 1) + j) * (n + 1) + i; };
-  for (int j = 0; j < n; ++j) {
-    for (int i = 0; i < n; ++i) {
-      for (const auto& tri : {std::array<int, 3>{top(i, j), top(i + 1, j), top(i + 1, j + 1)},
-                              std::array<int, 3>{top(i, j), top(i + 1, j + 1), top(i, j + 1)}}) {
-        for (int node : tri) load[static_cast<std::size_t>(node)].y() -= force * (cell * cell / 2.0) / area / 3.0;
-      }
-    }
-  }
+  const auto top = [&](int i, int j) { return topNode(n, layers, i, j); };
+  addTopLoad(n, layers, cell, force, load);
   for (int s = 0; s < 20; ++s) solid.step(10.0, load, Vec3::Zero(), groundContacts(solid));
   EXPECT_NEAR(total(solid.contactForces()).y(), force, 1e-9 * force);
   double base = 0.0, top_y = 0.0;
