@@ -135,6 +135,21 @@ void FemSolid::addElementForce(std::size_t e, const Eigen::Matrix3d& r, std::vec
   for (int a = 0; a < 4; ++a) out[static_cast<std::size_t>(t[a])] -= r * f.segment<3>(3 * a);
 }
 
+int FemSolid::invertedElements() const {
+  int inverted = 0;
+  for (std::size_t e = 0; e < tets_.size(); ++e) inverted += deformation(e).determinant() <= 0.0;
+  return inverted;
+}
+
+void FemSolid::resetToRest() {
+  for (std::size_t n = 0; n < x_.size(); ++n) {
+    x_[n] = rest_[n] + bone_offset_;
+    v_[n] = Vec3::Zero();
+  }
+  bone_v_ = Vec3::Zero();
+  for (Element& e : elements_) e.rotation = Eigen::Quaterniond::Identity();
+}
+
 std::vector<Vec3> FemSolid::elasticForces() const {
   std::vector<Vec3> out(x_.size(), Vec3::Zero());
   for (std::size_t e = 0; e < tets_.size(); ++e) {

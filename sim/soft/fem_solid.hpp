@@ -63,6 +63,12 @@ class FemSolid {
   /// normal: k × the depth then, never pulling); its opposite is the force on the surface.
   const std::vector<Vec3>& contactForces() const { return contact_forces_; }
 
+  /// Elements turned inside out now (det F ≤ 0): a pad pressed past its thickness. Allocates nothing.
+  int invertedElements() const;
+  /// Back to rest on the bone where it is: every node at its rest place moved by the bone's
+  /// offset, every velocity (the bone's too) zero. What a caller does when invertedElements() > 0.
+  void resetToRest();
+
   /// The elastic forces on the nodes now (N per node), corotational. Allocates.
   std::vector<Vec3> elasticForces() const;
 

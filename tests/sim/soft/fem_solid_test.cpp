@@ -182,6 +182,32 @@ TEST(FemSolid, APadPressedOntoTheGroundComesToRestAndItsIndentationConverges) {
   EXPECT_NEAR(indentation[0], indentation[1], 0.05 * indentation[1]);
 }
 
+// A soft pad pressed past its thickness (30 kPa under 5 N: the bone would sink 3 mm into a 3 mm
+// pad) turns elements inside out; that is seen, and a reset puts the pad back at rest on the bone,
+// nothing inverted, every position finite.
+TEST(FemSolid, APadPressedPastItsThicknessIsSeenInvertedAndResetsToRest) {
+  const PadShape shape{0.006, 0.003, 0.7, 0.0015};
+  TetMesh mesh = generatePad(shape);
+  for (Vec3& p : mesh.nodes) p.y() += shape.bone_radius + shape.thickness;
+  FemSolid pad(mesh, {3e4, 0.45, 1100.0, 0.002});
+  pad.setBone(mesh.bone_nodes, 0.01);
+  int inverted = 0;
+  for (int s = 0; s < 600 && inverted == 0; ++s) {
+    pad.step(0.001, {}, Vec3(0.0, -5.0 * std::min(1.0, s / 200.0), 0.0), groundContacts(pad));
+    inverted = pad.invertedElements();
+  }
+  ASSERT_GT(inverted, 0) << "the pad held 5 N at 30 kPa";
+  pad.resetToRest();
+  EXPECT_EQ(pad.invertedElements(), 0);
+  for (int i = 0; i < pad.nodeCount(); ++i) {
+    const std::size_t n = static_cast<std::size_t>(i);
+    EXPECT_TRUE(pad.positions()[n].allFinite());
+    EXPECT_NEAR((pad.positions()[n] - mesh.nodes[n] - pad.boneOffset()).norm(), 0.0, 1e-15);
+    EXPECT_EQ(pad.velocities()[n], Vec3::Zero());
+  }
+  EXPECT_EQ(pad.boneVelocity(), Vec3::Zero());
+}
+
 TEST(FemSolid, MaterialsOutsideTheirRangesAreRefusedNamingTheField) {
   const auto message = [](FemMaterial m) {
     try {
