@@ -7,7 +7,6 @@
 #include <pthread.h>
 
 #include <array>
-#include <cstring>
 #include <list>
 #include <map>
 #include <thread>
@@ -60,6 +59,17 @@ std::string tokenOf(std::string_view target) {
     query.remove_prefix(amp + 1);
   }
   return "";
+}
+
+// Writes `status` with `text` at once (a small answer an empty send buffer takes whole; nothing is
+// waited for) and closes `socket`.
+void answerAndClose(tcp::socket& socket, int status, const std::string& text) {
+  const std::string out = headOf(plain(status, text), text.size(), false) + text;
+  ErrorCode ignored;
+  socket.non_blocking(true, ignored);
+  socket.write_some(net::buffer(out), ignored);
+  socket.shutdown(tcp::socket::shutdown_both, ignored);
+  socket.close(ignored);
 }
 
 std::string fieldText(const bhttp::request_parser<bhttp::string_body>::value_type& m, bhttp::field f) {
@@ -126,11 +136,8 @@ class Connection final : public HttpExchange, public std::enable_shared_from_thi
   // Answers `status` at once (a small text the socket's empty send buffer takes whole) and closes.
   void refuseNow(int status, const std::string& text) {
     if (state_ == State::kClosed) return;
-    const std::string out = headOf(plain(status, text), text.size(), false) + text;
-    ErrorCode ignored;
-    socket_.non_blocking(true, ignored);
-    socket_.write_some(net::buffer(out), ignored);
-    closeNow();
+    answerAndClose(socket_, status, text);
+    closeNow();  // the bookkeeping; the socket is closed already
   }
 
   void closeNow() {
@@ -388,11 +395,7 @@ void HttpFront::Impl::admit(tcp::socket socket) {
   const std::string address = peer.address().to_string();
   auto refuseNew = [&](int status, const char* text) {
     ++refused;
-    const std::string out = headOf(plain(status, text), std::strlen(text), false) + text;
-    ErrorCode ignored;
-    socket.non_blocking(true, ignored);
-    socket.write_some(net::buffer(out), ignored);
-    socket.close(ignored);
+    answerAndClose(socket, status, text);
   };
   const auto mine = per_address.find(address);
   if (mine != per_address.end() && mine->second >= limits.connections_per_address && !evictOldestIdle(&address)) {
