@@ -24,6 +24,7 @@ Eigen::Vector3f modelColour(const std::string& model, std::size_t index) {
   if (model == "soft_finger") return {0.05f, 0.55f, 0.25f};
   if (model == "god_finger" || model == "god_finger_3dof") return {0.05f, 0.30f, 0.90f};
   if (model == "god_finger_6dof") return {0.90f, 0.50f, 0.05f};
+  if (model == "fem_pad") return {0.60f, 0.25f, 0.65f};
   return index % 2 ? Eigen::Vector3f(0.6f, 0.3f, 0.7f) : Eigen::Vector3f(0.3f, 0.3f, 0.3f);
 }
 
@@ -79,6 +80,12 @@ std::string modelDetail(const SessionDesc& session) {
                     p.fill == sim::PatchFill::kFilled ? " (filled)" : "", 1000.0 * p.r_max, p.alpha,
                     p.tau_a * 180.0 / std::numbers::pi, p.friction, pad);
       break;
+    case sim::ContactModel::kFemPad: {
+      const sim::PadSettings& s = session.scene.fingers.front().pad;
+      std::snprintf(b, sizeof b, "FEM pad %.3g mm thick, %.3g mm elements, E %.3g kPa, nu %.2g, mu %.3g",
+                    1000.0 * s.thickness, 1000.0 * s.element_size, s.young / 1000.0, s.poisson, p.friction);
+      break;
+    }
   }
   return b;
 }

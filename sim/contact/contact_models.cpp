@@ -470,6 +470,7 @@ const FingerModel& fingerModel(ContactModel model) {
     case ContactModel::kGodObject: return god_object;
     case ContactModel::kSoftFinger: return soft_finger;
     case ContactModel::kGodFinger: return god_finger;
+    case ContactModel::kFemPad: return god_object;  // the bone's own contacts (the pad is the World's: world_pad.cpp)
   }
   return god_object;
 }

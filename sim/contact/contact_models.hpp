@@ -104,7 +104,8 @@ FrictionAnchor anchorToKeep(const FingerContact& c, const FrictionBlock& block);
 /// load. Does not allocate once `out` has held as many points.
 void solvedLoads(const FingerContact& c, const FrictionBlock& block, AggregateScratch& scratch, ContactLoads& out);
 
-/// The model object of an effective model (EffectiveSettings::patch.model). Any thread; does
+/// The model object of an effective model (EffectiveSettings::patch.model); fem_pad's is the
+/// god-object's, for its bone touching a body through the pad. Any thread; does
 /// not allocate.
 const FingerModel& fingerModel(ContactModel model);
 

@@ -15,12 +15,13 @@ enum class ContactModel : std::uint8_t {
   kGodObject,   ///< "god_object": one point, friction against sliding only
   kSoftFinger,  ///< "soft_finger": one point with a torsional friction limit (condim 4)
   kGodFinger,   ///< "god_finger": the paper's patch of SGOs (n_sgo 0: a god-object)
+  kFemPad,      ///< "fem_pad": a deformable finger pad (finite elements) on a rigid bone (sim/soft/)
 };
 
 /// The scene-file names of the ContactModel values, in enum order ("god_object"), and how people
 /// read them in overlays, labels and charts ("god-object").
-inline constexpr std::string_view kContactModelNames[] = {"god_object", "soft_finger", "god_finger"};
-inline constexpr std::string_view kContactModelLabels[] = {"god-object", "soft finger", "god-finger"};
+inline constexpr std::string_view kContactModelNames[] = {"god_object", "soft_finger", "god_finger", "fem_pad"};
+inline constexpr std::string_view kContactModelLabels[] = {"god-object", "soft finger", "god-finger", "FEM pad"};
 
 /// Where a god-finger patch puts its points (`patch` in scene files).
 enum class PatchFill : std::uint8_t {
@@ -99,7 +100,8 @@ struct PatchSettings {
   int max_face_crossings = 64;
   double feature_tolerance = 1e-7;  ///< distance (m) within which a hit is an edge/vertex hit
   PadModel pad_model = PadModel::kDisc;  ///< disc (3-DOF) or oriented (6-DOF pad)
-  Vec3 pad_axis = Vec3(0.0, -1.0, 0.0);  ///< oriented: the pad's outward normal, device frame (unit)
+  /// oriented: the pad's outward normal, device frame; fem_pad: the way its soft cap faces (world)
+  Vec3 pad_axis = Vec3(0.0, -1.0, 0.0);
   double tip_ratio = 0.4;  ///< oriented: the tip's contact size over the flat pad's, in (0, 1]
 };
 

@@ -13,6 +13,7 @@
 #include "sim/scene/device.hpp"
 #include "sim/mesh/mesh.hpp"
 #include "sim/patch/patch_settings.hpp"
+#include "sim/soft/fem_pad.hpp"
 
 namespace gf::sim {
 
@@ -68,6 +69,7 @@ struct FingerDesc {
   PatchSettings patch;      ///< god-finger settings; patch.n_sgo = 0 is the classic god-object
   CouplingSettings coupling;
   ProxySettings proxy;
+  PadSettings pad;          ///< the soft pad of contact_model fem_pad (its skin: the proxy's sphere)
   DeviceTrack device;       ///< where the device is at each time
 };
 

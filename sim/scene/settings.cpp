@@ -44,6 +44,8 @@ constexpr double kMaxLoadTorque = 1e3;  // N m
 constexpr double kRadPerDeg = std::numbers::pi / 180.0;
 constexpr double kBig = 1e3;  // m: nothing in a haptic scene is larger
 constexpr double kMinPadAxisLength = 0.1;  // the pad axis is normalized: a typo of 0 is refused
+// Pa: fem_pad's tissue, from a gel to a stiff rubber; hard cases fem-pad-young-min/max hold at both.
+constexpr double kMinPadYoung = 1e4, kMaxPadYoung = 1e7;
 // N/m: push_apart's stiffness; each scene's bound is narrower (validateOverlapStability).
 constexpr double kMaxOverlapStiffness = 1e5;
 
@@ -159,7 +161,37 @@ std::string descriptionMessage(const std::string& subject, const FieldError& e) 
   return m.append(": ").append(e.reason);
 }
 
+// A finger's fem_pad against its proxy: a bone at least as thick as the tissue, cells between a
+// sixteenth of the thickness and the thickness, at most kMaxPadElementsAcross of them across
+// the cap (as generatePad lays them).
+std::optional<FieldError> validatePadShape(const FingerDesc& finger) {
+  const PadSettings& p = finger.pad;
+  const double skin = finger.proxy.radius;
+  if (!(p.thickness <= 0.5 * skin)) {
+    const auto [bound, got] = distinctTexts(0.5 * skin, p.thickness);
+    return FieldError{"pad_thickness", "must be at most half proxy_radius = " + bound +
+                                           " m (the bone, a sphere inside the skin, at least as thick as the tissue), got " + got};
+  }
+  if (!(p.element_size >= p.thickness / 16.0 && p.element_size <= p.thickness)) {
+    return FieldError{"pad_element_size", "must be in [pad_thickness / 16, pad_thickness] = [" + shown(p.thickness / 16.0) +
+                                              ", " + shown(p.thickness) + "] m, got " + shown(p.element_size)};
+  }
+  const double arc = 2.0 * p.cap_angle * (skin - 0.5 * p.thickness);
+  if (const double across = std::ceil(arc / p.element_size - 1e-9); across > kMaxPadElementsAcross) {
+    return FieldError{"pad_element_size", "makes " + shown(across) + " cells across the pad (at most " +
+                                              std::to_string(kMaxPadElementsAcross) + "); take at least " +
+                                              shown(arc / kMaxPadElementsAcross) + " m, got " + shown(p.element_size)};
+  }
+  return std::nullopt;
+}
+
 }  // namespace
+
+std::optional<FieldError> validateModelChange(ContactModel scene_model, ContactModel to) {
+  if ((scene_model == ContactModel::kFemPad) == (to == ContactModel::kFemPad)) return std::nullopt;
+  return FieldError{"contact_model", "fem_pad is a finger's model for a whole session: its pad is built with the world, "
+                                     "so a finger can neither change to nor from it"};
+}
 
 DescriptionError::DescriptionError(std::string subject, FieldError error)
     : std::invalid_argument(descriptionMessage(subject, error)), subject_(std::move(subject)), error_(std::move(error)) {}
@@ -241,6 +273,15 @@ std::span<const Setting<FingerDesc>> fingerSettings() {
       aboveMin(row<F, &F::coupling, &CouplingSettings::max_force>("max_force", "N", 0.0, 1e4)),
       row<F, &F::coupling, &CouplingSettings::max_force_rate>("max_force_rate", "N/s", 0.0, 1e7),
       row<F, &F::coupling, &CouplingSettings::max_device_speed>("max_device_speed", "m/s", 0.01, 1e4),
+      // fem_pad's pad (sim/soft/fem_pad.hpp); the rules between them and the proxy in validateFinger.
+      row<F, &F::pad, &PadSettings::thickness>("pad_thickness", "m", kMinPadLength, 0.05),
+      degrees(row<F, &F::pad, &PadSettings::cap_angle>("pad_cap_angle", "deg", 6.0, 45.0)),
+      row<F, &F::pad, &PadSettings::element_size>("pad_element_size", "m", kMinPadLength / 16.0, 0.05),
+      row<F, &F::pad, &PadSettings::young>("pad_young", "Pa", kMinPadYoung, kMaxPadYoung),
+      row<F, &F::pad, &PadSettings::poisson>("pad_poisson", "", 0.0, 0.49),
+      row<F, &F::pad, &PadSettings::density>("pad_density", "kg/m^3", 100.0, 1e4),
+      row<F, &F::pad, &PadSettings::damping>("pad_damping", "s", 0.0, 0.1),
+      row<F, &F::pad, &PadSettings::contact_stiffness>("pad_contact_stiffness", "N/m", 1e3, 1e7),
   };
   return kTable;
 }
@@ -276,6 +317,7 @@ std::string jsonKey(const Setting<Desc>& s) {
       {"", ""},         {"m", "_m"},        {"deg", "_deg"},         {"kg", "_kg"},        {"s", "_s"},
       {"N", "_n"},      {"Hz", "_hz"},      {"N/m", "_n_per_m"},     {"N s/m", "_ns_per_m"},
       {"1/s", "_per_s"}, {"m/s^2", "_m_per_s2"}, {"N m", "_nm"},  {"N/s", "_n_per_s"}, {"m/s", "_m_per_s"},
+      {"Pa", "_pa"},    {"kg/m^3", "_kg_per_m3"},
   };
   std::string key(s.name);
   for (char& c : key) c = c == '.' ? '_' : c;
@@ -387,6 +429,9 @@ std::optional<FieldError> validateFinger(const FingerDesc& finger) {
     return FieldError{"pad_axis", "must be a direction, of length at least " + shown(kMinPadAxisLength) + ", got " +
                                       shown(finger.patch.pad_axis.norm())};
   }
+  if (finger.patch.model == ContactModel::kFemPad) {
+    if (std::optional<FieldError> e = validatePadShape(finger)) return e;
+  }
   if (std::optional<FieldError> e = validateTrack(finger.device)) {
     e->field = "device." + e->field;
     return e;
@@ -475,6 +520,8 @@ std::optional<FieldError> validateChange(const PatchChange& change, std::span<co
     return FieldError{"t", "changes must be in time order: " + shown(change.time) + " s comes after " +
                                shown(previous_time) + " s"};
   }
+  const ContactModel model = fingers[static_cast<std::size_t>(change.finger)].patch.model;
+  if (std::optional<FieldError> e = validateModelChange(model, change.patch.model)) return e;
   return validatePatch(change.patch);
 }
 

@@ -190,6 +190,9 @@ std::optional<FieldError> validateOverlapStability(const SceneDesc& scene);
 /// The names of the finger settings that may change during a run (`live`'s `set`, a scene's
 /// `[[changes]]`), comma-separated in table order.
 std::string liveFingerSettingNames();
+/// A finger whose scene gives it `scene_model` changing to `to`: refused to or from fem_pad (the
+/// pad is built with the world).
+std::optional<FieldError> validateModelChange(ContactModel scene_model, ContactModel to);
 /// The first god-finger setting (a live one) of `patch` that is not legal.
 std::optional<FieldError> validatePatch(const PatchSettings& patch);
 /// The first keyframe of `track` that is not legal ("keyframes.t" or "keyframes.p", with its

@@ -25,6 +25,8 @@ void interpolateSnapshot(const Snapshot& a, const Snapshot& b, double time, Snap
     o.proxy = (1 - w) * fa.proxy + w * fb.proxy;
     o.coupling_force = (1 - w) * fa.coupling_force + w * fb.coupling_force;
     o.feedback_force = (1 - w) * fa.feedback_force + w * fb.feedback_force;
+    // A soft pad's shape is b's, carried with its bone.
+    for (Vec3& p : o.pad.nodes) p += o.proxy - fb.proxy;
     // Patch points ride with their body from b's pose to the interpolated one.
     for (ContactSnapshot& c : o.contacts) {
       if (c.body < 0 || static_cast<std::size_t>(c.body) >= out.bodies.size()) continue;

@@ -3,6 +3,8 @@
 // Every position and direction in a Snapshot is in the world frame.
 #pragma once
 
+#include <array>
+#include <memory>
 #include <string>
 #include <utility>
 #include <vector>
@@ -46,6 +48,15 @@ struct ContactSnapshot {
   bool sliding = false;          ///< the contact's friction is at its limit (it slides or spins)
 };
 
+/// A fem_pad finger's soft pad as it is (empty for the other models).
+struct PadSnapshot {
+  std::vector<Vec3> nodes;  ///< every node of its tetrahedra (world, m)
+  /// Its outer surface (skin and sides, wound outward), indices into `nodes`; shared, immutable.
+  std::shared_ptr<const std::vector<std::array<int, 3>>> skin;
+  double bone_radius = 0.0;  ///< the bone, a sphere about the proxy centre (m)
+  long resets = 0;           ///< times it was put back at rest (turned inside out) so far
+};
+
 /// One finger.
 struct FingerSnapshot {
   Vec3 device = Vec3::Zero();          ///< device position (m)
@@ -54,7 +65,10 @@ struct FingerSnapshot {
   Vec3 feedback_force = Vec3::Zero();  ///< force rendered to the device: -coupling (N)
   int sgo_count = 0;                   ///< SGOs injected this step, over all contacts
   PatchSettings patch;                 ///< the finger's god-finger settings as given (live ones may change)
+  /// Its contacts: with fem_pad, the bone's own (through the pad) and then one per body the
+  /// pad presses, whose points are the pressed skin nodes with their loads.
   std::vector<ContactSnapshot> contacts;
+  PadSnapshot pad;
 };
 
 /// Haptic-loop timings as of a snapshot (wall-clock; all zero in offline replays).

@@ -142,12 +142,40 @@ int FemSolid::invertedElements() const {
 }
 
 void FemSolid::resetToRest() {
+  if (!bone_offset_.allFinite()) bone_offset_.setZero();  // the caller moves the bone back (moveBone)
   for (std::size_t n = 0; n < x_.size(); ++n) {
     x_[n] = rest_[n] + bone_offset_;
     v_[n] = Vec3::Zero();
   }
   bone_v_ = Vec3::Zero();
   for (Element& e : elements_) e.rotation = Eigen::Quaterniond::Identity();
+}
+
+void FemSolid::keepState() {
+  kept_.x = x_;
+  kept_.rotations.resize(elements_.size());
+  for (std::size_t e = 0; e < elements_.size(); ++e) kept_.rotations[e] = elements_[e].rotation;
+  kept_.bone_offset = bone_offset_;
+  kept_.set = true;
+}
+
+void FemSolid::restoreState() {
+  if (!kept_.set) {
+    resetToRest();
+    return;
+  }
+  std::copy(kept_.x.begin(), kept_.x.end(), x_.begin());
+  for (std::size_t e = 0; e < elements_.size(); ++e) elements_[e].rotation = kept_.rotations[e];
+  bone_offset_ = kept_.bone_offset;
+  std::fill(v_.begin(), v_.end(), Vec3::Zero());
+  bone_v_ = Vec3::Zero();
+}
+
+void FemSolid::moveBone(const Vec3& offset, const Vec3& velocity) {
+  const Vec3 shift = offset - bone_offset_;
+  for (Vec3& x : x_) x += shift;
+  bone_offset_ = offset;
+  bone_v_ = velocity;
 }
 
 std::vector<Vec3> FemSolid::elasticForces() const {
@@ -203,18 +231,15 @@ void FemSolid::buildPattern() {
 }
 
 // The system (M + (dt β + dt²) K) v' = M v + dt f of one implicit Euler step, in the unknowns'
-// velocities: f the elastic, node, bone and contact forces at the step's start, K the corotated
-// stiffness (and each contact's k n nᵀ), its values added in place in the pattern's slots.
-void FemSolid::assemble(double dt, const std::vector<Vec3>& node_forces, const Vec3& bone_force,
-                        const std::vector<FemContact>& contacts) {
+// velocities: f the elastic, node and bone forces at the step's start, K the corotated
+// stiffness, its values added in place in the pattern's slots. Contacts come on top
+// (solveContacts).
+void FemSolid::assemble(double dt, const std::vector<Vec3>& node_forces, const Vec3& bone_force) {
   const double k_scale = dt * material_.damping_s + dt * dt;
   double* values = system_.valuePtr();
   std::fill(values, values + system_.nonZeros(), 0.0);
   rhs_.setZero(3 * unknowns_);
   std::fill(forces_.begin(), forces_.end(), Vec3::Zero());
-  const auto addDiagonal = [&](int u, const Eigen::Matrix3d& block) {
-    for (int k = 0; k < 9; ++k) values[diagonal_slots_[static_cast<std::size_t>(u) * 9 + k]] += block(k / 3, k % 3);
-  };
   for (std::size_t e = 0; e < tets_.size(); ++e) {
     Element& el = elements_[e];
     el.rotation = nearestRotation(deformation(e), el.rotation);
@@ -232,19 +257,77 @@ void FemSolid::assemble(double dt, const std::vector<Vec3>& node_forces, const V
     if (u < 0) continue;
     const Vec3 f = forces_[n] + (node_forces.empty() ? Vec3::Zero() : node_forces[n]);
     rhs_.segment<3>(3 * u) += mass_[n] * (u == 0 && has_bone_ ? bone_v_ : v_[n]) + dt * f;
-    addDiagonal(u, mass_[n] * Eigen::Matrix3d::Identity());
-  }
-  // Contacts: the spring's force k d n at the step's start, and its stiffness k n nᵀ in the step.
-  for (const FemContact& c : contacts) {
-    const int u = unknownOf(c.node);
-    if (u < 0 || !(c.depth > 0.0)) continue;
-    rhs_.segment<3>(3 * u) += dt * contact_stiffness_ * c.depth * c.normal;
-    addDiagonal(u, dt * dt * contact_stiffness_ * c.normal * c.normal.transpose());
+    for (int k = 0; k < 3; ++k) values[diagonal_slots_[static_cast<std::size_t>(u) * 9 + 4 * k]] += mass_[n];
   }
   if (has_bone_) {
     rhs_.head<3>() += bone_mass_ * bone_v_ + dt * bone_force;
-    addDiagonal(0, bone_mass_ * Eigen::Matrix3d::Identity());
+    for (int k = 0; k < 3; ++k) values[diagonal_slots_[4 * k]] += bone_mass_;
   }
+}
+
+// The contacts on the system without them, each in its mode (pressing and sticking, pressing and
+// slipping at its cap, or let go), solved; each one's force at the step's end from the
+// solution, then its mode for another pass: one that pulls is let go, a sticking one past its
+// cap slips at it. A normal spring k (depth + dt (v_s − v)·n) n; a sticking one's tangential
+// spring k P (slide + dt (v_s − v)), P the tangent plane's projection; both implicit (k n nᵀ and
+// k P in the system).
+bool FemSolid::solveContacts(double dt, const std::vector<FemContact>& contacts) {
+  std::copy(base_values_.begin(), base_values_.end(), system_.valuePtr());
+  rhs_ = base_rhs_;
+  const double k = contact_stiffness_;
+  const auto addDiagonal = [&](int u, const Eigen::Matrix3d& block) {
+    double* values = system_.valuePtr();
+    for (int j = 0; j < 9; ++j) values[diagonal_slots_[static_cast<std::size_t>(u) * 9 + j]] += block(j / 3, j % 3);
+  };
+  const auto active = [&](std::size_t i) {
+    return contacts[i].depth > 0.0 && unknownOf(contacts[i].node) >= 0 && !contact_results_[i].released;
+  };
+  const auto sticks = [&](std::size_t i) { return contacts[i].friction > 0.0 && !contact_results_[i].slipping; };
+  for (std::size_t i = 0; i < contacts.size(); ++i) {
+    if (!active(i)) continue;
+    const FemContact& c = contacts[i];
+    const int u = unknownOf(c.node);
+    const Eigen::Matrix3d nn = c.normal * c.normal.transpose();
+    const Eigen::Matrix3d tangent = Eigen::Matrix3d::Identity() - nn;
+    rhs_.segment<3>(3 * u) += dt * k * (c.depth + dt * c.surface_velocity.dot(c.normal)) * c.normal;
+    Eigen::Matrix3d block = dt * dt * k * nn;
+    if (sticks(i)) {
+      rhs_.segment<3>(3 * u) += dt * k * tangent * (c.slide + dt * c.surface_velocity);
+      block += dt * dt * k * tangent;
+    } else if (contact_results_[i].slipping) {
+      rhs_.segment<3>(3 * u) += dt * slip_force_[i];
+    }
+    addDiagonal(u, block);
+  }
+  solver_->factorize(system_);
+  solution_ = solver_->solve(rhs_);
+  bool settled = true;
+  for (std::size_t i = 0; i < contacts.size(); ++i) {
+    FemContactResult& r = contact_results_[i];
+    r.force = Vec3::Zero();
+    if (!active(i)) continue;
+    const FemContact& c = contacts[i];
+    const Vec3 v = solution_.segment<3>(3 * unknownOf(c.node));
+    const Vec3 relative = c.surface_velocity - v;
+    const double normal = k * (c.depth + dt * relative.dot(c.normal));
+    Vec3 friction = Vec3::Zero();
+    if (sticks(i)) {
+      const Vec3 slide = c.slide + dt * relative;
+      friction = k * (slide - slide.dot(c.normal) * c.normal);
+    } else if (r.slipping) {
+      friction = slip_force_[i];
+    }
+    r.force = normal * c.normal + friction;
+    if (normal < 0.0) {  // it would pull: let go
+      r.released = true;
+      settled = false;
+    } else if (sticks(i) && friction.norm() > c.friction * normal) {
+      r.slipping = true;
+      slip_force_[i] = c.friction * normal / friction.norm() * friction;
+      settled = false;
+    }
+  }
+  return settled;
 }
 
 void FemSolid::step(double dt, const std::vector<Vec3>& node_forces, const Vec3& bone_force,
@@ -258,13 +341,18 @@ void FemSolid::step(double dt, const std::vector<Vec3>& node_forces, const Vec3&
     forces_.assign(x_.size(), Vec3::Zero());
     buildPattern();
   }
-  assemble(dt, node_forces, bone_force, contacts);
+  assemble(dt, node_forces, bone_force);
   if (!analysed_) {
     solver_->analyzePattern(system_);
     analysed_ = true;
   }
-  solver_->factorize(system_);
-  solution_ = solver_->solve(rhs_);
+  base_values_.assign(system_.valuePtr(), system_.valuePtr() + system_.nonZeros());
+  base_rhs_ = rhs_;
+  contact_results_.assign(contacts.size(), FemContactResult{});
+  slip_force_.assign(contacts.size(), Vec3::Zero());
+  for (int pass = 0; pass < kMaxContactPasses; ++pass) {
+    if (solveContacts(dt, contacts)) break;
+  }
   if (has_bone_) {
     bone_v_ = solution_.head<3>();
     bone_offset_ += dt * bone_v_;
@@ -274,13 +362,8 @@ void FemSolid::step(double dt, const std::vector<Vec3>& node_forces, const Vec3&
     v_[n] = u < 0 ? Vec3::Zero() : u == 0 && has_bone_ ? bone_v_ : Vec3(solution_.segment<3>(3 * u));
     x_[n] += dt * v_[n];
   }
-  // Each contact's spring at the step's end: the depth less what the node moved out.
-  contact_forces_.assign(contacts.size(), Vec3::Zero());
-  for (std::size_t i = 0; i < contacts.size(); ++i) {
-    const FemContact& c = contacts[i];
-    const double depth = c.depth - dt * v_[static_cast<std::size_t>(c.node)].dot(c.normal);
-    if (c.depth > 0.0 && depth > 0.0 && unknownOf(c.node) >= 0) contact_forces_[i] = contact_stiffness_ * depth * c.normal;
-  }
+  contact_forces_.resize(contacts.size());
+  for (std::size_t i = 0; i < contacts.size(); ++i) contact_forces_[i] = contact_results_[i].force;
 }
 
 }  // namespace gf::sim

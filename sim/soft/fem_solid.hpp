@@ -26,11 +26,26 @@ struct FemMaterial {
 };
 
 /// A node pressed into a rigid surface: `depth` (m, > 0) below it along -`normal` (unit, out of
-/// the surface) at the step's start.
+/// the surface) at the step's start. With friction, the node is held in the tangent plane by a
+/// spring to its anchor on the surface (`slide`: from the node to the anchor at the step's
+/// start, m), both springs stiff and implicit in the step, the tangential one capped at
+/// `friction` times the normal force (the node then slips, its friction at the cap). The surface
+/// moves at `surface_velocity` (m/s) during the step.
 struct FemContact {
   int node = 0;
   Vec3 normal = Vec3::UnitY();
   double depth = 0.0;
+  Vec3 surface_velocity = Vec3::Zero();
+  Vec3 slide = Vec3::Zero();  ///< tangential (the part along `normal` is ignored)
+  double friction = 0.0;      ///< Coulomb coefficient; 0: frictionless
+};
+
+/// What a contact did over the last step: the force on its node at the step's end (N), and
+/// whether its friction was at its cap (slipping) or it let go (its spring would have pulled).
+struct FemContactResult {
+  Vec3 force = Vec3::Zero();
+  bool slipping = false;
+  bool released = false;
 };
 
 /// Throws std::invalid_argument naming the field when `m` is not a material the solid can take.
@@ -59,15 +74,25 @@ class FemSolid {
   /// Allocates nothing once the first step has sized its storage.
   void step(double dt, const std::vector<Vec3>& node_forces, const Vec3& bone_force,
             const std::vector<FemContact>& contacts = {});
-  /// The force each contact of the last step put on its node at the step's end (N, along its
-  /// normal: k × the depth then, never pulling); its opposite is the force on the surface.
+  /// The force each contact of the last step put on its node at the step's end (N: the normal
+  /// spring's k × the depth then, never pulling, and the friction, never past its cap); its
+  /// opposite is the force on the surface. The solve is repeated (at most kMaxContactPasses
+  /// times) with a contact that would pull let go and one past its friction cap slipping at the
+  /// cap, so these are exactly the forces the nodes moved under.
   const std::vector<Vec3>& contactForces() const { return contact_forces_; }
+  const std::vector<FemContactResult>& contactResults() const { return contact_results_; }
+  static constexpr int kMaxContactPasses = 4;
 
   /// Elements turned inside out now (det F ≤ 0): a pad pressed past its thickness. Allocates nothing.
   int invertedElements() const;
   /// Back to rest on the bone where it is: every node at its rest place moved by the bone's
   /// offset, every velocity (the bone's too) zero. What a caller does when invertedElements() > 0.
   void resetToRest();
+
+  /// Its state (positions, velocities, the bone's offset and velocity, the elements' rotations),
+  /// kept by keepState() and put back by restoreState(), at rest (every velocity zero).
+  void keepState();
+  void restoreState();
 
   /// The elastic forces on the nodes now (N per node), corotational. Allocates.
   std::vector<Vec3> elasticForces() const;
@@ -78,14 +103,19 @@ class FemSolid {
   const std::vector<Vec3>& velocities() const { return v_; }
   std::vector<Vec3>& velocities() { return v_; }
   const std::vector<double>& masses() const { return mass_; }
+  /// Puts the bone at `offset` from where it started, moving at `velocity`: every node
+  /// translated with it (a bone moved by something else, carrying its tissue).
+  void moveBone(const Vec3& offset, const Vec3& velocity);
   /// The bone's translation from where it started (m) and its velocity (m/s).
   const Vec3& boneOffset() const { return bone_offset_; }
   const Vec3& boneVelocity() const { return bone_v_; }
 
  private:
   struct Element;
-  void assemble(double dt, const std::vector<Vec3>& node_forces, const Vec3& bone_force,
-                const std::vector<FemContact>& contacts);
+  void assemble(double dt, const std::vector<Vec3>& node_forces, const Vec3& bone_force);
+  /// One solve of the step with the contacts in their modes; true when every contact's result
+  /// agrees with its mode (none pulls, no sticking one past its cap).
+  bool solveContacts(double dt, const std::vector<FemContact>& contacts);
   void buildPattern();
   Eigen::Matrix3d deformation(std::size_t e) const;
   void addElementForce(std::size_t e, const Eigen::Matrix3d& r, std::vector<Vec3>& out) const;
@@ -104,6 +134,16 @@ class FemSolid {
   int unknowns_ = 0;
   double contact_stiffness_ = 1e5;
   std::vector<Vec3> contact_forces_;
+  struct Kept {
+    std::vector<Vec3> x;
+    std::vector<Eigen::Quaterniond> rotations;
+    Vec3 bone_offset = Vec3::Zero();
+    bool set = false;
+  } kept_;
+  std::vector<FemContactResult> contact_results_;
+  std::vector<Vec3> slip_force_;  // per contact while it slips: its friction, explicit (N)
+  std::vector<double> base_values_;  // the system without contacts, this step
+  Eigen::VectorXd base_rhs_;
   bool has_bone_ = false;
   bool analysed_ = false;
   std::vector<int> block_slots_;     // per element, per node pair, the 9 entries' value slots

@@ -4,6 +4,8 @@
 #include "sim/world/world.hpp"
 
 #include <algorithm>
+#include <cmath>
+#include <numbers>
 
 #include "sim/assert.hpp"
 #include "sim/world/world_impl.hpp"
@@ -27,6 +29,7 @@ void World::step(double dt, std::span<const DeviceSample> devices) {
   w.applyChangesDue(dt);
   w.applyCouplings(devices, dt);
   w.applyLoads();
+  w.stepPads(dt);
   w.saveStates();
   w.world.stepSimulation(dt, 0, dt);
   w.countStep(dt);
@@ -164,7 +167,8 @@ const PortObserver& World::portObserver(int finger) const {
 
 bool World::touching(int finger) const {
   GF_ASSERT_OWNER();
-  return impl_->fingers[finger].contact_count > 0;
+  const Impl::Finger& f = impl_->fingers[finger];
+  return f.contact_count > 0 || (f.pad && !f.pad->contacts().empty());
 }
 
 int World::sgoCount(int finger) const {
@@ -172,7 +176,8 @@ int World::sgoCount(int finger) const {
   const Impl::Finger& f = impl_->fingers[finger];
   int n = 0;
   for (int k = 0; k < f.contact_count; ++k) n += f.contacts[k].sgo_count;
-  return n;
+  // A soft pad's points: its skin nodes pressed into bodies.
+  return n + (f.pad ? static_cast<int>(f.pad->contacts().size()) : 0);
 }
 
 int World::overlapPairCount() const {
@@ -197,6 +202,12 @@ double World::contactRadius(int finger) const {
   const Impl::Finger& f = impl_->fingers[finger];
   double sum = 0.0;
   int n = 0;
+  if (f.pad) {  // a soft pad's: the radius of a disc of its pressed skin's area, per body
+    std::array<PadTouch, kMaxContactsPerFinger> touches;
+    const int count = impl_->padTouches(f, touches);
+    for (int k = 0; k < count; ++k) sum += std::sqrt(touches[static_cast<std::size_t>(k)].area / std::numbers::pi);
+    n += count;
+  }
   for (int k = 0; k < f.contact_count; ++k) {
     if (!f.contacts[k].record.patch.valid) continue;
     sum += f.contacts[k].record.patch.radius;
@@ -212,6 +223,18 @@ bool World::deepestTouch(int finger, Touch& out) const {
   for (int k = 0; k < f.contact_count; ++k) {
     const FingerContact& c = f.contacts[k];
     if (!deepest || c.record.contact.separation < deepest->record.contact.separation) deepest = &c;
+  }
+  if (f.pad) {  // a soft pad's deepest touch, when deeper than the bone's own
+    std::array<PadTouch, kMaxContactsPerFinger> touches;
+    const int count = impl_->padTouches(f, touches);
+    const PadTouch* pad = nullptr;
+    for (int k = 0; k < count; ++k) {
+      if (!pad || touches[static_cast<std::size_t>(k)].depth > pad->depth) pad = &touches[static_cast<std::size_t>(k)];
+    }
+    if (pad && (!deepest || -pad->depth < deepest->record.contact.separation)) {
+      out = Touch{pad->body, pad->point, pad->normal, -pad->depth};
+      return true;
+    }
   }
   if (!deepest) return false;
   const ContactRecord& r = deepest->record;
@@ -234,6 +257,9 @@ double World::mechanicalEnergy() const {
     e += 0.5 * m * r->getLinearVelocity().length2() + 0.5 * w.dot(iw);
     e -= m * r->getGravity().dot(r->getCenterOfMassPosition());
   }
+  for (const Impl::Finger& f : impl_->fingers) {
+    if (f.pad) e += f.pad->kineticEnergy();  // its tissue's motion (its bone's is the proxy's, above)
+  }
   return e;
 }
 
@@ -244,9 +270,9 @@ void World::applyTorqueImpulse(int body, const Vec3& impulse) {
 
 void World::setPatchSettings(int finger, const PatchSettings& settings) {
   GF_ASSERT_OWNER();
-  if (std::optional<FieldError> e = validatePatch(settings)) {
-    throw DescriptionError("finger '" + impl_->desc.fingers[finger].name + "'", *e);
-  }
+  std::optional<FieldError> e = validateModelChange(impl_->desc.fingers[finger].patch.model, settings.model);
+  if (!e) e = validatePatch(settings);
+  if (e) throw DescriptionError("finger '" + impl_->desc.fingers[finger].name + "'", *e);
   impl_->applySettings(impl_->fingers[finger], settings);
 }
 
@@ -292,6 +318,7 @@ void World::snapshot(Snapshot& out) const {
       solvedLoads(c, w.solver.block(c.block), w.snapshot_scratch, w.snapshot_loads);
       toSnapshotLoads(w.snapshot_loads, frame, fs.contacts[k]);
     }
+    if (f.pad) w.padSnapshot(f, fs);
   }
 }
 

@@ -36,6 +36,7 @@ struct WorldCounters {
   long sgos_injected = 0;    ///< sum over steps of SGOs fed to the solver
   long crossing_limit_stops = 0;  ///< SGOs whose walk used up its edge-crossing budget (stopped short)
   long tunnelling_stops = 0;      ///< proxies stopped where their step's path entered a body
+  long pad_resets = 0;            ///< fem_pad pads put back at rest (turned inside out or not finite)
   long patch_calls = 0;           ///< patches computed (one per god-finger contact per step)
   double patch_seconds = 0.0;     ///< wall time spent computing them (steady clock)
   long warm_walks = 0;            ///< radial walks carried from the last step's path

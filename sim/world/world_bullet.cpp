@@ -75,7 +75,9 @@ void World::Impl::addFinger(int index, const FingerDesc& d) {
   // Warm-started walks: every cache sized now, so no step allocates for them.
   for (FingerContact& c : f.contacts) c.walks.reserve();
   for (WalkCache& w : f.memory_walks) w.reserve();
-  f.shape = std::make_unique<btSphereShape>(d.proxy.radius);
+  // A soft pad's proxy is its bone, inside the skin by the pad's thickness.
+  const bool pad = d.patch.model == ContactModel::kFemPad;
+  f.shape = std::make_unique<btSphereShape>(pad ? d.proxy.radius - d.pad.thickness : d.proxy.radius);
   btVector3 inertia(0, 0, 0);
   f.shape->calculateLocalInertia(d.proxy.mass, inertia);
   btRigidBody::btRigidBodyConstructionInfo ci(d.proxy.mass, nullptr, f.shape.get(), inertia);
@@ -88,6 +90,7 @@ void World::Impl::addFinger(int index, const FingerDesc& d) {
   f.proxy->setFlags(f.proxy->getFlags() | BT_DISABLE_WORLD_GRAVITY);
   world.addRigidBody(f.proxy.get(), kFingerGroup, btBroadphaseProxy::AllFilter & ~kFingerGroup);
   f.proxy->setGravity(btVector3(0, 0, 0));  // gravity compensated
+  if (pad) addPad(f, d);
 }
 
 // The finger's settings from now on: the scene's effects applied and its model chosen, once.

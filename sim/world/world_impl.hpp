@@ -18,6 +18,7 @@
 #include "sim/contact/contact_models.hpp"
 #include "sim/contact/contact_algorithms.hpp"
 #include "sim/world/world.hpp"
+#include "sim/soft/fem_pad.hpp"
 
 namespace gf::sim {
 
@@ -33,6 +34,19 @@ inline constexpr int kMaxContactsPerFinger = 4;
 inline constexpr int kFingerGroup = 1 << 6;
 /// Bullet user index marking a proxy (bodies carry their index, >= 0).
 inline constexpr int kProxyTag = -1;
+
+/// A fem_pad's contact with one body, its skin nodes' gathered (world).
+struct PadTouch {
+  int body = -1;
+  int nodes = 0;                  ///< skin nodes pressed into it
+  Vec3 force = Vec3::Zero();      ///< on the body (N)
+  double load = 0.0;              ///< the force's part into the body (N, >= 0)
+  Vec3 point = Vec3::Zero();      ///< the nodes' centre, weighted by their loads (by count without load)
+  Vec3 normal = Vec3::UnitY();    ///< outward, the nodes' normals weighted likewise (unit)
+  double depth = 0.0;             ///< the deepest node's (m)
+  double area = 0.0;              ///< the pressed nodes' skin (m²)
+  bool sliding = false;           ///< every pressed node slips
+};
 
 struct World::Impl final : SolveHooks {
   struct Body {
@@ -61,6 +75,8 @@ struct World::Impl final : SolveHooks {
     int memory_count = 0;
     // memory[k]'s walks (warm_walk.hpp), swapped with its contact's during a step.
     std::array<WalkCache, kMaxContactsPerFinger> memory_walks;
+    // fem_pad's soft pad on the proxy (its bone), null for every other model (world_pad.cpp).
+    std::unique_ptr<FemPad> pad;
 
     const ContactMemory* memoryOf(int body) const {
       for (int k = 0; k < memory_count; ++k) {
@@ -121,6 +137,17 @@ struct World::Impl final : SolveHooks {
   void handleOverlaps();
   /// merge: coinciding points of a's and b's patches share one point's load, split by `share_a`.
   void mergeCoinciding(FingerContact& a, FingerContact& b, double share_a) const;
+
+  // The fem_pad fingers' pads (world_pad.cpp): stepped before Bullet's step, their contacts'
+  // forces put on the bodies for it, the bones' velocities given to the proxies.
+  class PadBodies;
+  void addPad(Finger& f, const FingerDesc& d);
+  void stepPads(double dt);
+  /// Pad `f`'s contacts as snapshots (one per touched body) after `out`'s own, and its shape.
+  void padSnapshot(const Finger& f, FingerSnapshot& out) const;
+  /// Pad `f`'s last step's contacts gathered by body, the first kMaxContactsPerFinger bodies
+  /// touched, into `out`; returns how many. Does not allocate.
+  int padTouches(const Finger& f, std::array<PadTouch, kMaxContactsPerFinger>& out) const;
 
   // Step safety (world_safety.cpp).
   void saveStates();   ///< every body's and proxy's state before the step

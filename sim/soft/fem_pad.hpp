@@ -1,0 +1,128 @@
+// A deformable finger pad: a cap of soft tissue (FemSolid on a TetMesh of sim/mesh/tet_pad.hpp)
+// on a rigid distal bone that translates with the finger's proxy. Each step its skin nodes are
+// tested against the surfaces near them (PadSurfaces: the World's bodies), a node inside one
+// becoming a contact whose normal and friction springs are implicit in the solid's step; each
+// contact's force is read back from what the solve did, and its opposite is the force on the
+// body. A node that sticks keeps an anchor in the body's frame; one past its friction cap
+// slips, its anchor dragged along. A pad turned inside out is put back at rest on its bone and
+// counted. Pure Eigen: no Bullet here (the World answers PadSurfaces from its bodies).
+#pragma once
+
+#include <memory>
+#include <vector>
+
+#include "sim/math.hpp"
+#include "sim/mesh/tet_pad.hpp"
+#include "sim/soft/fem_solid.hpp"
+
+namespace gf::sim {
+
+/// A finger's soft pad (`pad_*` of a finger in scene files). Its skin is the proxy's sphere
+/// (proxy_radius), its bone a sphere `thickness` smaller. Defaults: a fingertip's pulp, 3 mm of
+/// tissue over a 5 mm bone, ν 0.45 (nearly incompressible, as FE fingertip models take soft
+/// tissue), 1100 kg/m³, and 300 kPa: a linear pad must be stiff enough in shear to reach its
+/// friction limit under a twist before it turns inside out (at 100 kPa a 3 N press twisted at
+/// μ 1 does; docs/soft-hand.md), so it indents about 0.5 mm at 1 N where a real fingertip's
+/// softer, stiffening pulp gives more.
+struct PadSettings {
+  double thickness = 0.003;          ///< m: tissue between the bone and the skin
+  double cap_angle = 0.6981317007977318;  ///< rad (40 deg): the pad's half-angle about its axis (pad_axis)
+  double element_size = 0.0015;      ///< m: the tetrahedra's cells, thickness / 16 .. thickness
+  double young = 3e5;                ///< Pa: Young's modulus of the tissue
+  double poisson = 0.45;             ///< Poisson's ratio
+  double density = 1100.0;           ///< kg/m³
+  double damping = 0.002;            ///< s: Rayleigh stiffness-proportional damping
+  double contact_stiffness = 1e5;    ///< N/m: each skin node's normal and friction springs
+};
+
+/// The surfaces a pad may touch, as it asks for them each step (the World's bodies).
+class PadSurfaces {
+ public:
+  virtual ~PadSurfaces() = default;
+  /// Surfaces whose bounds meet [lo, hi] (world, m), into `out` (cleared first).
+  virtual void near(const Vec3& lo, const Vec3& hi, std::vector<int>& out) const = 0;
+  /// Whether world point `p` is inside surface `body`: its depth below the surface (m, > 0) and
+  /// the surface's outward normal there (unit, world).
+  virtual bool inside(int body, const Vec3& p, double& depth, Vec3& normal) const = 0;
+  /// Body `body`'s frame now (its anchors are kept in it).
+  virtual Pose frame(int body) const = 0;
+  /// The velocity of body `body`'s material point at world `p` (m/s).
+  virtual Vec3 velocityAt(int body, const Vec3& p) const = 0;
+};
+
+/// One skin node pressed into a body in the last step.
+struct PadNodeContact {
+  int node = -1;
+  int body = -1;
+  Vec3 point = Vec3::Zero();   ///< the node at the step's end (world, m)
+  Vec3 normal = Vec3::UnitY(); ///< the surface's outward normal (world)
+  Vec3 force = Vec3::Zero();   ///< on the body (N, world): the opposite of the contact's on the node
+  double depth = 0.0;          ///< below the surface at the step's start (m)
+  double area = 0.0;           ///< the node's share of the skin (m², a third of its triangles')
+  bool slipping = false;       ///< its friction at its cap
+};
+
+class FemPad {
+ public:
+  /// The pad of `settings` on a bone of `bone_mass` kg whose skin is a sphere of `skin_radius`
+  /// (m) centred at `centre`, its cap facing `axis` (unit, world). Throws std::invalid_argument
+  /// naming the field for settings the mesh or the material cannot take. Allocates.
+  FemPad(const PadSettings& settings, double skin_radius, double bone_mass, const Vec3& axis, const Vec3& centre);
+  ~FemPad();
+  FemPad(const FemPad&) = delete;
+  FemPad& operator=(const FemPad&) = delete;
+
+  /// Puts the bone at `centre` moving at `velocity` (the proxy's), the tissue carried along.
+  void follow(const Vec3& centre, const Vec3& velocity);
+  /// One step of `dt` s: the bone pushed by `bone_force` (N, the coupling's), the skin against
+  /// `surfaces` with Coulomb `friction`. A step that turned the pad inside out or lost finite
+  /// values is undone (counted in resets()): the pad back at the step's start, at rest, every
+  /// anchor let go; twice running, back at rest on the bone. Allocates nothing once its
+  /// storage is sized.
+  void step(double dt, const Vec3& bone_force, double friction, const PadSurfaces& surfaces);
+
+  const std::vector<PadNodeContact>& contacts() const { return contacts_; }
+  /// The bone's centre now (m) and its velocity (m/s).
+  Vec3 boneCentre() const { return centre0_ + solid_->boneOffset(); }
+  Vec3 boneVelocity() const { return solid_->boneVelocity(); }
+  double boneRadius() const { return bone_radius_; }
+  /// Times the pad was put back at rest (inverted or not finite), and elements inverted then.
+  long resets() const { return resets_; }
+  int lastInverted() const { return last_inverted_; }
+  /// The pad's nodes now (world, m) and its outer surface (skin and sides; not the bone's side).
+  const std::vector<Vec3>& nodes() const { return solid_->positions(); }
+  const std::shared_ptr<const std::vector<std::array<int, 3>>>& skin() const { return skin_; }
+  const TetMesh& mesh() const { return mesh_; }
+  const FemSolid& solid() const { return *solid_; }
+  /// The tissue's kinetic energy (J) and momentum (N s), its nodes on the bone included; not the
+  /// bone's own mass (the proxy's).
+  double kineticEnergy() const;
+  Vec3 momentum() const;
+
+ private:
+  struct Anchor {
+    int body = -1;
+    Vec3 local = Vec3::Zero();  // in the body's frame
+  };
+  void findContacts(const PadSurfaces& surfaces, double friction);
+  void readContacts(double dt, const PadSurfaces& surfaces);
+
+  PadSettings settings_;
+  TetMesh mesh_;
+  std::unique_ptr<FemSolid> solid_;
+  Vec3 centre0_ = Vec3::Zero();
+  double bone_radius_ = 0.0, bone_mass_ = 0.0;
+  std::vector<int> skin_nodes_;
+  std::shared_ptr<const std::vector<std::array<int, 3>>> skin_;
+  std::vector<Anchor> anchors_;  // per node
+  std::vector<int> near_;
+  std::vector<FemContact> fem_contacts_;
+  std::vector<int> contact_body_;
+  std::vector<PadNodeContact> contacts_;
+  std::vector<double> node_area_;
+  long resets_ = 0;
+  int last_inverted_ = 0;
+  bool reset_last_step_ = false;
+};
+
+}  // namespace gf::sim
