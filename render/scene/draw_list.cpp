@@ -103,6 +103,10 @@ double longestArrowInView(const DrawView& view, const Vec3& from, const Vec3& di
   return longest;
 }
 
+double proxySphereRadius(const sim::FingerSnapshot& f, double proxy_radius) {
+  return f.pad.nodes.empty() ? proxy_radius : f.pad.bone_radius;
+}
+
 Vec3 forceArrow(const sim::FingerSnapshot& f, const DrawSettings& settings) {
   const double n = f.feedback_force.norm();
   if (n < 1e-9) return Vec3::Zero();
@@ -120,14 +124,16 @@ DrawListBuilder::DrawListBuilder(const sim::SceneDesc& scene, std::vector<std::s
   }
 }
 
-// Proxies first: they write no depth, so the patch each one stands on is drawn over it (it
-// shows through); the springs next, so the patches and dots cover the coil where it runs
-// through them to the device inside the body; then the patches, then the ghosts' outlines.
+// Pads first: opaque, they hide what is behind them, the bones included. The proxies next: they
+// write no depth, so the patch each one stands on is drawn over it (it shows through); the
+// springs next, so the patches and dots cover the coil where it runs through them to the device
+// inside the body; then the patches, then the ghosts' outlines.
 void DrawListBuilder::build(const sim::Snapshot& snapshot, const DrawSettings& settings, DrawList& out) {
   out.clear();
   view_eye_.reset();
   if (settings.view) view_eye_ = settings.view->eye;
   if (settings.fingers) {
+    addPads(snapshot, out);
     addProxies(snapshot, out);
     addSprings(snapshot, out);
   }
@@ -213,14 +219,24 @@ void DrawListBuilder::addMarks(const sim::ContactSnapshot& c, const Eigen::Vecto
   }
 }
 
+// Each fem_pad finger's skin as it is, one range per pad.
+void DrawListBuilder::addPads(const sim::Snapshot& snap, DrawList& out) {
+  for (const sim::FingerSnapshot& f : snap.fingers) {
+    fill_.clear();
+    pad_builder_.build(f.pad, fill_);
+    addRange(out, DrawPass::kPads, DrawShape::kTriangles, fill_, kPadColour, 1.0f);
+  }
+}
+
 // The proxies: translucent, drawn before the patches without writing depth, so the patch under
-// the finger shows through.
+// the finger shows through. A pad's bone, inside its skin, in the proxy's place.
 void DrawListBuilder::addProxies(const sim::Snapshot& snap, DrawList& out) {
   for (std::size_t i = 0; i < snap.fingers.size(); ++i) {
     const Eigen::Vector3f colour = fingerColour(static_cast<int>(i)) * 0.8f + Eigen::Vector3f::Constant(0.15f);
+    const double r = proxySphereRadius(snap.fingers[i], proxy_radius_[i]);
     out.items.push_back(shapeItem(DrawPass::kProxies, DrawShape::kSphere,
-                                  modelMatrix(snap.fingers[i].proxy, sim::Quat::Identity(), Vec3::Constant(proxy_radius_[i])),
-                                  colour, kProxyAlpha));
+                                  modelMatrix(snap.fingers[i].proxy, sim::Quat::Identity(), Vec3::Constant(r)), colour,
+                                  kProxyAlpha));
   }
 }
 

@@ -1,9 +1,9 @@
 // What the contact overlay of a frame draws, as plain data: the highlighted patches with their
 // walked paths, SGO dots coloured by load (slipping ones ringed), normals and force arrows, the
-// proxies, the device ghosts (dashed outlines) and the coupling springs of one Snapshot, in
-// drawing order. Built without GL (testable anywhere, no
-// allocation per frame once its arrays have grown); SceneRenderer's GL pass draws it, in the
-// manner of an abstract scene handed to a renderer.
+// proxies (a fem_pad finger's bone, under its deformed pad), the device ghosts (dashed outlines)
+// and the coupling springs of one Snapshot, in drawing order. Built without GL (testable
+// anywhere, no allocation per frame once its arrays have grown); SceneRenderer's GL pass draws
+// it, in the manner of an abstract scene handed to a renderer.
 #pragma once
 
 #include <Eigen/Geometry>
@@ -12,6 +12,7 @@
 #include <optional>
 #include <vector>
 
+#include "render/scene/pad_mesh.hpp"
 #include "render/scene/patch_mesh.hpp"
 #include "render/gl/vertex.hpp"
 #include "sim/scene/scene_desc.hpp"
@@ -27,7 +28,7 @@ Eigen::Matrix4f modelMatrix(const sim::Vec3& position, const sim::Quat& orientat
 
 /// The unit shapes an item may stand for, or a range of DrawList::vertices.
 enum class DrawShape : std::uint8_t {
-  kSphere,     ///< unit sphere (proxies, ghosts)
+  kSphere,     ///< unit sphere (proxies, bones)
   kDot,        ///< coarse unit sphere (contact points, SGOs: a few pixels each)
   kCylinder,   ///< unit cylinder along +y from 0 to 1 (arrow shafts)
   kCone,       ///< unit cone along +y (arrow heads)
@@ -42,7 +43,8 @@ enum class DrawPass : std::uint8_t {
   kPatchLines,  ///< flat colour, depth-tested: walked paths and the rim
   kMarks,       ///< lit, opaque, depth-tested: the contact point, the SGOs, slip rings
   kArrows,      ///< lit, opaque, through everything: contact normals, force arrows
-  kProxies,     ///< lit, translucent, front faces, no depth writes (drawn first): the god-objects
+  kPads,        ///< lit and shadowed like the bodies, opaque (drawn first): fem_pad fingers' skins
+  kProxies,     ///< lit, translucent, front faces, no depth writes: the god-objects (a pad's bone)
   kGhosts,      ///< flat, translucent triangles through everything: the devices' dashed outlines
   kSprings,     ///< flat, translucent lines through everything (drawn before the patches): the couplings
 };
@@ -77,7 +79,7 @@ struct DrawView {
 /// What the overlay shows, and its scales.
 struct DrawSettings {
   bool patch_highlight = true;        ///< patches, SGO dots, normals, force arrows
-  bool fingers = true;                ///< proxies, device ghosts, springs
+  bool fingers = true;                ///< proxies, pads, device ghosts, springs
   /// Contact normals and force arrows; off in close-ups, whose camera looks down the normal (an
   /// arrow towards the camera is a disc over the patch; their labels draw the forces in 2D).
   bool contact_arrows = true;
@@ -86,6 +88,13 @@ struct DrawSettings {
   double max_arrow_view_share = 0.25; ///< longest force arrow as a share of the view's height at its proxy
   std::optional<DrawView> view;       ///< the camera; none: arrows capped by max_arrow_m only
 };
+
+/// Linear RGB of a fem_pad finger's skin: warm, apart from the bodies' and fingers' colours.
+inline const Eigen::Vector3f kPadColour(0.80f, 0.50f, 0.38f);
+
+/// The radius of the sphere a finger's proxy is drawn (and casts its shadow) as, given its
+/// proxy's `proxy_radius` (m): a fem_pad finger's bone (its proxy radius is its skin's).
+double proxySphereRadius(const sim::FingerSnapshot& finger, double proxy_radius);
 
 /// The force arrow of a finger (m), drawn from its proxy: the force rendered to the device (away
 /// from the surface touched) at the settings' scale, capped at max_arrow_m and, with a view, at
@@ -114,6 +123,7 @@ class DrawListBuilder {
   void addPatches(const sim::Snapshot& snapshot, const DrawSettings& settings, DrawList& out);
   void addOverlaps(const sim::Snapshot& snapshot, DrawList& out);
   void addMarks(const sim::ContactSnapshot& contact, const Eigen::Vector3f& colour, double dot, DrawList& out);
+  void addPads(const sim::Snapshot& snapshot, DrawList& out);
   void addProxies(const sim::Snapshot& snapshot, DrawList& out);
   void addSprings(const sim::Snapshot& snapshot, DrawList& out);
   void addGhosts(const sim::Snapshot& snapshot, const DrawSettings& settings, DrawList& out);
@@ -123,6 +133,7 @@ class DrawListBuilder {
   std::vector<double> proxy_radius_, r_max_;  // per finger (m)
   std::vector<std::shared_ptr<const sim::Mesh>> surfaces_;
   PatchMeshBuilder patch_builder_;
+  PadMeshBuilder pad_builder_;
   std::vector<Vertex> fill_, rim_, lines_;  // one finger's patch (or the springs), before joining the list
   std::optional<sim::Vec3> view_eye_;       // the camera of the list being built, if any
 };

@@ -9,6 +9,7 @@
 #include "render/gl/context.hpp"
 #include "render/scene/draw_list.hpp"
 #include "render/scene/geometry.hpp"
+#include "render/scene/pad_mesh.hpp"
 #include "render/gl/gl.hpp"
 #include "render/gl/shaders.hpp"
 
@@ -78,9 +79,9 @@ struct SceneRenderer::Impl {
   Program flat{"flat", shaders::kSurfaceVertex, shaders::kFlatFragment};
   Program depth{"depth", shaders::kDepthVertex, shaders::kDepthFragment};
   const Program* current = &lit;  // the program drawShape() feeds
-  // The key light's depth with the proxies (`shadow`) and without them (`body_shadow`, drawn
-  // first and copied into `shadow` before the proxies are added): views without fingers, such as
-  // the patch insets, show no shadow of a proxy they do not show.
+  // The key light's depth with the proxies and pads (`shadow`) and without them (`body_shadow`,
+  // drawn first and copied into `shadow` before the fingers are added): views without fingers,
+  // such as the patch insets, show no shadow of a proxy they do not show.
   std::unique_ptr<ShadowMap> shadow, body_shadow;
   // The state the shadow maps were last drawn for: a second view of the same instant (the patch
   // insets) reuses them.
@@ -106,6 +107,10 @@ struct SceneRenderer::Impl {
   std::optional<DrawListBuilder> overlay_builder;  // made once the bodies' surfaces are
   DrawList overlay;
   GpuMesh overlay_vertices{{}, true};
+  // The fem_pad fingers' skins for the shadow map, built as the overlay builds them.
+  PadMeshBuilder pad_builder;
+  std::vector<Vertex> pad_vertices;
+  GpuMesh pad_mesh{{}, true};
   Vec3 centre = Vec3::Zero();
   double extent = 0.1;
   Eigen::Matrix4f view, view_proj, light_view_proj;  // view, view_proj: this frame's camera
@@ -170,7 +175,7 @@ struct SceneRenderer::Impl {
   }
 
   // The bodies into `body_shadow`; with the fingers on, that copied into `shadow` and the proxies
-  // added there.
+  // (a pad's bone) and pads added there.
   void shadowPass(const sim::Snapshot& snap) {
     body_shadow->bindForDrawing();
     glClear(GL_DEPTH_BUFFER_BIT);
@@ -192,11 +197,17 @@ struct SceneRenderer::Impl {
     if (settings.fingers) {
       shadow->copyFrom(*body_shadow);
       glEnable(GL_CULL_FACE);  // spheres are closed
+      pad_vertices.clear();
       for (std::size_t i = 0; i < snap.fingers.size(); ++i) {
-        const double r = scene.fingers[i].proxy.radius;
+        const double r = proxySphereRadius(snap.fingers[i], scene.fingers[i].proxy.radius);
         cast(sphere, modelMatrix(snap.fingers[i].proxy, Eigen::Quaterniond::Identity(), Vec3::Constant(r)));
+        pad_builder.build(snap.fingers[i].pad, pad_vertices);
       }
-      glDisable(GL_CULL_FACE);
+      glDisable(GL_CULL_FACE);  // a pad's skin is open on its bone's side
+      if (!pad_vertices.empty()) {
+        pad_mesh.upload(pad_vertices);
+        cast(pad_mesh, Eigen::Matrix4f::Identity());
+      }
     }
     glDisable(GL_POLYGON_OFFSET_FILL);
   }
@@ -289,7 +300,7 @@ struct SceneRenderer::Impl {
     for (std::size_t i = 0; i < snap.fingers.size(); ++i) {
       const sim::FingerSnapshot& f = snap.fingers[i];
       const double r = scene.fingers[i].proxy.radius;
-      add(f.proxy, r);
+      add(f.proxy, std::max(r, padReach(f.pad, f.proxy)));
       add(f.device, r);
       if (!f.contacts.empty()) add(f.proxy + forceArrow(f, drawSettings()), r);
       for (const sim::ContactSnapshot& c : f.contacts) add(c.point_world, std::max(c.radius, scene.fingers[i].patch.r_max));
@@ -300,7 +311,7 @@ struct SceneRenderer::Impl {
   }
 
   // The rectangle of ground plane b (its own frame) that the shadows of `snap` can darken:
-  // every body's bounding box and every proxy, projected along the key light. Empty when the
+  // every body's bounding box and every proxy (and pad), projected along the key light. Empty when the
   // light grazes the plane.
   void receiverQuad(const sim::Snapshot& snap, std::size_t b) {
     receiver_vertices.clear();
@@ -321,7 +332,10 @@ struct SceneRenderer::Impl {
       for (int c = 0; c < 8; ++c) add(boxCorner(*bodies[k].mesh, snap.bodies[k], c), 0.0);
     }
     if (settings.fingers) {
-      for (std::size_t i = 0; i < snap.fingers.size(); ++i) add(snap.fingers[i].proxy, scene.fingers[i].proxy.radius);
+      for (std::size_t i = 0; i < snap.fingers.size(); ++i) {
+        const sim::FingerSnapshot& f = snap.fingers[i];
+        add(f.proxy, std::max(scene.fingers[i].proxy.radius, padReach(f.pad, f.proxy)));
+      }
     }
     if (rect.isEmpty()) return;
     rect.extend(rect.min() - Eigen::Vector2d::Constant(0.01 * extent));  // the soft edge
@@ -379,6 +393,7 @@ struct SceneRenderer::Impl {
         break;
       case DrawPass::kPatchLines: use(flat); break;
       case DrawPass::kMarks: use(lit); break;
+      case DrawPass::kPads: use(shadow ? lit_shadowed : lit); break;  // opaque, like the bodies
       case DrawPass::kArrows:
         use(lit);
         glDisable(GL_DEPTH_TEST);  // arrows read through the proxy and the body
@@ -410,7 +425,8 @@ struct SceneRenderer::Impl {
         glDisable(GL_BLEND);
         break;
       case DrawPass::kPatchLines:
-      case DrawPass::kMarks: break;
+      case DrawPass::kMarks:
+      case DrawPass::kPads: break;
       case DrawPass::kArrows:
         glDisable(GL_CULL_FACE);
         glEnable(GL_DEPTH_TEST);

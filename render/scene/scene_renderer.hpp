@@ -1,6 +1,6 @@
 // Draws one Snapshot of a scene: shaded bodies, the ground grid with soft shadows, each finger
-// (proxy, device ghost, coupling spring), and each contact's highlighted patch with its SGOs,
-// normal and force arrow. Render thread only.
+// (proxy, or a fem_pad finger's bone under its deformed pad; device ghost, coupling spring), and
+// each contact's highlighted patch with its SGOs, normal and force arrow. Render thread only.
 #pragma once
 
 #include <Eigen/Core>
@@ -18,7 +18,7 @@ namespace gf::render {
 struct RenderSettings {
   bool shadows = true;               ///< shadow map from the key light (soft: 2 bilinear taps)
   bool patch_highlight = true;       ///< contact patches, SGO dots, normals, force arrows
-  bool fingers = true;               ///< proxies, device ghosts, springs; off: no proxy shadows either
+  bool fingers = true;               ///< proxies, pads, device ghosts, springs; off: no proxy or pad shadows either
   bool contact_arrows = true;        ///< contact normals and force arrows (off in close-ups down the normal)
   bool ground = true;                ///< ground planes (close-ups from under a lifted body hide them)
   int shadow_map_size = 1024;        ///< texels per side (the map covers 3 scene radii)

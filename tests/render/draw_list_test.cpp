@@ -2,13 +2,16 @@
 // bands on the cylinder's surface, one dot per SGO where the snapshot puts it, normals and force
 // arrows pointing away from the surface, proxies drawn first so the patches show through, the
 // springs before the patches so these cover them, ghosts as outlines), dots coloured by load with
-// slipping ones ringed, arrows kept inside the view, what the switches leave out, and that a
-// rebuild is the same.
+// slipping ones ringed, arrows kept inside the view, what the switches leave out, that a
+// rebuild is the same, and a fem_pad finger drawn as its deformed pad on its bone.
 #include "render/scene/draw_list.hpp"
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <array>
 #include <cmath>
+#include <string>
 #include <vector>
 
 #include "app/scene/data_folder.hpp"
@@ -221,6 +224,79 @@ TEST(DrawList, SwitchesLeaveTheirPartsOut) {
   builder.build(frame.snapshot, settings, list);
   EXPECT_TRUE(itemsOf(list, DrawPass::kArrows).empty());
   EXPECT_FALSE(itemsOf(list, DrawPass::kMarks).empty());
+}
+
+// A fem_pad finger pressing the puck: its skin drawn first, opaque, one corner per skin
+// triangle's node where the snapshot has it (flattened on the puck's top), smooth normals that
+// agree with each triangle's winding; its bone, not the skin-sized proxy, as the translucent
+// sphere; its pressed nodes as dots. Without the fingers, no pad.
+TEST(DrawList, AFemPadFingerIsDrawnAsItsPadOnItsBone) {
+  const std::vector<std::string> overrides = {"fingers.index.contact_model=fem_pad"};
+  const app::SessionDesc session = app::loadSceneFile(app::resolveScenePath("pressed-puck"), overrides);
+  sim::World world(session.scene);
+  const std::vector<sim::DeviceTrack> devices = sim::deviceTracks(session.scene);
+  std::vector<sim::DeviceSample> samples(devices.size());
+  for (int k = 0; k < 400; ++k) {  // pressed from 0.3 s, before the torque
+    for (std::size_t i = 0; i < devices.size(); ++i) samples[i] = devices[i].sample(world.time());
+    world.step(0.001, samples);
+  }
+  sim::Snapshot snapshot;
+  world.snapshot(snapshot);
+  ASSERT_EQ(snapshot.fingers.size(), 1u);
+  const sim::FingerSnapshot& f = snapshot.fingers[0];
+  ASSERT_FALSE(f.pad.nodes.empty());
+  ASSERT_TRUE(f.pad.skin);
+  const double proxy_radius = session.scene.fingers[0].proxy.radius;  // the skin's: 8 mm
+  ASSERT_GT(f.pad.bone_radius, 0.0);
+  ASSERT_LT(f.pad.bone_radius, proxy_radius);
+  std::vector<std::shared_ptr<const sim::Mesh>> surfaces;
+  for (const sim::BodyDesc& b : session.scene.bodies) surfaces.push_back(bodyRenderMesh(b));
+  DrawListBuilder builder(session.scene, surfaces);
+  DrawList list;
+  builder.build(snapshot, DrawSettings{}, list);
+  const std::vector<const DrawItem*> pads = itemsOf(list, DrawPass::kPads);
+  ASSERT_EQ(pads.size(), 1u);
+  EXPECT_EQ(&list.items[0], pads[0]) << "drawn first: the translucent bone goes over it";
+  EXPECT_EQ(pads[0]->shape, DrawShape::kTriangles);
+  EXPECT_EQ(pads[0]->colour, kPadColour);
+  EXPECT_EQ(pads[0]->alpha, 1.0f);
+  const std::vector<std::array<int, 3>>& skin = *f.pad.skin;
+  ASSERT_EQ(pads[0]->count, 3 * static_cast<int>(skin.size()));
+  double lowest = 1.0;
+  for (std::size_t t = 0; t < skin.size(); ++t) {
+    const Vertex* corner = &list.vertices[static_cast<std::size_t>(pads[0]->first) + 3 * t];
+    const auto at = [&](int k) { return Eigen::Map<const Eigen::Vector3f>(corner[k].position).cast<double>(); };
+    const sim::Vec3 face = (at(1) - at(0)).cross(at(2) - at(0));
+    for (int k = 0; k < 3; ++k) {
+      EXPECT_LT((at(k) - f.pad.nodes[static_cast<std::size_t>(skin[t][static_cast<std::size_t>(k)])]).norm(), 1e-6);
+      const sim::Vec3 normal = Eigen::Map<const Eigen::Vector3f>(corner[k].normal).cast<double>();
+      EXPECT_NEAR(normal.norm(), 1.0, 1e-5);
+      EXPECT_GT(normal.dot(face), 0.0) << "triangle " << t << " corner " << k;
+      lowest = std::min(lowest, at(k).y());
+    }
+  }
+  // The undeformed skin would reach 8 mm below the proxy, into the puck (its top at y = 4 cm):
+  // the pad drawn stops at the top, flattened.
+  EXPECT_LT(f.proxy.y() - proxy_radius, 0.04 - 2e-4);
+  EXPECT_NEAR(lowest, 0.04, 5e-4);
+  // The bone, at the proxy, of its own radius.
+  const std::vector<const DrawItem*> bones = itemsOf(list, DrawPass::kProxies);
+  ASSERT_EQ(bones.size(), 1u);
+  EXPECT_EQ(bones[0]->shape, DrawShape::kSphere);
+  const float bone_scale = bones[0]->model.block<3, 1>(0, 0).norm();
+  EXPECT_NEAR(bone_scale, f.pad.bone_radius, 1e-7);
+  const Eigen::Vector3f bone_at = bones[0]->model.block<3, 1>(0, 3);
+  EXPECT_LT((bone_at.cast<double>() - f.proxy).norm(), 1e-6);
+  EXPECT_EQ(proxySphereRadius(f, proxy_radius), f.pad.bone_radius);
+  EXPECT_EQ(proxySphereRadius(sim::FingerSnapshot{}, proxy_radius), proxy_radius);
+  // The pressed skin nodes are the SGO dots; the spring and the ghost are still there.
+  EXPECT_FALSE(itemsOf(list, DrawPass::kMarks).empty());
+  EXPECT_EQ(itemsOf(list, DrawPass::kSprings).size(), 1u);
+  EXPECT_EQ(itemsOf(list, DrawPass::kGhosts).size(), 1u);
+  DrawSettings no_fingers;
+  no_fingers.fingers = false;
+  builder.build(snapshot, no_fingers, list);
+  EXPECT_TRUE(itemsOf(list, DrawPass::kPads).empty());
 }
 
 }  // namespace
