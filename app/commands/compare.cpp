@@ -18,8 +18,8 @@ class CompareCommand final : public Command {
                    "compare.json holds their measures");
     c->add_option("scene", o.scene, "Scene file or bundled scene name")->required();
     c->add_option("--models", models_, "Contact models, comma-separated (1 to 4 of god_object, soft_finger, "
-                                       "god_finger, or god_finger_3dof and god_finger_6dof: a god-finger with "
-                                       "pad_model disc or oriented)")
+                                       "god_finger, fem_pad, or god_finger_3dof and god_finger_6dof: a god-finger "
+                                       "with pad_model disc or oriented)")
         ->default_val("god_object,soft_finger,god_finger");
     c->add_option("--set", o.overrides, "Override a scene field in every run");
     c->add_option("--duration", o.duration, "Simulated seconds (default: the scene's)")->check(CLI::Range(1e-3, 3600.0));

@@ -140,12 +140,15 @@ class View {
     return r.empty() ? 0.0 : mean(r);
   }
   // The pad radius Eq. 1 gives for the measured press: depth F / k of the coupling spring (m).
-  // Every model presses the same, so this is the pad the analytic torsion limits are of.
+  // Every rigid model presses the same, so this is the pad the analytic torsion limits are of. A
+  // soft pad's is its own: the mean radius of its pressed skin's area over the window.
   double pressRadius() const {
+    if (softPad()) return patchRadius();
     const sim::PatchSettings& p = finger_->patch;
     return sim::contactRadius(normalForce() / finger_->coupling.stiffness, p.r_max, p.d0);
   }
   double friction() const { return finger_->patch.friction; }
+  bool softPad() const { return finger_->patch.model == sim::ContactModel::kFemPad; }
   // F r for a measure about an axis across the press: F the mean magnitude of the finger's
   // coupling force over the window's first kPressRows rows, before the load tips the body (N),
   // r the Eq. 1 radius of its press depth F / k (m).
@@ -160,6 +163,7 @@ class View {
     }
     const double press = sum / static_cast<double>(n);
     const sim::PatchSettings& p = finger_->patch;
+    if (softPad()) return press * patchRadius();
     return press * sim::contactRadius(press / finger_->coupling.stiffness, p.r_max, p.d0);
   }
   // The loads on the body at time t: force (N) and torque (N m).

@@ -46,6 +46,7 @@ constexpr double kBig = 1e3;  // m: nothing in a haptic scene is larger
 constexpr double kMinPadAxisLength = 0.1;  // the pad axis is normalized: a typo of 0 is refused
 // Pa: fem_pad's tissue, from a gel to a stiff rubber; hard cases fem-pad-young-min/max hold at both.
 constexpr double kMinPadYoung = 1e4, kMaxPadYoung = 1e7;
+constexpr int kMaxPadCellsAcross = 16;  // fem_pad: cells across its cap, each way
 // N/m: push_apart's stiffness; each scene's bound is narrower (validateOverlapStability).
 constexpr double kMaxOverlapStiffness = 1e5;
 
@@ -162,8 +163,9 @@ std::string descriptionMessage(const std::string& subject, const FieldError& e) 
 }
 
 // A finger's fem_pad against its proxy: a bone at least as thick as the tissue, cells between a
-// sixteenth of the thickness and the thickness, at most kMaxPadElementsAcross of them across
-// the cap (as generatePad lays them).
+// quarter of the thickness and the thickness, at most kMaxPadCellsAcross of them across the cap
+// (as generatePad lays them): the finest pad a scene may ask for steps in about 40 ms (hard case
+// fem-pad-finest), a haptic session's pads far coarser.
 std::optional<FieldError> validatePadShape(const FingerDesc& finger) {
   const PadSettings& p = finger.pad;
   const double skin = finger.proxy.radius;
@@ -172,15 +174,15 @@ std::optional<FieldError> validatePadShape(const FingerDesc& finger) {
     return FieldError{"pad_thickness", "must be at most half proxy_radius = " + bound +
                                            " m (the bone, a sphere inside the skin, at least as thick as the tissue), got " + got};
   }
-  if (!(p.element_size >= p.thickness / 16.0 && p.element_size <= p.thickness)) {
-    return FieldError{"pad_element_size", "must be in [pad_thickness / 16, pad_thickness] = [" + shown(p.thickness / 16.0) +
+  if (!(p.element_size >= p.thickness / 4.0 && p.element_size <= p.thickness)) {
+    return FieldError{"pad_element_size", "must be in [pad_thickness / 4, pad_thickness] = [" + shown(p.thickness / 4.0) +
                                               ", " + shown(p.thickness) + "] m, got " + shown(p.element_size)};
   }
   const double arc = 2.0 * p.cap_angle * (skin - 0.5 * p.thickness);
-  if (const double across = std::ceil(arc / p.element_size - 1e-9); across > kMaxPadElementsAcross) {
+  if (const double across = std::ceil(arc / p.element_size - 1e-9); across > kMaxPadCellsAcross) {
     return FieldError{"pad_element_size", "makes " + shown(across) + " cells across the pad (at most " +
-                                              std::to_string(kMaxPadElementsAcross) + "); take at least " +
-                                              shown(arc / kMaxPadElementsAcross) + " m, got " + shown(p.element_size)};
+                                              std::to_string(kMaxPadCellsAcross) + "); take at least " +
+                                              shown(arc / kMaxPadCellsAcross) + " m, got " + shown(p.element_size)};
   }
   return std::nullopt;
 }

@@ -41,6 +41,7 @@ FemPad::FemPad(const PadSettings& settings, double skin_radius, double bone_mass
   for (std::size_t n = 0; n < on_skin.size(); ++n) {
     if (on_skin[n]) skin_nodes_.push_back(static_cast<int>(n));
   }
+  solid_->enablePartner(skin_nodes_);
   anchors_.resize(mesh_.nodes.size());
   node_area_.resize(mesh_.nodes.size());
 }
@@ -69,8 +70,11 @@ void FemPad::findContacts(const PadSurfaces& surfaces, double friction) {
     double deepest = 0.0, depth = 0.0;
     Vec3 normal = Vec3::UnitY(), best_normal = normal;
     int body = -1;
+    // A node pushed only out of a surface that faces its bone: one past a thin body's middle
+    // finds the far face nearer, whose normal points away, and would be pushed through.
+    const Vec3 inward = boneCentre() - x[i];
     for (int b : near_) {
-      if (surfaces.inside(b, x[i], depth, normal) && depth > deepest) {
+      if (surfaces.inside(b, x[i], depth, normal) && depth > deepest && normal.dot(inward) > 0.0) {
         deepest = depth;
         best_normal = normal;
         body = b;
@@ -81,8 +85,14 @@ void FemPad::findContacts(const PadSurfaces& surfaces, double friction) {
       anchor.body = -1;
       continue;
     }
-    FemContact c{n, best_normal, deepest, surfaces.velocityAt(body, x[i]), Vec3::Zero(), friction};
-    if (anchor.body == body) c.slide = surfaces.frame(body).toWorld(anchor.local) - x[i];
+    FemContact c{n, best_normal, deepest, surfaces.velocityAt(body, x[i]), Vec3::Zero(), friction, false, Vec3::Zero(), false};
+    if (anchor.body == body) {
+      c.slide = surfaces.frame(body).toWorld(anchor.local) - x[i];
+      c.slipping = anchor.slipping;
+      c.slip_direction = anchor.direction - anchor.direction.dot(best_normal) * best_normal;
+      if (c.slip_direction.norm() > 0.0) c.slip_direction.normalize();
+      c.slipping = c.slipping && c.slip_direction.norm() > 0.0;
+    }
     fem_contacts_.push_back(c);
     contact_body_.push_back(body);
   }
@@ -105,7 +115,9 @@ void FemPad::readContacts(double dt, const PadSurfaces& surfaces) {
     const int body = contact_body_[k];
     const Vec3 friction = r.force - r.force.dot(c.normal) * c.normal;
     const Vec3 anchor = x[i] + friction / settings_.contact_stiffness - dt * c.surface_velocity;
-    anchors_[i] = {body, toLocal(surfaces.frame(body), anchor)};
+    const double size = friction.norm();
+    anchors_[i] = {body, toLocal(surfaces.frame(body), anchor), r.slipping && size > 0.0,
+                   size > 0.0 ? Vec3(friction / size) : Vec3::Zero()};
     node_area_[i] = 0.0;
     contacts_.push_back({c.node, body, x[i], c.normal, -r.force, c.depth, 0.0, r.slipping});
   }
@@ -120,8 +132,26 @@ void FemPad::readContacts(double dt, const PadSurfaces& surfaces) {
   }
 }
 
+// The dynamic body pressed by the most nodes this step is solved with the pad (its translation;
+// FemSolid::enablePartner): the others' contacts, and every body's turning, stay explicit.
+void FemPad::choosePartner(const PadSurfaces& surfaces) {
+  int best = -1, best_count = 0;
+  for (std::size_t k = 0; k < fem_contacts_.size(); ++k) {
+    const int body = contact_body_[k];
+    if (body == best || !(surfaces.mass(body) > 0.0)) continue;
+    const int count = static_cast<int>(std::count(contact_body_.begin(), contact_body_.end(), body));
+    if (count > best_count) {
+      best = body;
+      best_count = count;
+    }
+  }
+  solid_->setPartner(best >= 0 ? surfaces.mass(best) : 1.0, best >= 0 ? surfaces.velocity(best) : Vec3::Zero());
+  for (std::size_t k = 0; k < fem_contacts_.size(); ++k) fem_contacts_[k].on_partner = best >= 0 && contact_body_[k] == best;
+}
+
 void FemPad::step(double dt, const Vec3& bone_force, double friction, const PadSurfaces& surfaces) {
   findContacts(surfaces, friction);
+  choosePartner(surfaces);
   solid_->keepState();
   solid_->step(dt, {}, bone_force, fem_contacts_);
   bool finite = solid_->boneOffset().allFinite() && solid_->boneVelocity().allFinite();
@@ -143,11 +173,25 @@ void FemPad::step(double dt, const Vec3& bone_force, double friction, const PadS
   ++resets_;
   if (reset_last_step_) {
     solid_->resetToRest();
+    liftOut(surfaces);
   } else {
     solid_->restoreState();
   }
   reset_last_step_ = true;
   for (Anchor& a : anchors_) a.body = -1;
+}
+
+// Every node inside a surface put on it (a pad put back at rest where its bone is pressed in
+// would start deep in the body, its springs a kick): it starts flattened instead.
+void FemPad::liftOut(const PadSurfaces& surfaces) {
+  std::vector<Vec3>& x = solid_->positions();
+  double depth = 0.0;
+  Vec3 normal = Vec3::UnitY();
+  for (Vec3& p : x) {
+    for (int b : near_) {
+      if (surfaces.inside(b, p, depth, normal)) p += depth * normal;
+    }
+  }
 }
 
 double FemPad::kineticEnergy() const {

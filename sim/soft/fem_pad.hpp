@@ -48,6 +48,9 @@ class PadSurfaces {
   virtual Pose frame(int body) const = 0;
   /// The velocity of body `body`'s material point at world `p` (m/s).
   virtual Vec3 velocityAt(int body, const Vec3& p) const = 0;
+  /// Body `body`'s mass (kg; 0: static) and its centre of mass's velocity (m/s).
+  virtual double mass(int body) const = 0;
+  virtual Vec3 velocity(int body) const = 0;
 };
 
 /// One skin node pressed into a body in the last step.
@@ -77,8 +80,8 @@ class FemPad {
   /// One step of `dt` s: the bone pushed by `bone_force` (N, the coupling's), the skin against
   /// `surfaces` with Coulomb `friction`. A step that turned the pad inside out or lost finite
   /// values is undone (counted in resets()): the pad back at the step's start, at rest, every
-  /// anchor let go; twice running, back at rest on the bone. Allocates nothing once its
-  /// storage is sized.
+  /// anchor let go; twice running, back at rest on the bone, every node inside a surface put on
+  /// it. Allocates nothing once its storage is sized.
   void step(double dt, const Vec3& bone_force, double friction, const PadSurfaces& surfaces);
 
   const std::vector<PadNodeContact>& contacts() const { return contacts_; }
@@ -103,8 +106,12 @@ class FemPad {
   struct Anchor {
     int body = -1;
     Vec3 local = Vec3::Zero();  // in the body's frame
+    bool slipping = false;      // in the last step, its friction on the node along `direction`
+    Vec3 direction = Vec3::Zero();
   };
   void findContacts(const PadSurfaces& surfaces, double friction);
+  void choosePartner(const PadSurfaces& surfaces);
+  void liftOut(const PadSurfaces& surfaces);
   void readContacts(double dt, const PadSurfaces& surfaces);
 
   PadSettings settings_;

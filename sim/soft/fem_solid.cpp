@@ -112,6 +112,16 @@ void FemSolid::setBone(const std::vector<int>& nodes, double mass_kg) {
   for (int n : nodes) unknown_[static_cast<std::size_t>(n)] = 0;
 }
 
+void FemSolid::enablePartner(const std::vector<int>& nodes) {
+  partner_nodes_ = nodes;
+  partner_ = 0;  // numbered at the first step
+}
+
+void FemSolid::setPartner(double mass_kg, const Vec3& velocity) {
+  partner_mass_ = mass_kg > 0.0 ? mass_kg : 1.0;
+  partner_v0_ = velocity;
+}
+
 void FemSolid::fixNodes(const std::vector<int>& nodes) {
   for (int n : nodes) unknown_[static_cast<std::size_t>(n)] = kFixed;
 }
@@ -206,6 +216,14 @@ void FemSolid::buildPattern() {
       for (int j = 0; j < 3; ++j) pattern.emplace_back(3 * u + i, 3 * u + j, 1.0);
     }
   }
+  for (int node : partner_nodes_) {
+    const int u = unknownOf(node);
+    if (u < 0 || partner_ < 0) continue;
+    for (int k = 0; k < 9; ++k) {
+      pattern.emplace_back(3 * u + k / 3, 3 * partner_ + k % 3, 1.0);
+      pattern.emplace_back(3 * partner_ + k / 3, 3 * u + k % 3, 1.0);
+    }
+  }
   system_.resize(3 * unknowns_, 3 * unknowns_);
   system_.setFromTriplets(pattern.begin(), pattern.end());
   system_.makeCompressed();
@@ -222,6 +240,17 @@ void FemSolid::buildPattern() {
         if (ua < 0 || ub < 0) continue;
         for (int k = 0; k < 9; ++k) block_slots_[(e * 16 + a * 4 + b) * 9 + k] = slot(3 * ua + k / 3, 3 * ub + k % 3);
       }
+    }
+  }
+  partner_slot_of_.assign(x_.size(), -1);
+  partner_slots_.assign(partner_nodes_.size() * 18, -1);
+  for (std::size_t k = 0; k < partner_nodes_.size(); ++k) {
+    const int u = unknownOf(partner_nodes_[k]);
+    if (u < 0 || partner_ < 0) continue;
+    partner_slot_of_[static_cast<std::size_t>(partner_nodes_[k])] = static_cast<int>(k);
+    for (int j = 0; j < 9; ++j) {
+      partner_slots_[k * 18 + static_cast<std::size_t>(j)] = slot(3 * u + j / 3, 3 * partner_ + j % 3);
+      partner_slots_[k * 18 + 9 + static_cast<std::size_t>(j)] = slot(3 * partner_ + j / 3, 3 * u + j % 3);
     }
   }
   diagonal_slots_.resize(static_cast<std::size_t>(unknowns_) * 9);
@@ -263,6 +292,23 @@ void FemSolid::assemble(double dt, const std::vector<Vec3>& node_forces, const V
     rhs_.head<3>() += bone_mass_ * bone_v_ + dt * bone_force;
     for (int k = 0; k < 3; ++k) values[diagonal_slots_[4 * k]] += bone_mass_;
   }
+  if (partner_ >= 0) {
+    rhs_.segment<3>(3 * partner_) += partner_mass_ * partner_v0_;
+    for (int k = 0; k < 3; ++k) values[diagonal_slots_[static_cast<std::size_t>(partner_) * 9 + 4 * k]] += partner_mass_;
+  }
+}
+
+// A contact's spring `block` between its node and the partner: −block off the diagonal both ways,
+// +block on the partner's diagonal (the node's own diagonal is the caller's).
+void FemSolid::addPartnerBlocks(int node, const Eigen::Matrix3d& block) {
+  const int k = partner_slot_of_[static_cast<std::size_t>(node)];
+  if (k < 0) return;
+  double* values = system_.valuePtr();
+  for (int j = 0; j < 9; ++j) {
+    values[partner_slots_[static_cast<std::size_t>(k) * 18 + static_cast<std::size_t>(j)]] -= block(j / 3, j % 3);
+    values[partner_slots_[static_cast<std::size_t>(k) * 18 + 9 + static_cast<std::size_t>(j)]] -= block(j / 3, j % 3);
+    values[diagonal_slots_[static_cast<std::size_t>(partner_) * 9 + static_cast<std::size_t>(j)]] += block(j / 3, j % 3);
+  }
 }
 
 // The contacts on the system without them, each in its mode (pressing and sticking, pressing and
@@ -271,6 +317,22 @@ void FemSolid::assemble(double dt, const std::vector<Vec3>& node_forces, const V
 // cap slips at it. A normal spring k (depth + dt (v_s − v)·n) n; a sticking one's tangential
 // spring k P (slide + dt (v_s − v)), P the tangent plane's projection; both implicit (k n nᵀ and
 // k P in the system).
+// A slipping contact after a pass: its friction turned to drag the node along the surface's
+// motion against it (`sliding`, m/s), at friction × `normal`; stuck again when the node
+// overtook the surface. True when nothing changed past kSlipSettled.
+bool FemSolid::reslip(const FemContact& c, const Vec3& sliding, double normal, FemContactResult& r, Vec3& slip) {
+  const double speed = sliding.norm();
+  if (slip.dot(sliding) < 0.0 && speed > kStickSpeed) {
+    r.slipping = false;
+    return false;
+  }
+  const Vec3 direction = speed > kSlipSpeed ? Vec3(sliding / speed) : slip.normalized();
+  const Vec3 next = c.friction * normal * direction;
+  const bool same = (next - slip).norm() <= kSlipSettled * next.norm();
+  slip = next;
+  return same;
+}
+
 bool FemSolid::solveContacts(double dt, const std::vector<FemContact>& contacts) {
   std::copy(base_values_.begin(), base_values_.end(), system_.valuePtr());
   rhs_ = base_rhs_;
@@ -283,24 +345,37 @@ bool FemSolid::solveContacts(double dt, const std::vector<FemContact>& contacts)
     return contacts[i].depth > 0.0 && unknownOf(contacts[i].node) >= 0 && !contact_results_[i].released;
   };
   const auto sticks = [&](std::size_t i) { return contacts[i].friction > 0.0 && !contact_results_[i].slipping; };
+  // A contact on the partner: the partner's translation is an unknown, the rest of its surface's
+  // velocity (its turning) known.
+  const auto coupled = [&](const FemContact& c) {
+    return c.on_partner && partner_ >= 0 && partner_slot_of_[static_cast<std::size_t>(c.node)] >= 0;
+  };
+  const auto known = [&](const FemContact& c) { return coupled(c) ? Vec3(c.surface_velocity - partner_v0_) : c.surface_velocity; };
   for (std::size_t i = 0; i < contacts.size(); ++i) {
     if (!active(i)) continue;
     const FemContact& c = contacts[i];
     const int u = unknownOf(c.node);
     const Eigen::Matrix3d nn = c.normal * c.normal.transpose();
     const Eigen::Matrix3d tangent = Eigen::Matrix3d::Identity() - nn;
-    rhs_.segment<3>(3 * u) += dt * k * (c.depth + dt * c.surface_velocity.dot(c.normal)) * c.normal;
+    const Vec3 w = known(c);
+    Vec3 push = dt * k * (c.depth + dt * w.dot(c.normal)) * c.normal;
     Eigen::Matrix3d block = dt * dt * k * nn;
     if (sticks(i)) {
-      rhs_.segment<3>(3 * u) += dt * k * tangent * (c.slide + dt * c.surface_velocity);
+      push += dt * k * tangent * (c.slide + dt * w);
       block += dt * dt * k * tangent;
     } else if (contact_results_[i].slipping) {
-      rhs_.segment<3>(3 * u) += dt * slip_force_[i];
+      push += dt * slip_force_[i];
     }
+    rhs_.segment<3>(3 * u) += push;
     addDiagonal(u, block);
+    if (coupled(c)) {
+      rhs_.segment<3>(3 * partner_) -= push;
+      addPartnerBlocks(c.node, block);
+    }
   }
   solver_->factorize(system_);
   solution_ = solver_->solve(rhs_);
+  if (partner_ >= 0) partner_v_ = solution_.segment<3>(3 * partner_);
   bool settled = true;
   for (std::size_t i = 0; i < contacts.size(); ++i) {
     FemContactResult& r = contact_results_[i];
@@ -308,7 +383,7 @@ bool FemSolid::solveContacts(double dt, const std::vector<FemContact>& contacts)
     if (!active(i)) continue;
     const FemContact& c = contacts[i];
     const Vec3 v = solution_.segment<3>(3 * unknownOf(c.node));
-    const Vec3 relative = c.surface_velocity - v;
+    const Vec3 relative = known(c) + (coupled(c) ? partner_v_ : Vec3::Zero()) - v;
     const double normal = k * (c.depth + dt * relative.dot(c.normal));
     Vec3 friction = Vec3::Zero();
     if (sticks(i)) {
@@ -322,9 +397,15 @@ bool FemSolid::solveContacts(double dt, const std::vector<FemContact>& contacts)
       r.released = true;
       settled = false;
     } else if (sticks(i) && friction.norm() > c.friction * normal) {
+      // It slips: against the way it slid over the surface in the last step, when it slid.
+      const Vec3 slid = c.surface_velocity - v_[static_cast<std::size_t>(c.node)];
+      const Vec3 way = slid - slid.dot(c.normal) * c.normal;
+      const Vec3 direction = way.norm() > kSlipSpeed ? Vec3(way.normalized()) : Vec3(friction.normalized());
       r.slipping = true;
-      slip_force_[i] = c.friction * normal / friction.norm() * friction;
+      slip_force_[i] = c.friction * normal * direction;
       settled = false;
+    } else if (r.slipping) {
+      settled = reslip(c, relative - relative.dot(c.normal) * c.normal, normal, r, slip_force_[i]) && settled;
     }
   }
   return settled;
@@ -334,6 +415,7 @@ void FemSolid::step(double dt, const std::vector<Vec3>& node_forces, const Vec3&
                     const std::vector<FemContact>& contacts) {
   if (!analysed_) {  // number the unknowns: the bone first, then each free node
     unknowns_ = has_bone_ ? 1 : 0;
+    if (partner_ >= 0) partner_ = unknowns_++;
     for (int& u : unknown_) {
       if (u == kFree) u = unknowns_++;
     }

@@ -38,6 +38,15 @@ struct FemContact {
   Vec3 surface_velocity = Vec3::Zero();
   Vec3 slide = Vec3::Zero();  ///< tangential (the part along `normal` is ignored)
   double friction = 0.0;      ///< Coulomb coefficient; 0: frictionless
+  /// It slipped in the last step, its friction on the node along `slip_direction` (unit,
+  /// tangential): it starts slipping, at friction × its spring's force, the direction following
+  /// the surface's motion against the node; it sticks again when the node overtakes the surface.
+  bool slipping = false;
+  Vec3 slip_direction = Vec3::Zero();
+  /// The surface is the partner's (enablePartner): its translation moves with the partner's
+  /// velocity solved in the step, `surface_velocity` less the partner's velocity at the step's
+  /// start the rest (its turning).
+  bool on_partner = false;
 };
 
 /// What a contact did over the last step: the force on its node at the step's end (N), and
@@ -65,6 +74,14 @@ class FemSolid {
   void setBone(const std::vector<int>& nodes, double mass_kg);
   /// Holds `nodes` where they are (zero velocity). Call before the first step.
   void fixNodes(const std::vector<int>& nodes);
+  /// A rigid partner that contacts of any of `nodes` may press: its translation solved with the
+  /// solid, so a light body between stiff contacts stays stable (its turning stays explicit).
+  /// Call before the first step; setPartner() before each step that has one.
+  void enablePartner(const std::vector<int>& nodes);
+  /// This step's partner: `mass_kg` (> 0) at `velocity` (m/s) at the step's start.
+  void setPartner(double mass_kg, const Vec3& velocity);
+  /// The partner's velocity at the step's end as the solid's step saw it (m/s).
+  const Vec3& partnerVelocity() const { return partner_v_; }
 
   /// Each contact a stiff spring of `n_per_m` (N/m) along its normal, implicit in the step
   /// (k n nᵀ in the system, so a stiff one stays stable), pushing while the node is below.
@@ -116,10 +133,15 @@ class FemSolid {
   /// One solve of the step with the contacts in their modes; true when every contact's result
   /// agrees with its mode (none pulls, no sticking one past its cap).
   bool solveContacts(double dt, const std::vector<FemContact>& contacts);
+  static bool reslip(const FemContact& c, const Vec3& sliding, double normal, FemContactResult& r, Vec3& slip);
+  static constexpr double kSlipSpeed = 1e-5;   // m/s: slower is no direction
+  static constexpr double kStickSpeed = 1e-3;  // m/s: a slipping node overtaking its surface faster sticks
+  static constexpr double kSlipSettled = 1e-3;  // a slipping friction that changed less has settled
   void buildPattern();
   Eigen::Matrix3d deformation(std::size_t e) const;
   void addElementForce(std::size_t e, const Eigen::Matrix3d& r, std::vector<Vec3>& out) const;
   int unknownOf(int node) const { return unknown_[static_cast<std::size_t>(node)]; }
+  void addPartnerBlocks(int node, const Eigen::Matrix3d& block);
 
   std::vector<std::array<int, 4>> tets_;
   std::vector<Element> elements_;
@@ -133,6 +155,13 @@ class FemSolid {
   Vec3 bone_offset_ = Vec3::Zero(), bone_v_ = Vec3::Zero();
   int unknowns_ = 0;
   double contact_stiffness_ = 1e5;
+  // The partner (enablePartner): its unknown, its nodes' coupling blocks' value slots.
+  int partner_ = -1;
+  std::vector<int> partner_nodes_;
+  std::vector<int> partner_slot_of_;  // per node: its index in partner_nodes_, -1 none
+  std::vector<int> partner_slots_;    // per partner node: (node, partner) then (partner, node), 9 each
+  double partner_mass_ = 1.0;
+  Vec3 partner_v0_ = Vec3::Zero(), partner_v_ = Vec3::Zero();
   std::vector<Vec3> contact_forces_;
   struct Kept {
     std::vector<Vec3> x;

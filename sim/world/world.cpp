@@ -232,7 +232,7 @@ bool World::deepestTouch(int finger, Touch& out) const {
       if (!pad || touches[static_cast<std::size_t>(k)].depth > pad->depth) pad = &touches[static_cast<std::size_t>(k)];
     }
     if (pad && (!deepest || -pad->depth < deepest->record.contact.separation)) {
-      out = Touch{pad->body, pad->point, pad->normal, -pad->depth};
+      out = Touch{pad->body, pad->deepest_point, pad->deepest_normal, -pad->depth};
       return true;
     }
   }

@@ -44,6 +44,8 @@ struct PadTouch {
   Vec3 point = Vec3::Zero();      ///< the nodes' centre, weighted by their loads (by count without load)
   Vec3 normal = Vec3::UnitY();    ///< outward, the nodes' normals weighted likewise (unit)
   double depth = 0.0;             ///< the deepest node's (m)
+  Vec3 deepest_point = Vec3::Zero();    ///< on the surface above the deepest node (world)
+  Vec3 deepest_normal = Vec3::UnitY();  ///< the surface's outward normal there
   double area = 0.0;              ///< the pressed nodes' skin (m²)
   bool sliding = false;           ///< every pressed node slips
 };

@@ -42,6 +42,13 @@ class World::Impl::PadBodies final : public PadSurfaces {
 
   Pose frame(int body) const override { return w_.bodyFrame(body); }
 
+  double mass(int body) const override {
+    const double inverse = w_.bodies[static_cast<std::size_t>(body)].rigid->getInvMass();
+    return inverse > 0.0 ? 1.0 / inverse : 0.0;
+  }
+
+  Vec3 velocity(int body) const override { return toEigen(w_.bodies[static_cast<std::size_t>(body)].rigid->getLinearVelocity()); }
+
   Vec3 velocityAt(int body, const Vec3& p) const override {
     const btRigidBody& r = *w_.bodies[static_cast<std::size_t>(body)].rigid;
     return toEigen(r.getVelocityInLocalPoint(toBt(p) - r.getCenterOfMassPosition()));
@@ -96,7 +103,7 @@ int World::Impl::padTouches(const Finger& f, std::array<PadTouch, kMaxContactsPe
     while (k < count && out[static_cast<std::size_t>(k)].body != c.body) ++k;
     if (k == count) {
       if (count == kMaxContactsPerFinger) continue;
-      out[static_cast<std::size_t>(count++)] = PadTouch{c.body, 0, Vec3::Zero(), 0.0, Vec3::Zero(), Vec3::Zero(), 0.0, 0.0, true};
+      out[static_cast<std::size_t>(count++)] = PadTouch{c.body, 0, Vec3::Zero(), 0.0, Vec3::Zero(), Vec3::Zero(), 0.0, Vec3::Zero(), Vec3::UnitY(), 0.0, true};
     }
     PadTouch& t = out[static_cast<std::size_t>(k)];
     const double load = std::max(0.0, -c.force.dot(c.normal));
@@ -105,7 +112,11 @@ int World::Impl::padTouches(const Finger& f, std::array<PadTouch, kMaxContactsPe
     t.load += load;
     t.point += (load + 1e-12) * c.point;  // weights: the loads, or the count where none
     t.normal += (load + 1e-12) * c.normal;
-    t.depth = std::max(t.depth, c.depth);
+    if (c.depth >= t.depth) {
+      t.depth = c.depth;
+      t.deepest_point = c.point + c.depth * c.normal;
+      t.deepest_normal = c.normal;
+    }
     t.area += c.area;
     t.sliding = t.sliding && c.slipping;
   }
