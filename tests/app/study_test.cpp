@@ -104,8 +104,12 @@ TEST_P(BundledStudy, QuickGridRunsWithEveryColumnAndAFiniteError) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Study, BundledStudy,
-                         testing::Values("torsion", "sliding", "rolling", "pinch", "geodesic", "timestep", "effects"),
-                         [](const testing::TestParamInfo<const char*>& i) { return std::string(i.param); });
+                         testing::Values("torsion", "sliding", "rolling", "pinch", "geodesic", "timestep", "effects", "soft-hand"),
+                         [](const testing::TestParamInfo<const char*>& i) {
+                           std::string name = i.param;
+                           for (char& c : name) c = c == '-' ? '_' : c;
+                           return name;
+                         });
 
 // A hand-made run folder: a pressed puck (the pressed-puck scene) spinning up at a known angular
 // acceleration while the finger presses with a known force, its proxy resting on the top face's
