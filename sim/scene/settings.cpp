@@ -178,6 +178,14 @@ std::optional<FieldError> validatePadShape(const FingerDesc& finger) {
     return FieldError{"pad_element_size", "must be in [pad_thickness / 4, pad_thickness] = [" + shown(p.thickness / 4.0) +
                                               ", " + shown(p.thickness) + "] m, got " + shown(p.element_size)};
   }
+  // fem_pad's proxy is its bone: the clamp's press must stay within the bone, as any proxy's.
+  const double bone = skin - p.thickness;
+  if (const double depth = finger.coupling.max_force / finger.proxy.contact_stiffness; !(depth < bone)) {
+    const auto [bound, got] = distinctTexts(depth, bone);
+    return FieldError{"pad_thickness", "leaves a bone of proxy_radius - pad_thickness = " + got +
+                                           " m, not more than max_force / contact_stiffness = " + bound +
+                                           " m, how deep the bone's own contact lets it in at the coupling's clamp"};
+  }
   const double arc = 2.0 * p.cap_angle * (skin - 0.5 * p.thickness);
   if (const double across = std::ceil(arc / p.element_size - 1e-9); across > kMaxPadCellsAcross) {
     return FieldError{"pad_element_size", "makes " + shown(across) + " cells across the pad (at most " +
@@ -417,6 +425,9 @@ std::optional<FieldError> validateTrack(const DeviceTrack& track) {
 
 std::optional<FieldError> validateFinger(const FingerDesc& finger) {
   if (std::optional<FieldError> e = firstBadSetting(fingerSettings(), finger, kNone)) return e;
+  if (finger.patch.model == ContactModel::kFemPad) {
+    if (std::optional<FieldError> e = validatePadShape(finger)) return e;
+  }
   // The contact is a spring too: at the coupling's clamp it lets the proxy in by max_force /
   // contact_stiffness. Past its radius the proxy's centre is inside the body, whose nearest face
   // may then be the far one: a 1 mm proxy at 40 N went 2 mm into a 1 mm wall.
@@ -430,9 +441,6 @@ std::optional<FieldError> validateFinger(const FingerDesc& finger) {
   if (!(finger.patch.pad_axis.norm() >= kMinPadAxisLength)) {
     return FieldError{"pad_axis", "must be a direction, of length at least " + shown(kMinPadAxisLength) + ", got " +
                                       shown(finger.patch.pad_axis.norm())};
-  }
-  if (finger.patch.model == ContactModel::kFemPad) {
-    if (std::optional<FieldError> e = validatePadShape(finger)) return e;
   }
   if (std::optional<FieldError> e = validateTrack(finger.device)) {
     e->field = "device." + e->field;

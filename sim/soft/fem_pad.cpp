@@ -25,7 +25,7 @@ Vec3 toLocal(const Pose& frame, const Vec3& world) { return frame.orientation.co
 FemPad::FemPad(const PadSettings& settings, double skin_radius, double bone_mass, const Vec3& axis,
                const Vec3& centre)
     : settings_(settings), mesh_(placedPad(settings, skin_radius, axis, centre)), centre0_(centre),
-      bone_radius_(skin_radius - settings.thickness), bone_mass_(bone_mass) {
+      bone_radius_(skin_radius - settings.thickness) {
   solid_ = std::make_unique<FemSolid>(mesh_, FemMaterial{settings.young, settings.poisson, settings.density, settings.damping});
   solid_->setBone(mesh_.bone_nodes, bone_mass);
   solid_->setContactStiffness(settings.contact_stiffness);
@@ -85,14 +85,8 @@ void FemPad::findContacts(const PadSurfaces& surfaces, double friction) {
       anchor.body = -1;
       continue;
     }
-    FemContact c{n, best_normal, deepest, surfaces.velocityAt(body, x[i]), Vec3::Zero(), friction, false, Vec3::Zero(), false};
-    if (anchor.body == body) {
-      c.slide = surfaces.frame(body).toWorld(anchor.local) - x[i];
-      c.slipping = anchor.slipping;
-      c.slip_direction = anchor.direction - anchor.direction.dot(best_normal) * best_normal;
-      if (c.slip_direction.norm() > 0.0) c.slip_direction.normalize();
-      c.slipping = c.slipping && c.slip_direction.norm() > 0.0;
-    }
+    FemContact c{n, best_normal, deepest, surfaces.velocityAt(body, x[i]), Vec3::Zero(), friction, false};
+    if (anchor.body == body) c.slide = surfaces.frame(body).toWorld(anchor.local) - x[i];
     fem_contacts_.push_back(c);
     contact_body_.push_back(body);
   }
@@ -115,9 +109,7 @@ void FemPad::readContacts(double dt, const PadSurfaces& surfaces) {
     const int body = contact_body_[k];
     const Vec3 friction = r.force - r.force.dot(c.normal) * c.normal;
     const Vec3 anchor = x[i] + friction / settings_.contact_stiffness - dt * c.surface_velocity;
-    const double size = friction.norm();
-    anchors_[i] = {body, toLocal(surfaces.frame(body), anchor), r.slipping && size > 0.0,
-                   size > 0.0 ? Vec3(friction / size) : Vec3::Zero()};
+    anchors_[i] = {body, toLocal(surfaces.frame(body), anchor)};
     node_area_[i] = 0.0;
     contacts_.push_back({c.node, body, x[i], c.normal, -r.force, c.depth, 0.0, r.slipping});
   }
@@ -166,6 +158,7 @@ void FemPad::step(double dt, const Vec3& bone_force, double friction, const PadS
     reset_last_step_ = false;
     return;
   }
+  contacts_.clear();  // the step is undone: its forces with it
   // Back to the step's start at rest, every anchor let go: the skin's friction, which twisted or
   // sheared it inside out, slips; a pad crushed past its thickness is held where it last was.
   // Twice running (the step's start was no way out): back to rest on the bone.
@@ -187,9 +180,10 @@ void FemPad::liftOut(const PadSurfaces& surfaces) {
   std::vector<Vec3>& x = solid_->positions();
   double depth = 0.0;
   Vec3 normal = Vec3::UnitY();
-  for (Vec3& p : x) {
+  for (int n : skin_nodes_) {
+    Vec3& p = x[static_cast<std::size_t>(n)];
     for (int b : near_) {
-      if (surfaces.inside(b, p, depth, normal)) p += depth * normal;
+      if (surfaces.inside(b, p, depth, normal) && normal.dot(boneCentre() - p) > 0.0) p += depth * normal;
     }
   }
 }

@@ -27,7 +27,7 @@ namespace gf::sim {
 struct PadSettings {
   double thickness = 0.003;          ///< m: tissue between the bone and the skin
   double cap_angle = 0.6981317007977318;  ///< rad (40 deg): the pad's half-angle about its axis (pad_axis)
-  double element_size = 0.0015;      ///< m: the tetrahedra's cells, thickness / 16 .. thickness
+  double element_size = 0.0015;      ///< m: the tetrahedra's cells, thickness / 4 .. thickness
   double young = 3e5;                ///< Pa: Young's modulus of the tissue
   double poisson = 0.45;             ///< Poisson's ratio
   double density = 1100.0;           ///< kg/m³
@@ -79,9 +79,10 @@ class FemPad {
   void follow(const Vec3& centre, const Vec3& velocity);
   /// One step of `dt` s: the bone pushed by `bone_force` (N, the coupling's), the skin against
   /// `surfaces` with Coulomb `friction`. A step that turned the pad inside out or lost finite
-  /// values is undone (counted in resets()): the pad back at the step's start, at rest, every
-  /// anchor let go; twice running, back at rest on the bone, every node inside a surface put on
-  /// it. Allocates nothing once its storage is sized.
+  /// values is undone (counted in resets()), its contacts dropped: the pad back at the step's
+  /// start, at rest, every anchor let go; twice running, back at rest on the bone, every skin
+  /// node inside a surface that faces its bone put on it. Its own storage is sized once; the
+  /// sparse factorisation allocates a work copy each solve (Eigen's SimplicialLDLT).
   void step(double dt, const Vec3& bone_force, double friction, const PadSurfaces& surfaces);
 
   const std::vector<PadNodeContact>& contacts() const { return contacts_; }
@@ -106,8 +107,6 @@ class FemPad {
   struct Anchor {
     int body = -1;
     Vec3 local = Vec3::Zero();  // in the body's frame
-    bool slipping = false;      // in the last step, its friction on the node along `direction`
-    Vec3 direction = Vec3::Zero();
   };
   void findContacts(const PadSurfaces& surfaces, double friction);
   void choosePartner(const PadSurfaces& surfaces);
@@ -118,7 +117,7 @@ class FemPad {
   TetMesh mesh_;
   std::unique_ptr<FemSolid> solid_;
   Vec3 centre0_ = Vec3::Zero();
-  double bone_radius_ = 0.0, bone_mass_ = 0.0;
+  double bone_radius_ = 0.0;
   std::vector<int> skin_nodes_;
   std::shared_ptr<const std::vector<std::array<int, 3>>> skin_;
   std::vector<Anchor> anchors_;  // per node

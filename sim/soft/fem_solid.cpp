@@ -333,7 +333,7 @@ bool FemSolid::reslip(const FemContact& c, const Vec3& sliding, double normal, F
   return same;
 }
 
-bool FemSolid::solveContacts(double dt, const std::vector<FemContact>& contacts) {
+bool FemSolid::solveContacts(double dt, const std::vector<FemContact>& contacts, bool adjust) {
   std::copy(base_values_.begin(), base_values_.end(), system_.valuePtr());
   rhs_ = base_rhs_;
   const double k = contact_stiffness_;
@@ -393,6 +393,7 @@ bool FemSolid::solveContacts(double dt, const std::vector<FemContact>& contacts)
       friction = slip_force_[i];
     }
     r.force = normal * c.normal + friction;
+    if (!adjust) continue;
     if (normal < 0.0) {  // it would pull: let go
       r.released = true;
       settled = false;
@@ -432,9 +433,9 @@ void FemSolid::step(double dt, const std::vector<Vec3>& node_forces, const Vec3&
   base_rhs_ = rhs_;
   contact_results_.assign(contacts.size(), FemContactResult{});
   slip_force_.assign(contacts.size(), Vec3::Zero());
-  for (int pass = 0; pass < kMaxContactPasses; ++pass) {
-    if (solveContacts(dt, contacts)) break;
-  }
+  bool settled = false;
+  for (int pass = 0; pass < kMaxContactPasses && !settled; ++pass) settled = solveContacts(dt, contacts);
+  if (!settled) solveContacts(dt, contacts, false);
   if (has_bone_) {
     bone_v_ = solution_.head<3>();
     bone_offset_ += dt * bone_v_;

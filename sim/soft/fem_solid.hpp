@@ -38,11 +38,6 @@ struct FemContact {
   Vec3 surface_velocity = Vec3::Zero();
   Vec3 slide = Vec3::Zero();  ///< tangential (the part along `normal` is ignored)
   double friction = 0.0;      ///< Coulomb coefficient; 0: frictionless
-  /// It slipped in the last step, its friction on the node along `slip_direction` (unit,
-  /// tangential): it starts slipping, at friction × its spring's force, the direction following
-  /// the surface's motion against the node; it sticks again when the node overtakes the surface.
-  bool slipping = false;
-  Vec3 slip_direction = Vec3::Zero();
   /// The surface is the partner's (enablePartner): its translation moves with the partner's
   /// velocity solved in the step, `surface_velocity` less the partner's velocity at the step's
   /// start the rest (its turning).
@@ -88,14 +83,16 @@ class FemSolid {
   void setContactStiffness(double n_per_m) { contact_stiffness_ = n_per_m; }
   /// One implicit Euler step of `dt` s under `node_forces` (N per node; empty for none),
   /// `bone_force` (N) and `contacts` (the nodes pressed into rigid surfaces at its start).
-  /// Allocates nothing once the first step has sized its storage.
+  /// Its own storage is sized by the first step; each factorisation allocates a work copy.
   void step(double dt, const std::vector<Vec3>& node_forces, const Vec3& bone_force,
             const std::vector<FemContact>& contacts = {});
   /// The force each contact of the last step put on its node at the step's end (N: the normal
-  /// spring's k × the depth then, never pulling, and the friction, never past its cap); its
-  /// opposite is the force on the surface. The solve is repeated (at most kMaxContactPasses
-  /// times) with a contact that would pull let go and one past its friction cap slipping at the
-  /// cap, so these are exactly the forces the nodes moved under.
+  /// spring's k × the depth then, and the friction); its opposite is the force on the surface.
+  /// The solve is repeated (at most kMaxContactPasses times) with a contact that would pull let
+  /// go and one past its friction cap slipping at the cap; when the modes have not settled by
+  /// then, one more solve with the modes as they stand. Either way these are exactly the forces
+  /// the nodes moved under: never pulling and within the cap once settled; unsettled, a
+  /// sticking one may be past its cap by what that last solve left.
   const std::vector<Vec3>& contactForces() const { return contact_forces_; }
   const std::vector<FemContactResult>& contactResults() const { return contact_results_; }
   static constexpr int kMaxContactPasses = 4;
@@ -132,7 +129,8 @@ class FemSolid {
   void assemble(double dt, const std::vector<Vec3>& node_forces, const Vec3& bone_force);
   /// One solve of the step with the contacts in their modes; true when every contact's result
   /// agrees with its mode (none pulls, no sticking one past its cap).
-  bool solveContacts(double dt, const std::vector<FemContact>& contacts);
+  /// With `adjust` false the modes stay as they are (the last solve of an unsettled step).
+  bool solveContacts(double dt, const std::vector<FemContact>& contacts, bool adjust = true);
   static bool reslip(const FemContact& c, const Vec3& sliding, double normal, FemContactResult& r, Vec3& slip);
   static constexpr double kSlipSpeed = 1e-5;   // m/s: slower is no direction
   static constexpr double kStickSpeed = 1e-3;  // m/s: a slipping node overtaking its surface faster sticks

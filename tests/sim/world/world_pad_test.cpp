@@ -95,8 +95,8 @@ TEST(WorldPad, AFingerCanNeitherChangeToNorFromFemPad) {
   }
 }
 
-// The pad's shape against the proxy: a bone at least as thick as the tissue, cells within the
-// thickness's range and few enough across the cap.
+// The pad's shape against the proxy: a bone at least as thick as the tissue and deeper than the
+// clamp's press, cells within the thickness's range and few enough across the cap.
 TEST(WorldPad, PadSettingsThatCannotBeBuiltAreRefusedNamingTheField) {
   const auto field = [](const std::vector<std::string>& set) {
     std::vector<std::string> all = {"fingers.index.contact_model=fem_pad"};
@@ -115,6 +115,8 @@ TEST(WorldPad, PadSettingsThatCannotBeBuiltAreRefusedNamingTheField) {
   EXPECT_EQ(field({"fingers.index.pad_element_size=0.004"}), "pad_element_size");
   EXPECT_EQ(field({"fingers.index.pad_element_size=0.0001"}), "pad_element_size");
   EXPECT_EQ(field({"fingers.index.pad_element_size=0.0007"}), "pad_element_size") << "below a quarter of 3 mm";
+  EXPECT_EQ(field({"fingers.index.pad_thickness=0.004", "fingers.index.contact_stiffness=8000"}), "pad_thickness")
+      << "a 4 mm bone, 40 N / 8000 N/m = 5 mm deep at the clamp";
   EXPECT_EQ(field({"fingers.index.proxy_radius=0.05", "fingers.index.pad_element_size=0.003"}), "pad_element_size")
       << "more than 16 cells across";
 }
