@@ -61,6 +61,7 @@ enum class ReferenceKind {
   kTwoThirdsMuFR,       ///< (2/3) mu F r: a uniformly pressed pad's torsion limit
   kMuFR,                ///< mu F r: every point of the pad at its rim
   kHertzMuFR,           ///< (3 pi / 16) mu F r: a Hertzian pressure distribution
+  kThinLayerMuFR,       ///< (8 / 15) mu F r: a thin elastic layer on a rigid core, pressure ∝ a² − r² (Winkler)
   kMuF,                 ///< mu F: Coulomb sliding
   kRollingPrediction,   ///< 0 (slides) when theta + r/R >= 1, else 1 (rolls)
   kPatchRadius,         ///< the Eq. 1 radius the patch walked

@@ -229,6 +229,7 @@ const char* referenceText(ReferenceKind k) {
     case ReferenceKind::kTwoThirdsMuFR: return "(2/3) mu F r";
     case ReferenceKind::kMuFR: return "mu F r";
     case ReferenceKind::kHertzMuFR: return "(3 pi / 16) mu F r";
+    case ReferenceKind::kThinLayerMuFR: return "(8 / 15) mu F r";
     case ReferenceKind::kMuF: return "mu F";
     case ReferenceKind::kRollingPrediction: return "the rolling prediction";
     case ReferenceKind::kPatchRadius: return "the Eq. 1 radius";

@@ -23,7 +23,7 @@ namespace fs = std::filesystem;
 
 constexpr const char* kMeasureKinds[] = {"friction_torque", "friction_force", "roll_ratio", "swing",
                                          "force_sd", "geodesic_radius", "trajectory", "tip_moment"};
-constexpr const char* kReferenceKinds[] = {"run", "two_thirds_mu_f_r", "mu_f_r", "hertz_mu_f_r", "mu_f",
+constexpr const char* kReferenceKinds[] = {"run", "two_thirds_mu_f_r", "mu_f_r", "hertz_mu_f_r", "thin_layer_mu_f_r", "mu_f",
                                            "rolling_prediction", "patch_radius", "f_r"};
 constexpr const char* kErrorKinds[] = {"relative", "absolute", "deviation"};
 constexpr const char* kCostKinds[] = {"step", "patch"};
@@ -34,7 +34,8 @@ bool referenceFits(MeasureKind m, ReferenceKind r) {
     case ReferenceKind::kRun: return true;
     case ReferenceKind::kTwoThirdsMuFR:
     case ReferenceKind::kMuFR:
-    case ReferenceKind::kHertzMuFR: return m == MeasureKind::kFrictionTorque;
+    case ReferenceKind::kHertzMuFR:
+    case ReferenceKind::kThinLayerMuFR: return m == MeasureKind::kFrictionTorque;
     case ReferenceKind::kMuF: return m == MeasureKind::kFrictionForce;
     case ReferenceKind::kRollingPrediction: return m == MeasureKind::kRollRatio;
     case ReferenceKind::kPatchRadius: return m == MeasureKind::kGeodesicRadius;

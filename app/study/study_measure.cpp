@@ -400,6 +400,7 @@ MeasureResult evaluateMeasure(const StudyMeasure& m, const RunOutputs& run, cons
       case ReferenceKind::kHertzMuFR:
         r.reference = 3.0 * std::numbers::pi / 16.0 * v.friction() * v.normalForce() * v.pressRadius();
         break;
+      case ReferenceKind::kThinLayerMuFR: r.reference = 8.0 / 15.0 * v.friction() * v.normalForce() * v.pressRadius(); break;
       case ReferenceKind::kMuF: r.reference = v.friction() * v.normalForce(); break;
       case ReferenceKind::kRollingPrediction:
         r.reference = v.friction() + v.patchRadius() / v.body().radius >= 1.0 ? 0.0 : 1.0;

@@ -6,14 +6,14 @@
 // system so a stiff pad on a light bone stays stable. Pure Eigen: no Bullet here.
 #pragma once
 
-#include <Eigen/Sparse>
-#include <Eigen/SparseCholesky>
+#include <Eigen/SparseCore>
 
 #include <memory>
 #include <vector>
 
 #include "sim/math.hpp"
 #include "sim/mesh/tet_pad.hpp"
+#include "sim/soft/sparse_ldlt.hpp"
 
 namespace gf::sim {
 
@@ -28,9 +28,10 @@ struct FemMaterial {
 /// A node pressed into a rigid surface: `depth` (m, > 0) below it along -`normal` (unit, out of
 /// the surface) at the step's start. With friction, the node is held in the tangent plane by a
 /// spring to its anchor on the surface (`slide`: from the node to the anchor at the step's
-/// start, m), both springs stiff and implicit in the step, the tangential one capped at
-/// `friction` times the normal force (the node then slips, its friction at the cap). The surface
-/// moves at `surface_velocity` (m/s) during the step.
+/// start, m), both springs stiff and implicit in the step, the tangential one's force capped at
+/// `friction` times the normal force: past it the node slips, its friction at the cap along the
+/// spring's stretch (a return mapping; the anchor is dragged behind it). The surface moves at
+/// `surface_velocity` (m/s) during the step.
 struct FemContact {
   int node = 0;
   Vec3 normal = Vec3::UnitY();
@@ -88,14 +89,19 @@ class FemSolid {
             const std::vector<FemContact>& contacts = {});
   /// The force each contact of the last step put on its node at the step's end (N: the normal
   /// spring's k × the depth then, and the friction); its opposite is the force on the surface.
-  /// The solve is repeated (at most kMaxContactPasses times) with a contact that would pull let
-  /// go and one past its friction cap slipping at the cap; when the modes have not settled by
-  /// then, one more solve with the modes as they stand. Either way these are exactly the forces
-  /// the nodes moved under: never pulling and within the cap once settled; unsettled, a
-  /// sticking one may be past its cap by what that last solve left.
+  /// The solve is repeated (at most kMaxContactPasses times), each contact's mode from the last
+  /// pass: one that would pull let go, one whose spring's trial force passed its cap slipping at
+  /// the cap along the stretch, linearised about that pass (its turning implicit), one back
+  /// within its cap sticking again; when the modes have not settled by then, one more solve with
+  /// the modes as they stand. Either way these are exactly the forces the nodes moved under:
+  /// never pulling and within the cap once settled; unsettled, a contact may be past its cap by
+  /// what that last solve left.
   const std::vector<Vec3>& contactForces() const { return contact_forces_; }
   const std::vector<FemContactResult>& contactResults() const { return contact_results_; }
   static constexpr int kMaxContactPasses = 4;
+  /// The solves the last step took (1 .. kMaxContactPasses + 1) and whether its modes settled.
+  int lastPasses() const { return last_passes_; }
+  bool lastSettled() const { return last_settled_; }
 
   /// Elements turned inside out now (det F ≤ 0): a pad pressed past its thickness. Allocates nothing.
   int invertedElements() const;
@@ -131,10 +137,9 @@ class FemSolid {
   /// agrees with its mode (none pulls, no sticking one past its cap).
   /// With `adjust` false the modes stay as they are (the last solve of an unsettled step).
   bool solveContacts(double dt, const std::vector<FemContact>& contacts, bool adjust = true);
-  static bool reslip(const FemContact& c, const Vec3& sliding, double normal, FemContactResult& r, Vec3& slip);
-  static constexpr double kSlipSpeed = 1e-5;   // m/s: slower is no direction
-  static constexpr double kStickSpeed = 1e-3;  // m/s: a slipping node overtaking its surface faster sticks
-  static constexpr double kSlipSettled = 1e-3;  // a slipping friction that changed less has settled
+  struct Slip;
+  bool restick(double cap, const Vec3& trial, FemContactResult& r, Slip& slip) const;
+  static constexpr double kSlipSettled = 1e-3;  // a slipping friction that moved less (of its cap) has settled
   void buildPattern();
   Eigen::Matrix3d deformation(std::size_t e) const;
   void addElementForce(std::size_t e, const Eigen::Matrix3d& r, std::vector<Vec3>& out) const;
@@ -168,17 +173,26 @@ class FemSolid {
     bool set = false;
   } kept_;
   std::vector<FemContactResult> contact_results_;
-  std::vector<Vec3> slip_force_;  // per contact while it slips: its friction, explicit (N)
+  // Per contact while it slips, its friction linearised about the last pass: `force` (mu N ŝ, N)
+  // along `direction` (ŝ), turning at `stiffness` (c = mu N / |s|, N/m) across it.
+  struct Slip {
+    Vec3 force = Vec3::Zero(), direction = Vec3::Zero();
+    double stiffness = 0.0;
+  };
+  std::vector<Slip> slips_;
+  std::vector<Slip> node_slips_;  // per node: its contact's slip at the last step's end (stiffness 0: none)
   std::vector<double> base_values_;  // the system without contacts, this step
   Eigen::VectorXd base_rhs_;
   bool has_bone_ = false;
+  int last_passes_ = 0;
+  bool last_settled_ = true;
   bool analysed_ = false;
   std::vector<int> block_slots_;     // per element, per node pair, the 9 entries' value slots
   std::vector<int> diagonal_slots_;  // per unknown, its 3×3 diagonal block's value slots
   std::vector<Vec3> forces_;         // this step's elastic forces
   Eigen::SparseMatrix<double> system_;
   Eigen::VectorXd rhs_, solution_;
-  std::unique_ptr<Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>>> solver_;
+  std::unique_ptr<SparseLdlt> solver_;
 };
 
 }  // namespace gf::sim
