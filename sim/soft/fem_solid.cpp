@@ -439,15 +439,20 @@ void FemSolid::step(double dt, const std::vector<Vec3>& node_forces, const Vec3&
   base_values_.assign(system_.valuePtr(), system_.valuePtr() + system_.nonZeros());
   base_rhs_ = rhs_;
   // Each contact starts in the mode its node ended the last step in: slipping as it slipped then
-  // (a node sliding on keeps sliding, a pass or two from settling), else sticking.
+  // (a node sliding on keeps sliding, a pass or two from settling), along the slip turned into
+  // this step's tangent plane; else sticking. A contact whose anchor is new (no slide: it just
+  // touched, or touches another surface) starts sticking.
   contact_results_.assign(contacts.size(), FemContactResult{});
   slips_.assign(contacts.size(), Slip{});
   node_slips_.resize(x_.size());
   for (std::size_t i = 0; i < contacts.size(); ++i) {
-    const Slip& last = node_slips_[static_cast<std::size_t>(contacts[i].node)];
-    if (contacts[i].friction > 0.0 && last.stiffness > 0.0) {
+    const FemContact& c = contacts[i];
+    const Slip& last = node_slips_[static_cast<std::size_t>(c.node)];
+    const Vec3 direction = last.direction - last.direction.dot(c.normal) * c.normal;
+    const bool fresh = (c.slide - c.slide.dot(c.normal) * c.normal).squaredNorm() == 0.0;
+    if (c.friction > 0.0 && c.depth > 0.0 && unknownOf(c.node) >= 0 && last.stiffness > 0.0 && !fresh && direction.norm() > 0.5) {
       contact_results_[i].slipping = true;
-      slips_[i] = last;
+      slips_[i] = {last.force.norm() * direction.normalized(), direction.normalized(), last.stiffness};
     }
   }
   bool settled = false;

@@ -94,8 +94,9 @@ class FemSolid {
   /// the cap along the stretch, linearised about that pass (its turning implicit), one back
   /// within its cap sticking again; when the modes have not settled by then, one more solve with
   /// the modes as they stand. Either way these are exactly the forces the nodes moved under:
-  /// never pulling and within the cap once settled; unsettled, a contact may be past its cap by
-  /// what that last solve left.
+  /// never pulling and, once settled, within the cap (a slipping one's friction moved by at most
+  /// kSlipSettled of its cap in the last pass); unsettled, a contact may be past its cap by what
+  /// that last solve left.
   const std::vector<Vec3>& contactForces() const { return contact_forces_; }
   const std::vector<FemContactResult>& contactResults() const { return contact_results_; }
   static constexpr int kMaxContactPasses = 4;
