@@ -5,10 +5,11 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
-#include <map>
 #include <numbers>
 #include <stdexcept>
 #include <string>
+
+#include "sim/mesh/tet_shapes.hpp"
 
 namespace gf::sim {
 namespace {
@@ -37,48 +38,6 @@ Vec3 padNode(const PadShape& s, int n, int m, int i, int j, int k) {
   const double u = std::tan(s.cap_angle * (2.0 * i / n - 1.0)), v = std::tan(s.cap_angle * (2.0 * j / n - 1.0));
   const double r = s.bone_radius + s.thickness * k / m;
   return r * Vec3(u, -1.0, v).normalized();
-}
-
-// The six tetrahedra of the cell whose lowest corner is (i, j, k): Kuhn's split along the
-// diagonal from (0,0,0) to (1,1,1), one per order of the three axes; the same split in every
-// cell, so neighbours share their faces' diagonals.
-void splitCell(TetMesh& mesh, const std::array<int, 8>& corner) {
-  static constexpr std::array<std::array<int, 3>, 6> kOrders = {
-      {{0, 1, 2}, {0, 2, 1}, {1, 0, 2}, {1, 2, 0}, {2, 0, 1}, {2, 1, 0}}};
-  for (const std::array<int, 3>& order : kOrders) {
-    int at = 0;  // the corner as bits (i: 1, j: 2, k: 4)
-    std::array<int, 4> tet{corner[0], 0, 0, corner[7]};
-    for (int step = 0; step < 2; ++step) {
-      at |= 1 << order[static_cast<std::size_t>(step)];
-      tet[static_cast<std::size_t>(step) + 1] = corner[static_cast<std::size_t>(at)];
-    }
-    const auto& p = mesh.nodes;
-    if (tetVolume(p[tet[0]], p[tet[1]], p[tet[2]], p[tet[3]]) < 0.0) std::swap(tet[1], tet[2]);
-    mesh.tets.push_back(tet);
-  }
-}
-
-// Faces of one tetrahedron, each wound outward (its fourth node behind it).
-std::array<std::array<int, 3>, 4> outwardFaces(const std::array<int, 4>& t) {
-  return {{{t[0], t[2], t[1]}, {t[0], t[1], t[3]}, {t[1], t[2], t[3]}, {t[0], t[3], t[2]}}};
-}
-
-// The faces that belong to one tetrahedron only: the boundary.
-std::vector<std::array<int, 3>> boundaryOf(const std::vector<std::array<int, 4>>& tets) {
-  std::map<std::array<int, 3>, std::pair<int, std::array<int, 3>>> seen;  // sorted face → count, wound face
-  for (const std::array<int, 4>& t : tets) {
-    for (const std::array<int, 3>& f : outwardFaces(t)) {
-      std::array<int, 3> key = f;
-      std::sort(key.begin(), key.end());
-      auto [it, fresh] = seen.try_emplace(key, 0, f);
-      ++it->second.first;
-    }
-  }
-  std::vector<std::array<int, 3>> out;
-  for (const auto& [key, face] : seen) {
-    if (face.first == 1) out.push_back(face.second);
-  }
-  return out;
 }
 
 double angleBetween(const Vec3& a, const Vec3& b) {
@@ -133,34 +92,17 @@ TetMesh generatePad(const PadShape& s) {
   requireRange(s.element_size, s.thickness / 16.0, s.thickness, "element_size",
                "m (a sixteenth of the thickness to the thickness)");
   requireRange(s.cap_angle, kMinCapAngle, kMaxCapAngle, "cap_angle", "rad");
-  TetMesh mesh;
   // Cells of about element_size along the cap's middle radius, and through the thickness.
   const double arc = 2.0 * s.cap_angle * (s.bone_radius + 0.5 * s.thickness);
   const int n = cellsOver(arc, s.element_size, 2, "across the cap");
   const int m = cellsOver(s.thickness, s.element_size, 1, "through the thickness");
+  TetMesh mesh = kuhnGrid({n, n, m}, [&](int i, int j, int k) { return padNode(s, n, m, i, j, k); }, false);
   mesh.cells_across = n;
   mesh.layers = m;
-  const auto index = [&](int i, int j, int k) { return (k * (n + 1) + j) * (n + 1) + i; };
-  for (int k = 0; k <= m; ++k) {
-    for (int j = 0; j <= n; ++j) {
-      for (int i = 0; i <= n; ++i) mesh.nodes.push_back(padNode(s, n, m, i, j, k));
-    }
-  }
+  // The grid's first layer (k = 0) is on the bone.
   for (int j = 0; j <= n; ++j) {
-    for (int i = 0; i <= n; ++i) mesh.bone_nodes.push_back(index(i, j, 0));
+    for (int i = 0; i <= n; ++i) mesh.bone_nodes.push_back(j * (n + 1) + i);
   }
-  for (int k = 0; k < m; ++k) {
-    for (int j = 0; j < n; ++j) {
-      for (int i = 0; i < n; ++i) {
-        std::array<int, 8> corner{};
-        for (int bits = 0; bits < 8; ++bits) {
-          corner[static_cast<std::size_t>(bits)] = index(i + (bits & 1), j + ((bits >> 1) & 1), k + ((bits >> 2) & 1));
-        }
-        splitCell(mesh, corner);
-      }
-    }
-  }
-  mesh.surface = boundaryOf(mesh.tets);
   return mesh;
 }
 
