@@ -29,6 +29,8 @@ const std::vector<Shot>& referenceShots() {
       {"edge-contact", "edge-contact", 1.2, "", {}},
       {"vertex-contact", "vertex-contact", 1.2, "", {}},
       {"overlay", "overlay-demo", 2.0, "", {}},
+      {"soft-ball-pinch", "soft-ball-pinch", 4.0, "", {}},
+      {"soft-ball-god-object", "soft-ball-pinch", 4.0, "", {"fingers.left.n_sgo=0", "fingers.right.n_sgo=0"}},
       {"compare-fig5", "fig5-push-ball", 1.5, "", {}, {"god_object", "god_finger"}, 3.0, 1280, 720},
       {"compare-fig8", "fig8-pinch-oscillation", 7.0, "", {}, {"god_object", "soft_finger", "god_finger"}, 8.0, 1280, 720},
   };

@@ -130,6 +130,9 @@ nlohmann::json contactsJson(const sim::Snapshot& snap, const sim::SceneDesc& sce
                           {"sgos", sgos},
                           {"paths", paths(c.path_points_world, c.path_offsets)}});
       addLoadsJson(c, contact);
+      // On a soft body: how far its surface sank under the contact (the SGOs above are the
+      // pressed surface nodes, where they are).
+      if (c.body >= 0 && sim::isSoftShape(scene.bodies[static_cast<std::size_t>(c.body)].shape)) contact["indentation_m"] = c.indentation;
     }
     fingers.push_back({{"name", scene.fingers[f].name},
                        {"device", vec(fs.device)},

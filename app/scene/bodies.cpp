@@ -101,6 +101,19 @@ double bodyVolume(const sim::BodyDesc& b) {
     case sim::ShapeKind::kConvexHull:
     case sim::ShapeKind::kConvexDecomposition:
     case sim::ShapeKind::kConcaveMesh: return b.mesh ? sim::massProperties(*b.mesh).volume : 0.0;
+    case sim::ShapeKind::kSoftBox:
+    case sim::ShapeKind::kSoftSphere:
+    case sim::ShapeKind::kSoftCylinder:
+    case sim::ShapeKind::kSoftMesh: {  // its tetrahedra's
+      double volume = 0.0;
+      if (b.soft.tets) {
+        for (const auto& t : b.soft.tets->tets) {
+          const auto& x = b.soft.tets->nodes;
+          volume += sim::tetVolume(x[t[0]], x[t[1]], x[t[2]], x[t[3]]);
+        }
+      }
+      return volume;
+    }
   }
   return 0.0;
 }
@@ -114,6 +127,37 @@ void requireSolid(Reader& r, const sim::BodyDesc& b) {
   }
 }
 
+bool softBodySetting(const sim::Setting<sim::BodyDesc>& s) {
+  for (std::string_view name : {"young", "poisson", "damping", "element_size", "contact_stiffness"}) {
+    if (s.name == name) return true;
+  }
+  return false;
+}
+
+// `pinned`: boxes of nodes held fixed, each holding at least one node.
+void readPins(Reader& r, sim::BodyDesc& b) {
+  const toml::node* n = r.find("pinned");
+  if (!n) return;
+  const toml::array* a = n->as_array();
+  if (!a) r.fail(n, "pinned", "expected an array of { min = [x, y, z], max = [x, y, z] } boxes (m, in the body's frame)");
+  for (const toml::node& e : *a) {
+    const toml::table* t = e.as_table();
+    if (!t) r.fail(&e, "pinned", "expected { min = [x, y, z], max = [x, y, z] }");
+    Reader pr(*t, r.field("pinned"), r.file());
+    sim::PinRegion region{pr.vec3("min", sim::Vec3::Zero()), pr.vec3("max", sim::Vec3::Zero())};
+    if (!pr.has("min") || !pr.has("max") || !region.min.allFinite() || !region.max.allFinite() ||
+        !(region.min.array() <= region.max.array()).all()) {
+      r.fail(&e, "pinned", "each box needs min and max, min <= max in every coordinate");
+    }
+    const bool holds = std::any_of(b.soft.tets->nodes.begin(), b.soft.tets->nodes.end(), [&](const sim::Vec3& p) {
+      return (p.array() >= region.min.array()).all() && (p.array() <= region.max.array()).all();
+    });
+    if (!holds) r.fail(&e, "pinned", "the box holds no node of the body");
+    pr.finish();
+    b.soft.pinned.push_back(region);
+  }
+}
+
 // Body settings every shape has (dimensions, scale and mass are read where they apply).
 bool commonBodySetting(const sim::Setting<sim::BodyDesc>& s) {
   for (const sim::ShapeInfo& shape : sim::shapeInfos()) {
@@ -121,7 +165,42 @@ bool commonBodySetting(const sim::Setting<sim::BodyDesc>& s) {
       if (d == s.name) return false;
     }
   }
-  return s.name != "scale" && s.name != "mass";
+  return s.name != "scale" && s.name != "mass" && !softBodySetting(s);
+}
+
+// A soft body's tetrahedra (`tets` for soft_mesh, with `scale`), its material and its pinned
+// boxes (`pinned = [{ min = [x, y, z], max = [x, y, z] }, ...]`, m in the body's frame). Settings
+// of soft bodies on a rigid one are refused.
+void readSoft(Reader& r, const std::string& base_dir, sim::BodyDesc& b) {
+  if (!sim::isSoftShape(b.shape)) {
+    for (const sim::Setting<sim::BodyDesc>& s : sim::bodySettings()) {
+      if (softBodySetting(s) && r.has(std::string(s.name))) {
+        r.fail(r.find(std::string(s.name)), std::string(s.name), "only soft bodies (shape soft_*) have it");
+      }
+    }
+    for (const char* field : {"pinned", "tets"}) {
+      if (r.has(field)) r.fail(r.find(field), field, "only soft bodies (shape soft_*) have it");
+    }
+    return;
+  }
+  for (const sim::Setting<sim::BodyDesc>& s : sim::bodySettings()) {
+    if (softBodySetting(s)) r.setting(s, b, std::string(s.name));
+  }
+  if (b.shape == sim::ShapeKind::kSoftMesh) {
+    const toml::node* n = r.find("tets");
+    if (!n || !n->is_string()) r.fail(n, "tets", "expected the tetrahedra's file (a TetGen .node, its .ele beside it, or a legacy .vtk)");
+    b.soft.tet_path = resolvePath(base_dir, n->as_string()->get());
+    r.setting(*sim::findSetting(sim::bodySettings(), "scale"), b, "scale");
+  } else if (r.has("tets")) {
+    r.fail(r.find("tets"), "tets", "only shape soft_mesh reads a file");
+  }
+  try {
+    b.soft.tets = sim::softMesh(b);
+  } catch (const std::exception& e) {  // a file that cannot be read, a size the generator refuses
+    const char* field = b.shape == sim::ShapeKind::kSoftMesh ? "tets" : "element_size";
+    r.fail(r.find(field), field, e.what());
+  }
+  readPins(r, b);
 }
 
 }  // namespace
@@ -137,6 +216,7 @@ sim::BodyDesc readBody(const std::string& name, const toml::table& t, const Read
     if (!d.empty()) r.setting(*sim::findSetting(sim::bodySettings(), d), b, std::string(d), true);
   }
   if (sim::isMeshShape(b.shape)) readMesh(r, base_dir, meshes, b);
+  readSoft(r, base_dir, b);
   const bool is_plane = b.shape == sim::ShapeKind::kPlane;
   const bool is_static = r.boolean("static", is_plane);
   if (is_plane && !is_static) r.fail(r.find("static"), "static", "a plane is always static");

@@ -121,9 +121,15 @@ json bodySchema() {
             {"density", numberSchema(kMinDensity, kMaxDensity, "kg/m^3, instead of mass")},
             {"orientation", {{"type", "array"}, {"items", {{"type", "number"}}}, {"minItems", 4}, {"maxItems", 4},
                              {"description", "quaternion [x, y, z, w]"}}},
-            {"rotation", vec3Schema("rotation about x, then y, then z (deg)")}};
+            {"rotation", vec3Schema("rotation about x, then y, then z (deg)")},
+            {"tets", {{"type", "string"}, {"description", "soft_mesh: a TetGen .node (its .ele beside it) or legacy .vtk file, relative to the scene file"}}},
+            {"pinned", {{"type", "array"},
+                        {"items", object({{"min", vec3Schema("the box's lowest corner (m, body frame)")},
+                                          {"max", vec3Schema("the box's highest corner (m, body frame)")}},
+                                         "a box of a soft body's nodes held where they start", {"min", "max"})},
+                        {"description", "soft bodies: boxes of nodes held fixed"}}}};
   for (const sim::Setting<sim::BodyDesc>& s : sim::bodySettings()) p[std::string(s.name)] = settingSchema(s);
-  return object(p, "a rigid body", {"shape"});
+  return object(p, "a rigid or soft body", {"shape"});
 }
 
 json fingerSchema() {

@@ -118,6 +118,7 @@ Vec3 forceArrow(const sim::FingerSnapshot& f, const DrawSettings& settings) {
 
 DrawListBuilder::DrawListBuilder(const sim::SceneDesc& scene, std::vector<std::shared_ptr<const sim::Mesh>> surfaces)
     : surfaces_(std::move(surfaces)) {
+  for (const sim::BodyDesc& b : scene.bodies) body_colour_.push_back(b.colour.cast<float>());
   for (const sim::FingerDesc& f : scene.fingers) {
     proxy_radius_.push_back(f.proxy.radius);
     r_max_.push_back(f.patch.r_max);
@@ -132,6 +133,7 @@ void DrawListBuilder::build(const sim::Snapshot& snapshot, const DrawSettings& s
   out.clear();
   view_eye_.reset();
   if (settings.view) view_eye_ = settings.view->eye;
+  addSoftBodies(snapshot, out);
   if (settings.fingers) {
     addPads(snapshot, out);
     addProxies(snapshot, out);
@@ -225,6 +227,16 @@ void DrawListBuilder::addPads(const sim::Snapshot& snap, DrawList& out) {
     fill_.clear();
     pad_builder_.build(f.pad, fill_);
     addRange(out, DrawPass::kPads, DrawShape::kTriangles, fill_, kPadColour, 1.0f);
+  }
+}
+
+// Each soft body's surface as it is, in its colour, with the pads: opaque, lit and shadowed.
+void DrawListBuilder::addSoftBodies(const sim::Snapshot& snap, DrawList& out) {
+  for (const sim::SoftBodySnapshot& s : snap.soft_bodies) {
+    if (!s.surface || s.body < 0 || static_cast<std::size_t>(s.body) >= body_colour_.size()) continue;
+    fill_.clear();
+    pad_builder_.build(s.nodes, *s.surface, fill_);
+    addRange(out, DrawPass::kPads, DrawShape::kTriangles, fill_, body_colour_[static_cast<std::size_t>(s.body)], 1.0f);
   }
 }
 

@@ -124,6 +124,7 @@ class DrawListBuilder {
   void addOverlaps(const sim::Snapshot& snapshot, DrawList& out);
   void addMarks(const sim::ContactSnapshot& contact, const Eigen::Vector3f& colour, double dot, DrawList& out);
   void addPads(const sim::Snapshot& snapshot, DrawList& out);
+  void addSoftBodies(const sim::Snapshot& snapshot, DrawList& out);
   void addProxies(const sim::Snapshot& snapshot, DrawList& out);
   void addSprings(const sim::Snapshot& snapshot, DrawList& out);
   void addGhosts(const sim::Snapshot& snapshot, const DrawSettings& settings, DrawList& out);
@@ -131,6 +132,7 @@ class DrawListBuilder {
   void addSpring(const sim::Vec3& a, const sim::Vec3& b, double coil_radius);
 
   std::vector<double> proxy_radius_, r_max_;  // per finger (m)
+  std::vector<Eigen::Vector3f> body_colour_;  // per body
   std::vector<std::shared_ptr<const sim::Mesh>> surfaces_;
   PatchMeshBuilder patch_builder_;
   PadMeshBuilder pad_builder_;

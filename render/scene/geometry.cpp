@@ -52,6 +52,11 @@ std::shared_ptr<const sim::Mesh> bodyRenderMesh(const sim::BodyDesc& body) {
     case sim::ShapeKind::kConvexDecomposition:
     case sim::ShapeKind::kConcaveMesh:
       return sim::bodyMesh(body);  // the mesh the scene loaded, shared with the World
+    case sim::ShapeKind::kSoftBox:
+    case sim::ShapeKind::kSoftSphere:
+    case sim::ShapeKind::kSoftCylinder:
+    case sim::ShapeKind::kSoftMesh:
+      return nullptr;  // drawn deformed from each snapshot (draw_list.cpp)
   }
   return nullptr;
 }

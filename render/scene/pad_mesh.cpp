@@ -12,11 +12,15 @@ using sim::Vec3;
 
 void PadMeshBuilder::build(const sim::PadSnapshot& pad, std::vector<Vertex>& out) {
   if (pad.nodes.empty() || !pad.skin) return;
-  const auto node = [&](int n) -> const Vec3& { return pad.nodes[static_cast<std::size_t>(n)]; };
+  build(pad.nodes, *pad.skin, out);
+}
+
+void PadMeshBuilder::build(const std::vector<Vec3>& nodes, const std::vector<std::array<int, 3>>& triangles, std::vector<Vertex>& out) {
+  const auto node = [&](int n) -> const Vec3& { return nodes[static_cast<std::size_t>(n)]; };
   // Each triangle's cross product is twice its area along its normal: summed per node, the
   // larger triangles weigh more.
-  normals_.assign(pad.nodes.size(), Vec3::Zero());
-  for (const std::array<int, 3>& t : *pad.skin) {
+  normals_.assign(nodes.size(), Vec3::Zero());
+  for (const std::array<int, 3>& t : triangles) {
     const Vec3 area = (node(t[1]) - node(t[0])).cross(node(t[2]) - node(t[0]));
     for (const int n : t) normals_[static_cast<std::size_t>(n)] += area;
   }
@@ -24,7 +28,7 @@ void PadMeshBuilder::build(const sim::PadSnapshot& pad, std::vector<Vertex>& out
     const double length = n.norm();
     n = length > 0.0 ? Vec3(n / length) : Vec3::UnitY();
   }
-  for (const std::array<int, 3>& t : *pad.skin) {
+  for (const std::array<int, 3>& t : triangles) {
     for (const int n : t) out.push_back(makeVertex(node(n), normals_[static_cast<std::size_t>(n)]));
   }
 }

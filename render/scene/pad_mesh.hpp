@@ -3,6 +3,7 @@
 // buffers.
 #pragma once
 
+#include <array>
 #include <vector>
 
 #include "render/gl/vertex.hpp"
@@ -19,6 +20,8 @@ class PadMeshBuilder {
   /// the skin triangles at its node: the deformed pad shades smooth. Nothing for a pad without
   /// nodes or skin (the other contact models').
   void build(const sim::PadSnapshot& pad, std::vector<Vertex>& out);
+  /// The same for any surface of `triangles` over `nodes` (a soft body's, deformed).
+  void build(const std::vector<sim::Vec3>& nodes, const std::vector<std::array<int, 3>>& triangles, std::vector<Vertex>& out);
 
  private:
   std::vector<sim::Vec3> normals_;  // per node: the sum of its triangles' area vectors

@@ -111,6 +111,8 @@ struct SceneRenderer::Impl {
   PadMeshBuilder pad_builder;
   std::vector<Vertex> pad_vertices;
   GpuMesh pad_mesh{{}, true};
+  std::vector<Vertex> soft_vertices;  // the soft bodies' surfaces for the shadow map
+  GpuMesh soft_mesh{{}, true};
   Vec3 centre = Vec3::Zero();
   double extent = 0.1;
   Eigen::Matrix4f view, view_proj, light_view_proj;  // view, view_proj: this frame's camera
@@ -192,6 +194,14 @@ struct SceneRenderer::Impl {
       if (bodies[b].closed) glEnable(GL_CULL_FACE);
       cast(*bodies[b].gpu, bodyModel(snap, b));
       glDisable(GL_CULL_FACE);
+    }
+    if (!snap.soft_bodies.empty()) {  // soft bodies as they are, rebuilt each frame
+      soft_vertices.clear();
+      for (const sim::SoftBodySnapshot& s : snap.soft_bodies) {
+        if (s.surface) pad_builder.build(s.nodes, *s.surface, soft_vertices);
+      }
+      soft_mesh.upload(soft_vertices);
+      cast(soft_mesh, Eigen::Matrix4f::Identity());
     }
     shadow_has_fingers = settings.fingers;
     if (settings.fingers) {

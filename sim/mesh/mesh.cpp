@@ -6,6 +6,8 @@
 #include <stdexcept>
 #include <unordered_map>
 
+#include "sim/assert.hpp"
+
 namespace gf::sim {
 namespace {
 
@@ -283,6 +285,29 @@ struct MeshBuilder {
     return m;
   }
 };
+
+void Mesh::moveVertices(const std::vector<Vec3>& positions) {
+  GF_ASSERT(positions.size() == vertices_.size());  // one position per vertex
+  std::copy(positions.begin(), positions.end(), vertices_.begin());
+  for (int f = 0; f < faceCount(); ++f) {
+    const Vec3 n = (corner(f, 1) - corner(f, 0)).cross(corner(f, 2) - corner(f, 0));
+    const double area2 = n.norm();
+    if (!(area2 > 0.0) || !std::isfinite(area2)) continue;  // squeezed flat: its last frames kept
+    normals_[f] = n / area2;
+    double sum = 0.0;
+    for (int k = 0; k < 3; ++k) {
+      const Vec3 e = corner(f, (k + 1) % 3) - corner(f, k);
+      const double length = e.norm();
+      sum += length;
+      if (!(length > 0.0)) continue;
+      edge_dir_[f][k] = e / length;
+      inward_[f][k] = normals_[f].cross(edge_dir_[f][k]).normalized();
+    }
+    mean_edge_[f] = sum / 3.0;
+  }
+  MeshBuilder::computeBounds(*this);
+  refitBvh();
+}
 
 Mesh buildMesh(const std::vector<Vec3>& positions,
                const std::vector<std::array<std::int32_t, 3>>& triangles,

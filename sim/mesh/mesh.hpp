@@ -106,6 +106,12 @@ class Mesh {
   /// Uses the bounding-volume hierarchy; any thread; does not allocate.
   SurfacePoint closestPoint(const Vec3& p, double feature_tol) const;
 
+  /// Moves every vertex to `positions` (one per vertex, the same order; the topology kept): the
+  /// faces' normals and frames, the bounds and the hierarchy's boxes follow (refitted, not
+  /// rebuilt). A face squeezed to no area keeps its last normal and frames. For a deformed
+  /// surface (a soft body's, each step): its owner's thread only. Does not allocate.
+  void moveVertices(const std::vector<Vec3>& positions);
+
   /// Signed volume enclosed (positive for closed, outward-wound meshes; m^3).
   double signedVolume() const;
 
@@ -127,6 +133,7 @@ class Mesh {
     std::int32_t count = 0;  ///< leaf: number of faces; inner: 0
   };
   void buildBvh();
+  void refitBvh();
   std::vector<BvhNode> bvh_nodes_;
   std::vector<std::int32_t> bvh_faces_;
   Vec3 bounds_min_ = Vec3::Zero();

@@ -147,6 +147,27 @@ void Mesh::buildBvh() {
   }
 }
 
+// The boxes again, children before parents (a child is always stored after its parent).
+void Mesh::refitBvh() {
+  for (std::size_t i = bvh_nodes_.size(); i-- > 0;) {
+    BvhNode& node = bvh_nodes_[i];
+    if (node.count > 0) {
+      node.lo = node.hi = corner(bvh_faces_[node.first], 0);
+      for (std::int32_t k = node.first; k < node.first + node.count; ++k) {
+        for (int c = 0; c < 3; ++c) {
+          node.lo = node.lo.cwiseMin(corner(bvh_faces_[k], c));
+          node.hi = node.hi.cwiseMax(corner(bvh_faces_[k], c));
+        }
+      }
+      continue;
+    }
+    const BvhNode& a = bvh_nodes_[static_cast<std::size_t>(node.first)];
+    const BvhNode& b = bvh_nodes_[static_cast<std::size_t>(node.first) + 1];
+    node.lo = a.lo.cwiseMin(b.lo);
+    node.hi = a.hi.cwiseMax(b.hi);
+  }
+}
+
 SurfacePoint Mesh::closestPoint(const Vec3& p, double feature_tol) const {
   SurfacePoint best;
   if (bvh_nodes_.empty()) return best;

@@ -13,6 +13,7 @@
 #include "sim/scene/device.hpp"
 #include "sim/mesh/mesh.hpp"
 #include "sim/patch/patch_settings.hpp"
+#include "sim/mesh/tet_pad.hpp"
 #include "sim/soft/fem_pad.hpp"
 
 namespace gf::sim {
@@ -39,7 +40,35 @@ enum class ShapeKind {
   kPlane,
   kConvexHull,
   kConvexDecomposition,
-  kConcaveMesh
+  kConcaveMesh,
+  kSoftBox,       ///< soft bodies (SoftDesc): generated tetrahedra of a box, a sphere, a cylinder
+  kSoftSphere,
+  kSoftCylinder,
+  kSoftMesh       ///< tetrahedra from a file (TetGen .node/.ele or legacy VTK)
+};
+
+/// True for the soft (finite-element) shapes.
+inline bool isSoftShape(ShapeKind kind) { return kind >= ShapeKind::kSoftBox; }
+
+/// A box of a soft body's nodes held fixed (in the body's frame, m).
+struct PinRegion {
+  Vec3 min = Vec3::Zero();
+  Vec3 max = Vec3::Zero();
+};
+
+/// A soft body's material, resolution and fixed nodes (shape soft_*): a deformable body of
+/// linear tetrahedra (sim/soft/soft_body.hpp). Its density is its mass over its mesh's volume.
+struct SoftDesc {
+  double young = 1e5;               ///< Pa: Young's modulus
+  double poisson = 0.45;            ///< Poisson's ratio
+  double damping = 0.002;           ///< s: Rayleigh stiffness-proportional damping
+  double element_size = 0.005;      ///< m: the generated shapes' cells
+  double contact_stiffness = 1e5;   ///< N/m: each contact's normal and friction springs
+  std::vector<PinRegion> pinned;    ///< nodes inside any of them are held where they start
+  std::string tet_path;             ///< soft_mesh: the .node (its .ele beside it) or .vtk file
+  /// The mesh's tetrahedra at rest in the body's frame (centred where `position` puts them):
+  /// generated or loaded once by the scene reader; null: built where needed (softMesh()).
+  std::shared_ptr<const TetMesh> tets;
 };
 
 /// One rigid body.
@@ -61,7 +90,12 @@ struct BodyDesc {
   Vec3 position = Vec3::Zero();              ///< initial position of the centre of mass (m)
   Eigen::Quaterniond orientation = Eigen::Quaterniond::Identity();
   Vec3 colour = Vec3(0.7, 0.7, 0.7);         ///< linear RGB in 0..1, for rendering
+  SoftDesc soft;                             ///< soft shapes only
 };
+
+/// The shape of the pad a finger presses soft bodies with (`imprint`): a flat disc across the
+/// contact normal at the proxy's lowest point, or the proxy's sphere.
+enum class SoftImprint : std::uint8_t { kFlat, kRound };
 
 /// One finger: a god-object proxy coupled to a device, with god-finger settings.
 struct FingerDesc {
@@ -70,6 +104,10 @@ struct FingerDesc {
   CouplingSettings coupling;
   ProxySettings proxy;
   PadSettings pad;          ///< the soft pad of contact_model fem_pad (its skin: the proxy's sphere)
+  SoftImprint soft_imprint = SoftImprint::kFlat;  ///< how it presses soft bodies
+  /// m; 0: off. On soft bodies, faces reached by points every this far along each walk join the
+  /// pad (the paper's SGOs added along the walks, Sec. 4.4).
+  double soft_walk_fill = 0.0;
   DeviceTrack device;       ///< where the device is at each time
 };
 
@@ -134,6 +172,10 @@ struct SceneDesc {
 /// The mesh of a mesh-shaped body: `body.mesh`, or the file loaded now when that is null
 /// (throws MeshLoadError). Load-time only.
 std::shared_ptr<const Mesh> bodyMesh(const BodyDesc& body);
+
+/// A soft body's tetrahedra in its own frame: `body.soft.tets`, or generated (or loaded) now
+/// (throws std::invalid_argument or MeshLoadError). Load-time only.
+std::shared_ptr<const TetMesh> softMesh(const BodyDesc& body);
 
 /// Each finger's device track, in finger order: what runHapticLoop plays back.
 inline std::vector<DeviceTrack> deviceTracks(const SceneDesc& scene) {

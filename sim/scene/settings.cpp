@@ -97,6 +97,7 @@ constexpr std::string_view kPatchFillNames[] = {"ring", "filled"};
 constexpr std::string_view kContactSolverNames[] = {"points", "aggregate"};
 constexpr std::string_view kSolverChoiceNames[] = {"world", "points", "aggregate"};
 constexpr std::string_view kPadModelNames[] = {"disc", "oriented"};
+constexpr std::string_view kImprintNames[] = {"flat", "round"};
 constexpr std::string_view kOverlapNames[] = {"ignore", "push_apart", "merge"};
 
 template <class S>
@@ -238,6 +239,12 @@ std::span<const Setting<BodyDesc>> bodySettings() {
       row<B, &B::restitution>("restitution", "", 0.0, 1.0),
       row<B, &B::position>("position", "m", -kMaxCoordinate, kMaxCoordinate),
       row<B, &B::colour>("colour", "", 0.0, 1.0),
+      // Soft bodies only (SoftDesc); the hard cases soft-* hold these ranges.
+      row<B, &B::soft, &SoftDesc::young>("young", "Pa", kMinSoftYoung, kMaxSoftYoung),
+      row<B, &B::soft, &SoftDesc::poisson>("poisson", "", 0.0, 0.49),
+      row<B, &B::soft, &SoftDesc::damping>("damping", "s", 0.0, 0.1),
+      row<B, &B::soft, &SoftDesc::element_size>("element_size", "m", 1e-3, 0.1),
+      row<B, &B::soft, &SoftDesc::contact_stiffness>("contact_stiffness", "N/m", 1e3, 1e7),
   };
   return kTable;
 }
@@ -292,6 +299,8 @@ std::span<const Setting<FingerDesc>> fingerSettings() {
       row<F, &F::pad, &PadSettings::density>("pad_density", "kg/m^3", 100.0, 1e4),
       row<F, &F::pad, &PadSettings::damping>("pad_damping", "s", 0.0, 0.1),
       row<F, &F::pad, &PadSettings::contact_stiffness>("pad_contact_stiffness", "N/m", 1e3, 1e7),
+      named(row<F, &F::soft_imprint>("imprint", "", 0, 0), kImprintNames),
+      row<F, &F::soft_walk_fill>("walk_fill", "m", 0.0, 0.05),
   };
   return kTable;
 }
@@ -359,6 +368,10 @@ std::span<const ShapeInfo> shapeInfos() {
       {K::kConvexHull, "mesh", "convex_hull", {"", ""}, 0, 0, 0},
       {K::kConvexDecomposition, "mesh", "decomposition", {"", ""}, 0, 0, 0},
       {K::kConcaveMesh, "mesh", "concave", {"", ""}, 0, 0, 0},
+      {K::kSoftBox, "soft_box", "", {"half_extents", ""}, 0, 0, 0},
+      {K::kSoftSphere, "soft_sphere", "", {"radius", ""}, 0, 0, 0},
+      {K::kSoftCylinder, "soft_cylinder", "", {"radius", "half_height"}, 0, 0, 0},
+      {K::kSoftMesh, "soft_mesh", "", {"", ""}, 0, 0, 0},
   };
   return kShapes;
 }
@@ -390,6 +403,12 @@ std::optional<FieldError> validateBody(const BodyDesc& body) {
   if (std::optional<FieldError> e = firstBadSetting(bodySettings(), body, static_mass)) return e;
   const ShapeInfo& shape = shapeInfo(body.shape);
   if (body.shape == ShapeKind::kPlane && body.mass != 0.0) return FieldError{"mass", "a plane must be static (mass 0)"};
+  if (isSoftShape(body.shape) && body.mass == 0.0) {
+    return FieldError{"static", "a soft body is dynamic: hold it with pinned boxes instead"};
+  }
+  if (isSoftShape(body.shape) && body.shape == ShapeKind::kSoftMesh && body.soft.tet_path.empty() && !body.soft.tets) {
+    return FieldError{"tets", "is empty"};
+  }
   if (body.walk_resolution != 0 &&
       (body.walk_resolution < shape.min_resolution || body.walk_resolution > shape.max_resolution)) {
     return FieldError{"walk_resolution", shape.max_resolution == 0

@@ -16,6 +16,9 @@
 
 namespace gf::sim {
 
+/// Young's modulus of a soft body (Pa): a sponge's 10 kPa to a stiff rubber's 10 MPa.
+inline constexpr double kMinSoftYoung = 1e4, kMaxSoftYoung = 1e7;
+
 /// m: the largest scene coordinate a position (body, keyframe, device) may have.
 inline constexpr double kMaxSceneCoordinate = 1e3;
 

@@ -46,6 +46,9 @@ struct ContactSnapshot {
   /// it, the points' loads make the contact's whole force and moment.
   Vec3 rolling_moment = Vec3::Zero();
   bool sliding = false;          ///< the contact's friction is at its limit (it slides or spins)
+  /// On a soft body: how far the surface at the contact point sank from where the body's rest
+  /// shape, carried by its frame, puts it (m); 0 on a rigid body.
+  double indentation = 0.0;
 };
 
 /// A fem_pad finger's soft pad as it is (empty for the other models).
@@ -55,6 +58,15 @@ struct PadSnapshot {
   std::shared_ptr<const std::vector<std::array<int, 3>>> skin;
   double bone_radius = 0.0;  ///< the bone, a sphere about the proxy centre (m)
   long resets = 0;           ///< times it was put back at rest (turned inside out) so far
+};
+
+/// A soft body's shape now (SceneDesc's soft_* bodies).
+struct SoftBodySnapshot {
+  int body = -1;            ///< index into SceneDesc::bodies
+  std::vector<Vec3> nodes;  ///< its tetrahedra's nodes (world, m)
+  /// Its surface (wound outward), indices into `nodes`; shared, immutable.
+  std::shared_ptr<const std::vector<std::array<int, 3>>> surface;
+  long resets = 0;          ///< steps undone so far (turned inside out)
 };
 
 /// One finger.
@@ -87,6 +99,7 @@ struct Snapshot {
   /// Each body's linear (m/s) and angular (rad/s) velocity, in the world frame.
   std::vector<std::pair<Vec3, Vec3>> body_velocities;
   std::vector<FingerSnapshot> fingers;
+  std::vector<SoftBodySnapshot> soft_bodies;  ///< one per soft body, in body order
   HapticTimings timings;
 };
 

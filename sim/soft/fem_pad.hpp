@@ -14,6 +14,7 @@
 #include "sim/math.hpp"
 #include "sim/mesh/tet_pad.hpp"
 #include "sim/soft/fem_solid.hpp"
+#include "sim/soft/node_contacts.hpp"
 
 namespace gf::sim {
 
@@ -33,36 +34,6 @@ struct PadSettings {
   double density = 1100.0;           ///< kg/m³
   double damping = 0.002;            ///< s: Rayleigh stiffness-proportional damping
   double contact_stiffness = 1e5;    ///< N/m: each skin node's normal and friction springs
-};
-
-/// The surfaces a pad may touch, as it asks for them each step (the World's bodies).
-class PadSurfaces {
- public:
-  virtual ~PadSurfaces() = default;
-  /// Surfaces whose bounds meet [lo, hi] (world, m), into `out` (cleared first).
-  virtual void near(const Vec3& lo, const Vec3& hi, std::vector<int>& out) const = 0;
-  /// Whether world point `p` is inside surface `body`: its depth below the surface (m, > 0) and
-  /// the surface's outward normal there (unit, world).
-  virtual bool inside(int body, const Vec3& p, double& depth, Vec3& normal) const = 0;
-  /// Body `body`'s frame now (its anchors are kept in it).
-  virtual Pose frame(int body) const = 0;
-  /// The velocity of body `body`'s material point at world `p` (m/s).
-  virtual Vec3 velocityAt(int body, const Vec3& p) const = 0;
-  /// Body `body`'s mass (kg; 0: static) and its centre of mass's velocity (m/s).
-  virtual double mass(int body) const = 0;
-  virtual Vec3 velocity(int body) const = 0;
-};
-
-/// One skin node pressed into a body in the last step.
-struct PadNodeContact {
-  int node = -1;
-  int body = -1;
-  Vec3 point = Vec3::Zero();   ///< the node at the step's end (world, m)
-  Vec3 normal = Vec3::UnitY(); ///< the surface's outward normal (world)
-  Vec3 force = Vec3::Zero();   ///< on the body (N, world): the opposite of the contact's on the node
-  double depth = 0.0;          ///< below the surface at the step's start (m)
-  double area = 0.0;           ///< the node's share of the skin (m², a third of its triangles')
-  bool slipping = false;       ///< its friction at its cap
 };
 
 class FemPad {
@@ -85,7 +56,7 @@ class FemPad {
   /// sparse factorisation allocates a work copy each solve (Eigen's SimplicialLDLT).
   void step(double dt, const Vec3& bone_force, double friction, const PadSurfaces& surfaces);
 
-  const std::vector<PadNodeContact>& contacts() const { return contacts_; }
+  const std::vector<PadNodeContact>& contacts() const { return nodes_->contacts(); }
   /// The bone's centre now (m) and its velocity (m/s).
   Vec3 boneCentre() const { return centre0_ + solid_->boneOffset(); }
   Vec3 boneVelocity() const { return solid_->boneVelocity(); }
@@ -104,14 +75,7 @@ class FemPad {
   Vec3 momentum() const;
 
  private:
-  struct Anchor {
-    int body = -1;
-    Vec3 local = Vec3::Zero();  // in the body's frame
-  };
-  void findContacts(const PadSurfaces& surfaces, double friction);
-  void choosePartner(const PadSurfaces& surfaces);
   void liftOut(const PadSurfaces& surfaces);
-  void readContacts(double dt, const PadSurfaces& surfaces);
 
   PadSettings settings_;
   TetMesh mesh_;
@@ -120,12 +84,8 @@ class FemPad {
   double bone_radius_ = 0.0;
   std::vector<int> skin_nodes_;
   std::shared_ptr<const std::vector<std::array<int, 3>>> skin_;
-  std::vector<Anchor> anchors_;  // per node
-  std::vector<int> near_;
+  std::unique_ptr<NodeContacts> nodes_;
   std::vector<FemContact> fem_contacts_;
-  std::vector<int> contact_body_;
-  std::vector<PadNodeContact> contacts_;
-  std::vector<double> node_area_;
   long resets_ = 0;
   int last_inverted_ = 0;
   bool reset_last_step_ = false;

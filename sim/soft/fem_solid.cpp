@@ -15,25 +15,6 @@ using Vec12 = Eigen::Matrix<double, 12, 1>;
 
 constexpr int kFixed = -1, kFree = -2;  // before numbering: held in place, or to be numbered
 
-// The rotation nearest to `f`, found by turning `q` (the element's last one, so a step or two
-// suffices) by the torque that pulls its axes onto f's columns until the turn is under 1e-9
-// rad (a strain of 1e-9 left: 0.3 mPa of stress at 300 kPa). A proper rotation even for an
-// inverted `f`; no decomposition to fail.
-Eigen::Quaterniond nearestRotation(const Eigen::Matrix3d& f, Eigen::Quaterniond q) {
-  for (int pass = 0; pass < 100; ++pass) {
-    const Eigen::Matrix3d r = q.toRotationMatrix();
-    const Vec3 torque = r.col(0).cross(f.col(0)) + r.col(1).cross(f.col(1)) + r.col(2).cross(f.col(2));
-    const double scale = std::abs(r.col(0).dot(f.col(0)) + r.col(1).dot(f.col(1)) + r.col(2).dot(f.col(2))) + 1e-9;
-    const Vec3 omega = torque / scale;
-    const double angle = omega.norm();
-    if (angle < 1e-9) break;
-    // Turned by omega: to first order q + (0, omega / 2) q, exact as the turn vanishes.
-    const Eigen::Quaterniond turn(1.0, 0.5 * omega.x(), 0.5 * omega.y(), 0.5 * omega.z());
-    q = (turn * q).normalized();
-  }
-  return q;
-}
-
 // Isotropic elasticity in Voigt order (xx, yy, zz, xy, yz, zx), engineering shear strains.
 Eigen::Matrix<double, 6, 6> elasticity(const FemMaterial& m) {
   const double mu = m.young_pa / (2.0 * (1.0 + m.poisson));
@@ -69,6 +50,25 @@ Eigen::Matrix<double, 6, 12> strainMatrix(const Eigen::Matrix3d& dm_inverse) {
 }
 
 }  // namespace
+
+// The rotation nearest to `f`, found by turning `q` (the element's last one, so a step or two
+// suffices) by the torque that pulls its axes onto f's columns until the turn is under 1e-9
+// rad (a strain of 1e-9 left: 0.3 mPa of stress at 300 kPa). A proper rotation even for an
+// inverted `f`; no decomposition to fail.
+Eigen::Quaterniond nearestRotation(const Eigen::Matrix3d& f, Eigen::Quaterniond q) {
+  for (int pass = 0; pass < 100; ++pass) {
+    const Eigen::Matrix3d r = q.toRotationMatrix();
+    const Vec3 torque = r.col(0).cross(f.col(0)) + r.col(1).cross(f.col(1)) + r.col(2).cross(f.col(2));
+    const double scale = std::abs(r.col(0).dot(f.col(0)) + r.col(1).dot(f.col(1)) + r.col(2).dot(f.col(2))) + 1e-9;
+    const Vec3 omega = torque / scale;
+    const double angle = omega.norm();
+    if (angle < 1e-9) break;
+    // Turned by omega: to first order q + (0, omega / 2) q, exact as the turn vanishes.
+    const Eigen::Quaterniond turn(1.0, 0.5 * omega.x(), 0.5 * omega.y(), 0.5 * omega.z());
+    q = (turn * q).normalized();
+  }
+  return q;
+}
 
 struct FemSolid::Element {
   Eigen::Matrix3d dm_inverse;
@@ -115,14 +115,20 @@ void FemSolid::setBone(const std::vector<int>& nodes, double mass_kg) {
   for (int n : nodes) unknown_[static_cast<std::size_t>(n)] = 0;
 }
 
-void FemSolid::enablePartner(const std::vector<int>& nodes) {
-  partner_nodes_ = nodes;
-  partner_ = 0;  // numbered at the first step
+int FemSolid::addPartner(const std::vector<int>& nodes) {
+  Partner p;
+  p.nodes = nodes;
+  p.has.assign(x_.size(), 0);
+  for (int n : nodes) p.has[static_cast<std::size_t>(n)] = 1;
+  partners_.push_back(std::move(p));  // numbered at the first step
+  return static_cast<int>(partners_.size()) - 1;
 }
 
-void FemSolid::setPartner(double mass_kg, const Vec3& velocity) {
-  partner_mass_ = mass_kg > 0.0 ? mass_kg : 1.0;
-  partner_v0_ = velocity;
+void FemSolid::setPartner(int k, double mass_kg, const Vec3& velocity, const Vec3& force) {
+  Partner& p = partners_[static_cast<std::size_t>(k)];
+  p.mass = mass_kg > 0.0 ? mass_kg : 1.0;
+  p.v0 = velocity;
+  p.force = force;
 }
 
 void FemSolid::fixNodes(const std::vector<int>& nodes) {
@@ -221,12 +227,14 @@ void FemSolid::buildPattern() {
       for (int j = 0; j < 3; ++j) pattern.emplace_back(3 * u + i, 3 * u + j, 1.0);
     }
   }
-  for (int node : partner_nodes_) {
-    const int u = unknownOf(node);
-    if (u < 0 || partner_ < 0) continue;
-    for (int k = 0; k < 9; ++k) {
-      pattern.emplace_back(3 * u + k / 3, 3 * partner_ + k % 3, 1.0);
-      pattern.emplace_back(3 * partner_ + k / 3, 3 * u + k % 3, 1.0);
+  for (const Partner& p : partners_) {
+    for (int node : p.nodes) {
+      const int u = unknownOf(node);
+      if (u < 0) continue;
+      for (int k = 0; k < 9; ++k) {
+        pattern.emplace_back(3 * u + k / 3, 3 * p.unknown + k % 3, 1.0);
+        pattern.emplace_back(3 * p.unknown + k / 3, 3 * u + k % 3, 1.0);
+      }
     }
   }
   system_.resize(3 * unknowns_, 3 * unknowns_);
@@ -245,17 +253,6 @@ void FemSolid::buildPattern() {
         if (ua < 0 || ub < 0) continue;
         for (int k = 0; k < 9; ++k) block_slots_[(e * 16 + a * 4 + b) * 9 + k] = slot(3 * ua + k / 3, 3 * ub + k % 3);
       }
-    }
-  }
-  partner_slot_of_.assign(x_.size(), -1);
-  partner_slots_.assign(partner_nodes_.size() * 18, -1);
-  for (std::size_t k = 0; k < partner_nodes_.size(); ++k) {
-    const int u = unknownOf(partner_nodes_[k]);
-    if (u < 0 || partner_ < 0) continue;
-    partner_slot_of_[static_cast<std::size_t>(partner_nodes_[k])] = static_cast<int>(k);
-    for (int j = 0; j < 9; ++j) {
-      partner_slots_[k * 18 + static_cast<std::size_t>(j)] = slot(3 * u + j / 3, 3 * partner_ + j % 3);
-      partner_slots_[k * 18 + 9 + static_cast<std::size_t>(j)] = slot(3 * partner_ + j / 3, 3 * u + j % 3);
     }
   }
   diagonal_slots_.resize(static_cast<std::size_t>(unknowns_) * 9);
@@ -297,23 +294,42 @@ void FemSolid::assemble(double dt, const std::vector<Vec3>& node_forces, const V
     rhs_.head<3>() += bone_mass_ * bone_v_ + dt * bone_force;
     for (int k = 0; k < 3; ++k) values[diagonal_slots_[4 * k]] += bone_mass_;
   }
-  if (partner_ >= 0) {
-    rhs_.segment<3>(3 * partner_) += partner_mass_ * partner_v0_;
-    for (int k = 0; k < 3; ++k) values[diagonal_slots_[static_cast<std::size_t>(partner_) * 9 + 4 * k]] += partner_mass_;
+  for (const Partner& p : partners_) {
+    rhs_.segment<3>(3 * p.unknown) += p.mass * p.v0 + dt * p.force;
+    for (int k = 0; k < 3; ++k) values[diagonal_slots_[static_cast<std::size_t>(p.unknown) * 9 + 4 * k]] += p.mass;
   }
 }
 
-// A contact's spring `block` between its node and the partner: −block off the diagonal both ways,
-// +block on the partner's diagonal (the node's own diagonal is the caller's).
-void FemSolid::addPartnerBlocks(int node, const Eigen::Matrix3d& block) {
-  const int k = partner_slot_of_[static_cast<std::size_t>(node)];
-  if (k < 0) return;
+void FemSolid::addBlock(int ua, int ub, const Eigen::Matrix3d& block) {
   double* values = system_.valuePtr();
-  for (int j = 0; j < 9; ++j) {
-    values[partner_slots_[static_cast<std::size_t>(k) * 18 + static_cast<std::size_t>(j)]] -= block(j / 3, j % 3);
-    values[partner_slots_[static_cast<std::size_t>(k) * 18 + 9 + static_cast<std::size_t>(j)]] -= block(j / 3, j % 3);
-    values[diagonal_slots_[static_cast<std::size_t>(partner_) * 9 + static_cast<std::size_t>(j)]] += block(j / 3, j % 3);
+  const int* rows = system_.innerIndexPtr();
+  for (int j = 0; j < 3; ++j) {
+    const int col = 3 * ub + j;
+    const int* begin = rows + system_.outerIndexPtr()[col];
+    const int* end = rows + system_.outerIndexPtr()[col + 1];
+    const std::ptrdiff_t first = std::lower_bound(begin, end, 3 * ua) - rows;  // the block's rows follow
+    for (int i = 0; i < 3; ++i) values[first + i] += block(i, j);
   }
+}
+
+int FemSolid::contactUnknowns(const FemContact& c, std::array<int, 3>& u, std::array<double, 3>& w) const {
+  const std::array<int, 3> nodes{c.node, c.others[0], c.others[1]};
+  const bool face = c.others[0] >= 0 || c.others[1] >= 0;
+  int count = 0;
+  for (int a = 0; a < 3; ++a) {
+    const double weight = face ? c.weights[a] : a == 0 ? 1.0 : 0.0;
+    if (nodes[static_cast<std::size_t>(a)] < 0 || weight == 0.0) continue;
+    const int un = unknownOf(nodes[static_cast<std::size_t>(a)]);
+    if (un < 0) continue;
+    int k = 0;
+    while (k < count && u[static_cast<std::size_t>(k)] != un) ++k;
+    if (k == count) {
+      u[static_cast<std::size_t>(count)] = un;
+      w[static_cast<std::size_t>(count++)] = 0.0;
+    }
+    w[static_cast<std::size_t>(k)] += weight;
+  }
+  return count;
 }
 
 // A rubbing contact's mode for the next pass from its spring's `trial` stretch and its friction
@@ -349,81 +365,110 @@ bool FemSolid::restick(double cap, const Vec3& trial, FemContactResult& r, Slip&
 bool FemSolid::solveContacts(double dt, const std::vector<FemContact>& contacts, bool adjust) {
   std::copy(base_values_.begin(), base_values_.end(), system_.valuePtr());
   rhs_ = base_rhs_;
-  const double k = contact_stiffness_;
-  const auto addDiagonal = [&](int u, const Eigen::Matrix3d& block) {
-    double* values = system_.valuePtr();
-    for (int j = 0; j < 9; ++j) values[diagonal_slots_[static_cast<std::size_t>(u) * 9 + j]] += block(j / 3, j % 3);
-  };
-  const auto active = [&](std::size_t i) {
-    return contacts[i].depth > 0.0 && unknownOf(contacts[i].node) >= 0 && !contact_results_[i].released;
-  };
-  const auto rubs = [&](std::size_t i) { return contacts[i].friction > 0.0; };
-  // A contact on the partner: the partner's translation is an unknown, the rest of its surface's
-  // velocity (its turning) known.
-  const auto coupled = [&](const FemContact& c) {
-    return c.on_partner && partner_ >= 0 && partner_slot_of_[static_cast<std::size_t>(c.node)] >= 0;
-  };
-  const auto known = [&](const FemContact& c) { return coupled(c) ? Vec3(c.surface_velocity - partner_v0_) : c.surface_velocity; };
-  for (std::size_t i = 0; i < contacts.size(); ++i) {
-    if (!active(i)) continue;
-    const FemContact& c = contacts[i];
-    const int u = unknownOf(c.node);
-    const Eigen::Matrix3d nn = c.normal * c.normal.transpose();
-    const Vec3 w = known(c);
-    Vec3 push = dt * k * (c.depth + dt * w.dot(c.normal)) * c.normal;
-    Eigen::Matrix3d block = dt * dt * k * nn;
-    if (rubs(i)) {
-      const Slip& slip = slips_[i];
-      const Eigen::Matrix3d tangent = Eigen::Matrix3d::Identity() - nn;
-      const bool slipping = contact_results_[i].slipping;
-      const Eigen::Matrix3d spring = slipping ? Eigen::Matrix3d(slip.stiffness * (tangent - slip.direction * slip.direction.transpose()))
-                                              : Eigen::Matrix3d(k * tangent);
-      push += dt * spring * (c.slide + dt * w);
-      if (slipping) push += dt * slip.force;
-      block += dt * dt * spring;
-    }
-    rhs_.segment<3>(3 * u) += push;
-    addDiagonal(u, block);
-    if (coupled(c)) {
-      rhs_.segment<3>(3 * partner_) -= push;
-      addPartnerBlocks(c.node, block);
-    }
-  }
+  for (std::size_t i = 0; i < contacts.size(); ++i) addContactRows(dt, contacts[i], i);
   solver_->factorize(system_);
   solver_->solve(rhs_, solution_);
-  if (partner_ >= 0) partner_v_ = solution_.segment<3>(3 * partner_);
+  for (Partner& p : partners_) p.v = solution_.segment<3>(3 * p.unknown);
   bool settled = true;
-  for (std::size_t i = 0; i < contacts.size(); ++i) {
-    FemContactResult& r = contact_results_[i];
-    r.force = Vec3::Zero();
-    if (!active(i)) continue;
-    const FemContact& c = contacts[i];
-    const Vec3 relative = known(c) + (coupled(c) ? partner_v_ : Vec3::Zero()) - solution_.segment<3>(3 * unknownOf(c.node));
-    const double normal = k * (c.depth + dt * relative.dot(c.normal));
-    Vec3 trial = c.slide + dt * relative;  // the tangential spring's stretch were it sticking
-    trial -= trial.dot(c.normal) * c.normal;
-    Slip& slip = slips_[i];
-    Vec3 friction = Vec3::Zero();
-    if (rubs(i)) {
-      friction = r.slipping ? Vec3(slip.force + slip.stiffness * (trial - trial.dot(slip.direction) * slip.direction)) : Vec3(k * trial);
-    }
-    r.force = normal * c.normal + friction;
-    if (!adjust) continue;
-    if (normal < 0.0) {  // it would pull: let go
-      r.released = true;
-      settled = false;
-      continue;
-    }
-    if (rubs(i)) settled = restick(c.friction * normal, trial, r, slip) && settled;
-  }
+  for (std::size_t i = 0; i < contacts.size(); ++i) settled = readContact(dt, contacts[i], i, adjust) && settled;
   return settled;
+}
+
+// Whether contact `c` is on a partner whose nodes hold every node of its point.
+bool FemSolid::coupled(const FemContact& c) const {
+  if (c.partner < 0 || c.partner >= partnerCount()) return false;
+  const std::vector<char>& has = partners_[static_cast<std::size_t>(c.partner)].has;
+  const auto in = [&](int n) { return n < 0 || has[static_cast<std::size_t>(n)] != 0; };
+  return in(c.node) && in(c.others[0]) && in(c.others[1]);
+}
+
+// The velocity of contact `c`'s surface known before the solve: on a partner, all but the
+// partner's translation (its turning).
+Vec3 FemSolid::knownVelocity(const FemContact& c) const {
+  return coupled(c) ? Vec3(c.surface_velocity - partners_[static_cast<std::size_t>(c.partner)].v0) : c.surface_velocity;
+}
+
+// Contact `i`'s springs in its mode added to the system: on its point's unknowns in their
+// weights' products, and between them and its partner's.
+void FemSolid::addContactRows(double dt, const FemContact& c, std::size_t i) {
+  std::array<int, 3> u{};
+  std::array<double, 3> w{};
+  const int count = contactUnknowns(c, u, w);
+  if (!(c.depth > 0.0 && count > 0 && !contact_results_[i].released)) return;
+  const double k = contact_stiffness_;
+  const Eigen::Matrix3d nn = c.normal * c.normal.transpose();
+  const Vec3 vs = knownVelocity(c);
+  Vec3 push = dt * k * (c.depth + dt * vs.dot(c.normal)) * c.normal;
+  Eigen::Matrix3d block = dt * dt * k * nn;
+  if (c.friction > 0.0) {
+    const Slip& slip = slips_[i];
+    const Eigen::Matrix3d tangent = Eigen::Matrix3d::Identity() - nn;
+    const bool slipping = contact_results_[i].slipping;
+    const Eigen::Matrix3d spring = slipping ? Eigen::Matrix3d(slip.stiffness * (tangent - slip.direction * slip.direction.transpose()))
+                                            : Eigen::Matrix3d(k * tangent);
+    push += dt * spring * (c.slide + dt * vs);
+    if (slipping) push += dt * slip.force;
+    block += dt * dt * spring;
+  }
+  const int pu = coupled(c) ? partners_[static_cast<std::size_t>(c.partner)].unknown : -1;
+  for (std::size_t a = 0; a < static_cast<std::size_t>(count); ++a) {
+    rhs_.segment<3>(3 * u[a]) += w[a] * push;
+    for (std::size_t b = 0; b < static_cast<std::size_t>(count); ++b) {
+      if (a == b) addDiagonal(u[a], w[a] * w[a] * block);
+      else addBlock(u[a], u[b], w[a] * w[b] * block);
+    }
+    if (pu >= 0) {
+      addBlock(u[a], pu, -w[a] * block);
+      addBlock(pu, u[a], -w[a] * block);
+    }
+  }
+  if (pu >= 0) {
+    rhs_.segment<3>(3 * pu) -= push;
+    addDiagonal(pu, block);
+  }
+}
+
+// Contact `i`'s force from the solution, and (`adjust`) its mode for another pass; true when its
+// mode holds.
+bool FemSolid::readContact(double dt, const FemContact& c, std::size_t i, bool adjust) {
+  FemContactResult& r = contact_results_[i];
+  r.force = Vec3::Zero();
+  std::array<int, 3> u{};
+  std::array<double, 3> w{};
+  const int count = contactUnknowns(c, u, w);
+  if (!(c.depth > 0.0 && count > 0 && !r.released)) return true;
+  Vec3 point_v = Vec3::Zero();
+  for (std::size_t a = 0; a < static_cast<std::size_t>(count); ++a) point_v += w[a] * solution_.segment<3>(3 * u[a]);
+  const Vec3 partner_v = coupled(c) ? partners_[static_cast<std::size_t>(c.partner)].v : Vec3::Zero();
+  const Vec3 relative = knownVelocity(c) + partner_v - point_v;
+  const double normal = contact_stiffness_ * (c.depth + dt * relative.dot(c.normal));
+  Vec3 trial = c.slide + dt * relative;  // the tangential spring's stretch were it sticking
+  trial -= trial.dot(c.normal) * c.normal;
+  Slip& slip = slips_[i];
+  Vec3 friction = Vec3::Zero();
+  if (c.friction > 0.0) {
+    friction = r.slipping ? Vec3(slip.force + slip.stiffness * (trial - trial.dot(slip.direction) * slip.direction))
+                          : Vec3(contact_stiffness_ * trial);
+  }
+  r.force = normal * c.normal + friction;
+  if (!adjust) return true;
+  if (normal < 0.0) {  // it would pull: let go
+    r.released = true;
+    return false;
+  }
+  return c.friction > 0.0 ? restick(c.friction * normal, trial, r, slip) : true;
+}
+
+void FemSolid::addDiagonal(int u, const Eigen::Matrix3d& block) {
+  double* values = system_.valuePtr();
+  for (int j = 0; j < 9; ++j) values[diagonal_slots_[static_cast<std::size_t>(u) * 9 + j]] += block(j / 3, j % 3);
 }
 
 void FemSolid::step(double dt, const std::vector<Vec3>& node_forces, const Vec3& bone_force,
                     const std::vector<FemContact>& contacts) {
   if (!analysed_) {  // number the unknowns: the bone first, then each free node
     unknowns_ = has_bone_ ? 1 : 0;
-    if (partner_ >= 0) partner_ = unknowns_++;
+    for (Partner& p : partners_) p.unknown = unknowns_++;
     for (int& u : unknown_) {
       if (u == kFree) u = unknowns_++;
     }
@@ -450,7 +495,8 @@ void FemSolid::step(double dt, const std::vector<Vec3>& node_forces, const Vec3&
     const Slip& last = node_slips_[static_cast<std::size_t>(c.node)];
     const Vec3 direction = last.direction - last.direction.dot(c.normal) * c.normal;
     const bool fresh = (c.slide - c.slide.dot(c.normal) * c.normal).squaredNorm() == 0.0;
-    if (c.friction > 0.0 && c.depth > 0.0 && unknownOf(c.node) >= 0 && last.stiffness > 0.0 && !fresh && direction.norm() > 0.5) {
+    const bool node_contact = c.others[0] < 0 && c.others[1] < 0;  // a face's point starts sticking
+    if (node_contact && c.friction > 0.0 && c.depth > 0.0 && unknownOf(c.node) >= 0 && last.stiffness > 0.0 && !fresh && direction.norm() > 0.5) {
       contact_results_[i].slipping = true;
       slips_[i] = {last.force.norm() * direction.normalized(), direction.normalized(), last.stiffness};
     }
@@ -480,7 +526,7 @@ void FemSolid::step(double dt, const std::vector<Vec3>& node_forces, const Vec3&
   for (std::size_t i = 0; i < contacts.size(); ++i) {
     contact_forces_[i] = contact_results_[i].force;
     const FemContactResult& r = contact_results_[i];
-    if (r.slipping && !r.released) node_slips_[static_cast<std::size_t>(contacts[i].node)] = slips_[i];
+    if (r.slipping && !r.released && contacts[i].others[0] < 0 && contacts[i].others[1] < 0) node_slips_[static_cast<std::size_t>(contacts[i].node)] = slips_[i];
   }
 }
 

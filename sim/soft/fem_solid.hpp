@@ -8,6 +8,7 @@
 
 #include <Eigen/SparseCore>
 
+#include <array>
 #include <memory>
 #include <vector>
 
@@ -39,10 +40,15 @@ struct FemContact {
   Vec3 surface_velocity = Vec3::Zero();
   Vec3 slide = Vec3::Zero();  ///< tangential (the part along `normal` is ignored)
   double friction = 0.0;      ///< Coulomb coefficient; 0: frictionless
-  /// The surface is the partner's (enablePartner): its translation moves with the partner's
-  /// velocity solved in the step, `surface_velocity` less the partner's velocity at the step's
-  /// start the rest (its turning).
-  bool on_partner = false;
+  /// The surface is partner `partner`'s (addPartner; -1: none): its translation moves with the
+  /// partner's velocity solved in the step, `surface_velocity` less the partner's velocity at the
+  /// step's start the rest (its turning).
+  int partner = -1;
+  /// A point of a face instead of a node: `node` and `others` (-1: none) weighted by `weights`
+  /// (barycentric, summing to 1), the spring's force shared by them in those parts. Unused for
+  /// a node's own contact (both -1).
+  std::array<int, 2> others{-1, -1};
+  Vec3 weights = Vec3(1.0, 0.0, 0.0);
 };
 
 /// What a contact did over the last step: the force on its node at the step's end (N), and
@@ -52,6 +58,10 @@ struct FemContactResult {
   bool slipping = false;
   bool released = false;
 };
+
+/// The rotation nearest to `f` (maximising trace(Rᵀ f)), found by turning `start` (say, the
+/// last one) until the turn is under 1e-9 rad; a proper rotation even for an inverted `f`.
+Eigen::Quaterniond nearestRotation(const Eigen::Matrix3d& f, Eigen::Quaterniond start);
 
 /// Throws std::invalid_argument naming the field when `m` is not a material the solid can take.
 void validateMaterial(const FemMaterial& m);
@@ -72,12 +82,15 @@ class FemSolid {
   void fixNodes(const std::vector<int>& nodes);
   /// A rigid partner that contacts of any of `nodes` may press: its translation solved with the
   /// solid, so a light body between stiff contacts stays stable (its turning stays explicit).
-  /// Call before the first step; setPartner() before each step that has one.
-  void enablePartner(const std::vector<int>& nodes);
-  /// This step's partner: `mass_kg` (> 0) at `velocity` (m/s) at the step's start.
-  void setPartner(double mass_kg, const Vec3& velocity);
-  /// The partner's velocity at the step's end as the solid's step saw it (m/s).
-  const Vec3& partnerVelocity() const { return partner_v_; }
+  /// Returns its index (0, 1, ... in the order added). Call before the first step; setPartner()
+  /// before each step that has it.
+  int addPartner(const std::vector<int>& nodes);
+  /// Partner `k`'s step: `mass_kg` (> 0) at `velocity` (m/s) at the step's start, pushed by
+  /// `force` (N) besides the contacts.
+  void setPartner(int k, double mass_kg, const Vec3& velocity, const Vec3& force = Vec3::Zero());
+  /// Partner `k`'s velocity at the step's end as the solid's step saw it (m/s).
+  const Vec3& partnerVelocity(int k) const { return partners_[static_cast<std::size_t>(k)].v; }
+  int partnerCount() const { return static_cast<int>(partners_.size()); }
 
   /// Each contact a stiff spring of `n_per_m` (N/m) along its normal, implicit in the step
   /// (k n nᵀ in the system, so a stiff one stays stable), pushing while the node is below.
@@ -145,7 +158,16 @@ class FemSolid {
   Eigen::Matrix3d deformation(std::size_t e) const;
   void addElementForce(std::size_t e, const Eigen::Matrix3d& r, std::vector<Vec3>& out) const;
   int unknownOf(int node) const { return unknown_[static_cast<std::size_t>(node)]; }
-  void addPartnerBlocks(int node, const Eigen::Matrix3d& block);
+  void addContactRows(double dt, const FemContact& c, std::size_t i);
+  bool readContact(double dt, const FemContact& c, std::size_t i, bool adjust);
+  bool coupled(const FemContact& c) const;
+  Vec3 knownVelocity(const FemContact& c) const;
+  void addDiagonal(int u, const Eigen::Matrix3d& block);
+  /// Adds `block` to the system's 3×3 block of unknowns (ua, ub), which its pattern holds.
+  void addBlock(int ua, int ub, const Eigen::Matrix3d& block);
+  /// The contact's point's weights per unknown (fixed nodes left out; a bone's nodes merged):
+  /// how many, into `u` and `w`.
+  int contactUnknowns(const FemContact& c, std::array<int, 3>& u, std::array<double, 3>& w) const;
 
   std::vector<std::array<int, 4>> tets_;
   std::vector<Element> elements_;
@@ -159,13 +181,15 @@ class FemSolid {
   Vec3 bone_offset_ = Vec3::Zero(), bone_v_ = Vec3::Zero();
   int unknowns_ = 0;
   double contact_stiffness_ = 1e5;
-  // The partner (enablePartner): its unknown, its nodes' coupling blocks' value slots.
-  int partner_ = -1;
-  std::vector<int> partner_nodes_;
-  std::vector<int> partner_slot_of_;  // per node: its index in partner_nodes_, -1 none
-  std::vector<int> partner_slots_;    // per partner node: (node, partner) then (partner, node), 9 each
-  double partner_mass_ = 1.0;
-  Vec3 partner_v0_ = Vec3::Zero(), partner_v_ = Vec3::Zero();
+  // The partners (addPartner): each one's unknown, nodes and step.
+  struct Partner {
+    std::vector<int> nodes;
+    std::vector<char> has;  // per node: among `nodes`
+    int unknown = -1;
+    double mass = 1.0;
+    Vec3 v0 = Vec3::Zero(), force = Vec3::Zero(), v = Vec3::Zero();
+  };
+  std::vector<Partner> partners_;
   std::vector<Vec3> contact_forces_;
   struct Kept {
     std::vector<Vec3> x;

@@ -228,6 +228,12 @@ BodyShapes makeBodyShapes(const BodyDesc& d) {
       case ShapeKind::kConcaveMesh:
         makeMeshShapes(d, out);
         break;
+      case ShapeKind::kSoftBox:
+      case ShapeKind::kSoftSphere:
+      case ShapeKind::kSoftCylinder:
+      case ShapeKind::kSoftMesh:  // a soft body's placeholder (world_soft.cpp): no walk mesh of its own
+        out.shape = std::make_unique<btSphereShape>(1e-3);
+        return out;
     }
   } catch (const DescriptionError&) {
     throw;

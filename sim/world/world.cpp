@@ -30,6 +30,7 @@ void World::step(double dt, std::span<const DeviceSample> devices) {
   w.applyCouplings(devices, dt);
   w.applyLoads();
   w.stepPads(dt);
+  w.stepSoftBodies(dt);
   w.saveStates();
   w.world.stepSimulation(dt, 0, dt);
   w.countStep(dt);
@@ -52,6 +53,7 @@ const WorldCounters& World::counters() const {
 Pose World::bodyPose(int body) const {
   GF_ASSERT_OWNER();
   const Impl::Body& b = impl_->bodies[body];
+  if (b.soft) return impl_->softPose(body);
   const btTransform t = b.rigid->getWorldTransform() * b.shapes.desc_from_body.inverse();
   const btQuaternion q = t.getRotation();
   return {toEigen(t.getOrigin()), Eigen::Quaterniond(q.w(), q.x(), q.y(), q.z())};
@@ -59,12 +61,14 @@ Pose World::bodyPose(int body) const {
 
 Vec3 World::bodyLinearVelocity(int body) const {
   GF_ASSERT_OWNER();
-  return toEigen(impl_->bodies[body].rigid->getLinearVelocity());
+  const Impl::Body& b = impl_->bodies[body];
+  return b.soft ? b.soft->velocity() : toEigen(b.rigid->getLinearVelocity());
 }
 
 Vec3 World::bodyAngularVelocity(int body) const {
   GF_ASSERT_OWNER();
-  return toEigen(impl_->bodies[body].rigid->getAngularVelocity());
+  const Impl::Body& b = impl_->bodies[body];
+  return b.soft ? b.soft->angularVelocity() : toEigen(b.rigid->getAngularVelocity());
 }
 
 namespace {
@@ -92,6 +96,7 @@ std::vector<World::Overlap> World::bodyOverlaps(double tolerance) const {
   auto& bodies = impl_->bodies;
   for (std::size_t a = 0; a < bodies.size(); ++a) {
     for (std::size_t b = a + 1; b < bodies.size(); ++b) {
+      if (bodies[a].soft || bodies[b].soft) continue;  // soft bodies are not Bullet's
       btRigidBody& ra = *bodies[a].rigid;
       btRigidBody& rb = *bodies[b].rigid;
       if (ra.getInvMass() == 0.0 && rb.getInvMass() == 0.0) continue;
@@ -107,6 +112,7 @@ std::vector<World::ProxyOverlap> World::proxyOverlaps(double tolerance) const {
   std::vector<ProxyOverlap> out;
   for (std::size_t f = 0; f < impl_->fingers.size(); ++f) {
     for (std::size_t b = 0; b < impl_->bodies.size(); ++b) {
+      if (impl_->bodies[b].soft) continue;
       const double depth = overlapDepth(impl_->world, *impl_->fingers[f].proxy, *impl_->bodies[b].rigid);
       if (depth > tolerance) out.push_back({static_cast<int>(f), static_cast<int>(b), depth});
     }
@@ -168,7 +174,7 @@ const PortObserver& World::portObserver(int finger) const {
 bool World::touching(int finger) const {
   GF_ASSERT_OWNER();
   const Impl::Finger& f = impl_->fingers[finger];
-  return f.contact_count > 0 || (f.pad && !f.pad->contacts().empty());
+  return f.contact_count > 0 || (f.pad && !f.pad->contacts().empty()) || f.soft_count > 0;
 }
 
 int World::sgoCount(int finger) const {
@@ -176,6 +182,10 @@ int World::sgoCount(int finger) const {
   const Impl::Finger& f = impl_->fingers[finger];
   int n = 0;
   for (int k = 0; k < f.contact_count; ++k) n += f.contacts[k].sgo_count;
+  for (int k = 0; k < f.soft_count; ++k) {  // a soft body's pad: its pressed nodes (a god-object's one point is none)
+    const SoftTouch& t = f.soft[static_cast<std::size_t>(k)];
+    n += t.centre_press ? 0 : t.press_count;
+  }
   // A soft pad's points: its skin nodes pressed into bodies.
   return n + (f.pad ? static_cast<int>(f.pad->contacts().size()) : 0);
 }
@@ -208,6 +218,11 @@ double World::contactRadius(int finger) const {
     for (int k = 0; k < count; ++k) sum += std::sqrt(touches[static_cast<std::size_t>(k)].area / std::numbers::pi);
     n += count;
   }
+  for (int k = 0; k < f.soft_count; ++k) {
+    if (f.soft[static_cast<std::size_t>(k)].radius <= 0.0) continue;
+    sum += f.soft[static_cast<std::size_t>(k)].radius;
+    ++n;
+  }
   for (int k = 0; k < f.contact_count; ++k) {
     if (!f.contacts[k].record.patch.valid) continue;
     sum += f.contacts[k].record.patch.radius;
@@ -236,6 +251,14 @@ bool World::deepestTouch(int finger, Touch& out) const {
       return true;
     }
   }
+  const SoftTouch* soft = nullptr;  // a soft body's deepest touch, when deeper
+  for (int k = 0; k < f.soft_count; ++k) {
+    if (!soft || f.soft[static_cast<std::size_t>(k)].separation < soft->separation) soft = &f.soft[static_cast<std::size_t>(k)];
+  }
+  if (soft && (!deepest || soft->separation < deepest->record.contact.separation)) {
+    out = Touch{soft->body, soft->point, soft->normal, soft->separation};
+    return true;
+  }
   if (!deepest) return false;
   const ContactRecord& r = deepest->record;
   const Pose frame = impl_->bodyFrame(r.body);
@@ -257,6 +280,11 @@ double World::mechanicalEnergy() const {
     e += 0.5 * m * r->getLinearVelocity().length2() + 0.5 * w.dot(iw);
     e -= m * r->getGravity().dot(r->getCenterOfMassPosition());
   }
+  for (int b : impl_->soft_bodies) {  // a soft body's motion, its weight's height
+    const SoftBody& s = *impl_->bodies[static_cast<std::size_t>(b)].soft;
+    e += s.kineticEnergy();
+    if (impl_->desc.effects.gravity) e -= s.mass() * impl_->desc.world.gravity.dot(s.frame().position);
+  }
   for (const Impl::Finger& f : impl_->fingers) {
     if (f.pad) e += f.pad->kineticEnergy();  // its tissue's motion (its bone's is the proxy's, above)
   }
@@ -265,6 +293,7 @@ double World::mechanicalEnergy() const {
 
 void World::applyTorqueImpulse(int body, const Vec3& impulse) {
   GF_ASSERT_OWNER();
+  if (impl_->bodies[body].soft) return;  // a soft body takes none (its loads are spread over its nodes)
   impl_->bodies[body].rigid->applyTorqueImpulse(toBt(impulse));
 }
 
@@ -319,7 +348,9 @@ void World::snapshot(Snapshot& out) const {
       toSnapshotLoads(w.snapshot_loads, frame, fs.contacts[k]);
     }
     if (f.pad) w.padSnapshot(f, fs);
+    w.softSnapshot(f, fs);
   }
+  w.softBodySnapshot(out);
 }
 
 }  // namespace gf::sim

@@ -37,6 +37,7 @@ struct WorldCounters {
   long crossing_limit_stops = 0;  ///< SGOs whose walk used up its edge-crossing budget (stopped short)
   long tunnelling_stops = 0;      ///< proxies stopped where their step's path entered a body
   long pad_resets = 0;            ///< fem_pad pads put back at rest (turned inside out or not finite)
+  long soft_resets = 0;           ///< soft bodies' steps undone (turned inside out or not finite)
   long patch_calls = 0;           ///< patches computed (one per god-finger contact per step)
   double patch_seconds = 0.0;     ///< wall time spent computing them (steady clock)
   long warm_walks = 0;            ///< radial walks carried from the last step's path
@@ -129,7 +130,8 @@ class World {
   /// from the body to the proxy, `out.separation` is negative while the proxy penetrates (m).
   bool deepestTouch(int finger, Touch& out) const;
 
-  /// Applies an angular impulse (N m s, world frame) to body i now.
+  /// Applies an angular impulse (N m s, world frame) to body i now (a rigid one: a soft body
+  /// takes none).
   void applyTorqueImpulse(int body, const Vec3& impulse);
   /// Sets the god-finger settings of finger i from the next step on (n_sgo 0: god-object).
   /// Throws DescriptionError naming the finger and the first setting that is not legal.

@@ -56,6 +56,16 @@ void World::Impl::configureSolver() {
 void World::Impl::addBody(int index, const BodyDesc& d) {
   Body& b = bodies[index];
   b.shapes = makeBodyShapes(d);
+  if (isSoftShape(d.shape)) {  // its placeholder: static, colliding with nothing
+    addSoftBody(index, d);
+    btRigidBody::btRigidBodyConstructionInfo ci(0.0, nullptr, b.shapes.shape.get());
+    ci.m_startWorldTransform = poseOf(d.position, d.orientation);
+    b.rigid = std::make_unique<btRigidBody>(ci);
+    b.rigid->setUserIndex(index);
+    b.rigid->setCollisionFlags(b.rigid->getCollisionFlags() | btCollisionObject::CF_NO_CONTACT_RESPONSE);
+    world.addRigidBody(b.rigid.get(), 0, 0);
+    return;
+  }
   btRigidBody::btRigidBodyConstructionInfo ci(d.mass, nullptr, b.shapes.shape.get(), b.shapes.local_inertia);
   ci.m_startWorldTransform = poseOf(d.position, d.orientation) * b.shapes.desc_from_body;
   ci.m_friction = desc.effects.friction ? d.friction : 0.0;
@@ -180,9 +190,14 @@ void World::Impl::slewSentForces(double dt) {
 
 // The scene's loads at the step's start time; Bullet clears applied forces after each step.
 void World::Impl::applyLoads() {
+  for (int b : soft_bodies) bodies[static_cast<std::size_t>(b)].soft->setLoad(Vec3::Zero(), Vec3::Zero());
   for (const LoadDesc& load : desc.loads) {
     const double factor = loadFactor(load, time);
     if (factor == 0.0) continue;
+    if (SoftBody* soft = bodies[static_cast<std::size_t>(load.body)].soft.get()) {
+      soft->addLoad(factor * load.force, factor * load.torque);
+      continue;
+    }
     btRigidBody& r = *bodies[static_cast<std::size_t>(load.body)].rigid;
     r.applyCentralForce(toBt(factor * load.force));
     r.applyTorque(toBt(factor * load.torque));

@@ -19,6 +19,8 @@
 #include "sim/contact/contact_algorithms.hpp"
 #include "sim/world/world.hpp"
 #include "sim/soft/fem_pad.hpp"
+#include "sim/soft/soft_body.hpp"
+#include "sim/patch/god_finger.hpp"
 
 namespace gf::sim {
 
@@ -27,6 +29,10 @@ namespace gf::sim {
 inline constexpr double kResumeWashSpeed = 0.02;
 inline constexpr double kResumeWashTime = 0.5;
 inline constexpr double kResumeWashDone = 1e-9;
+
+/// A finger's proxy touches a soft body this close to its surface (m): its presses whose points
+/// are not inside its pad do nothing.
+inline constexpr double kSoftTouchMargin = 5e-4;
 
 /// A finger handles at most this many touched bodies per step; further ones stay god-objects.
 inline constexpr int kMaxContactsPerFinger = 4;
@@ -50,10 +56,35 @@ struct PadTouch {
   bool sliding = false;           ///< every pressed node slips
 };
 
+/// A finger's touch of a soft body in one step (world_soft.cpp).
+struct SoftTouch {
+  int body = -1;
+  Vec3 point = Vec3::Zero();      ///< the closest point of the surface to the proxy's centre
+  Vec3 normal = Vec3::UnitY();    ///< outward, from the body towards the proxy (unit)
+  double separation = 0.0;        ///< negative: how deep the proxy's sphere reaches in (m)
+  double press_depth = 0.0;       ///< v . c_n of Eq. 1 (m)
+  double radius = 0.0;            ///< Eq. 1's (m); 0 for a god-object
+  double indentation = 0.0;       ///< how far the surface at `point` sank from its rest (m)
+  Feature feature = Feature::kFace;
+  int face = -1;                  ///< the surface's face at `point`
+  Vec3 weights = Vec3(1.0, 0.0, 0.0);  ///< `point`'s barycentric coordinates in it
+  bool centre_press = false;      ///< a god-object's: its one press is the contact point's
+  Patch patch;                    ///< the god-finger's patch on the surface this step
+  Vec3 ring_tangent = Vec3::Zero();  ///< the last patch's, so the ring does not turn
+  int first_press = 0, press_count = 0;  ///< its presses in the body's step
+  std::vector<int> last_nodes;    ///< the nodes its pad pressed (the last step's, until this one's are chosen)
+  std::vector<Vec3> sgos;         ///< the pressed points at the step's end (a god-object's: its one)
+  std::vector<PointLoad> loads;   ///< their loads on the body
+  Vec3 force = Vec3::Zero();      ///< on the body (N)
+  bool sliding = false;
+};
+
 struct World::Impl final : SolveHooks {
   struct Body {
     BodyShapes shapes;
-    std::unique_ptr<btRigidBody> rigid;
+    std::unique_ptr<btRigidBody> rigid;  // a soft body's collides with nothing
+    std::unique_ptr<SoftBody> soft;      // soft shapes only
+    Vec3 soft_origin = Vec3::Zero();     // the soft body's centre of mass at rest (world)
   };
   struct Finger {
     std::unique_ptr<btSphereShape> shape;
@@ -79,6 +110,9 @@ struct World::Impl final : SolveHooks {
     std::array<WalkCache, kMaxContactsPerFinger> memory_walks;
     // fem_pad's soft pad on the proxy (its bone), null for every other model (world_pad.cpp).
     std::unique_ptr<FemPad> pad;
+    // Its touches of soft bodies this step (world_soft.cpp).
+    std::array<SoftTouch, kMaxContactsPerFinger> soft;
+    int soft_count = 0;
 
     const ContactMemory* memoryOf(int body) const {
       for (int k = 0; k < memory_count; ++k) {
@@ -150,6 +184,22 @@ struct World::Impl final : SolveHooks {
   /// Pad `f`'s last step's contacts gathered by body, the first kMaxContactsPerFinger bodies
   /// touched, into `out`; returns how many. Does not allocate.
   int padTouches(const Finger& f, std::array<PadTouch, kMaxContactsPerFinger>& out) const;
+
+  // Soft bodies (world_soft.cpp): stepped before Bullet's step, after the pads.
+  void addSoftBody(int index, const BodyDesc& d);
+  Pose softPose(int body) const;  ///< the description frame of soft body `body` now
+  void touchSoft(Finger& f, int fi, int body);
+  void padNodes(const SoftTouch& t, const SoftBody& s, double walk_fill);
+  void stepSoftBodies(double dt);
+  void readSoftStep(int body, SoftBody& s, double dt);
+  void softSnapshot(const Finger& f, FingerSnapshot& out) const;
+  void softBodySnapshot(Snapshot& out) const;
+  std::vector<int> soft_bodies;  // the soft bodies' indices
+  std::vector<SoftPress> soft_presses;
+  std::vector<SoftFinger> soft_fingers;
+  std::vector<char> soft_given;
+  std::vector<int> soft_faces, soft_nodes;                  // padNodes' scratch
+  std::vector<std::pair<double, double>> soft_outline;      // padNodes' scratch: (angle, reach) per SGO
 
   // Step safety (world_safety.cpp).
   void saveStates();   ///< every body's and proxy's state before the step

@@ -194,12 +194,14 @@ TEST(Settings, LoadRules) {
 }
 
 TEST(Settings, ShapesAndEffectsComeFromTables) {
-  ASSERT_EQ(shapeInfos().size(), 8u);
+  ASSERT_EQ(shapeInfos().size(), 12u);
   for (std::size_t i = 0; i < shapeInfos().size(); ++i) {
     EXPECT_EQ(static_cast<std::size_t>(shapeInfos()[i].kind), i) << "rows in ShapeKind order";
   }
   EXPECT_TRUE(isMeshShape(ShapeKind::kConcaveMesh));
   EXPECT_FALSE(isMeshShape(ShapeKind::kCapsule));
+  EXPECT_FALSE(isMeshShape(ShapeKind::kSoftMesh)) << "a soft mesh is tetrahedra, no triangle mesh";
+  EXPECT_TRUE(isSoftShape(ShapeKind::kSoftBox) && isSoftShape(ShapeKind::kSoftMesh) && !isSoftShape(ShapeKind::kConcaveMesh));
   EffectSet e;
   for (const EffectSwitch& s : effectSwitches()) e.*s.on = false;
   EXPECT_FALSE(e.gravity || e.friction || e.god_finger || e.tangential_stretch || e.angular_threshold ||
