@@ -403,12 +403,7 @@ std::optional<FieldError> validateBody(const BodyDesc& body) {
   if (std::optional<FieldError> e = firstBadSetting(bodySettings(), body, static_mass)) return e;
   const ShapeInfo& shape = shapeInfo(body.shape);
   if (body.shape == ShapeKind::kPlane && body.mass != 0.0) return FieldError{"mass", "a plane must be static (mass 0)"};
-  if (isSoftShape(body.shape) && body.mass == 0.0) {
-    return FieldError{"static", "a soft body is dynamic: hold it with pinned boxes instead"};
-  }
-  if (isSoftShape(body.shape) && body.shape == ShapeKind::kSoftMesh && body.soft.tet_path.empty() && !body.soft.tets) {
-    return FieldError{"tets", "is empty"};
-  }
+  if (std::optional<FieldError> e = validateSoftBody(body)) return e;
   if (body.walk_resolution != 0 &&
       (body.walk_resolution < shape.min_resolution || body.walk_resolution > shape.max_resolution)) {
     return FieldError{"walk_resolution", shape.max_resolution == 0
@@ -455,6 +450,11 @@ std::optional<FieldError> validateFinger(const FingerDesc& finger) {
     return FieldError{"proxy_radius", "must exceed max_force / contact_stiffness = " + bound +
                                           " m, how deep the contact lets the proxy in at the coupling's clamp (lower "
                                           "max_force or raise contact_stiffness), got " + got};
+  }
+  // A walk filled every walk_fill: below 0.1 mm the points (each a closest-point query a step)
+  // outnumber any mesh's faces.
+  if (finger.soft_walk_fill > 0.0 && finger.soft_walk_fill < kMinWalkFill) {
+    return FieldError{"walk_fill", "must be 0 (off) or at least " + shown(kMinWalkFill) + " m, got " + shown(finger.soft_walk_fill)};
   }
   // The pad's axis is a direction: normalized where it is used, so it needs a length.
   if (!(finger.patch.pad_axis.norm() >= kMinPadAxisLength)) {

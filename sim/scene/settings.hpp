@@ -18,6 +18,10 @@ namespace gf::sim {
 
 /// Young's modulus of a soft body (Pa): a sponge's 10 kPa to a stiff rubber's 10 MPa.
 inline constexpr double kMinSoftYoung = 1e4, kMaxSoftYoung = 1e7;
+/// A soft body's density (its mass over its tetrahedra's volume, kg/m³): what its material takes.
+inline constexpr double kMinSoftDensity = 100.0, kMaxSoftDensity = 1e4;
+/// A finger's walk_fill, when on (m).
+inline constexpr double kMinWalkFill = 1e-4;
 
 /// m: the largest scene coordinate a position (body, keyframe, device) may have.
 inline constexpr double kMaxSceneCoordinate = 1e3;
@@ -172,6 +176,11 @@ struct EffectSwitch {
 };
 /// The physics effects, in scene-file documentation order.
 std::span<const EffectSwitch> effectSwitches();
+
+/// A soft body's own rules (scene_desc.cpp): dynamic, a file when soft_mesh, its density (its
+/// mass over its tetrahedra's volume, once `soft.tets` is loaded) in kMinSoftDensity..
+/// kMaxSoftDensity. Part of validateBody.
+std::optional<FieldError> validateSoftBody(const BodyDesc& body);
 
 /// The first field of the scene-wide settings (not bodies nor fingers) that is not legal.
 std::optional<FieldError> validateScene(const SceneDesc& scene);

@@ -33,6 +33,8 @@ inline constexpr double kResumeWashDone = 1e-9;
 /// A finger's proxy touches a soft body this close to its surface (m): its presses whose points
 /// are not inside its pad do nothing.
 inline constexpr double kSoftTouchMargin = 5e-4;
+/// A god-finger's pad on a soft body gathers the faces of at most this many points.
+inline constexpr std::size_t kMaxPadFaces = 4096;
 
 /// A finger handles at most this many touched bodies per step; further ones stay god-objects.
 inline constexpr int kMaxContactsPerFinger = 4;

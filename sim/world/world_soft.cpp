@@ -87,8 +87,16 @@ void World::Impl::touchSoft(Finger& f, int fi, int body) {
   const bool outside = d.dot(mesh.faceNormal(hit.face)) >= 0.0;
   const double separation = outside ? dist - radius : -dist - radius;
   if (!(separation < kSoftTouchMargin)) return;
+  // The slot that held this body's touch in the last step, if any, takes this one (its ring's
+  // reference and its pressed nodes carry over).
+  for (int k = f.soft_count + 1; k < kMaxContactsPerFinger; ++k) {
+    if (f.soft[static_cast<std::size_t>(k)].body == body) std::swap(f.soft[static_cast<std::size_t>(k)], f.soft[static_cast<std::size_t>(f.soft_count)]);
+  }
   SoftTouch& t = f.soft[static_cast<std::size_t>(f.soft_count++)];
-  if (t.body != body) t.last_nodes.clear();  // the slot held another body's touch
+  if (t.body != body) {  // the slot held another body's touch
+    t.last_nodes.clear();
+    t.ring_tangent = Vec3::Zero();
+  }
   t.body = body;
   t.point = hit.point;
   // The surface's normal at rest at the touched point (its corners' normals interpolated), carried
@@ -115,7 +123,9 @@ void World::Impl::touchSoft(Finger& f, int fi, int body) {
   if (!t.patch.valid || t.patch.sgos.empty() || soft_nodes.empty()) {
     const Vec3 towards = hit.point - c;
     const Vec3 n = outside && towards.norm() > 1e-12 ? Vec3(towards.normalized()) : Vec3(-t.normal);
-    soft_presses.push_back({fi, hit.face, -1, t.weights, n, radius - towards.norm(), friction, -1});
+    // How far the point must move along n to leave the sphere: r - d outside, r + d with the
+    // centre inside the body.
+    soft_presses.push_back({fi, hit.face, -1, t.weights, n, radius - towards.dot(n), friction, -1});
     t.press_count = 1;
     t.centre_press = true;
     t.last_nodes.clear();
@@ -153,7 +163,7 @@ void World::Impl::padNodes(const SoftTouch& t, const SoftBody& s, double walk_fi
       for (std::int32_t i = p.path_offsets[k]; i < p.path_offsets[k + 1]; ++i) {
         const Vec3 to = p.path_points[static_cast<std::size_t>(i)];
         const double length = (to - from).norm();
-        for (double at = walk_fill - carried; at < length; at += walk_fill) {
+        for (double at = walk_fill - carried; at < length && soft_faces.size() < kMaxPadFaces; at += walk_fill) {
           soft_faces.push_back(mesh.closestPoint(from + (to - from) * (at / length), 1e-9).face);
         }
         carried = length > 0.0 ? std::fmod(carried + length, walk_fill) : carried;
@@ -224,7 +234,14 @@ void World::Impl::stepSoftBodies(double dt) {
       Finger& f = fingers[i];
       const int before = f.soft_count;
       touchSoft(f, static_cast<int>(i), body);
-      const bool first = f.soft_count > before && !given[i];
+      // The coupling's force goes to the first body the finger presses (a press inside its pad),
+      // not one it only comes within the touch margin of.
+      bool presses = false;
+      if (f.soft_count > before) {
+        const SoftTouch& t = f.soft[static_cast<std::size_t>(before)];
+        for (int p = t.first_press; p < t.first_press + t.press_count; ++p) presses = presses || soft_presses[static_cast<std::size_t>(p)].depth > 0.0;
+      }
+      const bool first = presses && !given[i];
       soft_fingers[i] = {desc.fingers[i].proxy.mass, toEigen(f.proxy->getLinearVelocity()), first ? f.force : Vec3::Zero()};
       given[i] = given[i] || first;
     }

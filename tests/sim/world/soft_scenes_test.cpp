@@ -7,6 +7,11 @@
 
 #include <cmath>
 
+#include <filesystem>
+#include <fstream>
+
+#include "sim/scene/settings.hpp"
+#include "tests/scratch.hpp"
 #include "tests/sim/angles.hpp"
 #include "tests/sim/test_context.hpp"
 
@@ -98,6 +103,44 @@ TEST(SoftScenes, APressedSpongeIndentsUnderThePadAndStaysFinite) {
   EXPECT_GE(c.sgos_world.size(), 1u) << "the pad presses nodes";
   EXPECT_EQ(ctx.world().counters().soft_resets, 0);
   EXPECT_EQ(ctx.world().counters().nan_recoveries, 0);
+}
+
+// What a scene may give a soft body is what it can take: a density outside its material's range
+// is refused naming `mass`, a walk_fill below 0.1 mm naming `walk_fill`; a file's nodes that no
+// tetrahedron uses (second-order elements' mid-edge nodes) are dropped, so the solve has none
+// without mass or stiffness.
+TEST(SoftDescriptions, DensityWalkFillAndUnusedNodes) {
+  sim::BodyDesc b;
+  b.name = "block";
+  b.shape = sim::ShapeKind::kSoftBox;
+  b.half_extents = sim::Vec3(0.01, 0.01, 0.01);
+  b.soft.element_size = 0.01;
+  b.soft.tets = sim::softMesh(b);
+  b.mass = 0.1;  // 12 500 kg/m³ over 8 cm³
+  const std::optional<sim::FieldError> heavy = sim::validateBody(b);
+  ASSERT_TRUE(heavy.has_value());
+  EXPECT_EQ(heavy->field, "mass");
+  b.mass = 0.01;
+  EXPECT_FALSE(sim::validateBody(b).has_value());
+  sim::FingerDesc f;
+  f.soft_walk_fill = 1e-9;
+  const std::optional<sim::FieldError> fill = sim::validateFinger(f);
+  ASSERT_TRUE(fill.has_value());
+  EXPECT_EQ(fill->field, "walk_fill");
+  f.soft_walk_fill = 0.0;
+  const std::optional<sim::FieldError> off = sim::validateFinger(f);
+  EXPECT_TRUE(!off || off->field != "walk_fill");
+
+  const std::filesystem::path dir = gf::test::scratchRoot() / "soft_unused_nodes";
+  std::filesystem::create_directories(dir);
+  std::ofstream(dir / "t.node") << "5 3 0 0\n0 0 0 0\n1 0.01 0 0\n2 0 0.01 0\n3 0 0 0.01\n4 0.5 0.5 0.5\n";
+  std::ofstream(dir / "t.ele") << "1 4 0\n0 0 1 2 3\n";
+  sim::BodyDesc m;
+  m.shape = sim::ShapeKind::kSoftMesh;
+  m.soft.tet_path = (dir / "t.node").string();
+  const std::shared_ptr<const sim::TetMesh> mesh = sim::softMesh(m);
+  EXPECT_EQ(mesh->nodes.size(), 4u) << "the node no tetrahedron uses is dropped";
+  EXPECT_EQ(mesh->surface.size(), 4u);
 }
 
 }  // namespace
