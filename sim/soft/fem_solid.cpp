@@ -394,7 +394,7 @@ void FemSolid::addContactRows(double dt, const FemContact& c, std::size_t i) {
   std::array<int, 3> u{};
   std::array<double, 3> w{};
   const int count = contactUnknowns(c, u, w);
-  if (!(c.depth > 0.0 && count > 0 && !contact_results_[i].released)) return;
+  if (!((c.depth > 0.0 || c.bilateral) && count > 0 && !contact_results_[i].released)) return;
   const double k = contact_stiffness_;
   const Eigen::Matrix3d nn = c.normal * c.normal.transpose();
   const Vec3 vs = knownVelocity(c);
@@ -436,7 +436,7 @@ bool FemSolid::readContact(double dt, const FemContact& c, std::size_t i, bool a
   std::array<int, 3> u{};
   std::array<double, 3> w{};
   const int count = contactUnknowns(c, u, w);
-  if (!(c.depth > 0.0 && count > 0 && !r.released)) return true;
+  if (!((c.depth > 0.0 || c.bilateral) && count > 0 && !r.released)) return true;
   Vec3 point_v = Vec3::Zero();
   for (std::size_t a = 0; a < static_cast<std::size_t>(count); ++a) point_v += w[a] * solution_.segment<3>(3 * u[a]);
   const Vec3 partner_v = coupled(c) ? partners_[static_cast<std::size_t>(c.partner)].v : Vec3::Zero();
@@ -452,7 +452,7 @@ bool FemSolid::readContact(double dt, const FemContact& c, std::size_t i, bool a
   }
   r.force = normal * c.normal + friction;
   if (!adjust) return true;
-  if (normal < 0.0) {  // it would pull: let go
+  if (normal < 0.0 && !c.bilateral) {  // it would pull: let go
     r.released = true;
     return false;
   }

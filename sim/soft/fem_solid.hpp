@@ -49,6 +49,9 @@ struct FemContact {
   /// a node's own contact (both -1).
   std::array<int, 2> others{-1, -1};
   Vec3 weights = Vec3(1.0, 0.0, 0.0);
+  /// Held to the surface both ways (a glued face or a plane of symmetry): its spring pulls as
+  /// well as pushes, never lets go, and acts at any `depth` (negative: above the surface).
+  bool bilateral = false;
 };
 
 /// What a contact did over the last step: the force on its node at the step's end (N), and
