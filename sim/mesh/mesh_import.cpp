@@ -72,6 +72,7 @@ struct PlyHeader {
   std::string format;  ///< "ascii", "binary_little_endian" or "binary_big_endian"
   std::vector<PlyElement> elements;
   std::streamoff body = 0;  ///< where the elements start
+  long header_lines = 0;    ///< the header's lines, end_header's included
 };
 
 // Bytes of a PLY type (0 for an unknown name) and whether it is signed.
@@ -135,6 +136,7 @@ PlyHeader readPlyHeader(const std::string& path, std::ifstream& in, std::uintmax
                         " elements, more than its " + std::to_string(size) + " bytes hold");
   }
   h.body = in.tellg();
+  h.header_lines = number;
   return h;
 }
 
@@ -145,12 +147,55 @@ std::string plyCounts(const PlyHeader& h) {
   return s;
 }
 
-// An ASCII PLY holds one element a line: as many content lines as the header counts elements.
+// The largest count a list's count type holds (a negative one is no count).
+double plyCountLimit(const PlyProperty& p) {
+  return std::ldexp(1.0, 8 * p.count_bytes - (p.count_signed ? 1 : 0)) - 1.0;
+}
+
+// One ASCII element's line: a word per scalar; per list, a whole count its type holds and as
+// many items after it. The importer sizes a list by its count before reading the items (a count
+// of 4e10 asked it for 300 GB).
+void checkPlyAsciiLine(const std::string& path, long number, const std::string& line, const PlyElement& e) {
+  std::istringstream words(line);
+  std::string word;
+  const auto where = [&](std::size_t k) {
+    return path + ":" + std::to_string(number) + ": PLY " + e.name + " property " + std::to_string(k + 1) + ": ";
+  };
+  for (std::size_t k = 0; k < e.properties.size(); ++k) {
+    const PlyProperty& p = e.properties[k];
+    if (!(words >> word)) throw MeshLoadError(where(k) + "the line ends before it");
+    if (p.count_bytes == 0) continue;
+    char* end = nullptr;
+    const double count = std::strtod(word.c_str(), &end);
+    if (end == word.c_str() || *end != '\0' || !(count >= 0) || count != std::floor(count) || count > plyCountLimit(p)) {
+      throw MeshLoadError(where(k) + "list count '" + word + "' is not a whole number from 0 to " + countText(plyCountLimit(p)));
+    }
+    for (double i = 0; i < count; ++i) {
+      if (!(words >> word)) {
+        throw MeshLoadError(where(k) + "list counts " + countText(count) + " items; the line holds " + countText(i));
+      }
+    }
+  }
+}
+
+// An ASCII PLY holds one element a line: as many content lines as the header counts elements,
+// each holding what its element's properties read.
 void checkPlyAsciiBody(const std::string& path, std::ifstream& in, const PlyHeader& h) {
   double counted = 0, lines = 0;
   for (const PlyElement& e : h.elements) counted += e.count;
+  std::size_t element = 0;
+  double of_element = 0;  // lines of the current element so far
+  long number = h.header_lines;
   for (std::string line; std::getline(in, line);) {
-    if (line.find_first_not_of(" \t\r") != std::string::npos) ++lines;
+    ++number;
+    if (line.find_first_not_of(" \t\r") == std::string::npos) continue;
+    ++lines;
+    while (element < h.elements.size() && of_element >= h.elements[element].count) {
+      ++element;
+      of_element = 0;
+    }
+    if (element < h.elements.size()) checkPlyAsciiLine(path, number, line, h.elements[element]);
+    ++of_element;
   }
   if (lines != counted) {
     throw MeshLoadError(path + ": PLY header counts " + countText(counted) + " elements (" + plyCounts(h) +
@@ -182,7 +227,10 @@ void checkPlyBinaryBody(const std::string& path, std::ifstream& in, const PlyHea
         if (!in.read(reinterpret_cast<char*>(b), p.count_bytes)) break;
         std::uint32_t n = 0;
         for (int k = 0; k < p.count_bytes; ++k) n = n << 8 | b[big_endian ? k : p.count_bytes - 1 - k];
-        if (p.count_signed && (b[big_endian ? 0 : p.count_bytes - 1] & 0x80)) n = 0;  // negative: none
+        if (p.count_signed && (b[big_endian ? 0 : p.count_bytes - 1] & 0x80)) {  // the importer reads it unsigned: 4e9
+          throw MeshLoadError(path + ": PLY " + e.name + " " + countText(i) + " (byte " + std::to_string(at) +
+                              "): a list's count is negative");
+        }
         at += static_cast<std::uintmax_t>(p.count_bytes) + static_cast<std::uintmax_t>(n) * static_cast<std::uintmax_t>(p.bytes);
       }
     }

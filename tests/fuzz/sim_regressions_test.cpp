@@ -72,6 +72,33 @@ TEST(FuzzRegression, HugeHeaderCountsAreNamedNotCast) {
             ": PLY header promises 1e+38 elements, more than its 52 bytes hold");
 }
 
+// fuzz_mesh: an ASCII PLY face whose list count (uchar) read 42949672953: assimp sized the list by
+// it before reading its items, asking for 32 GB (out of memory under ASan, a crash). A list's
+// count must now be a whole number its type holds with that many items on its line; a binary
+// list's negative count (read unsigned by assimp: 4e9 items) is refused too.
+TEST(FuzzRegression, PlyListCountsBeyondTheirLineOrTypeAreRefusedNotAllocated) {
+  const std::string header = "ply\nformat ascii 1.0\nelement vertex 4\nproperty float x\nproperty float y\n"
+                             "property float z\nelement face 4\nproperty list uchar int vertex_indices\nend_header\n"
+                             "0 0 0\n1 0 0\n0 1 0\n0 0 1\n";
+  const std::string faces = "3 0 2 1\n3 0 1 3\n3 1 2 3\n";
+  EXPECT_EQ(loadError("tetrahedron.ply", header + faces + "3 2 0 3\n"), "accepted");
+  EXPECT_EQ(loadError("huge-list.ply", header + "42949672953 0 1 2\n" + faces),
+            ":14: PLY face property 1: list count '42949672953' is not a whole number from 0 to 255");
+  EXPECT_EQ(loadError("negative-list.ply", header + faces + "-1 2 0 3\n"),
+            ":17: PLY face property 1: list count '-1' is not a whole number from 0 to 255");
+  EXPECT_EQ(loadError("short-list.ply", header + faces + "4 2 0 3\n"),
+            ":17: PLY face property 1: list counts 4 items; the line holds 3");
+  EXPECT_EQ(loadError("short-vertex.ply", "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\n"
+                                          "property float y\nend_header\n0 0\n1\n0 1\n"),
+            ":8: PLY vertex property 2: the line ends before it");
+  std::string binary = "ply\nformat binary_little_endian 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
+                       "property float z\nelement face 1\nproperty list char int vertex_indices\nend_header\n";
+  const std::size_t body = binary.size();
+  binary += std::string(36, '\0') + std::string(1, '\xff') + std::string(12, '\0');
+  EXPECT_EQ(loadError("negative-binary-list.ply", binary),
+            ": PLY face 0 (byte " + std::to_string(body + 36) + "): a list's count is negative");
+}
+
 // fuzz_mesh: assimp's OFF reader took a missing edge count from the next line, and counted a
 // face it skipped (a comment line among the faces, a face of 0 or more than 9 vertices) out of
 // the face count without moving on: two wrapped the count around and it read far past its faces,
