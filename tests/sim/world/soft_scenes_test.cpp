@@ -1,14 +1,17 @@
 // Soft bodies in bundled scenes: the Fig. 8 contrast on a soft ball (two fingers pinch it under
 // its centre and lift it: the god-finger's pads hold it still, the god-objects' points let it
 // turn about the pinch axis), torsion on a soft disc (a pressing god-finger holds a torque that
-// spins it under a god-object), and a sponge pressed to rest. The sanitizer builds, about 20
-// times slower in the sparse solves, run each scene's first 0.3 s and check it stays finite.
+// spins it under a god-object), and a sponge pressed to rest, by a flat or a round pad; on a
+// soft plate, walk_fill's points along the walks. The sanitizer builds, about 20 times slower in
+// the sparse solves, run each scene's first 0.3 s and check it stays finite.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
-
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <string>
 
 #include "sim/scene/settings.hpp"
 #include "tests/scratch.hpp"
@@ -103,6 +106,102 @@ TEST(SoftScenes, APressedSpongeIndentsUnderThePadAndStaysFinite) {
   EXPECT_GE(c.sgos_world.size(), 1u) << "the pad presses nodes";
   EXPECT_EQ(ctx.world().counters().soft_resets, 0);
   EXPECT_EQ(ctx.world().counters().nan_recoveries, 0);
+}
+
+// The pad's imprint: pressed at 1.5 s, the sponge's nodes that carry a load lie on the flat
+// pad's plane (through the proxy's lowest point across the contact normal) with `imprint` flat,
+// on the proxy's sphere with `imprint` round, each to within 0.3 mm (the contacts' springs give
+// under their loads); the round dent is a bowl, its loaded nodes spread over more than 0.3 mm
+// in depth (a round pad leaves the patch's rim untouched: its nodes carry nothing).
+TEST(SoftScenes, AFlatImprintPressesThePadsPlaneARoundOneTheProxysSphere) {
+  if (kUnderSanitizer) return checkStart("soft-sponge-press");
+  for (const std::string imprint : {"flat", "round"}) {
+    TestContext ctx("soft-sponge-press", kSceneSgo, {"fingers.index.imprint=" + imprint});
+    ctx.simulate(1.5);
+    sim::Snapshot snap;
+    ctx.world().snapshot(snap);
+    ASSERT_EQ(snap.fingers[0].contacts.size(), 1u);
+    const sim::ContactSnapshot& c = snap.fingers[0].contacts[0];
+    ASSERT_EQ(c.loads.size(), c.sgos_world.size());
+    const sim::Vec3 centre = snap.fingers[0].proxy, n = c.outward_normal_world;
+    const double radius = ctx.scene().fingers[0].proxy.radius;
+    double off_plane = 0.0, off_sphere = 0.0, lowest = 1.0, highest = -1.0;
+    int loaded = 0;
+    for (std::size_t k = 0; k < c.sgos_world.size(); ++k) {
+      if (!(c.loads[k].normal > 0.0)) continue;
+      const sim::Vec3& p = c.sgos_world[k];
+      const double height = (p - centre).dot(n) + radius;  // above the pad's plane
+      off_plane = std::max(off_plane, std::abs(height));
+      off_sphere = std::max(off_sphere, std::abs((p - centre).norm() - radius));
+      lowest = std::min(lowest, height);
+      highest = std::max(highest, height);
+      ++loaded;
+    }
+    std::printf("soft-sponge-press imprint=%s: %d of %zu nodes loaded, off the plane %.5f m, off the sphere %.5f m, depths spread %.5f m\n",
+                imprint.c_str(), loaded, c.sgos_world.size(), off_plane, off_sphere, highest - lowest);
+    ASSERT_GE(loaded, 3) << imprint;
+    if (imprint == "flat") {
+      EXPECT_LT(off_plane, 3e-4);
+    } else {
+      EXPECT_LT(off_sphere, 3e-4);
+      EXPECT_GT(highest - lowest, 3e-4) << "a round pad's dent is a bowl";
+    }
+    EXPECT_EQ(ctx.world().counters().soft_resets, 0);
+  }
+}
+
+// walk_fill (Sec. 4.4's "new sub-god-objects regularly during the local geometry search"): a
+// finger with four walks pressing a soft plate of 3 mm elements (pinned underneath); with
+// walk_fill 1 mm the faces along each walk join the pad's, so it presses more of the surface
+// under the patch than the walks' ends alone reach, every node within a fifth more of the
+// walks' longest reach.
+TEST(SoftScenes, WalkFillPressesMoreOfTheSurfaceUnderThePatch) {
+  if (kUnderSanitizer) GTEST_SKIP() << "1.6 s of a 1 200-tetrahedron plate: about a minute under a sanitizer";
+  const std::filesystem::path dir = gf::test::scratchRoot() / "soft_walk_fill";
+  std::filesystem::create_directories(dir);
+  const std::string scene = (dir / "plate.toml").string();
+  std::ofstream(scene) << R"(name = "walk-fill-plate"
+duration = 1.0
+haptic_rate = 1000
+effects = ["friction", "god_finger", "tangential_stretch", "angular_threshold", "friction_cone", "force_feedback"]
+[bodies.plate]
+shape = "soft_box"
+half_extents = [0.015, 0.003, 0.015]
+element_size = 0.003
+young = 5e4
+poisson = 0.3
+mass = 0.005
+friction = 1.0
+pinned = [{ min = [-0.02, -0.004, -0.02], max = [0.02, -0.0029, 0.02] }]
+position = [0.0, 0.003, 0.0]
+[fingers.index]
+n_sgo = 4
+r_max = 0.009
+d0 = 0.0005
+friction = 1.0
+[fingers.index.device]
+interpolation = "smooth"
+keyframes = [{ t = 0.0, p = [0.0, 0.02, 0.0] }, { t = 0.5, p = [0.0, 0.011, 0.0] }]
+)";
+  std::size_t pressed[2] = {0, 0};
+  for (const int fill : {0, 1}) {
+    TestContext ctx(scene, kSceneSgo, {fill ? "fingers.index.walk_fill=0.001" : "fingers.index.walk_fill=0"});
+    ctx.simulate(0.8);
+    sim::Snapshot snap;
+    ctx.world().snapshot(snap);
+    ASSERT_EQ(snap.fingers[0].contacts.size(), 1u);
+    const sim::ContactSnapshot& c = snap.fingers[0].contacts[0];
+    const sim::Vec3 n = c.outward_normal_world;
+    const auto lateral = [&](const sim::Vec3& p) { return ((p - c.point_world) - (p - c.point_world).dot(n) * n).norm(); };
+    double reach = 0.0;
+    for (const sim::Vec3& p : c.path_points_world) reach = std::max(reach, lateral(p));
+    pressed[fill] = c.sgos_world.size();
+    for (const sim::Vec3& p : c.sgos_world) EXPECT_LE(lateral(p), 1.2 * reach + 1e-9) << "walk_fill " << fill;
+    EXPECT_EQ(ctx.world().counters().soft_resets, 0);
+    EXPECT_EQ(ctx.world().counters().nan_recoveries, 0);
+  }
+  std::printf("walk-fill-plate, 4 walks: %zu nodes pressed, %zu with walk_fill 1 mm\n", pressed[0], pressed[1]);
+  EXPECT_GT(pressed[1], pressed[0]);
 }
 
 // What a scene may give a soft body is what it can take: a density outside its material's range
