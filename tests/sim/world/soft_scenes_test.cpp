@@ -114,7 +114,7 @@ TEST(SoftScenes, APressedSpongeIndentsUnderThePadAndStaysFinite) {
 // under their loads); the round dent is a bowl, its loaded nodes spread over more than 0.3 mm
 // in depth (a round pad leaves the patch's rim untouched: its nodes carry nothing).
 TEST(SoftScenes, AFlatImprintPressesThePadsPlaneARoundOneTheProxysSphere) {
-  if (kUnderSanitizer) return checkStart("soft-sponge-press");
+  if (kUnderSanitizer) GTEST_SKIP() << "3 s of the sponge; its start is checked by APressedSpongeIndents...";
   for (const std::string imprint : {"flat", "round"}) {
     TestContext ctx("soft-sponge-press", kSceneSgo, {"fingers.index.imprint=" + imprint});
     ctx.simulate(1.5);
