@@ -62,6 +62,8 @@ struct PlyProperty {
   int bytes = 0;       ///< a scalar's size, or a list's item size
   int count_bytes = 0; ///< a list's count size; 0 for a scalar
   bool count_signed = false;
+  bool is_signed = false;  ///< the scalar's or the items' type
+  bool is_float = false;
 };
 struct PlyElement {
   std::string name;
@@ -114,10 +116,15 @@ PlyHeader readPlyHeader(const std::string& path, std::ifstream& in, std::uintmax
     }
     if (word == "property" && !h.elements.empty()) {
       PlyProperty p;
-      p.bytes = a == "list" ? plyBytes(c) : plyBytes(a);
+      const std::string& type = a == "list" ? c : a;
+      p.bytes = plyBytes(type, &p.is_signed);
+      p.is_float = type.starts_with("float") || type == "double";
       if (a == "list") p.count_bytes = plyBytes(b, &p.count_signed);
       if (p.bytes == 0 || (a == "list" && p.count_bytes == 0)) {
         throw MeshLoadError(path + ":" + std::to_string(number) + ": PLY property: unknown type in '" + line + "'");
+      }
+      if (a == "list" && (b.starts_with("float") || b == "double")) {
+        throw MeshLoadError(path + ":" + std::to_string(number) + ": PLY property: a list's count type must be an integer type, got '" + b + "'");
       }
       h.elements.back().properties.push_back(p);
     }
@@ -152,27 +159,70 @@ double plyCountLimit(const PlyProperty& p) {
   return std::ldexp(1.0, 8 * p.count_bytes - (p.count_signed ? 1 : 0)) - 1.0;
 }
 
+// Whether assimp's reader takes `word` whole as a value of the property's type: digits (after a
+// sign for a signed type) for an integer, [sign] digits [. digits] [e [sign] digits] or nan/inf
+// for a floating-point one. Its number readers stop at the first character they do not take
+// and read the rest as the next value ("0+4000000000": a 0, then a count of 4e9).
+bool plyWordReadWhole(const std::string& word, bool is_signed, bool is_float) {
+  std::size_t i = 0;
+  const auto digits = [&] {
+    const std::size_t from = i;
+    while (i < word.size() && std::isdigit(static_cast<unsigned char>(word[i]))) ++i;
+    return i > from;
+  };
+  if ((is_signed || is_float) && i < word.size() && (word[i] == '+' || word[i] == '-')) ++i;
+  if (!is_float) return digits() && i == word.size();
+  std::string rest = lower(word.substr(i));
+  if (rest == "nan" || rest == "inf" || rest == "infinity") return true;
+  const bool whole = digits();
+  bool fraction = false;
+  if (i < word.size() && word[i] == '.') {
+    ++i;
+    fraction = digits();
+  }
+  if (!whole && !fraction) return false;
+  if (i < word.size() && (word[i] == 'e' || word[i] == 'E')) {
+    ++i;
+    if (i < word.size() && (word[i] == '+' || word[i] == '-')) ++i;
+    if (!digits()) return false;
+  }
+  return i == word.size();
+}
+
 // One ASCII element's line: a word per scalar; per list, a whole count its type holds and as
-// many items after it. The importer sizes a list by its count before reading the items (a count
-// of 4e10 asked it for 300 GB).
+// many items after it; each word one assimp reads whole. The importer sizes a list by its count
+// before reading the items (a count of 4e10 asked it for 300 GB).
 void checkPlyAsciiLine(const std::string& path, long number, const std::string& line, const PlyElement& e) {
   std::istringstream words(line);
   std::string word;
   const auto where = [&](std::size_t k) {
     return path + ":" + std::to_string(number) + ": PLY " + e.name + " property " + std::to_string(k + 1) + ": ";
   };
+  const auto value = [&](std::size_t k, const PlyProperty& p) {
+    if (!(words >> word)) throw MeshLoadError(where(k) + "the line ends before it");
+    if (!plyWordReadWhole(word, p.is_signed, p.is_float)) {
+      throw MeshLoadError(where(k) + "'" + word + "' is not " + (p.is_float ? "a number" : p.is_signed ? "a whole number" : "a whole number from 0"));
+    }
+  };
   for (std::size_t k = 0; k < e.properties.size(); ++k) {
     const PlyProperty& p = e.properties[k];
+    if (p.count_bytes == 0) {
+      value(k, p);
+      continue;
+    }
     if (!(words >> word)) throw MeshLoadError(where(k) + "the line ends before it");
-    if (p.count_bytes == 0) continue;
-    char* end = nullptr;
-    const double count = std::strtod(word.c_str(), &end);
-    if (end == word.c_str() || *end != '\0' || !(count >= 0) || count != std::floor(count) || count > plyCountLimit(p)) {
+    const std::string digits = word.starts_with('+') && p.count_signed ? word.substr(1) : word;
+    const bool whole = !digits.empty() && digits.size() <= 15 && plyWordReadWhole(digits, false, false);
+    const double count = whole ? std::strtod(digits.c_str(), nullptr) : -1.0;
+    if (!whole || count > plyCountLimit(p)) {
       throw MeshLoadError(where(k) + "list count '" + word + "' is not a whole number from 0 to " + countText(plyCountLimit(p)));
     }
     for (double i = 0; i < count; ++i) {
       if (!(words >> word)) {
         throw MeshLoadError(where(k) + "list counts " + countText(count) + " items; the line holds " + countText(i));
+      }
+      if (!plyWordReadWhole(word, p.is_signed, p.is_float)) {
+        throw MeshLoadError(where(k) + "item '" + word + "' is not " + (p.is_float ? "a number" : "a whole number"));
       }
     }
   }
@@ -222,7 +272,7 @@ void checkPlyBinaryBody(const std::string& path, std::ifstream& in, const PlyHea
           at += static_cast<std::uintmax_t>(p.bytes);
           continue;
         }
-        unsigned char b[4] = {};
+        unsigned char b[4] = {};  // a count is an integer type of at most 4 bytes (readPlyHeader)
         in.seekg(static_cast<std::streamoff>(at));
         if (!in.read(reinterpret_cast<char*>(b), p.count_bytes)) break;
         std::uint32_t n = 0;

@@ -456,7 +456,7 @@ bool FemSolid::readContact(double dt, const FemContact& c, std::size_t i, bool a
     r.released = true;
     return false;
   }
-  return c.friction > 0.0 ? restick(c.friction * normal, trial, r, slip) : true;
+  return c.friction > 0.0 && !c.bilateral ? restick(c.friction * normal, trial, r, slip) : true;
 }
 
 void FemSolid::addDiagonal(int u, const Eigen::Matrix3d& block) {

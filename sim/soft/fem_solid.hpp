@@ -26,7 +26,7 @@ struct FemMaterial {
   double damping_s = 0.002;       ///< Rayleigh stiffness-proportional damping (s)
 };
 
-/// A node pressed into a rigid surface: `depth` (m, > 0) below it along -`normal` (unit, out of
+/// A node pressed into a rigid surface: `depth` (m, > 0; any, `bilateral`) below it along -`normal` (unit, out of
 /// the surface) at the step's start. With friction, the node is held in the tangent plane by a
 /// spring to its anchor on the surface (`slide`: from the node to the anchor at the step's
 /// start, m), both springs stiff and implicit in the step, the tangential one's force capped at
@@ -50,7 +50,8 @@ struct FemContact {
   std::array<int, 2> others{-1, -1};
   Vec3 weights = Vec3(1.0, 0.0, 0.0);
   /// Held to the surface both ways (a glued face or a plane of symmetry): its spring pulls as
-  /// well as pushes, never lets go, and acts at any `depth` (negative: above the surface).
+  /// well as pushes, never lets go, and acts at any `depth` (negative: above the surface). With
+  /// friction it sticks (glued: no cap, which a pulling normal force would make negative).
   bool bilateral = false;
 };
 
@@ -96,7 +97,8 @@ class FemSolid {
   int partnerCount() const { return static_cast<int>(partners_.size()); }
 
   /// Each contact a stiff spring of `n_per_m` (N/m) along its normal, implicit in the step
-  /// (k n nᵀ in the system, so a stiff one stays stable), pushing while the node is below.
+  /// (k n nᵀ in the system, so a stiff one stays stable), pushing while the node is below
+  /// (pulling too, for a bilateral contact).
   void setContactStiffness(double n_per_m) { contact_stiffness_ = n_per_m; }
   /// One implicit Euler step of `dt` s under `node_forces` (N per node; empty for none),
   /// `bone_force` (N) and `contacts` (the nodes pressed into rigid surfaces at its start).
@@ -110,8 +112,8 @@ class FemSolid {
   /// the cap along the stretch, linearised about that pass (its turning implicit), one back
   /// within its cap sticking again; when the modes have not settled by then, one more solve with
   /// the modes as they stand. Either way these are exactly the forces the nodes moved under:
-  /// never pulling and, once settled, within the cap (a slipping one's friction moved by at most
-  /// kSlipSettled of its cap in the last pass); unsettled, a contact may be past its cap by what
+  /// never pulling (but a bilateral contact's) and, once settled, within the cap (a slipping
+  /// one's friction moved by at most kSlipSettled of its cap in the last pass); unsettled, a contact may be past its cap by what
   /// that last solve left.
   const std::vector<Vec3>& contactForces() const { return contact_forces_; }
   const std::vector<FemContactResult>& contactResults() const { return contact_results_; }

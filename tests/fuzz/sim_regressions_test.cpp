@@ -88,6 +88,20 @@ TEST(FuzzRegression, PlyListCountsBeyondTheirLineOrTypeAreRefusedNotAllocated) {
             ":17: PLY face property 1: list count '-1' is not a whole number from 0 to 255");
   EXPECT_EQ(loadError("short-list.ply", header + faces + "4 2 0 3\n"),
             ":17: PLY face property 1: list counts 4 items; the line holds 3");
+  // Words assimp reads only in part: its readers stop where they stop taking characters, so
+  // "4000000000e-9" is a count of 4e9 to it and "0+4000000000" a 0 followed by a count of 4e9.
+  EXPECT_EQ(loadError("exponent-count.ply", header + faces + "4000000000e-9 2 0 3 1\n"),
+            ":17: PLY face property 1: list count '4000000000e-9' is not a whole number from 0 to 255");
+  EXPECT_EQ(loadError("glued-words.ply", "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
+                                         "property float z\nelement face 1\nproperty float q\n"
+                                         "property list int int vertex_indices\nend_header\n0 0 0\n1 0 0\n0 1 0\n"
+                                         "0+4000000000 3 0 1 2\n"),
+            ":14: PLY face property 1: '0+4000000000' is not a number");
+  EXPECT_EQ(loadError("hex-index.ply", header + faces + "3 2 0x1 3\n"),
+            ":17: PLY face property 1: item '0x1' is not a whole number");
+  EXPECT_EQ(loadError("float-count.ply", "ply\nformat binary_little_endian 1.0\nelement face 1\n"
+                                         "property list double int vertex_indices\nend_header\n"),
+            ":4: PLY property: a list's count type must be an integer type, got 'double'");
   EXPECT_EQ(loadError("short-vertex.ply", "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\n"
                                           "property float y\nend_header\n0 0\n1\n0 1\n"),
             ":8: PLY vertex property 2: the line ends before it");

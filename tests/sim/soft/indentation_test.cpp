@@ -11,6 +11,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <memory>
 #include <numbers>
 #include <vector>
 
@@ -64,6 +65,7 @@ struct Indentation {
   double force = 0.0;  // N, the whole sphere's (four quarters)
   int pressing = 0;    // the quarter's nodes pressing the sphere
   std::size_t tets = 0;
+  bool settled = false;  // the contact set and the force (to 1e-5) as in the step before
 };
 
 Indentation indent(int rings) {
@@ -77,7 +79,7 @@ Indentation indent(int rings) {
     if (mesh.nodes[i].y() == bottom) base.push_back(static_cast<int>(i));
   }
   solid.fixNodes(base);
-  solid.setContactStiffness(1e9);  // a node's spring: 1e4 times the block's stiffness E a
+  solid.setContactStiffness(1e9);  // a node's spring: 5e6 times the block's stiffness E a (200 N/m)
   const double radius = kContactRadius * kContactRadius / kDepth;
   const Vec3 centre(0.0, radius - kDepth, 0.0);
   std::vector<char> pressed(mesh.nodes.size(), 0);
@@ -125,6 +127,7 @@ Indentation indent(int rings) {
     const bool settled = step > 0 && std::abs(force - out.force) < 1e-5 * force && pressing == out.pressing;
     out.force = force;
     out.pressing = pressing;
+    out.settled = settled;
     if (settled) break;
   }
   return out;
@@ -136,8 +139,9 @@ double hertz() {
 }
 
 TEST(Indentation, ASphereOnAHalfSpaceFollowsHertzWithin10PercentAtTheFinerMesh) {
-#ifdef GF_UNDER_SANITIZER
-  GTEST_SKIP() << "two static solves of 25 000 and 41 000 tetrahedra: minutes under a sanitizer";
+#if defined(GF_UNDER_SANITIZER) || !defined(NDEBUG)
+  GTEST_SKIP() << "static solves of 25 000 and 41 000 tetrahedra (3 to 6 factorisations each, 45 s "
+                  "optimised): many minutes under a sanitizer or unoptimised";
 #endif
   const double closed_form = hertz();
   const Indentation coarse = indent(2), fine = indent(3);
@@ -148,6 +152,8 @@ TEST(Indentation, ASphereOnAHalfSpaceFollowsHertzWithin10PercentAtTheFinerMesh) 
   std::printf("Hertz %.5f N; %zu tets %.5f N (%+.1f %%), %zu tets %.5f N (%+.1f %%)\n", closed_form, coarse.tets,
               coarse.force, 100.0 * coarse_error, fine.tets, fine.force, 100.0 * fine_error);
   // The rim: every top node within the contact radius presses, none beyond.
+  EXPECT_TRUE(coarse.settled);
+  EXPECT_TRUE(fine.settled);
   EXPECT_EQ(coarse.pressing, 3 * 3);
   EXPECT_EQ(fine.pressing, 4 * 4);
   EXPECT_LT(std::abs(fine_error), 0.10) << fine.force << " N against " << closed_form << " N, " << fine.tets << " tets";
@@ -157,34 +163,49 @@ TEST(Indentation, ASphereOnAHalfSpaceFollowsHertzWithin10PercentAtTheFinerMesh) 
 TEST(Indentation, ABilateralContactHoldsANodeBothWays) {
   // One tetrahedron, its base fixed, its apex touching a plane above it and loaded by 1 N up
   // (into the plane) and down (away): a bilateral contact holds it both ways (its force
-  // balancing the load), a one-sided one lets go of the pull.
+  // balancing the load), a one-sided one lets go of the pull. With friction, a bilateral
+  // contact pulled sticks (glued) and stays finite.
   TetMesh mesh;
   mesh.nodes = {Vec3(0, 0, 0), Vec3(0.01, 0, 0), Vec3(0, 0, 0.01), Vec3(0, 0.01, 0)};
   mesh.tets = {{0, 2, 1, 3}};
+  const auto pull = [&](bool bilateral, double load, double depth, double friction) {
+    auto solid = std::make_unique<FemSolid>(mesh, FemMaterial{kYoung, kPoisson, 1000.0, 0.0});
+    solid->fixNodes({0, 1, 2});
+    solid->setContactStiffness(1e9);
+    FemContact c;
+    c.node = 3;
+    c.normal = -Vec3::UnitY();  // the plane above the apex, pressing it down
+    c.depth = depth;
+    c.bilateral = bilateral;
+    c.friction = friction;
+    std::vector<Vec3> forces(4, Vec3::Zero());
+    forces[3] = Vec3(0.2 * load, load, 0.0);  // and sideways, for the friction
+    solid->step(100.0, forces, Vec3::Zero(), {c});
+    return solid;
+  };
   for (const bool bilateral : {true, false}) {
     for (const double load : {1.0, -1.0}) {
-      FemSolid solid(mesh, {kYoung, kPoisson, 1000.0, 0.0});
-      solid.fixNodes({0, 1, 2});
-      solid.setContactStiffness(1e9);
-      FemContact c;
-      c.node = 3;
-      c.normal = -Vec3::UnitY();  // the plane above the apex, pressing it down
-      c.depth = 1e-12;  // touching
-      c.bilateral = bilateral;
-      std::vector<Vec3> forces(4, Vec3::Zero());
-      forces[3] = Vec3(0.0, load, 0.0);
-      solid.step(100.0, forces, Vec3::Zero(), {c});
-      const bool holds = bilateral || load > 0.0;  // an upward load presses the apex into the plane
-      const double apex_moved = solid.positions()[3].y() - 0.01;
-      if (holds) {
-        EXPECT_NEAR(solid.contactForces()[0].y(), -load, 1e-6) << "bilateral " << bilateral << ", load " << load;
+      const auto solid = pull(bilateral, load, 1e-12, 0.0);  // touching
+      const double apex_moved = solid->positions()[3].y() - 0.01;
+      if (bilateral || load > 0.0) {  // an upward load presses the apex into the plane
+        EXPECT_NEAR(solid->contactForces()[0].y(), -load, 1e-6) << "bilateral " << bilateral << ", load " << load;
         EXPECT_LT(std::abs(apex_moved), 1e-8);
       } else {
-        EXPECT_TRUE(solid.contactResults()[0].released);
+        EXPECT_TRUE(solid->contactResults()[0].released);
         EXPECT_LT(apex_moved, -1e-5);  // the load pulls the apex down (E a = 1000 N/m)
       }
     }
   }
+  // The plane 0.1 mm above the apex (depth < 0): a bilateral contact pulls the apex up to it.
+  const auto lifted = pull(true, 0.0, -1e-4, 0.0);
+  EXPECT_NEAR(lifted->positions()[3].y(), 0.0101, 1e-8);
+  EXPECT_GT(lifted->contactForces()[0].y(), 0.0) << "it pulls";
+  // Glued: pulled down and sideways with friction 0.5, it holds both ways, finite.
+  const auto glued = pull(true, -1.0, 1e-12, 0.5);
+  EXPECT_TRUE(glued->positions()[3].allFinite());
+  EXPECT_NEAR(glued->contactForces()[0].y(), 1.0, 1e-6);
+  EXPECT_NEAR(glued->contactForces()[0].x(), 0.2, 1e-6);
+  EXPECT_FALSE(glued->contactResults()[0].slipping);
 }
 
 }  // namespace
