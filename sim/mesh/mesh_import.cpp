@@ -15,6 +15,7 @@
 #include <iomanip>
 #include <sstream>
 #include <string_view>
+#include <vector>
 
 #include "sim/mesh/off_file.hpp"
 
@@ -93,6 +94,20 @@ int plyBytes(const std::string& type, bool* is_signed = nullptr) {
 
 // The header, its end required (the importer reads a header without an end_header line forever)
 // and its counts checked against the file's size (at least one byte per element).
+// A header line's words as the importer splits them: at spaces and tabs only, a carriage return
+// ending the line dropped. Another space character (a vertical tab, a form feed) is part of a
+// word to it: "end_header\v..." ends no header, and its reader seeks for the end forever.
+std::vector<std::string> plyHeaderWords(std::string line) {
+  if (line.ends_with('\r')) line.pop_back();
+  std::vector<std::string> words;
+  for (std::size_t at = 0; at < line.size();) {
+    const std::size_t end = std::min(line.find_first_of(" \t", at), line.size());
+    if (end > at) words.push_back(line.substr(at, end - at));
+    at = end + 1;
+  }
+  return words;
+}
+
 PlyHeader readPlyHeader(const std::string& path, std::ifstream& in, std::uintmax_t size) {
   constexpr long kMaxHeaderLines = 10000;
   PlyHeader h;
@@ -102,9 +117,9 @@ PlyHeader readPlyHeader(const std::string& path, std::ifstream& in, std::uintmax
   bool ended = false;
   while (!ended && number < kMaxHeaderLines && std::getline(in, line)) {
     ++number;
-    std::istringstream l(line);
-    std::string word, a, b, c;
-    l >> word >> a >> b >> c;
+    const std::vector<std::string> w = plyHeaderWords(line);
+    const auto nth = [&w](std::size_t i) { return i < w.size() ? w[i] : std::string(); };
+    const std::string word = nth(0), a = nth(1), b = nth(2), c = nth(3);
     ended = word == "end_header";
     if (word == "format") {
       // The importer read a header with a garbled format word (fuzz_mesh) for over a minute.

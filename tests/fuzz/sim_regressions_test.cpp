@@ -50,13 +50,23 @@ TEST(FuzzRegression, BinaryPlyFacesWithoutVerticesAreAnErrorNotAnAbort) {
 }
 
 // fuzz_mesh: assimp's PLY reader looped forever (seeking) on a header without an end_header
-// line; "end_headerX" is not one either.
+// line; "end_headerX" is not one either, nor "end_header" glued to a vertical tab.
 TEST(FuzzRegression, PlyHeaderWithoutItsEndIsAnErrorNotAHang) {
   const std::string header = "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
                              "property float z\n";
   EXPECT_EQ(loadError("open.ply", header + "end_he 1\n0 0 0\n1 0 0\n0 1 0\n"), ": PLY header has no end_header line");
   EXPECT_EQ(loadError("suffix.ply", header + "end_headerX\n0 0 0\n1 0 0\n0 1 0\n"),
             ": PLY header has no end_header line");
+  // The importer splits a header line at spaces and tabs only: after a vertical tab or a form
+  // feed the word goes on, and no header ends there (regression-ply-vertical-tab-end-header).
+  EXPECT_EQ(loadError("vertical-tab.ply", header + "end_header\v0 0 0\n1 0 0\n0 1 0\n"),
+            ": PLY header has no end_header line");
+  EXPECT_EQ(loadError("form-feed.ply", header + "end_header\f\n0 0 0\n1 0 0\n0 1 0\n"),
+            ": PLY header has no end_header line");
+  EXPECT_EQ(loadError("tab.ply", header + "element face 1\nproperty\tlist uchar int vertex_indices\nend_header \t\n"
+                                           "0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n"),
+            "accepted")
+      << "tabs and spaces part a header line's words";
   EXPECT_EQ(loadError("triangle.ply", header + "element face 1\nproperty list uchar int vertex_indices\n  end_header\r\n"
                                                 "0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n"),
             "accepted")
