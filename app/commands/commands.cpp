@@ -11,10 +11,10 @@
 namespace gf::app {
 namespace {
 
-// run, patch, study, check, compare, list, live, mesh-info, plot, schema, screenshots: the
+// run, patch, study, experiment, check, compare, list, live, mesh-info, plot, schema, screenshots: the
 // order of `godfinger --help`.
 constexpr CommandFactory kCommands[] = {makeRunCommand,      makePatchCommand,    makeStudyCommand,
-                                        makeCheckCommand,    makeCompareCommand,  makeListCommand,
+                                        makeExperimentCommand, makeCheckCommand,    makeCompareCommand,  makeListCommand,
                                         makeLiveCommand,     makeMeshInfoCommand, makePlotCommand,
                                         makeSchemaCommand,   makeScreenshotsCommand, makeBenchCommand};
 

@@ -58,6 +58,7 @@ std::string selfExecutable();
 std::unique_ptr<Command> makeRunCommand(const std::vector<std::string>& argv);
 std::unique_ptr<Command> makePatchCommand(const std::vector<std::string>& argv);
 std::unique_ptr<Command> makeStudyCommand(const std::vector<std::string>& argv);
+std::unique_ptr<Command> makeExperimentCommand(const std::vector<std::string>& argv);
 std::unique_ptr<Command> makeCheckCommand(const std::vector<std::string>& argv);
 std::unique_ptr<Command> makeCompareCommand(const std::vector<std::string>& argv);
 std::unique_ptr<Command> makeListCommand(const std::vector<std::string>& argv);

@@ -11,21 +11,24 @@
 #include "app/scene/input_error.hpp"
 
 namespace gf::app {
-namespace {
 
-namespace fs = std::filesystem;
-
-// The cells of one CSV line (a trailing carriage return dropped).
-std::vector<std::string_view> splitRow(std::string_view line) {
+std::vector<std::string_view> splitCells(std::string_view line, char separator) {
   if (!line.empty() && line.back() == '\r') line.remove_suffix(1);
   std::vector<std::string_view> cells;
   for (std::size_t a = 0;;) {
-    const std::size_t b = line.find(',', a);
+    const std::size_t b = line.find(separator, a);
     cells.push_back(line.substr(a, b == std::string_view::npos ? std::string_view::npos : b - a));
     if (b == std::string_view::npos) return cells;
     a = b + 1;
   }
 }
+
+namespace {
+
+namespace fs = std::filesystem;
+
+// The cells of one CSV line.
+std::vector<std::string_view> splitRow(std::string_view line) { return splitCells(line, ','); }
 
 // A cell as a number: an empty or missing cell is a gap (NaN). Throws InputError naming it.
 double cellValue(const CsvTable& t, const std::vector<std::string_view>& cells, std::size_t c, int row) {

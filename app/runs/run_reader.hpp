@@ -7,9 +7,14 @@
 
 #include <filesystem>
 #include <string>
+#include <string_view>
 #include <vector>
 
 namespace gf::app {
+
+/// The cells of one line of a table split at `separator` (',' for CSV, '\t' for TSV), a trailing
+/// carriage return dropped. Views into `line`.
+std::vector<std::string_view> splitCells(std::string_view line, char separator);
 
 /// A CSV file of numbers under a header row (trace.csv, forces.csv): every column.
 struct CsvTable {

@@ -52,6 +52,15 @@ std::string resolveScenePath(const std::string& given) {
   throw InputError(scene, 0, 0, "", "no such scene file, and no bundled scene of that name (see `godfinger list`)");
 }
 
+std::string resolveBundledFile(const std::string& name_or_path, const std::string& folder, const std::string& what,
+                               const std::string& shown) {
+  std::error_code unreadable;
+  if (fs::is_regular_file(name_or_path, unreadable)) return name_or_path;
+  const fs::path bundled = fs::path(folder) / (name_or_path + ".toml");
+  if (name_or_path.find('/') == std::string::npos && fs::is_regular_file(bundled, unreadable)) return bundled.string();
+  throw InputError(name_or_path, 0, 0, "", "no such " + what + " file, and no bundled " + what + " of that name (" + shown + ")");
+}
+
 std::vector<std::string> bundledScenePaths() {
   std::vector<std::string> out;
   std::error_code ec;

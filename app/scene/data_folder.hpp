@@ -26,6 +26,12 @@ std::string resolveDataPath(const std::string& path);
 /// of a bundled scene (without ".toml"). Throws InputError when neither exists.
 std::string resolveScenePath(const std::string& scene);
 
+/// An input file named on the command line: `name_or_path` when it is a file, else `folder`'s
+/// NAME.toml for a bare name (no '/'). Throws InputError naming `what` ("study", "experiment")
+/// and `shown` (the folder as a user knows it, "assets/studies") when neither exists.
+std::string resolveBundledFile(const std::string& name_or_path, const std::string& folder, const std::string& what,
+                               const std::string& shown);
+
 /// The bundled scene files, sorted by name.
 std::vector<std::string> bundledScenePaths();
 

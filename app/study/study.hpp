@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "app/scene/session_desc.hpp"
 #include "sim/mesh/mesh.hpp"
 
 namespace gf::app {
@@ -120,6 +121,16 @@ StudyDesc loadStudyFile(const std::string& name_or_path);
 /// Same as loadStudyFile, from text: `source_name` names it in errors (and gives the study's
 /// default name), `base_dir` resolves relative scene paths. Throws InputError.
 StudyDesc parseStudyText(const std::string& text, const std::string& source_name, const std::string& base_dir);
+
+/// A scene file named in an input file at `base_dir`: a path from there, or the name of a bundled
+/// scene. Throws InputError.
+std::string resolveSceneIn(const std::string& base_dir, const std::string& scene);
+
+/// Loads `scene` with `overrides`; an override the scene refuses is reported where the input
+/// file `source` gave it (its value's line, or its field's for an unknown field). Throws
+/// InputError.
+SessionDesc loadSceneWithOverrides(const std::string& source, const std::string& scene,
+                                   const std::vector<StudyOverride>& overrides);
 
 /// The folder of bundled studies: $GODFINGER_STUDIES if set, else the source tree's
 /// assets/studies.

@@ -161,6 +161,8 @@ double referenceNoise(const StudyMeasure& m, const std::vector<Row>& rows) {
 
 }  // namespace
 
+Eigen::Vector3f seriesColour(std::size_t i) { return kSeriesColours[i % std::size(kSeriesColours)]; }
+
 std::string costLabel(CostKind k) { return k == CostKind::kStep ? "step time, median (us)" : "patch time per call, mean (us)"; }
 
 render::ChartSpec workPrecisionChart(const StudyPlan& plan, const std::vector<Row>& rows) {

@@ -29,6 +29,9 @@ struct StudyRow {
 /// The unit an absolute error of `m` is in (" deg", " N", ...; "" for a relative one).
 const char* errorUnit(const StudyMeasure& m);
 
+/// The charts' colour for series `i` (linear RGB; twelve, then again).
+Eigen::Vector3f seriesColour(std::size_t i);
+
 /// The cost axis' label.
 std::string costLabel(CostKind k);
 

@@ -208,13 +208,6 @@ bool readReferenceRun(Reader& parent, std::vector<StudyOverride>& set, std::vect
   return true;
 }
 
-std::string resolveIn(const std::string& base_dir, const std::string& scene) {
-  const fs::path p = fs::path(base_dir) / scene;
-  if (fs::is_regular_file(p)) return fs::absolute(p).lexically_normal().string();
-  if (scene.find('/') != std::string::npos) throw InputError(p.string(), 0, 0, "", "no such scene file");
-  return fs::absolute(resolveScenePath(scene)).string();
-}
-
 std::string slug(const std::string& text) {
   std::string out;
   for (char c : text) {
@@ -232,32 +225,6 @@ std::string valueText(const std::string& toml_value) {
   const bool quoted = v.size() >= 2 && (v.front() == '"' || v.front() == '\'') && v.back() == v.front();
   if (quoted) v = v.substr(1, v.size() - 2);
   return v;
-}
-
-// Loads the run's scene with its overrides; a bad override is reported where the study gave it.
-SessionDesc checkRun(const StudyDesc& study, const StudyRun& run) {
-  std::vector<std::string> texts;
-  for (const StudyOverride& o : run.overrides) texts.push_back(o.text);
-  try {
-    return loadSceneFile(run.scene, texts);
-  } catch (const InputError& e) {
-    for (auto o = run.overrides.rbegin(); o != run.overrides.rend(); ++o) {
-      const std::string key = o->text.substr(0, o->text.find('='));
-      // The override's own field, a field below it, or a sibling in the table it writes into (a
-      // finger named by mistake lacks its device).
-      const std::string parent = key.substr(0, key.rfind('.') + 1);
-      const bool same = e.field() == key || e.field().rfind(key + ".", 0) == 0 || key.rfind(e.field() + ".", 0) == 0 ||
-                        (!parent.empty() && e.field().rfind(parent, 0) == 0) || e.file().rfind("--set " + o->text, 0) == 0;
-      if (!same) continue;
-      if (o->source.line == 0) throw commandLineError("--set " + o->text, e.field() + ": " + e.reason());
-      // A field the scene does not have is the axis' fault, a bad value the value's.
-      const bool unknown = e.reason().rfind("unknown field", 0) == 0 || e.reason().find("is not a table") != std::string::npos;
-      const StudySource& at = unknown && o->field_source.line > 0 ? o->field_source : o->source;
-      throw InputError(study.source, at.line, at.column, at.field,
-                       "'" + o->text + "': " + (e.field().empty() ? "" : e.field() + ": ") + e.reason());
-    }
-    throw;
-  }
 }
 
 void checkMeasures(const StudyDesc& study, const StudySeries& series, const SessionDesc& s) {
@@ -317,20 +284,46 @@ void checkGridSize(const StudyDesc& study, bool quick) {
 
 }  // namespace
 
+std::string resolveSceneIn(const std::string& base_dir, const std::string& scene) {
+  const fs::path p = fs::path(base_dir) / scene;
+  if (fs::is_regular_file(p)) return fs::absolute(p).lexically_normal().string();
+  if (scene.find('/') != std::string::npos) throw InputError(p.string(), 0, 0, "", "no such scene file");
+  return fs::absolute(resolveScenePath(scene)).string();
+}
+
+SessionDesc loadSceneWithOverrides(const std::string& source, const std::string& scene,
+                                   const std::vector<StudyOverride>& overrides) {
+  std::vector<std::string> texts;
+  for (const StudyOverride& o : overrides) texts.push_back(o.text);
+  try {
+    return loadSceneFile(scene, texts);
+  } catch (const InputError& e) {
+    for (auto o = overrides.rbegin(); o != overrides.rend(); ++o) {
+      const std::string key = o->text.substr(0, o->text.find('='));
+      // The override's own field, a field below it, or a sibling in the table it writes into (a
+      // finger named by mistake lacks its device).
+      const std::string parent = key.substr(0, key.rfind('.') + 1);
+      const bool same = e.field() == key || e.field().rfind(key + ".", 0) == 0 || key.rfind(e.field() + ".", 0) == 0 ||
+                        (!parent.empty() && e.field().rfind(parent, 0) == 0) || e.file().rfind("--set " + o->text, 0) == 0;
+      if (!same) continue;
+      if (o->source.line == 0) throw commandLineError("--set " + o->text, e.field() + ": " + e.reason());
+      // A field the scene does not have is the axis' fault, a bad value the value's.
+      const bool unknown = e.reason().rfind("unknown field", 0) == 0 || e.reason().find("is not a table") != std::string::npos;
+      const StudySource& at = unknown && o->field_source.line > 0 ? o->field_source : o->source;
+      throw InputError(source, at.line, at.column, at.field,
+                       "'" + o->text + "': " + (e.field().empty() ? "" : e.field() + ": ") + e.reason());
+    }
+    throw;
+  }
+}
+
 std::string bundledStudyDir() {
   if (const char* env = std::getenv("GODFINGER_STUDIES"); env && *env) return env;
   return (fs::path(bundledSceneDir()).parent_path() / "studies").string();
 }
 
 StudyDesc loadStudyFile(const std::string& name_or_path) {
-  std::string path = name_or_path;
-  if (!fs::is_regular_file(path)) {
-    const fs::path bundled = fs::path(bundledStudyDir()) / (name_or_path + ".toml");
-    if (name_or_path.find('/') != std::string::npos || !fs::is_regular_file(bundled)) {
-      throw InputError(name_or_path, 0, 0, "", "no such study file, and no bundled study of that name (assets/studies)");
-    }
-    path = bundled.string();
-  }
+  const std::string path = resolveBundledFile(name_or_path, bundledStudyDir(), "study", "assets/studies");
   std::ifstream in(path, std::ios::binary);
   if (!in) throw InputError(path, 0, 0, "", "cannot open the study file");
   std::stringstream text;
@@ -356,7 +349,7 @@ StudyDesc parseStudyText(const std::string& text, const std::string& source_name
     const std::string scene = at.string("scene", "");
     if (scene.empty()) return fallback;
     try {
-      return resolveIn(base_dir, scene);
+      return resolveSceneIn(base_dir, scene);
     } catch (const InputError& e) {
       at.fail(at.nodeOf("scene"), "scene", e.reason());
     }
@@ -476,7 +469,7 @@ StudyPlan expandStudy(const StudyDesc& study, bool quick, const std::vector<std:
     std::snprintf(prefix, sizeof prefix, "%03zu-", i);
     r.id = std::string(prefix).append(slug(name));
     // Every configuration is loaded and checked before anything runs.
-    const SessionDesc scene = checkRun(study, r);
+    const SessionDesc scene = loadSceneWithOverrides(study.source, r.scene, r.overrides);
     if (r.series >= 0) checkMeasures(study, study.series[static_cast<std::size_t>(r.series)], scene);
   }
   return plan;

@@ -78,6 +78,8 @@ StudyResume planResume(const StudyPlan& plan, const std::string& out, const std:
   return r;
 }
 
+bool runFinishedWith(const std::string& dir, const std::string& key) { return keptRun(dir, key) == Kept::kYes; }
+
 void recordFinishedRun(const std::string& dir, const std::string& key) {
   const nlohmann::json record = {{"key", key}, {"files", runFiles(dir)}};
   writeFileAtomically((fs::path(dir) / kStudyRunRecord).string(), record.dump(1) + "\n");

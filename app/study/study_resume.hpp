@@ -34,6 +34,10 @@ struct StudyResume {
 /// computed). Reads the executable once (about 40 ms for 30 MB).
 StudyResume planResume(const StudyPlan& plan, const std::string& out, const std::string& godfinger, bool restart);
 
+/// Whether the run in `dir` finished before with `key` and its files are still those its record
+/// names (a run of any runner that records its runs: studies, experiments).
+bool runFinishedWith(const std::string& dir, const std::string& key);
+
 /// Writes `dir`'s record: `key` and the sizes of its summary.json, trace.csv and forces.csv (those
 /// present). Call when the run ended with exit 0. Throws std::runtime_error when it cannot.
 void recordFinishedRun(const std::string& dir, const std::string& key);

@@ -282,7 +282,7 @@ Canvas canvas(ImDrawList& d, const ChartSpec& chart, const Layout& l, float font
       if (chart.log_y && onAxis(y, true) && !v.y.empty()) v.y.push_back(y);
     }
   }
-  const Range xr = chart.log_x ? fitLog(v.x) : fitLinearX(v.x);
+  const Range xr = chart.log_x ? fitLog(v.x) : chart.x_max > chart.x_min ? Range{chart.x_min, chart.x_max} : fitLinearX(v.x);
   return {d,
           {xr, chart.log_x, l.lo.x, l.hi.x},
           {fitY(chart, v.y), chart.log_y, l.hi.y, l.lo.y},

@@ -57,6 +57,9 @@ struct ChartSpec {
   std::vector<ChartSeries> series;
   /// Fixed y range, used when y_max > y_min (and y_min > 0 on a log axis); otherwise fitted.
   double y_min = 0.0, y_max = 0.0;
+  /// Fixed x range of a linear x axis, used when x_max > x_min (e.g. categories 1..n with room
+  /// on either side); otherwise the data's span.
+  double x_min = 0.0, x_max = 0.0;
   bool log_x = false, log_y = false;  ///< logarithmic (base 10) axes
   int width = 1200, height = 600;     ///< pixels
   /// A vertical line across the plot at this x (e.g. the time a video frame shows); none

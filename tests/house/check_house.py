@@ -53,6 +53,7 @@ FLOORS = [
     ["app/serve"],                                # the browser view's server
     ["app/session"],                              # the runner
     ["app/compare", "app/study"],                 # comparisons and goldens; studies
+    ["app/experiment"],                           # experiments: tasks, trials, simulated hands
     ["app/commands", "app/python"],               # the command line; the Python module
     ["app"],                                      # main()
 ]
