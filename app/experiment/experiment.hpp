@@ -26,6 +26,9 @@ struct TaskGoal {
   std::optional<sim::Quat> orientation;
   double orientation_tolerance_deg = 10.0;
   double hold = 0.5;  ///< s: how long the goal must hold, uninterrupted, to count as reached
+  /// The goal holds only while no finger holds the body: every finger's coupling force below
+  /// kReleasedForce ("set it down and let go")
+  bool released = false;
   /// deg: the largest tilt (from its starting orientation; a spin about the vertical is none)
   /// allowed at any time until the goal is reached and held: "without swinging"
   std::optional<double> max_tilt_deg;
@@ -33,6 +36,11 @@ struct TaskGoal {
   std::optional<double> max_roll_ratio;
   double roll_radius = 0.0;  ///< m: the body's radius for the roll ratio (a sphere's)
 };
+
+/// N: a finger whose coupling force is below this holds nothing. A free proxy (0.1 kg) pulled
+/// along by its device feels its own inertia: up to about 0.15 N in the tasks' reaches, 0.08 N
+/// under four times a typical hand's tremor; a grip presses 1 to 5 N.
+inline constexpr double kReleasedForce = 0.25;
 
 /// A task of the battery: a scene (its fingers' keyframes are the movement a simulated hand
 /// makes, its bodies the set-up), a goal and a time limit.

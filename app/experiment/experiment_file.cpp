@@ -80,6 +80,7 @@ TaskGoal readGoal(Reader& r) {
   if (r.has("orientation")) g.orientation = readQuat(r, "orientation");
   g.orientation_tolerance_deg = r.number("orientation_tolerance_deg", g.orientation_tolerance_deg, 0.1, 180.0);
   g.hold = r.number("hold", g.hold, 0.0, 60.0);
+  g.released = r.boolean("released", g.released);
   if (r.has("max_tilt_deg")) g.max_tilt_deg = r.number("max_tilt_deg", 0.0, 0.0, 180.0);
   if (r.has("max_roll_ratio")) {
     g.max_roll_ratio = r.number("max_roll_ratio", 0.0, 0.0, 10.0);

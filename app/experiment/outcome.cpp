@@ -41,12 +41,14 @@ TrialOutcome judgeTrace(const TaskGoal& goal, const std::vector<std::string>& fi
   const auto& qz = trace.column(b + ".qz");
   const auto& qw = trace.column(b + ".qw");
   o.peak_force_n = 0.0;
+  std::vector<double> largest(t.size(), 0.0);  // per row, the largest finger's force
   for (const std::string& f : fingers) {
     const auto& fx = trace.column(f + ".fx");
     const auto& fy = trace.column(f + ".fy");
     const auto& fz = trace.column(f + ".fz");
-    for (std::size_t i = 0; i < fx.size(); ++i) o.peak_force_n = std::max(o.peak_force_n, Vec3(fx[i], fy[i], fz[i]).norm());
+    for (std::size_t i = 0; i < fx.size() && i < t.size(); ++i) largest[i] = std::max(largest[i], Vec3(fx[i], fy[i], fz[i]).norm());
   }
+  for (const double f : largest) o.peak_force_n = std::max(o.peak_force_n, f);
   if (t.empty()) {
     o.ran = false;
     o.failure = "run failed (an empty trace)";
@@ -74,7 +76,8 @@ TrialOutcome judgeTrace(const TaskGoal& goal, const std::vector<std::string>& fi
     }
     o.end_distance_m = distanceFromZone(goal, p);
     o.end_angle_deg = goal.orientation ? q.angularDistance(*goal.orientation) * kDeg : 0.0;
-    const bool holds = o.end_distance_m == 0.0 && (!goal.orientation || o.end_angle_deg <= goal.orientation_tolerance_deg);
+    const bool holds = o.end_distance_m == 0.0 && (!goal.orientation || o.end_angle_deg <= goal.orientation_tolerance_deg) &&
+                       (!goal.released || largest[i] < kReleasedForce);
     if (!holds) {
       stretch = NAN;
     } else if (std::isnan(stretch)) {

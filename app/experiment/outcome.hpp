@@ -30,7 +30,8 @@ struct TrialOutcome {
 std::string shortText(double v, int digits = 4);
 
 /// Judges a trace (trace.csv's columns) against `goal`: the goal holds at a row when the body's
-/// centre is in the zone and its orientation within tolerance; the trial succeeds at the first
+/// centre is in the zone, its orientation within tolerance and (`released`) no finger's force
+/// reaches kReleasedForce; the trial succeeds at the first
 /// stretch that holds it `goal.hold` s, unless a limit (max_tilt_deg, max_roll_ratio) was passed
 /// before that stretch ended. `fingers` names the fingers whose forces are read.
 TrialOutcome judgeTrace(const TaskGoal& goal, const std::vector<std::string>& fingers, const CsvTable& trace);

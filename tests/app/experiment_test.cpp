@@ -281,6 +281,28 @@ TEST(ExperimentOutcome, CompletionIsTheStartOfTheFirstStretchHeldLongEnough) {
   EXPECT_EQ(late.failure, "not reached in 4 s");
 }
 
+// With `released`, the goal holds only once no finger holds the body: a finger pressing 2 N until
+// 2.5 s delays the completion from 1.0 s (in the zone) to 2.5 s.
+TEST(ExperimentOutcome, AReleasedGoalWaitsForTheFingersToLetGo) {
+  std::vector<double> t;
+  std::vector<Vec3> p;
+  std::vector<sim::Quat> q;
+  for (int i = 0; i <= 400; ++i) {
+    t.push_back(i * 0.01);
+    p.emplace_back(0.0, t.back() >= 1.0 - 1e-9 ? 0.08 : 0.02, 0.0);
+    q.push_back(sim::Quat::Identity());
+  }
+  CsvTable trace = bodyTrace(t, p, q);
+  std::vector<double>& fy = trace.columns[static_cast<std::size_t>(std::find(trace.names.begin(), trace.names.end(), "f.fy") - trace.names.begin())];
+  for (std::size_t i = 0; i < fy.size(); ++i) fy[i] = t[i] < 2.5 - 1e-9 ? 2.0 : 0.1;  // then a free proxy's inertia
+  TaskGoal g = zoneGoal();
+  EXPECT_NEAR(judgeTrace(g, {"f"}, trace).completion_s, 1.0, 1e-9) << "held or not";
+  g.released = true;
+  const TrialOutcome o = judgeTrace(g, {"f"}, trace);
+  EXPECT_TRUE(o.success) << o.failure;
+  EXPECT_NEAR(o.completion_s, 2.5, 1e-9);
+}
+
 // A body that tips 30 degrees about a horizontal axis on the way breaks a 20-degree limit; a spin
 // about the vertical is no tilt; an orientation goal holds within its tolerance.
 TEST(ExperimentOutcome, TiltLimitsAndOrientationGoals) {
@@ -460,15 +482,20 @@ Tsv readTsv(const fs::path& path) {
 // The bundled battery by one steady hand (noise 0: the scripted waypoints at their times): the god-finger
 // does every task; a god-object's single points drop the tile (Fig. 6), let the pinched cylinder
 // swing (Fig. 8) and roll the ball (Fig. 5); the docking push turns the box under both.
+// One steady participant (noise 0) doing `tasks` (TOML list items) under the two models: the
+// trial table of the experiment `name`.
+Tsv steadyHand(const std::string& name, const std::string& tasks) {
+  const fs::path dir = freshFolder("experiment-" + name);
+  const fs::path file = writeFile(dir / (name + ".toml"), "participants = 1\nnoise = 0.0\ntasks = [" + tasks + "]\n[design]\n"
+                                                                                                   "block_by = \"model\"\n" + kModels);
+  const int status = exitStatus(kBin + " experiment " + file.string() + " --jobs 2 --out " + (dir / "out").string() + " > " +
+                                (dir / "said.txt").string() + " 2>&1");
+  EXPECT_EQ(status, 0) << readFile(dir / "said.txt");
+  return readTsv(dir / "out/sub-01/beh" / ("sub-01_task-" + name + "_beh.tsv"));
+}
+
 TEST(ExperimentRun, TheBatteryByASteadyHandSeparatesTheModelsWhereThePaperSays) {
-  const fs::path dir = freshFolder("experiment-battery");
-  const fs::path file = writeFile(dir / "battery.toml", "participants = 1\nnoise = 0.0\ntasks = [\"lift-and-hold\", \"pinch-carry\", "
-                                                          "\"push-no-roll\", \"turn-to-target\"]\n[design]\npractice = 0\nblock_by = \"model\"\n" + kModels);
-  ASSERT_EQ(exitStatus(kBin + " experiment " + file.string() + " --jobs 2 --out " + (dir / "out").string() + " > " +
-                       (dir / "said.txt").string() + " 2>&1"),
-            0)
-      << readFile(dir / "said.txt");
-  const Tsv rows = readTsv(dir / "out/sub-01/beh/sub-01_task-battery_beh.tsv");
+  const Tsv rows = steadyHand("battery", "\"lift-and-hold\", \"pinch-carry\", \"push-no-roll\", \"turn-to-target\"");
   ASSERT_EQ(rows.rows.size(), 8u);
   std::map<std::string, std::string> success;  // "model task" -> success
   for (const auto& row : rows.rows) success[row[rows.column("model")] + " " + row[rows.column("task")]] = row[rows.column("success")];
@@ -480,6 +507,21 @@ TEST(ExperimentRun, TheBatteryByASteadyHandSeparatesTheModelsWhereThePaperSays) 
   EXPECT_EQ(success["go pinch-carry"], "0");
   EXPECT_EQ(success["go push-no-roll"], "0");
   EXPECT_EQ(success["go turn-to-target"], "1");
+}
+
+// Setting down and letting go, by one steady hand: a pinch with contact areas (the god-finger's,
+// or the soft finger's torsional friction about the pinch axis) carries the cylinder into the box
+// and the cube onto the base upright; two points let them swing and they land upside down.
+TEST(ExperimentRun, PlacingTasksNeedATorsionResistingPinch) {
+  const Tsv rows = steadyHand("placing", "\"pick-and-place\", \"stack\"");
+  ASSERT_EQ(rows.rows.size(), 4u);
+  for (const auto& row : rows.rows) {
+    const bool gf = row[rows.column("model")] == "gf";
+    EXPECT_EQ(row[rows.column("success")], gf ? "1" : "0") << row[rows.column("model")] << " " << row[rows.column("task")];
+    if (!gf) {
+      EXPECT_GT(std::stod(row[rows.column("end_angle")]), 90.0) << "landed upside down";
+    }
+  }
 }
 
 // Two participants, two models, two short tasks with a practice trial a block (12 trials):
