@@ -183,6 +183,7 @@ void drawCloseUps(Gpu& gpu, const sim::SceneDesc& desc, const sim::Snapshot& sna
   settings.ground = false;          // a camera under a lifted body is under the ground
   settings.contact_arrows = false;  // they point at the camera: the labels draw the forces in 2D
   settings.patch_highlight = true;
+  settings.targets = nullptr;          // a target's ghost would cover the patch
   gpu.scene.setSettings(settings);
   // Close-ups draw a shadow map of their own (no fingers cast shadows) and leave none behind: the
   // frame of the same instant, drawn after them, draws its own.

@@ -8,8 +8,10 @@
 #include <fstream>
 #include <set>
 #include <sstream>
+#include <tuple>
 
 #include "app/experiment/experiment.hpp"
+#include "app/experiment/outcome.hpp"
 #include "app/scene/data_folder.hpp"
 #include "app/scene/scene_file.hpp"
 #include "app/scene/toml_reader.hpp"
@@ -50,34 +52,15 @@ void checkName(Reader& r, const std::string& key, const std::string& name) {
   if (!fine) r.fail(r.nodeOf(key), key, "'" + name + "': expected 1 to 64 letters, digits, '-' or '_'");
 }
 
-sim::Quat readQuat(Reader& r, const std::string& key) {
-  const toml::node* n = r.find(key);
-  const toml::array* a = n ? n->as_array() : nullptr;
-  if (!a || a->size() != 4 || !std::all_of(a->begin(), a->end(), [](const toml::node& e) { return e.is_number(); })) {
-    r.fail(n, key, "expected a unit quaternion [w, x, y, z]");
-  }
-  const sim::Quat q(a->get(0)->value<double>().value_or(0), a->get(1)->value<double>().value_or(0),
-                    a->get(2)->value<double>().value_or(0), a->get(3)->value<double>().value_or(0));
-  if (!std::isfinite(q.norm()) || std::abs(q.norm() - 1.0) > 1e-3) r.fail(n, key, "expected a unit quaternion (|q| within 0.001 of 1)");
-  return q.normalized();
-}
-
 TaskGoal readGoal(Reader& r) {
   TaskGoal g;
   g.body = r.string("body", "");
   if (g.body.empty()) r.fail(nullptr, "body", "missing: the dynamic body the goal is about");
-  if (const toml::node* z = r.find("zone")) {
-    const toml::table* t = z->as_table();
-    if (!t) r.fail(z, "zone", std::string("expected a table { min = [x, y, z], max = [x, y, z] }, got ") + typeName(*z));
-    Reader zr(*t, r.field("zone"), r.file());
-    if (!zr.has("min") || !zr.has("max")) zr.fail(nullptr, "min", "missing: the zone's corners min and max (m)");
-    g.zone_min = zr.vec3("min", g.zone_min);
-    g.zone_max = zr.vec3("max", g.zone_max);
-    if (!(g.zone_min.array() < g.zone_max.array()).all()) zr.fail(zr.nodeOf("max"), "max", "every coordinate must exceed min's");
-    zr.finish();
+  if (const std::optional<std::pair<sim::Vec3, sim::Vec3>> zone = r.box("zone")) {
+    std::tie(g.zone_min, g.zone_max) = *zone;
     g.has_zone = true;
   }
-  if (r.has("orientation")) g.orientation = readQuat(r, "orientation");
+  if (r.has("orientation") || r.has("rotation")) g.orientation = r.orientation(sim::Quat::Identity());
   g.orientation_tolerance_deg = r.number("orientation_tolerance_deg", g.orientation_tolerance_deg, 0.1, 180.0);
   g.hold = r.number("hold", g.hold, 0.0, 60.0);
   g.released = r.boolean("released", g.released);
@@ -86,7 +69,7 @@ TaskGoal readGoal(Reader& r) {
     g.max_roll_ratio = r.number("max_roll_ratio", 0.0, 0.0, 10.0);
     g.roll_radius = r.requiredNumber("roll_radius", 1e-4, 10.0);
   }
-  if (!g.has_zone && !g.orientation) r.fail(nullptr, "zone", "missing: a goal needs a zone, an orientation or both");
+  if (!g.has_zone && !g.orientation) r.fail(nullptr, "zone", "missing: a goal needs a zone, an orientation (or rotation) or both");
   r.finish();
   return g;
 }
@@ -242,6 +225,7 @@ void checkConditions(const ExperimentDesc& e) {
         }
       }
     }
+    for (const std::string& o : goalTargetOverrides(task.goal)) overrides.push_back({o, {}, {}});
     overrides.push_back({"duration=" + sim::numberText(task.time_limit), {}, {}});
     loadSceneWithOverrides(e.source, task.scene, overrides);
   }

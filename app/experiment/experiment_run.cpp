@@ -239,6 +239,7 @@ TrialRun prepareTrial(const ExperimentDesc& e, const Trial& t, const sim::SceneD
     r.run.overrides.push_back({"fingers." + track.finger + ".device={csv=\"" + quoted + "\"}", {}, {}});
   }
   for (const std::string& o : trialOverrides(e, t, r.fingers)) r.run.overrides.push_back({o, {}, {}});
+  for (const std::string& o : goalTargetOverrides(task.goal)) r.run.overrides.push_back({o, {}, {}});
   r.run.overrides.push_back({"duration=" + exactSeconds(task.time_limit), {}, {}});
   r.run.overrides.push_back({"record.trace_rate=" + sim::numberText(kTraceRateHz), {}, {}});
   r.run.scene = task.scene;

@@ -124,4 +124,16 @@ TrialOutcome judgeTrial(const TaskGoal& goal, const std::vector<std::string>& fi
   return o;
 }
 
+std::vector<std::string> goalTargetOverrides(const TaskGoal& goal) {
+  const auto vec = [](const sim::Vec3& v) {
+    return "[" + sim::numberText(v.x(), 17) + ", " + sim::numberText(v.y(), 17) + ", " + sim::numberText(v.z(), 17) + "]";
+  };
+  if (goal.has_zone) return {"targets.goal.zone={min=" + vec(goal.zone_min) + ", max=" + vec(goal.zone_max) + "}"};
+  if (!goal.orientation) return {};
+  const sim::Quat& q = *goal.orientation;
+  return {"targets.goal.body=\"" + goal.body + "\"", "targets.goal.orientation=[" + sim::numberText(q.x(), 17) + ", " +
+                                                      sim::numberText(q.y(), 17) + ", " + sim::numberText(q.z(), 17) + ", " +
+                                                      sim::numberText(q.w(), 17) + "]"};
+}
+
 }  // namespace gf::app

@@ -36,6 +36,11 @@ std::string shortText(double v, int digits = 4);
 /// before that stretch ended. `fingers` names the fingers whose forces are read.
 TrialOutcome judgeTrace(const TaskGoal& goal, const std::vector<std::string>& fingers, const CsvTable& trace);
 
+/// The scene overrides that draw `goal` in a trial's frames as the scene's target "goal"
+/// ([targets.NAME]): its zone's box when it has one, else the goal body's ghost turned to the
+/// goal orientation where the body starts.
+std::vector<std::string> goalTargetOverrides(const TaskGoal& goal);
+
 /// The outcome of the trial run in `dir` that exited with `exit_code`: a run that failed (not 0)
 /// or left no readable trace did not run (`ran` false, failure "run failed ...").
 TrialOutcome judgeTrial(const TaskGoal& goal, const std::vector<std::string>& fingers, const std::filesystem::path& dir,

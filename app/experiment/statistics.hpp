@@ -5,7 +5,7 @@
 // the normal approximation with the tie correction; differences compared to 12 significant
 // digits) with the matched-pairs rank-biserial correlation, a one-way repeated-measures
 // ANOVA with partial eta squared and the Greenhouse-Geisser correction, and Holm's adjustment.
-// The tests check them against SciPy's and statsmodels' values (tests/app/statistics_test.cpp).
+// The tests check them against SciPy's and statsmodels' values (tests/app/experiment/statistics_test.cpp).
 #pragma once
 
 #include <vector>

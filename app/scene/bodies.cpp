@@ -16,30 +16,6 @@ namespace {
 
 constexpr double kDegToRad = std::numbers::pi / 180.0;
 
-Eigen::Quaterniond readOrientation(Reader& r) {
-  if (r.has("orientation") && r.has("rotation")) {
-    r.fail(r.find("rotation"), "rotation", "give either orientation or rotation, not both");
-  }
-  if (r.has("rotation")) {
-    const Vec3 deg = r.vec3("rotation", Vec3::Zero());
-    return Eigen::AngleAxisd(deg.x() * kDegToRad, Vec3::UnitX()) *
-           Eigen::AngleAxisd(deg.y() * kDegToRad, Vec3::UnitY()) *
-           Eigen::AngleAxisd(deg.z() * kDegToRad, Vec3::UnitZ());
-  }
-  const toml::node* n = r.find("orientation");
-  if (!n) return Eigen::Quaterniond::Identity();
-  const toml::array* a = n->as_array();
-  if (!a || a->size() != 4 || !std::all_of(a->begin(), a->end(), [](const toml::node& e) {
-        return e.is_number() && std::isfinite(e.value<double>().value_or(NAN));
-      })) {
-    r.fail(n, "orientation", "expected a quaternion [x, y, z, w] of finite numbers");
-  }
-  Eigen::Quaterniond q(a->get(3)->value<double>().value(), a->get(0)->value<double>().value(),
-                       a->get(1)->value<double>().value(), a->get(2)->value<double>().value());
-  if (q.norm() < 1e-9) r.fail(n, "orientation", "quaternion has zero length");
-  return q.normalized();
-}
-
 // `shape` (and `collision` for meshes): the row of sim::shapeInfos() it names.
 const sim::ShapeInfo& readShape(Reader& r) {
   std::vector<std::string_view> shapes, collisions;
@@ -245,7 +221,7 @@ sim::BodyDesc readBody(const std::string& name, const toml::table& t, const Read
   for (const sim::Setting<sim::BodyDesc>& s : sim::bodySettings()) {
     if (commonBodySetting(s)) r.setting(s, b, std::string(s.name));
   }
-  b.orientation = readOrientation(r);
+  b.orientation = r.orientation(Eigen::Quaterniond::Identity());
   r.failOn(sim::validateBody(b));
   r.finish();
   return b;

@@ -83,6 +83,8 @@ SessionDesc readSession(toml::table& root, const std::string& source, const std:
     checkName("cameras", name, t);
     s.cameras.push_back(readCamera(name, *t, r));
   }
+  for (const auto& [name, t] : r.namedTables("targets")) checkName("targets", name, t);
+  readTargets(r, s);
   readLoads(r, s.scene);
   readChanges(r, s.scene);
   readRecord(r, s);

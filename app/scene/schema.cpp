@@ -198,6 +198,17 @@ nlohmann::json sceneSchema() {
                                                {"fov", numberSchema(1.0, 170.0, "vertical field of view (deg)")}},
                                               "a camera"),
                                        "cameras, by name");
+  json zone = object({{"min", vec3Schema("m: the lower corner")}, {"max", vec3Schema("m: the upper corner, above min on every axis")}},
+                     "an axis-aligned box", {"min", "max"});
+  properties["targets"] = namedObjects(
+      object({{"body", {{"type", "string"}, {"description", "the body whose ghost is drawn (not a plane)"}}},
+              {"position", vec3Schema("m: the ghost's position (default: where the body starts)")},
+              {"orientation", {{"type", "array"}, {"items", {{"type", "number"}}}, {"minItems", 4}, {"maxItems", 4},
+                               {"description", "the ghost's quaternion [x, y, z, w] (default: the body's)"}}},
+              {"rotation", vec3Schema("the ghost's rotation about x, then y, then z (deg)")},
+              {"zone", zone}},
+             "where a task wants a body, drawn in the frames: a ghost, a zone or both"),
+      "targets, by name");
   json load = {{"body", {{"type", "string"}, {"description", "a dynamic body's name"}}}};
   for (const sim::Setting<sim::LoadDesc>& s : sim::loadSettings()) load[std::string(s.name)] = settingSchema(s);
   properties["loads"] = {{"type", "array"}, {"items", object(load, "a known external load", {"body"})}};

@@ -35,6 +35,8 @@ std::vector<std::string_view> effectNames();
 void readEffects(Reader& r, sim::EffectSet& e, ViewSettings& view);
 /// [render]: frame size, anti-aliasing and scripted overlay input (after the fingers are read).
 void readView(Reader& parent, SessionDesc& s);
+/// [targets.NAME]: a ghost of a body at a pose, a zone, or both (after the bodies are read).
+void readTargets(Reader& parent, SessionDesc& s);
 /// [cameras.NAME].
 view::Camera readCamera(const std::string& name, const toml::table& t, const Reader& parent);
 /// [record]: what a run writes besides summary.json.

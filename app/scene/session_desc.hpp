@@ -82,6 +82,8 @@ struct SessionDesc {
   ExpectDesc expect;  ///< [expect]: what the run must show
   ViewSettings view;
   std::vector<view::Camera> cameras;  ///< [cameras.NAME]: one is rendered per output stream
+  /// [targets.NAME]: where a task wants a body (a ghost pose, a zone), drawn in the frames
+  std::vector<view::Target> targets;
   std::vector<UdpDeviceDesc> udp_devices;  ///< fingers with a live UDP device
   std::vector<WebDeviceDesc> web_devices;  ///< fingers the browser view's pointer drives
 };

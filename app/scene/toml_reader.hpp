@@ -4,7 +4,11 @@
 
 #include <toml++/toml.h>
 
+#include <Eigen/Geometry>
+
+#include <algorithm>
 #include <cmath>
+#include <optional>
 #include <iterator>
 #include <set>
 #include <sstream>
@@ -156,6 +160,43 @@ class Reader {
     Vec3 v;
     for (int i = 0; i < 3; ++i) v[i] = checkedNumber(*a->get(i), key, -HUGE_VAL, HUGE_VAL);
     return v;
+  }
+  /// `orientation` (a quaternion [x, y, z, w] of finite numbers, normalised) or `rotation`
+  /// (degrees [x, y, z]: about x, then y, then z, each about the axes the ones before turned);
+  /// `fallback` when neither is given. Fails when both are, or on a zero quaternion.
+  sim::Quat orientation(const sim::Quat& fallback) {
+    constexpr double kDegToRad = 3.14159265358979323846 / 180.0;
+    if (has("orientation") && has("rotation")) fail(find("rotation"), "rotation", "give either orientation or rotation, not both");
+    if (has("rotation")) {
+      const Vec3 deg = vec3("rotation", Vec3::Zero());
+      return Eigen::AngleAxisd(deg.x() * kDegToRad, Vec3::UnitX()) * Eigen::AngleAxisd(deg.y() * kDegToRad, Vec3::UnitY()) *
+             Eigen::AngleAxisd(deg.z() * kDegToRad, Vec3::UnitZ());
+    }
+    const toml::node* n = find("orientation");
+    if (!n) return fallback;
+    const toml::array* a = n->as_array();
+    const auto finite = [](const toml::node& e) { return e.is_number() && std::isfinite(e.value<double>().value_or(NAN)); };
+    if (!a || a->size() != 4 || !std::all_of(a->begin(), a->end(), finite)) {
+      fail(n, "orientation", "expected a quaternion [x, y, z, w] of finite numbers");
+    }
+    const sim::Quat q(a->get(3)->value<double>().value(), a->get(0)->value<double>().value(),
+                      a->get(1)->value<double>().value(), a->get(2)->value<double>().value());
+    if (q.norm() < 1e-9) fail(n, "orientation", "quaternion has zero length");
+    return q.normalized();
+  }
+  /// A box `key = { min = [x, y, z], max = [x, y, z] }` (m), every coordinate of max above
+  /// min's; nullopt when `key` is absent.
+  std::optional<std::pair<Vec3, Vec3>> box(const std::string& key) {
+    const toml::node* z = find(key);
+    if (!z) return std::nullopt;
+    const toml::table* t = z->as_table();
+    if (!t) fail(z, key, std::string("expected a table { min = [x, y, z], max = [x, y, z] }, got ") + typeName(*z));
+    Reader zr(*t, field(key), file());
+    if (!zr.has("min") || !zr.has("max")) zr.fail(nullptr, zr.has("min") ? "max" : "min", "missing: the corners min and max (m)");
+    const Vec3 lo = zr.vec3("min", Vec3::Zero()), hi = zr.vec3("max", Vec3::Zero());
+    if (!(lo.array() < hi.array()).all()) zr.fail(zr.nodeOf("max"), "max", "every coordinate must exceed min's");
+    zr.finish();
+    return std::pair(lo, hi);
   }
   std::vector<double> numbers(const std::string& key) {
     std::vector<double> out;

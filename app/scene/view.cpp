@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <tuple>
 
 #include "sim/scene/settings.hpp"
 #include "render/view/view_desc.hpp"
@@ -117,6 +118,37 @@ void readView(Reader& parent, SessionDesc& s) {
   }
   if (!v.actions.empty() && !v.overlay) {
     parent.fail(parent.find("render"), "render.actions", "scripted input needs the overlay effect");
+  }
+}
+
+// [targets.NAME]: `body` (its ghost, at `position` and `orientation`/`rotation`, by default where
+// the body starts) and/or `zone = { min, max }`.
+void readTargets(Reader& parent, SessionDesc& s) {
+  for (const auto& [name, t] : parent.namedTables("targets")) {
+    Reader r(*t, parent.field("targets." + name), parent.file());
+    view::Target target;
+    target.name = name;
+    if (const toml::node* n = r.find("body")) {
+      const std::string body = r.string("body", "");
+      const auto& bodies = s.scene.bodies;
+      const auto it = std::find_if(bodies.begin(), bodies.end(), [&](const sim::BodyDesc& b) { return b.name == body; });
+      if (it == bodies.end()) r.fail(n, "body", "no body '" + body + "' in the scene");
+      if (it->shape == sim::ShapeKind::kPlane) r.fail(n, "body", "'" + body + "' is a plane: it has no ghost to draw");
+      target.body = static_cast<int>(it - bodies.begin());
+      target.position = r.vec3("position", it->position);
+      target.orientation = r.orientation(it->orientation);
+    } else {
+      for (const char* key : {"position", "orientation", "rotation"}) {
+        if (r.has(key)) r.fail(r.find(key), key, "places a body's ghost: give the body");
+      }
+    }
+    if (const std::optional<std::pair<Vec3, Vec3>> zone = r.box("zone")) {
+      target.has_zone = true;
+      std::tie(target.zone_min, target.zone_max) = *zone;
+    }
+    if (target.body < 0 && !target.has_zone) r.fail(nullptr, "body", "missing: a target is a body's ghost, a zone or both");
+    r.finish();
+    s.targets.push_back(std::move(target));
   }
 }
 

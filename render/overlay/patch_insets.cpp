@@ -92,6 +92,7 @@ void PatchInsets::draw(SceneRenderer& renderer, const sim::Snapshot& snapshot, u
   close.ground = false;          // a camera under a lifted body is under the ground
   close.contact_arrows = false;  // they point at the camera: the labels draw the forces in 2D
   close.patch_highlight = true;
+  close.targets = nullptr;          // a target's ghost would cover the patch
   renderer.setSettings(close);
   for (std::size_t f = 0; f < m.rects.size(); ++f) {
     m.touching[f] = contactCloseUp(m.scene, snapshot, f, m.only, m.cameras[f]);

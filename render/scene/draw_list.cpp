@@ -38,6 +38,8 @@ const Eigen::Vector3f kForceColour(1.0f, 0.75f, 0.1f);
 const Eigen::Vector3f kSlipColour(1.0f, 1.0f, 1.0f);  // white: outside viridis and every finger colour
 const Eigen::Vector3f kSpringColour = Eigen::Vector3f::Constant(0.1f);
 constexpr float kSpringAlpha = 0.85f;
+constexpr float kTargetGhostAlpha = 0.35f;  // a body's ghost at its target pose
+constexpr float kTargetZoneAlpha = 0.15f;   // a zone's faces; its edges are opaque
 
 // Rotation taking +y onto `direction` (unit).
 sim::Quat fromY(const Vec3& direction) { return sim::Quat::FromTwoVectors(Vec3::UnitY(), direction); }
@@ -134,6 +136,7 @@ void DrawListBuilder::build(const sim::Snapshot& snapshot, const DrawSettings& s
   view_eye_.reset();
   if (settings.view) view_eye_ = settings.view->eye;
   addSoftBodies(snapshot, out);
+  if (settings.targets) addTargets(*settings.targets, out);
   if (settings.fingers) {
     addPads(snapshot, out);
     addProxies(snapshot, out);
@@ -237,6 +240,50 @@ void DrawListBuilder::addSoftBodies(const sim::Snapshot& snap, DrawList& out) {
     fill_.clear();
     pad_builder_.build(s.nodes, *s.surface, fill_);
     addRange(out, DrawPass::kPads, DrawShape::kTriangles, fill_, body_colour_[static_cast<std::size_t>(s.body)], 1.0f);
+  }
+}
+
+// Each target: the ghost of its body (the body's surface at the target pose), and its zone's
+// faces, translucent, lit and depth-tested (a body in front hides them, one inside shows
+// through; pulled towards the eye, so a ghost's face lying on its body's shows without
+// flicker), with the zone's twelve edges over them. Drawn before the proxies.
+void DrawListBuilder::addTargets(const std::vector<view::Target>& targets, DrawList& out) {
+  for (const view::Target& t : targets) {
+    const std::size_t b = static_cast<std::size_t>(t.body);
+    if (t.body >= 0 && b < surfaces_.size() && surfaces_[b]) {
+      const sim::Mesh& m = *surfaces_[b];
+      fill_.clear();
+      for (int f = 0; f < m.faceCount(); ++f) {
+        const Vec3 n = t.orientation * m.faceNormal(f);
+        for (int k = 0; k < 3; ++k) fill_.push_back(makeVertex(t.position + t.orientation * m.corner(f, k), n));
+      }
+      addRange(out, DrawPass::kTargets, DrawShape::kTriangles, fill_, kTargetColour, kTargetGhostAlpha);
+    }
+    if (!t.has_zone) continue;
+    const auto corner = [&](int i) {
+      return Vec3((i & 1) ? t.zone_max.x() : t.zone_min.x(), (i & 2) ? t.zone_max.y() : t.zone_min.y(),
+                  (i & 4) ? t.zone_max.z() : t.zone_min.z());
+    };
+    // The six faces, wound outward (counter-clockwise seen from outside), two triangles each.
+    static constexpr int kFaces[6][4] = {{0, 4, 6, 2}, {1, 3, 7, 5}, {0, 1, 5, 4}, {2, 6, 7, 3}, {0, 2, 3, 1}, {4, 5, 7, 6}};
+    static constexpr double kNormals[6][3] = {{-1, 0, 0}, {1, 0, 0}, {0, -1, 0}, {0, 1, 0}, {0, 0, -1}, {0, 0, 1}};
+    fill_.clear();
+    lines_.clear();
+    for (int f = 0; f < 6; ++f) {
+      const Vec3 n(kNormals[f][0], kNormals[f][1], kNormals[f][2]);
+      const Vertex v[4] = {makeVertex(corner(kFaces[f][0]), n), makeVertex(corner(kFaces[f][1]), n),
+                           makeVertex(corner(kFaces[f][2]), n), makeVertex(corner(kFaces[f][3]), n)};
+      fill_.insert(fill_.end(), {v[0], v[1], v[2], v[0], v[2], v[3]});
+    }
+    for (int i = 0; i < 8; ++i) {
+      for (int axis = 1; axis <= 4; axis <<= 1) {
+        if (i & axis) continue;  // each edge once, from its lower corner
+        lines_.push_back(makeVertex(corner(i), Vec3::UnitY()));
+        lines_.push_back(makeVertex(corner(i | axis), Vec3::UnitY()));
+      }
+    }
+    addRange(out, DrawPass::kTargets, DrawShape::kTriangles, fill_, kTargetColour, kTargetZoneAlpha);
+    addRange(out, DrawPass::kPatchLines, DrawShape::kLines, lines_, 0.6f * kTargetColour, 1.0f);
   }
 }
 

@@ -10,11 +10,13 @@
 #include <cstdint>
 #include <memory>
 #include <optional>
+#include <string>
 #include <vector>
 
 #include "render/scene/pad_mesh.hpp"
 #include "render/scene/patch_mesh.hpp"
 #include "render/gl/vertex.hpp"
+#include "render/view/view_desc.hpp"
 #include "sim/scene/scene_desc.hpp"
 #include "sim/scene/snapshot.hpp"
 
@@ -45,6 +47,7 @@ enum class DrawPass : std::uint8_t {
   kArrows,      ///< lit, opaque, through everything: contact normals, force arrows
   kPads,        ///< lit and shadowed like the bodies, opaque (drawn first): fem_pad fingers' skins
   kProxies,     ///< lit, translucent, front faces, no depth writes: the god-objects (a pad's bone)
+  kTargets,     ///< as kProxies, pulled towards the eye (a ghost on its body's faces): targets' ghosts and zones
   kGhosts,      ///< flat, translucent triangles through everything: the devices' dashed outlines
   kSprings,     ///< flat, translucent lines through everything (drawn before the patches): the couplings
 };
@@ -68,6 +71,9 @@ struct DrawList {
   }
 };
 
+/// Linear RGB of the targets a scene draws: a green apart from the fingers' and bodies' colours.
+inline const Eigen::Vector3f kTargetColour(0.15f, 0.85f, 0.35f);
+
 /// The camera a list is built for: arrows are kept inside its frame, outlines face it.
 struct DrawView {
   Eigen::Matrix4d view_proj = Eigen::Matrix4d::Identity();  ///< world to clip space (perspective)
@@ -87,6 +93,8 @@ struct DrawSettings {
   double max_arrow_m = 0.08;          ///< longest force arrow (m)
   double max_arrow_view_share = 0.25; ///< longest force arrow as a share of the view's height at its proxy
   std::optional<DrawView> view;       ///< the camera; none: arrows capped by max_arrow_m only
+  /// The scene's targets, drawn translucent (a ghost, lit) with the zone's edges; null: none
+  const std::vector<view::Target>* targets = nullptr;
 };
 
 /// Linear RGB of a fem_pad finger's skin: warm, apart from the bodies' and fingers' colours.
@@ -125,6 +133,7 @@ class DrawListBuilder {
   void addMarks(const sim::ContactSnapshot& contact, const Eigen::Vector3f& colour, double dot, DrawList& out);
   void addPads(const sim::Snapshot& snapshot, DrawList& out);
   void addSoftBodies(const sim::Snapshot& snapshot, DrawList& out);
+  void addTargets(const std::vector<view::Target>& targets, DrawList& out);
   void addProxies(const sim::Snapshot& snapshot, DrawList& out);
   void addSprings(const sim::Snapshot& snapshot, DrawList& out);
   void addGhosts(const sim::Snapshot& snapshot, const DrawSettings& settings, DrawList& out);

@@ -417,6 +417,14 @@ struct SceneRenderer::Impl {
         glDepthMask(GL_FALSE);   // the patch under the proxy, drawn next, shows through it
         glEnable(GL_CULL_FACE);  // spheres are closed: the back half would only be blended twice
         break;
+      case DrawPass::kTargets:
+        use(lit);
+        glEnable(GL_BLEND);
+        glDepthMask(GL_FALSE);
+        glEnable(GL_CULL_FACE);  // ghosts and zones are closed, wound outward
+        glEnable(GL_POLYGON_OFFSET_FILL);
+        glPolygonOffset(-2.0f, -4.0f);  // a ghost's face on its body's face: in front, no flicker
+        break;
       case DrawPass::kGhosts:
       case DrawPass::kSprings:
         glDisable(GL_DEPTH_TEST);
@@ -441,6 +449,9 @@ struct SceneRenderer::Impl {
         glDisable(GL_CULL_FACE);
         glEnable(GL_DEPTH_TEST);
         break;
+      case DrawPass::kTargets:
+        glDisable(GL_POLYGON_OFFSET_FILL);
+        [[fallthrough]];
       case DrawPass::kProxies:
         glDepthMask(GL_TRUE);
         glDisable(GL_CULL_FACE);
@@ -464,6 +475,7 @@ struct SceneRenderer::Impl {
     d.max_arrow_m = settings.max_arrow_m;
     d.max_arrow_view_share = settings.max_arrow_view_share;
     d.view = draw_view;
+    d.targets = settings.targets.get();
     return d;
   }
 

@@ -13,6 +13,7 @@
 
 namespace gf::view {
 
+using sim::Quat;
 using sim::Vec3;
 
 /// A pinhole camera looking from `position` at `target`.
@@ -82,5 +83,16 @@ inline const OverlayWidget* findOverlayWidget(std::string_view field) {
   }
   return nullptr;
 }
+
+/// A target drawn in the frames (a scene's `[targets.NAME]`): where a task wants a body. A ghost
+/// of a body's surface at a pose, a zone (a box outline), or both.
+struct Target {
+  std::string name;
+  int body = -1;  ///< the body whose ghost is drawn (index into the scene's bodies); -1: none
+  Vec3 position = Vec3::Zero();            ///< m: the ghost's pose (world frame)
+  Quat orientation = Quat::Identity();
+  bool has_zone = false;
+  Vec3 zone_min = Vec3::Zero(), zone_max = Vec3::Zero();  ///< m: the zone's corners
+};
 
 }  // namespace gf::view

@@ -299,5 +299,81 @@ TEST(DrawList, AFemPadFingerIsDrawnAsItsPadOnItsBone) {
   EXPECT_TRUE(itemsOf(list, DrawPass::kPads).empty());
 }
 
+// A scene's targets: a body's ghost is the body's surface at the target pose (every triangle,
+// translucent, lit, in the target colour), a zone its box's six faces, wound outward, and its
+// twelve edges, each along one axis. Without targets in the settings, nothing of them.
+TEST(DrawList, TargetsAreAGhostAtTheirPoseAndAZoneBox) {
+  const Fig8Frame frame;
+  DrawListBuilder builder(frame.session.scene, frame.surfaces);
+  const auto body = std::find_if(frame.session.scene.bodies.begin(), frame.session.scene.bodies.end(),
+                                 [](const sim::BodyDesc& b) { return b.shape != sim::ShapeKind::kPlane; });
+  ASSERT_NE(body, frame.session.scene.bodies.end());
+  const int b = static_cast<int>(body - frame.session.scene.bodies.begin());
+  const sim::Mesh& surface = *frame.surfaces[static_cast<std::size_t>(b)];
+  std::vector<view::Target> targets(2);
+  targets[0].body = b;
+  targets[0].position = sim::Vec3(0.1, 0.2, -0.05);
+  targets[0].orientation = sim::Quat(Eigen::AngleAxisd(0.7, sim::Vec3(1, 2, 3).normalized()));
+  targets[1].has_zone = true;
+  targets[1].zone_min = sim::Vec3(-0.01, 0.02, 0.03);
+  targets[1].zone_max = sim::Vec3(0.04, 0.05, 0.09);
+  DrawSettings settings;
+  DrawList none, list;
+  builder.build(frame.snapshot, settings, none);
+  settings.targets = &targets;
+  builder.build(frame.snapshot, settings, list);
+  const auto targetItems = [](const DrawList& l) {
+    std::vector<const DrawItem*> out;
+    for (const DrawItem& item : l.items) {
+      if ((item.colour - kTargetColour).norm() < 1e-6f || (item.colour - 0.6f * kTargetColour).norm() < 1e-6f) out.push_back(&item);
+    }
+    return out;
+  };
+  EXPECT_TRUE(targetItems(none).empty());
+  const std::vector<const DrawItem*> items = targetItems(list);
+  ASSERT_EQ(items.size(), 3u);  // the ghost, the zone's faces, its edges
+  EXPECT_EQ(list.items.size(), none.items.size() + 3);
+  const auto at = [&](const DrawItem& item, int k) {
+    const Vertex& v = list.vertices[static_cast<std::size_t>(item.first + k)];
+    return sim::Vec3(v.position[0], v.position[1], v.position[2]);
+  };
+  const auto normalAt = [&](const DrawItem& item, int k) {
+    const Vertex& v = list.vertices[static_cast<std::size_t>(item.first + k)];
+    return sim::Vec3(v.normal[0], v.normal[1], v.normal[2]);
+  };
+  const DrawItem& ghost = *items[0];
+  EXPECT_EQ(ghost.pass, DrawPass::kTargets);
+  EXPECT_EQ(ghost.shape, DrawShape::kTriangles);
+  EXPECT_LT(ghost.alpha, 1.0f);
+  ASSERT_EQ(ghost.count, 3 * surface.faceCount());
+  for (int f = 0; f < surface.faceCount(); ++f) {
+    for (int k = 0; k < 3; ++k) {
+      const sim::Vec3 expected = targets[0].position + targets[0].orientation * surface.corner(f, k);
+      EXPECT_LT((at(ghost, 3 * f + k) - expected).norm(), 1e-6) << f;
+    }
+  }
+  const DrawItem& faces = *items[1];
+  EXPECT_EQ(faces.pass, DrawPass::kTargets);
+  ASSERT_EQ(faces.count, 36);
+  const sim::Vec3 centre = 0.5 * (targets[1].zone_min + targets[1].zone_max);
+  for (int t = 0; t < 12; ++t) {
+    const sim::Vec3 a = at(faces, 3 * t), c = at(faces, 3 * t + 1), d = at(faces, 3 * t + 2);
+    const sim::Vec3 wound = (c - a).cross(d - a);
+    EXPECT_GT(wound.dot(a - centre), 0.0) << "triangle " << t << " wound outward";
+    EXPECT_GT(wound.normalized().dot(normalAt(faces, 3 * t)), 0.999) << t;
+    for (const sim::Vec3& p : {a, c, d}) {
+      EXPECT_TRUE((p.array() >= targets[1].zone_min.array() - 1e-6).all() && (p.array() <= targets[1].zone_max.array() + 1e-6).all());
+    }
+  }
+  const DrawItem& edges = *items[2];
+  EXPECT_EQ(edges.pass, DrawPass::kPatchLines);
+  EXPECT_EQ(edges.shape, DrawShape::kLines);
+  ASSERT_EQ(edges.count, 24);
+  for (int e = 0; e < 12; ++e) {
+    const sim::Vec3 d = (at(edges, 2 * e + 1) - at(edges, 2 * e)).cwiseAbs();
+    EXPECT_EQ((d.array() > 1e-6).count(), 1) << "edge " << e << " runs along one axis";
+  }
+}
+
 }  // namespace
 }  // namespace gf::render

@@ -441,7 +441,10 @@ TEST(ExperimentFile, TaskErrorsNameTheTaskFile) {
   EXPECT_NE(taskError(head + "[goal]\nbody = \"ball\"\nzone = { min = [0, 0, 0], max = [1, 0, 1] }\n").find("goal.zone.max: every coordinate"),
             std::string::npos);
   EXPECT_NE(taskError(head + "[goal]\nbody = \"ball\"\n").find("goal.zone: missing"), std::string::npos);
-  EXPECT_NE(taskError(head + "[goal]\nbody = \"ball\"\norientation = [1, 0, 0, 0.5]\n").find("goal.orientation: expected a unit"),
+  EXPECT_NE(taskError(head + "[goal]\nbody = \"ball\"\norientation = [0, 0, 0, 0]\n").find("goal.orientation: quaternion has zero length"),
+            std::string::npos);
+  EXPECT_NE(taskError(head + "[goal]\nbody = \"ball\"\norientation = [0, 0, 0, 1]\nrotation = [0, 45, 0]\n")
+                .find("goal.rotation: give either orientation or rotation"),
             std::string::npos);
   EXPECT_NE(taskError(head + "[goal]\nbody = \"ball\"\nzone = { min = [0, 0, 0], max = [1, 1, 1] }\n[grip]\nthumb = [1, 0, 0]\n")
                 .find("grip.thumb: no finger 'thumb'"),
