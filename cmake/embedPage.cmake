@@ -1,9 +1,11 @@
 # Builds the browser view's page into the binary: app/serve/page/page.html with its style sheet
-# (page.css) and script (page.js) put inline, as one C++ raw string in OUT. Run at build time
+# (page.css) and scripts (page.js, then participant.js: an experiment participant's page) put inline, as one C++ raw string in OUT. Run at build time
 # (app/CMakeLists.txt): cmake -DPAGE_DIR=<repo>/app/serve/page -DOUT=<file> -P embedPage.cmake
 file(READ ${PAGE_DIR}/page.html html)
 file(READ ${PAGE_DIR}/page.css css)
 file(READ ${PAGE_DIR}/page.js js)
+file(READ ${PAGE_DIR}/participant.js participant_js)
+string(APPEND js "${participant_js}")
 set(link "<link rel=\"stylesheet\" href=\"page.css\">\n")
 set(script "<script src=\"page.js\"></script>")
 foreach(tag IN ITEMS link script)

@@ -5,6 +5,7 @@
 
 #include "app/commands/commands.hpp"
 #include "app/experiment/experiment.hpp"
+#include "app/experiment/web_participant.hpp"
 #include "app/runs/run_folder.hpp"
 #include "app/scene/input_error.hpp"
 
@@ -16,6 +17,8 @@ struct ExperimentArgs {
   int jobs = defaultJobs();
   int stop_after = 0;
   bool restart = false;
+  int participant = 0;
+  std::string serve = "8080", token;
 };
 
 class ExperimentCommand final : public Command {
@@ -28,6 +31,13 @@ class ExperimentCommand final : public Command {
     s->add_option("--out", a.out, "Output folder (default: out/experiment-NAME); a rerun into it resumes");
     s->add_option("--jobs", a.jobs, "Trials at a time (default: the number of cores)")->check(CLI::Range(1, 256));
     s->add_flag("--restart", a.restart, "Run every trial again, even those an earlier run into --out finished");
+    s->add_option("--participant", a.participant, "A web experiment: the participant (1..participants) this session runs; "
+                                                  "their order of conditions follows the number")
+        ->check(CLI::Range(1, 99));
+    s->add_option("--serve", a.serve, "A web experiment: [HOST:]PORT of the participant's page (default 8080 on loopback; "
+                                      "any other address needs a token)");
+    s->add_option("--token", a.token, "A web experiment: the token the page needs (default $GODFINGER_TOKEN; generated "
+                                      "beyond loopback)");
     // Hidden (no group): start at most N trials, then write the tables and exit 130 as if
     // interrupted; for the tests of resuming.
     s->add_option("--stop-after", a.stop_after, "")->check(CLI::Range(1, 1000000))->group("");
@@ -56,6 +66,20 @@ class ExperimentCommand final : public Command {
     options.godfinger = selfExecutable();
     options.restart = args_.restart;
     options.stop_after = args_.stop_after;
+    if (e.device == "web") {
+      if (args_.participant == 0) throw commandLineError("--participant", "missing: a web experiment runs one participant a session");
+      if (args_.participant > e.participants) {
+        throw commandLineError("--participant", std::to_string(args_.participant) + ": the experiment has " +
+                                                    std::to_string(e.participants) + " participants");
+      }
+      options.participant = args_.participant;
+      options.serve = parseServe(args_.serve, tokenOrEnvironment(args_.token));
+      const RunFolder folder(options.out);
+      return runWebParticipant(e, options);
+    }
+    if (args_.participant != 0) {
+      throw commandLineError("--participant", "runs one person of a web experiment (device = \"web\"); this one's participants are simulated");
+    }
     const RunFolder folder(options.out);  // the experiment's folder is this command's while it writes
     return runExperiment(e, options);
   }

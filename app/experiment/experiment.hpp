@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "app/serve/web_server.hpp"
 #include "app/study/study.hpp"
 #include "sim/math.hpp"
 
@@ -84,6 +85,9 @@ struct ExperimentDesc {
   int participants = 8;    ///< simulated participants sub-01 .. sub-NN
   std::uint64_t seed = 1;
   double noise = 1.0;      ///< scale of the simulated hand's noise (0: the nominal movement)
+  /// Who performs the trials: "simulated" (seeded hands, every participant in one go) or "web"
+  /// (a person in the browser, one participant a session: app/experiment/web_participant.hpp)
+  std::string device = "simulated";
   OrderKind order = OrderKind::kWilliams;
   std::string block_by;    ///< a within factor: each of its levels is a block; "" one block
   int repetitions = 1;     ///< of each task × condition in a block
@@ -150,6 +154,8 @@ struct ExperimentOptions {
   std::string godfinger;
   bool restart = false;
   int stop_after = 0;  ///< tests of resuming: start at most this many trials, then stop as if interrupted
+  int participant = 0;  ///< a web experiment's participant this session runs (1-based)
+  std::optional<ServeOptions> serve;  ///< a web experiment's page: where it is served
 };
 
 /// What an experiment's folder records of it for its report (name, factors, levels, tasks).

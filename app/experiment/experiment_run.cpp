@@ -9,6 +9,7 @@
 #include "app/experiment/experiment.hpp"
 #include "app/experiment/hand.hpp"
 #include "app/experiment/outcome.hpp"
+#include "app/experiment/trial_tables.hpp"
 #include "app/runs/files.hpp"
 #include "app/runs/jobs.hpp"
 #include "app/runs/run_folder.hpp"
@@ -18,13 +19,8 @@
 #include "sim/about.hpp"
 
 namespace gf::app {
-namespace {
 
 namespace fs = std::filesystem;
-
-/// The trace a trial keeps: 100 rows a second are enough to judge a hold of 0.1 s and keep a
-/// trial's trace near 100 kB.
-constexpr double kTraceRateHz = 100.0;
 
 std::string trialName(const Trial& t) {
   char b[16];
@@ -34,23 +30,17 @@ std::string trialName(const Trial& t) {
 
 fs::path behDir(const std::string& out, const Trial& t) { return fs::path(out) / participantId(t.participant) / "beh"; }
 
-// Everything one trial runs with.
-struct TrialRun {
-  StudyRun run;                      // scene and overrides (for the key and the command line)
-  std::vector<std::string> fingers;  // the task scene's
-  std::vector<std::string> hand_files;
-  std::string dir, key;
-};
-
-std::string na(double v, int digits = 6) { return shortText(v, digits); }
-
-// A TSV cell: tabs and line ends would break the table.
-std::string cell(std::string s) {
+std::string tsvCell(std::string s) {
   for (char& c : s) {
     if (c == '\t' || c == '\n' || c == '\r') c = ' ';
   }
   return s.empty() ? "n/a" : s;
 }
+
+namespace {
+
+std::string na(double v, int digits = 6) { return shortText(v, digits); }
+std::string cell(std::string s) { return tsvCell(std::move(s)); }
 
 nlohmann::json columnSidecar(const ExperimentDesc& e) {
   nlohmann::json j = {
@@ -82,6 +72,8 @@ nlohmann::json columnSidecar(const ExperimentDesc& e) {
   }
   return j;
 }
+
+}  // namespace
 
 // The participant's table: one row a trial (those not run yet left out).
 void writeParticipantTable(const ExperimentDesc& e, const std::string& out, int p, const std::vector<Trial>& trials,
@@ -148,9 +140,12 @@ void writeDatasetFiles(const ExperimentDesc& e, const std::string& out) {
   for (const ExperimentFactor& f : e.factors) {
     if (!f.within) text += "\t" + f.name;
   }
-  text += "\tblock_order\treaction_time\tpace\tendpoint_sd\ttremor_rms\tgrip_sd\n";
+  const bool simulated = e.device == "simulated";
+  text += simulated ? "\tblock_order\treaction_time\tpace\tendpoint_sd\ttremor_rms\tgrip_sd\n" : "\tblock_order\n";
   const std::vector<Trial> trials = planTrials(e);
   for (int p = 0; p < e.participants; ++p) {
+    // People come one at a time: those with a folder are listed.
+    if (!simulated && !fs::is_directory(fs::path(out) / participantId(p) / "beh")) continue;
     const auto first = std::find_if(trials.begin(), trials.end(), [p](const Trial& t) { return t.participant == p; });
     text += participantId(p);
     for (std::size_t f = 0; f < e.factors.size(); ++f) {
@@ -163,6 +158,10 @@ void writeDatasetFiles(const ExperimentDesc& e, const std::string& out) {
       if (at == trials.end()) break;
       order += (order.empty() ? "" : ",") + block->levels[static_cast<std::size_t>(at->levels[static_cast<std::size_t>(block - e.factors.begin())])].name;
       ++seen;
+    }
+    if (!simulated) {
+      text += "\t" + cell(order) + "\n";
+      continue;
     }
     const HandParams h = drawHand(e.seed, p, e.noise);
     text += "\t" + cell(order) + "\t" + shortText(h.reaction_s, 3) + "\t" + shortText(h.speed, 3) + "\t" +
@@ -179,6 +178,10 @@ void writeDatasetFiles(const ExperimentDesc& e, const std::string& out) {
       {"tremor_rms", {{"Description", "physiological tremor (8-12 Hz), RMS per axis"}, {"Units", "mm"}}},
       {"grip_sd", {{"Description", "the squeeze's bias and slow wander along the grip"}, {"Units", "mm"}}},
   };
+  if (!simulated) {
+    columns = {{"participant_id", {{"Description", "a person who performed the trials in the browser (" + e.device + " device)"}}},
+               {"block_order", columns["block_order"]}};
+  }
   writeFileAtomically((fs::path(out) / "participants.json").string(), columns.dump(2) + "\n");
 }
 
@@ -214,6 +217,8 @@ void printSummary(const ExperimentDesc& e, const std::vector<Trial>& trials, con
     }
   }
 }
+
+namespace {
 
 // A trial's run: its hand's tracks written (beside its folder), its overrides and its key (the
 // study runner's, with the tracks' bytes: another seed or noise is another trial).

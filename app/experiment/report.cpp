@@ -8,6 +8,7 @@
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <set>
 #include <sstream>
 #include <string>
 
@@ -291,6 +292,67 @@ std::string noiseSection(const fs::path& dir, const std::vector<TestRow>& rows, 
 
 }  // namespace
 
+// Per participant (rows) and level of the blocked factor (columns): the mean Raw TLX and realism
+// of their answers (NaN where none), from sub-*/beh/*_questionnaire.tsv. Empty without a table.
+struct Answers {
+  std::vector<std::vector<double>> tlx, realism;
+  int tables = 0;
+};
+
+Answers readAnswers(const fs::path& dir, const std::string& label, int participants, const FactorInfo& f) {
+  Answers a;
+  const std::size_t k = f.levels.size();
+  std::vector<std::vector<double>> n(static_cast<std::size_t>(participants), std::vector<double>(k, 0.0)), tlx = n, realism = n;
+  for (int p = 0; p < participants; ++p) {
+    const fs::path file = dir / participantId(p) / "beh" / (participantId(p) + "_task-" + label + "_questionnaire.tsv");
+    std::ifstream in(file);
+    std::string line;
+    if (!in || !std::getline(in, line)) continue;
+    ++a.tables;
+    const std::vector<std::string> names = splitTabs(line);
+    const auto column = [&](const std::string& name) {
+      const auto at = std::find(names.begin(), names.end(), name);
+      if (at == names.end()) throw InputError(file.string(), 1, 0, name, "missing column");
+      return static_cast<std::size_t>(at - names.begin());
+    };
+    for (int number = 2; std::getline(in, line); ++number) {
+      const std::vector<std::string> cells = splitTabs(line);
+      if (cells.size() != names.size()) throw InputError(file.string(), number, 0, "", "expected " + std::to_string(names.size()) + " cells");
+      const auto l = static_cast<std::size_t>(std::find(f.levels.begin(), f.levels.end(), cells[column(f.name)]) - f.levels.begin());
+      if (l >= k) throw InputError(file.string(), number, 0, f.name, "no level '" + cells[column(f.name)] + "'");
+      const auto pi = static_cast<std::size_t>(p);
+      n[pi][l] += 1.0;
+      tlx[pi][l] += std::strtod(cells[column("raw_tlx")].c_str(), nullptr);
+      realism[pi][l] += std::strtod(cells[column("realism")].c_str(), nullptr);
+    }
+  }
+  a.tlx = a.realism = std::vector<std::vector<double>>(n.size(), std::vector<double>(k, NAN));
+  for (std::size_t p = 0; p < n.size(); ++p) {
+    for (std::size_t l = 0; l < k; ++l) {
+      if (n[p][l] == 0.0) continue;
+      a.tlx[p][l] = tlx[p][l] / n[p][l];
+      a.realism[p][l] = realism[p][l] / n[p][l];
+    }
+  }
+  return a;
+}
+
+// The questionnaires' section ("" without any): Raw TLX and realism per level of the blocked factor.
+std::string answersSection(const fs::path& dir, const std::string& label, int participants, const FactorInfo& f) {
+  const Answers a = readAnswers(dir, label, participants, f);
+  if (a.tables == 0) return "";
+  std::ostringstream md;
+  md << "\n## Questionnaire\n\nAfter each block: Raw NASA-TLX (the mean of its six scales, 0 to 100, lower is easier) and "
+        "realism (1 to 7), from sub-*/beh/*_questionnaire.tsv; means over participants with 95 % confidence intervals.\n\n| "
+     << f.name << " | Raw TLX | realism | n |\n|---|---|---|---|\n";
+  for (std::size_t l = 0; l < f.levels.size(); ++l) {
+    const stats::MeanCi tlx = stats::meanCi(columnOf(a.tlx, l)), realism = stats::meanCi(columnOf(a.realism, l));
+    md << "| " << f.levels[l] << " | " << ciText(tlx, 1) << " | " << ciText(realism, 2) << " | " << tlx.n << " |\n";
+  }
+  if (f.levels.size() > 1) md << "\nRaw TLX: " << testText(a.tlx, f) << ".\n\nRealism: " << testText(a.realism, f) << ".\n";
+  return md.str();
+}
+
 int reportExperiment(const std::string& folder) {
   const fs::path dir(folder);
   const fs::path record = dir / kExperimentRecord;
@@ -318,9 +380,11 @@ int reportExperiment(const std::string& folder) {
   }
   int practice = 0, failed_runs = 0;
   const std::vector<TestRow> rows = readTrials(dir, label, participants, factors, practice, failed_runs);
+  std::set<int> seen;  // the participants with a trial in the tables
+  for (const TestRow& r : rows) seen.insert(r.participant);
   std::ostringstream md;
   md << "# " << name << ": report\n\n" << e.value("summary", "") << "\n\n"
-     << rows.size() << " test trials of " << participants << " participants (" << practice
+     << rows.size() << " test trials of " << seen.size() << " participants (" << practice
      << " practice trials left out" << (failed_runs ? ", and " + std::to_string(failed_runs) + " whose run failed" : std::string())
      << "), from sub-*/beh/*_beh.tsv. Per participant and condition, the success rate and the mean "
         "completion time of the successful trials; the means below are over participants, with 95 % confidence intervals (t). "
@@ -349,6 +413,9 @@ int reportExperiment(const std::string& folder) {
       }
     }
   }
+  const std::string block_by = e.value("block_by", "");
+  const auto blocked = std::find_if(factors.begin(), factors.end(), [&](const FactorInfo& f) { return f.name == block_by; });
+  if (blocked != factors.end()) md << answersSection(dir, label, participants, *blocked);
   const auto main = std::find_if(factors.begin(), factors.end(), [](const FactorInfo& f) { return f.within && f.levels.size() > 1; });
   if (main != factors.end()) {
     writeTaskCharts(dir, rows, participants, *main, tasks);

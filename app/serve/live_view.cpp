@@ -126,11 +126,22 @@ nlohmann::json LiveView::deviceState() const {
   return devices_ ? devices_() : nlohmann::json::array();
 }
 
+void LiveView::setParticipant(const nlohmann::json& panel) {
+  participant_ = true;
+  scene_json_["participant"] = panel;
+  scene_json_.erase("widgets");
+}
+
 std::string LiveView::stateText() const {
   sim::Snapshot snap;
   long frame = 0;
   if (!latest(snap, &frame)) return "{}";
   nlohmann::json j = stateJson(snap, scene_);
+  if (participant_) {
+    for (nlohmann::json& f : j["fingers"]) {
+      for (const char* key : {"model", "n_sgo", "settings"}) f.erase(key);
+    }
+  }
   j["frame"] = frame;
   j["devices"] = deviceState();
   j["view"] = statsJson();

@@ -41,6 +41,10 @@ class LiveView final : public render::FrameTap {
   /// What the page needs once: the scene's name, mode, frame size, camera, fingers (name,
   /// colour, web or not), bodies and the live settings' widgets (render/view/view_desc.hpp). Any thread.
   const nlohmann::json& sceneJson() const { return scene_json_; }
+  /// Makes this an experiment participant's view (before the server starts): /scene.json gets
+  /// `participant` (the panel), the widgets are left out, and /state.json leaves out each
+  /// finger's model, n_SGO and settings, so nothing names the condition.
+  void setParticipant(const nlohmann::json& panel);
   /// Frames drawn, the JPEG encoder's counts, the recording. Any thread.
   nlohmann::json statsJson() const;
   /// A provider of the device links' state (packets, stale, ramp) for /state.json. Any thread.
@@ -61,6 +65,7 @@ class LiveView final : public render::FrameTap {
   const sim::SceneDesc& scene_;
   const std::string out_dir_;
   nlohmann::json scene_json_;
+  bool participant_ = false;
   render::JpegStream jpeg_;
   std::function<nlohmann::json()> devices_;
   mutable std::mutex mutex_;

@@ -18,6 +18,9 @@ ServedRun::ServedRun(const SessionDesc& session, const ServeOptions& options, co
   }
   posted_.reserve(64);
   taking_.reserve(64);
+  if (!options.participant.is_null()) view_.setParticipant(options.participant);
+  participant_command_ = options.participant_command;
+  participant_ = !options.participant.is_null();
   server_ = std::make_unique<WebServer>(
       options, view_, [this](const std::string& line) { return answer(line); });
 }
@@ -62,7 +65,14 @@ void ServedRun::afterStep(sim::World& world) {
 std::string ServedRun::answer(const std::string& line) {
   using K = LiveCommand::Kind;
   try {
+    if (participant_command_) {
+      if (std::optional<std::string> a = participant_command_(line)) return *a;
+    }
     const LiveCommand c = parseLiveCommand(line, session_.scene);
+    if (participant_ && (c.kind == K::kSet || c.kind == K::kRecord || c.kind == K::kSnapshot)) {
+      const char* what = c.kind == K::kSet ? "set" : c.kind == K::kRecord ? "record" : "snapshot";
+      return std::string("error: ") + what + ": not during an experiment's trial (its page moves the fingers only)";
+    }
     sim::Snapshot snap;
     const bool drawn = view_.latest(snap);
     switch (c.kind) {

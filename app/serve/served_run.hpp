@@ -56,6 +56,8 @@ class ServedRun {
   std::vector<sim::SettingsCommand> posted_, taking_;
   std::atomic<bool> has_posted_{false};
   std::atomic<long> settings_applied_{0}, settings_refused_{0};
+  bool participant_ = false;  // an experiment participant's page: no set, record or snapshot
+  std::function<std::optional<std::string>(const std::string&)> participant_command_;
   std::unique_ptr<WebServer> server_;  // started last, stopped first
 };
 

@@ -414,6 +414,10 @@ std::string WebServer::shownUrl() const {
 
 bool WebServer::loopback() const { return isLoopback(impl_->options.host); }
 
+int WebServer::port() const { return impl_->options.port; }
+
+const std::string& WebServer::token() const { return impl_->options.token; }
+
 bool WebServer::tokenGenerated() const { return impl_->generated; }
 
 void WebServer::stop() { impl_->stop(); }

@@ -10,6 +10,7 @@
 #include <map>
 #include <memory>
 #include <mutex>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -26,6 +27,15 @@ struct ServeOptions {
   /// beyond loopback without one gets a generated token.
   std::string token;
   HttpLimits limits;  ///< what a request and a connection may take
+  /// An experiment's participant page (app/experiment/web_participant.hpp): what its panel shows
+  /// (phase, instruction, trial, block, time limit, the last result), in /scene.json as
+  /// `participant`. Null: the full browser view. With one, the page shows no setting and no
+  /// condition (the fingers' models and settings are left out of /state.json too), and the
+  /// server takes no `set`, `record` or `snapshot`.
+  nlohmann::json participant;
+  /// With a participant page: answers the commands of its phase ("ready", "answers ...") before
+  /// the `live` ones are looked at; nullopt passes a line on. Called on a server thread.
+  std::function<std::optional<std::string>(const std::string& line)> participant_command;
 };
 
 /// Parses `--serve`'s value ("8080", "127.0.0.1:8080", "0.0.0.0:8080") and `--token`. Throws
@@ -79,6 +89,10 @@ class WebServer {
   /// generated one is shown, once, since nobody else knows it.
   std::string shownUrl() const;
   bool loopback() const;
+  /// The port bound (the one given, or the free one taken for port 0).
+  int port() const;
+  /// The token every request needs ("" for none): the given one or the generated one.
+  const std::string& token() const;
   /// Generated (not given) token, printed once at the start.
   bool tokenGenerated() const;
   /// Ends every stream, stops listening, joins the threads. Idempotent; never waits on the

@@ -323,6 +323,21 @@ class Page:
                         buttons=1)
         self._mouse("mouseReleased", *end, buttons=0, clickCount=1)
 
+    def click(self, at: tuple[float, float]) -> None:
+        """Moves to `at` and clicks the left button there."""
+        self._mouse("mouseMoved", *at, buttons=0)
+        self._mouse("mousePressed", *at, buttons=1, clickCount=1)
+        self._mouse("mouseReleased", *at, buttons=0, clickCount=1)
+
+    def centre(self, selector: str) -> tuple[float, float]:
+        """The centre of the element `selector` in viewport CSS px (scrolled into view first)."""
+        box = self.evaluate(f"""(() => {{ const e = document.querySelector({json.dumps(selector)});
+            if (!e) return null; e.scrollIntoView({{block: 'center'}}); const r = e.getBoundingClientRect();
+            return [r.left + r.width / 2, r.top + r.height / 2]; }})()""")
+        if not box:
+            raise CdpError(f"no element {selector} on the page")
+        return box[0], box[1]
+
     def wheel(self, at: tuple[float, float], delta_y: float, delta_x: float = 0.0) -> None:
         """One wheel event at `at`; positive `delta_y` scrolls down (turns the wheel towards the user)."""
         self.call("Input.dispatchMouseEvent", {"type": "mouseWheel", "x": at[0], "y": at[1],

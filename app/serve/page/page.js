@@ -207,6 +207,7 @@ function nearer(metres) {
 
 async function start() {
   gf.scene = await (await fetch(withToken("scene.json"))).json();
+  if (gf.scene.participant) return participantStart();  // an experiment's participant (participant.js)
   $("#scene").textContent = gf.scene.scene;
   $("#mode").textContent = gf.scene.mode === "live" ? "live: steps on command" : "realtime";
   const img = $("#frame");

@@ -400,7 +400,8 @@ TEST(ExperimentFile, ErrorsNameTheFileLineAndField) {
   EXPECT_EQ(experimentError(tasks + kModels), "loaded");
   expectError(tasks + "colour = 3\n" + kModels, "e.toml:2:10: colour: unknown field");
   expectError(tasks + "participants = 0\n" + kModels, "e.toml:2:16: participants: must be in 1..99");
-  expectError(tasks + "device = \"web\"\n" + kModels, "e.toml:2:10: device: 'web'");
+  expectError(tasks + "device = \"udp\"\n" + kModels, "e.toml:2:10: device: unknown value 'udp' (one of simulated, web)");
+  EXPECT_EQ(experimentError(tasks + "device = \"web\"\n" + kModels), "loaded");
   expectError(tasks + kModels + "[design]\nblock_by = \"size\"\n", "e.toml:9:12: design.block_by: 'size' is no within factor");
   expectError(tasks, "e.toml:1:1: factors: missing");
   expectError("tasks = [\"no-such-task\"]\n" + kModels, "e.toml:1:10: tasks: no such task file");
