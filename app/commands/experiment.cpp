@@ -31,12 +31,12 @@ class ExperimentCommand final : public Command {
     s->add_option("--out", a.out, "Output folder (default: out/experiment-NAME); a rerun into it resumes");
     s->add_option("--jobs", a.jobs, "Trials at a time (default: the number of cores)")->check(CLI::Range(1, 256));
     s->add_flag("--restart", a.restart, "Run every trial again, even those an earlier run into --out finished");
-    s->add_option("--participant", a.participant, "A web experiment: the participant (1..participants) this session runs; "
+    participant_ = s->add_option("--participant", a.participant, "A web experiment: the participant (1..participants) this session runs; "
                                                   "their order of conditions follows the number")
         ->check(CLI::Range(1, 99));
-    s->add_option("--serve", a.serve, "A web experiment: [HOST:]PORT of the participant's page (default 8080 on loopback; "
+    serve_ = s->add_option("--serve", a.serve, "A web experiment: [HOST:]PORT of the participant's page (default 8080 on loopback; "
                                       "any other address needs a token)");
-    s->add_option("--token", a.token, "A web experiment: the token the page needs (default $GODFINGER_TOKEN; generated "
+    token_ = s->add_option("--token", a.token, "A web experiment: the token the page needs (default $GODFINGER_TOKEN; generated "
                                       "beyond loopback)");
     // Hidden (no group): start at most N trials, then write the tables and exit 130 as if
     // interrupted; for the tests of resuming.
@@ -77,8 +77,11 @@ class ExperimentCommand final : public Command {
       const RunFolder folder(options.out);
       return runWebParticipant(e, options);
     }
-    if (args_.participant != 0) {
-      throw commandLineError("--participant", "runs one person of a web experiment (device = \"web\"); this one's participants are simulated");
+    for (const CLI::Option* o : {participant_, serve_, token_}) {
+      if (o->count() > 0) {
+        throw commandLineError(o->get_name(), "is for a web experiment (device = \"web\"), run by a person; this one's "
+                                              "participants are simulated");
+      }
     }
     const RunFolder folder(options.out);  // the experiment's folder is this command's while it writes
     return runExperiment(e, options);
@@ -87,6 +90,7 @@ class ExperimentCommand final : public Command {
  private:
   ExperimentArgs args_;
   CLI::App* report_ = nullptr;
+  CLI::Option *participant_ = nullptr, *serve_ = nullptr, *token_ = nullptr;
 };
 
 }  // namespace

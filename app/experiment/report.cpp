@@ -290,8 +290,6 @@ std::string noiseSection(const fs::path& dir, const std::vector<TestRow>& rows, 
   return md + "\n![success against noise](success-vs-noise.png)\n";
 }
 
-}  // namespace
-
 // Per participant (rows) and level of the blocked factor (columns): the mean Raw TLX and realism
 // of their answers (NaN where none), from sub-*/beh/*_questionnaire.tsv. Empty without a table.
 struct Answers {
@@ -352,6 +350,8 @@ std::string answersSection(const fs::path& dir, const std::string& label, int pa
   if (f.levels.size() > 1) md << "\nRaw TLX: " << testText(a.tlx, f) << ".\n\nRealism: " << testText(a.realism, f) << ".\n";
   return md.str();
 }
+
+}  // namespace
 
 int reportExperiment(const std::string& folder) {
   const fs::path dir(folder);

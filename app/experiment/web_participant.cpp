@@ -6,9 +6,12 @@
 
 #include <algorithm>
 #include <charconv>
+#include <unistd.h>
+
 #include <chrono>
 #include <condition_variable>
 #include <cstdio>
+#include <ctime>
 #include <filesystem>
 #include <fstream>
 #include <functional>
@@ -45,13 +48,14 @@ std::string blockLevel(const ExperimentDesc& e, const std::vector<Trial>& trials
   return "";
 }
 
-// The answers an earlier session of this participant wrote (to resume after them). Rows that do
-// not read as answers are left out: that block's questionnaire is asked again.
+// The answers an earlier session of this participant wrote (to resume after them). A row that
+// does not read as answers is refused, naming its line: a person's answers are never dropped.
 std::map<int, BlockAnswers> readAnswers(const fs::path& file) {
   std::map<int, BlockAnswers> out;
   std::ifstream in(file);
   std::string line;
   if (!std::getline(in, line)) return out;
+  int number = 1;
   std::vector<std::string> header;  // copied: the rows are read into `line`
   for (const std::string_view name : splitCells(line, '\t')) header.emplace_back(name);
   while (std::getline(in, line)) {
@@ -64,7 +68,13 @@ std::map<int, BlockAnswers> readAnswers(const fs::path& file) {
       else if (scale) text.append(" ").append(header[c]).append("=").append(cells[c]);
     }
     std::string why;
-    if (const std::optional<BlockAnswers> a = parseAnswers(text, block, why); a && block > 0) out[block] = *a;
+    const std::optional<BlockAnswers> a = parseAnswers(text, block, why);
+    ++number;
+    if (!a || block < 1) {
+      throw InputError(file.string(), number, 0, "", (a ? std::string("no block number") : why) +
+                                                        ": fix the row, or --restart to run the participant again");
+    }
+    out[block] = *a;
   }
   return out;
 }
@@ -104,7 +114,8 @@ void writeAnswers(const ExperimentDesc& e, const std::string& out, int p, const 
 // Serves the page in one phase between trials (`panel`), with `session` for its view, on the
 // session's port until the page posts a line `check` accepts (returns "" for one; else why
 // not, answered as an error). The first bind fixes the port and the token for the others.
-// Returns the line, or nullopt on Ctrl-C or SIGTERM.
+// Returns the line, or nullopt on Ctrl-C or SIGTERM (the caller holds the InterruptScope; a
+// signal just after a line was accepted is still there for it to see).
 std::optional<std::string> waitForPage(const SessionDesc& session, ServeOptions& serve, bool& serve_announced, const json& panel,
                                        const std::function<std::string(const std::string&)>& check) {
   std::mutex mutex;
@@ -128,19 +139,33 @@ std::optional<std::string> waitForPage(const SessionDesc& session, ServeOptions&
   }
   serve.port = server.port();
   serve.token = server.token();
-  const InterruptScope interrupt;
   std::unique_lock lock(mutex);
   while (!accepted && interruptSignal() == 0) accepted_cv.wait_for(lock, std::chrono::milliseconds(100));
   const std::optional<std::string> line = accepted;
   lock.unlock();
+  // The page hears its "ok" before this phase's server goes (a second at most).
+  for (int i = 0; line && i < 100 && server.statsJson().value("commands_running", 0L) > 0; ++i) {
+    lock.lock();
+    accepted_cv.wait_for(lock, std::chrono::milliseconds(10));
+    lock.unlock();
+  }
   server.stop();
   return line;
 }
 
 json outcomeJson(const TaskDesc& task, const TrialOutcome& o) {
-  json j = {{"task", task.name}, {"ran", o.ran}, {"success", o.success}, {"failure", o.failure}};
+  const std::string failure = o.ran ? o.failure : "the trial stopped short: a failure of the software, not yours";
+  json j = {{"task", task.name}, {"ran", o.ran}, {"success", o.success}, {"failure", failure}};
   if (o.success) j["completion_s"] = o.completion_s;
   return j;
+}
+
+// This process's mark in the phases' ids: a resumed session's phases are new ones to a page left
+// open, even those with the same trial number.
+const std::string& sessionMark() {
+  static const std::string mark = std::to_string(getpid()) + "." +
+                                  std::to_string(std::chrono::steady_clock::now().time_since_epoch().count() % 1000000007);
+  return mark;
 }
 
 // What the page's panel shows: never a condition's name.
@@ -153,7 +178,7 @@ json panelFor(const ExperimentDesc& e, const std::vector<Trial>& trials, std::si
     const sim::Vec3 d = direction.normalized();
     grip[finger] = {d.x(), d.y(), d.z()};
   }
-  return {{"id", phase + "-" + std::to_string(t.number)},
+  return {{"id", phase + "-" + std::to_string(t.number) + "-" + sessionMark()},
           {"grip", grip},
           {"phase", phase},
           {"participant", participantId(t.participant)},
@@ -194,8 +219,15 @@ TrialRun prepareWebTrial(const ExperimentDesc& e, const Trial& t, const SessionD
   return r;
 }
 
+// A trial's session as the participant sees it: the contacts' patches, the insets and the overlay
+// off, since they show the model (a god-finger's patch and SGOs, a god-object's point).
 SessionDesc trialSession(const ExperimentDesc& e, const TrialRun& r) {
-  return loadSceneWithOverrides(e.source, r.run.scene, r.run.overrides);
+  SessionDesc s = loadSceneWithOverrides(e.source, r.run.scene, r.run.overrides);
+  s.view.patch_highlight = false;
+  s.view.patch_insets = false;
+  s.view.overlay = false;
+  s.view.actions.clear();
+  return s;
 }
 
 // Runs a trial in real time with the page in its "trial" phase. Returns its outcome, or nullopt
@@ -206,7 +238,7 @@ std::optional<TrialOutcome> runWebTrial(const TaskDesc& task, const TrialRun& r,
   o.out_dir = r.dir;
   o.realtime = true;
   o.progress = false;
-  o.stop_on_interrupt = true;
+  o.stop_on_held_interrupt = true;
   serve.participant = panel;
   serve.participant_command = [](const std::string& line) -> std::optional<std::string> {
     if (line == "ready") return std::string("ok");  // a second click of Start
@@ -258,6 +290,107 @@ ParticipantTrials planParticipant(const ExperimentDesc& e, const ExperimentOptio
   return plan;
 }
 
+// A participant's session: the phases in turn, the trials, the questionnaires, the tables.
+class WebSession {
+ public:
+  WebSession(const ExperimentDesc& e, const ExperimentOptions& options)
+      : e_(e), options_(options), p_(options.participant - 1), plan_(planParticipant(e, options)), serve_(*options.serve) {
+    const fs::path file = fs::path(options.out) / participantId(p_) / "beh" / (questionnaireStem(e, p_) + ".tsv");
+    answers_ = readAnswers(file);
+  }
+
+  // Every trial not finished before, each block's questionnaire after its last trial.
+  void run() {
+    const std::vector<Trial>& trials = plan_.trials;
+    for (std::size_t i = 0; i < trials.size() && !interrupted_ && !stopped_; ++i) {
+      const TaskDesc& task = e_.tasks[static_cast<std::size_t>(trials[i].task)];
+      if (plan_.outcomes[i]) {
+        previous_ = outcomeJson(task, *plan_.outcomes[i]);
+        continue;
+      }
+      if (!askFinishedBlocks()) return;
+      stopped_ = options_.stop_after > 0 && ran_ >= options_.stop_after;
+      if (stopped_) return;
+      const SessionDesc session = trialSession(e_, plan_.runs[i]);
+      const auto ready = [](const std::string& line) { return line == "ready" ? std::string() : "expected: ready"; };
+      interrupted_ = !waitForPage(session, serve_, announced_, panelFor(e_, trials, i, "ready", previous_), ready) ||
+                     interruptSignal() != 0;
+      if (interrupted_) return;
+      const std::optional<TrialOutcome> o =
+          runWebTrial(task, plan_.runs[i], session, serve_, panelFor(e_, trials, i, "trial", previous_));
+      interrupted_ = !o;
+      if (interrupted_) return;
+      plan_.outcomes[i] = *o;
+      previous_ = outcomeJson(task, *o);
+      ++ran_;
+      writeParticipantTable(e_, options_.out, p_, trials, plan_.runs, plan_.outcomes);  // each trial kept as it ends
+    }
+    if (!interrupted_ && !stopped_) askFinishedBlocks();
+  }
+
+  // Writes the tables and the report; the exit code.
+  int finish() {
+    writeDatasetFiles(e_, options_.out);
+    writeParticipantTable(e_, options_.out, p_, plan_.trials, plan_.runs, plan_.outcomes);
+    writeAnswers(e_, options_.out, p_, plan_.trials, answers_);
+    printSummary(e_, plan_.trials, plan_.outcomes);
+    reportExperiment(options_.out);
+    const auto done = std::count_if(plan_.outcomes.begin(), plan_.outcomes.end(), [](const auto& o) { return o.has_value(); });
+    std::fprintf(stderr, "godfinger experiment: %s: %d trials run now, %ld of %zu done; wrote %s/\n", participantId(p_).c_str(),
+                 ran_, static_cast<long>(done), plan_.trials.size(), options_.out.c_str());
+    if (interrupted_) std::fprintf(stderr, "godfinger experiment: interrupted; run the same command again to go on\n");
+    if (stopped_) std::fprintf(stderr, "godfinger experiment: stopped after %d trials (--stop-after); run again to resume\n", ran_);
+    return interrupted_ || stopped_ ? 130 : 0;
+  }
+
+ private:
+  // The questionnaire of every block whose trials are all done and which has no answers yet, in
+  // order (false: interrupted).
+  bool askFinishedBlocks() {
+    const std::vector<Trial>& trials = plan_.trials;
+    for (std::size_t i = 0; i < trials.size(); ++i) {
+      const int block = trials[i].block;
+      const bool block_ends = i + 1 == trials.size() || trials[i + 1].block != block;
+      if (!block_ends || answers_.contains(block)) continue;
+      bool done = true;
+      for (std::size_t j = 0; j < trials.size(); ++j) done = done && (trials[j].block != block || plan_.outcomes[j].has_value());
+      if (done && !ask(block, i)) return false;
+    }
+    return true;
+  }
+
+  // The questionnaire of `block`, on the page of its last trial `i` (false: interrupted).
+  bool ask(int block, std::size_t i) {
+    json panel = panelFor(e_, plan_.trials, i, "questionnaire", previous_);
+    panel["id"] = "questionnaire-" + std::to_string(block) + "-" + sessionMark();
+    panel["block"] = block;
+    panel["last"] = i + 1 == plan_.trials.size();
+    const auto check = [block](const std::string& line) {
+      std::string why;
+      return parseAnswers(line, block, why) ? std::string() : why;
+    };
+    const std::optional<std::string> line = waitForPage(trialSession(e_, plan_.runs[i]), serve_, announced_, panel, check);
+    if (line) {
+      std::string why;
+      answers_[block] = *parseAnswers(*line, block, why);
+      writeAnswers(e_, options_.out, p_, plan_.trials, answers_);
+    }
+    interrupted_ = !line || interruptSignal() != 0;
+    return !interrupted_;
+  }
+
+  const ExperimentDesc& e_;
+  const ExperimentOptions& options_;
+  const int p_;
+  ParticipantTrials plan_;
+  std::map<int, BlockAnswers> answers_;
+  ServeOptions serve_;
+  bool announced_ = false;  // the page's address printed
+  json previous_ = nullptr;
+  int ran_ = 0;
+  bool interrupted_ = false, stopped_ = false;
+};
+
 }  // namespace
 
 double BlockAnswers::rawTlx() const {
@@ -305,74 +438,21 @@ std::optional<BlockAnswers> parseAnswers(const std::string& line, int block, std
 }
 
 int runWebParticipant(const ExperimentDesc& e, const ExperimentOptions& options) {
-  const int p = options.participant - 1;
-  const ParticipantTrials plan = planParticipant(e, options);
-  const std::vector<Trial>& trials = plan.trials;
-  const std::vector<TrialRun>& runs = plan.runs;
-  std::vector<std::optional<TrialOutcome>> outcomes = plan.outcomes;
-  const fs::path answers_file = fs::path(options.out) / participantId(p) / "beh" / (questionnaireStem(e, p) + ".tsv");
-  std::map<int, BlockAnswers> answers = options.restart ? std::map<int, BlockAnswers>() : readAnswers(answers_file);
-  ServeOptions serve = *options.serve;
-  bool announced = false;  // the page's address printed
-  json previous = nullptr;
-  int ran = 0;
-  bool stopped = false;
-  // The questionnaire of `block`, on the page of the trial `i` (false: interrupted).
-  const auto ask = [&](int block, std::size_t i, bool final) {
-    json panel = panelFor(e, trials, i, "questionnaire", previous);
-    panel["id"] = "questionnaire-" + std::to_string(block);
-    panel["block"] = block;
-    panel["last"] = final;
-    const auto check = [&](const std::string& line) {
-      std::string why;
-      return parseAnswers(line, block, why) ? std::string() : why;
-    };
-    const std::optional<std::string> line = waitForPage(trialSession(e, runs[i]), serve, announced, panel, check);
-    if (!line) return false;
-    std::string why;
-    answers[block] = *parseAnswers(*line, block, why);
-    writeAnswers(e, options.out, p, trials, answers);
-    return true;
-  };
-  bool interrupted = false;
-  for (std::size_t i = 0; i < trials.size() && !interrupted && !stopped; ++i) {
-    const TaskDesc& task = e.tasks[static_cast<std::size_t>(trials[i].task)];
-    if (outcomes[i]) {
-      previous = outcomeJson(task, *outcomes[i]);
-      continue;
-    }
-    if (i > 0 && trials[i - 1].block != trials[i].block && !answers.contains(trials[i - 1].block)) {
-      if (!ask(trials[i - 1].block, i - 1, false)) break;
-    }
-    stopped = options.stop_after > 0 && ran >= options.stop_after;
-    if (stopped) break;
-    const SessionDesc session = trialSession(e, runs[i]);
-    const auto ready = [](const std::string& line) { return line == "ready" ? std::string() : "expected: ready"; };
-    interrupted = !waitForPage(session, serve, announced, panelFor(e, trials, i, "ready", previous), ready);
-    if (interrupted) break;
-    const std::optional<TrialOutcome> o = runWebTrial(task, runs[i], session, serve, panelFor(e, trials, i, "trial", previous));
-    interrupted = !o;
-    if (interrupted) break;
-    outcomes[i] = *o;
-    previous = outcomeJson(task, *o);
-    ++ran;
-    writeParticipantTable(e, options.out, p, trials, runs, outcomes);  // each trial kept as it ends
+  const fs::path folder = fs::path(options.out) / participantId(options.participant - 1);
+  if (options.restart && fs::exists(folder)) {  // a person's data is moved aside, never deleted
+    const fs::path aside = folder.string() + ".before-" + std::to_string(std::time(nullptr));
+    fs::rename(folder, aside);
+    std::fprintf(stderr, "godfinger experiment: --restart: the earlier %s moved to %s\n", folder.filename().c_str(), aside.c_str());
   }
-  const bool all = std::all_of(outcomes.begin(), outcomes.end(), [](const auto& o) { return o.has_value(); });
-  if (all && !interrupted && !stopped && !trials.empty() && !answers.contains(trials.back().block)) {
-    interrupted = !ask(trials.back().block, trials.size() - 1, true);
+  WebSession session(e, options);
+  const InterruptScope interrupt;  // held across the phases and the trials: no signal falls between
+  try {
+    session.run();
+  } catch (...) {
+    session.finish();  // what was reached is written, then the error is reported
+    throw;
   }
-  writeDatasetFiles(e, options.out);
-  writeParticipantTable(e, options.out, p, trials, runs, outcomes);
-  writeAnswers(e, options.out, p, trials, answers);
-  printSummary(e, trials, outcomes);
-  reportExperiment(options.out);
-  std::fprintf(stderr, "godfinger experiment: %s: %d trials run now, %zu of %zu done; wrote %s/\n", participantId(p).c_str(), ran,
-               static_cast<std::size_t>(std::count_if(outcomes.begin(), outcomes.end(), [](const auto& o) { return o.has_value(); })),
-               trials.size(), options.out.c_str());
-  if (interrupted) std::fprintf(stderr, "godfinger experiment: interrupted; run the same command again to go on\n");
-  if (stopped) std::fprintf(stderr, "godfinger experiment: stopped after %d trials (--stop-after); run again to resume\n", ran);
-  return interrupted || stopped ? 130 : 0;
+  return session.finish();
 }
 
 }  // namespace gf::app

@@ -128,8 +128,24 @@ nlohmann::json LiveView::deviceState() const {
 
 void LiveView::setParticipant(const nlohmann::json& panel) {
   participant_ = true;
-  scene_json_["participant"] = panel;
-  scene_json_.erase("widgets");
+  // What the participant's page needs, nothing more: a setting a factor varies must not reach it.
+  nlohmann::json fingers = nlohmann::json::array();
+  for (const nlohmann::json& f : scene_json_["fingers"]) {
+    fingers.push_back({{"name", f["name"]}, {"colour", f["colour"]}, {"device", f["device"]}});
+  }
+  scene_json_ = {{"scene", scene_json_["scene"]}, {"mode", scene_json_["mode"]},     {"width", scene_json_["width"]},
+                 {"height", scene_json_["height"]}, {"camera", scene_json_["camera"]}, {"fingers", fingers},
+                 {"participant", panel}};
+}
+
+std::string LiveView::participantState(const nlohmann::json& state) {
+  nlohmann::json fingers = nlohmann::json::array();
+  for (const nlohmann::json& f : state["fingers"]) {
+    fingers.push_back({{"name", f["name"]}, {"proxy", f["proxy"]}, {"device", f["device"]}, {"force_n", f["force_n"]}});
+  }
+  nlohmann::json out = {{"t", state["t"]}, {"step", state["step"]}, {"bodies", state["bodies"]}, {"fingers", fingers}};
+  if (state.contains("frame")) out["frame"] = state["frame"];
+  return out.dump();
 }
 
 std::string LiveView::stateText() const {
@@ -137,12 +153,8 @@ std::string LiveView::stateText() const {
   long frame = 0;
   if (!latest(snap, &frame)) return "{}";
   nlohmann::json j = stateJson(snap, scene_);
-  if (participant_) {
-    for (nlohmann::json& f : j["fingers"]) {
-      for (const char* key : {"model", "n_sgo", "settings"}) f.erase(key);
-    }
-  }
   j["frame"] = frame;
+  if (participant_) return participantState(j);
   j["devices"] = deviceState();
   j["view"] = statsJson();
   return j.dump();

@@ -41,10 +41,14 @@ class LiveView final : public render::FrameTap {
   /// What the page needs once: the scene's name, mode, frame size, camera, fingers (name,
   /// colour, web or not), bodies and the live settings' widgets (render/view/view_desc.hpp). Any thread.
   const nlohmann::json& sceneJson() const { return scene_json_; }
-  /// Makes this an experiment participant's view (before the server starts): /scene.json gets
-  /// `participant` (the panel), the widgets are left out, and /state.json leaves out each
-  /// finger's model, n_SGO and settings, so nothing names the condition.
+  /// Makes this an experiment participant's view (before the server starts): /scene.json holds
+  /// only the scene's name, the frame size, the camera, the fingers' names, colours and devices,
+  /// and `participant` (the panel); /state.json only the time, the bodies' poses and each
+  /// finger's proxy, device and force (participantState): nothing names the condition.
   void setParticipant(const nlohmann::json& panel);
+  bool participant() const { return participant_; }
+  /// A `state` answer's JSON cut down to what a participant's page may see, as text.
+  static std::string participantState(const nlohmann::json& state);
   /// Frames drawn, the JPEG encoder's counts, the recording. Any thread.
   nlohmann::json statsJson() const;
   /// A provider of the device links' state (packets, stale, ramp) for /state.json. Any thread.

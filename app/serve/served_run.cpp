@@ -83,6 +83,7 @@ std::string ServedRun::answer(const std::string& line) {
       case K::kRecord: return view_.record(c.on);
       case K::kState:
         if (!drawn) return "error: state: no frame drawn yet";
+        if (participant_) return "ok " + LiveView::participantState(stateJson(snap, session_.scene));
         return "ok " + stateJson(snap, session_.scene).dump();
       case K::kSnapshot:
         if (!drawn) return "error: snapshot: no frame drawn yet";

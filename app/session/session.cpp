@@ -385,7 +385,7 @@ void SessionRun::failedOutput(const std::exception& e) {
 
 // Each output on its own: one failing does not skip the others' row of this step.
 void SessionRun::afterStep(const sim::World& w) {
-  if (interrupt_ && interruptSignal() != 0) halt_.store(true, std::memory_order_relaxed);
+  if ((interrupt_ || options_.stop_on_held_interrupt) && interruptSignal() != 0) halt_.store(true, std::memory_order_relaxed);
   expect_->afterStep(w);
   if (served_) served_->afterStep(*world_);
   try {

@@ -28,6 +28,9 @@ struct SessionOptions {
   /// Ctrl-C or SIGTERM stop the run and it writes what it reached (the command line; off in
   /// tests and embedding, which keep their own signal handling).
   bool stop_on_interrupt = false;
+  /// As stop_on_interrupt, the caller holding the InterruptScope across several runs (an
+  /// experiment's session: a signal between two runs is not lost).
+  bool stop_on_held_interrupt = false;
   /// Realtime: ask for SCHED_FIFO for the haptic loop (root or CAP_SYS_NICE); false runs as a
   /// user without either does (`run --no-fifo`).
   bool fifo = true;

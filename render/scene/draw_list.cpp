@@ -136,9 +136,9 @@ void DrawListBuilder::build(const sim::Snapshot& snapshot, const DrawSettings& s
   view_eye_.reset();
   if (settings.view) view_eye_ = settings.view->eye;
   addSoftBodies(snapshot, out);
-  if (settings.targets) addTargets(*settings.targets, out);
+  if (settings.fingers) addPads(snapshot, out);
+  if (settings.targets) addTargets(*settings.targets, out);  // translucent: after the opaque pads
   if (settings.fingers) {
-    addPads(snapshot, out);
     addProxies(snapshot, out);
     addSprings(snapshot, out);
   }

@@ -7,14 +7,16 @@ block the test waits for the ready panel, clicks Start, drags the hand across th
 trial runs (the pointer moves the task's finger), waits for the questionnaire, sets its six
 scales and the realism rating with the mouse and submits. The first session stops after one
 trial (--stop-after 1: exit 130 once the block's questionnaire is in); the same command again
-resumes at the second trial (its first phase is ready-2), and then exits 0, and:
+resumes at the second trial on the same port (its first phase is ready-2, which the page left open
+follows), and then exits 0, and:
 
 - the trial table has both trials, each with its model, and the trials' traces show the finger
   pushed by the drag (its device moved at least 3 cm along x);
 - the questionnaire table has both blocks' answers as given, with Raw TLX their mean;
-- no condition's name (god_object, god_finger, model) was ever on the page, and /state.json
-  named no finger's model;
-- `set` is refused during a trial.
+- no condition's name (god_object, god_finger, model) was ever on the page, and neither
+  /scene.json, /state.json nor the `state` command names a model, setting, SGO count or contact;
+- `set`, `record` and `snapshot` are refused during a trial;
+- Submit refuses a questionnaire whose scales were not all touched.
 
 Usage: experiment_test.py GODFINGER OUT_DIR
 Writes OUT_DIR/experiment-trial.png and OUT_DIR/experiment-questionnaire.png, the logs, and the
@@ -66,14 +68,20 @@ def assert_nothing_hidden(page: Page, where: str, seen: list[str]) -> None:
 
 def run_trial(page: Page, served: Served, block: int, out_dir: Path) -> None:
     """Clicks Start on the ready panel and drags the hand along +x across the box."""
-    page.wait_for(f"window.gf.panel && window.gf.panel.id === 'ready-{block}'", f"the ready panel of block {block}")
+    page.wait_for(f"window.gf.panel && (window.gf.panel.id || '').startsWith('ready-{block}-')", f"the ready panel of block {block}")
     page.click(page.centre("#start"))
     page.wait_for("window.gf.panel.phase === 'trial' && !!window.gf.hand.anchor", f"trial {block} with the hand placed")
-    answer = served.command("set fingers.index.n_sgo=0")
-    assert answer.startswith("error:") and "experiment" in answer, f"set during a trial answered {answer!r}"
-    state = served.state()
-    for f in state["fingers"]:
-        assert "model" not in f and "settings" not in f, f"/state.json names the condition: {f}"
+    for line in ("set fingers.index.n_sgo=0", "record start", "snapshot x"):
+        answer = served.command(line)
+        assert answer.startswith("error:") and "experiment" in answer, f"{line!r} during a trial answered {answer!r}"
+    # What the page may read: no model, setting, SGO count or contact (each tells the condition).
+    state_answer = served.command("state")
+    assert state_answer.startswith("ok "), state_answer
+    for text in (served.get("/scene.json").text(), json.dumps(served.state()), state_answer):
+        for word in [*HIDDEN, "n_sgo", "sgos", "settings", "contacts", "radius"]:
+            assert word not in text, f"the page can read {word!r}: {text[:400]}"
+    for f in served.state()["fingers"]:
+        assert set(f) <= {"name", "proxy", "device", "force_n"}, f"/state.json's finger: {sorted(f)}"
     anchor = page.evaluate("window.gf.hand.anchor")
     start = page.evaluate(f"window.gf.project({json.dumps(anchor)})")
     end = page.evaluate(f"window.gf.project({json.dumps([anchor[0] + 0.06, anchor[1], anchor[2]])})")
@@ -85,8 +93,13 @@ def run_trial(page: Page, served: Served, block: int, out_dir: Path) -> None:
 def answer_questionnaire(page: Page, block: int, out_dir: Path) -> None:
     """Sets the sliders (value and an input event, as dragging one does) and clicks the realism
     rating and Submit with the mouse."""
-    page.wait_for(f"window.gf.panel.id === 'questionnaire-{block}'", f"the questionnaire after block {block}")
+    page.wait_for(f"(window.gf.panel.id || '').startsWith('questionnaire-{block}-')", f"the questionnaire after block {block}")
     answers = ANSWERS[block - 1]
+    # Untouched scales are not answers: Submit says so and sends nothing.
+    page.click(page.centre(f"input[name=realism][value='{answers['realism']}']"))
+    page.click(page.centre("#questionnaire button[type=submit]"))
+    page.wait_for("document.querySelector('#questionnaire .result').textContent.includes('Please answer every scale')",
+                  "Submit to refuse untouched scales")
     for key, value in answers.items():
         if key == "realism":
             continue
@@ -151,10 +164,11 @@ def main(binary: Path, out_dir: Path) -> int:
         beh = data / "sub-01" / "beh"
         first = read_tsv(beh / "sub-01_task-browserpilot_beh.tsv")
         assert len(first) == 1 and len(read_tsv(beh / "sub-01_task-browserpilot_questionnaire.tsv")) == 1, first
-        # The same command again resumes: its first phase is the second trial's.
+        # The same command again, on the same port, resumes: its first phase is the second trial's,
+        # and the page left open follows it there (a resumed phase is a new one to it).
         served.stop()
-        served = Served.start(command, out_dir / "godfinger-experiment-2.log")
-        page.navigate(served.url("/"), until="Page.domContentEventFired")
+        again = [*command[:command.index("--serve") + 1], f"127.0.0.1:{served.port}", *command[command.index("--serve") + 2:]]
+        served = Served.start(again, out_dir / "godfinger-experiment-2.log")
         run_block(page, served, 2, out_dir, 0)
         assert read_tsv(beh / "sub-01_task-browserpilot_beh.tsv")[0] == first[0], "the first session's trial changed"
         check_outputs(data)

@@ -2,7 +2,7 @@
 // phase at a time on this port (ready, trial, questionnaire), each from a server of its own: the
 // page polls /scene.json and follows the phase's id. In a trial the pointer moves the hand (every
 // web finger together) in the plane facing the camera, the wheel closes and opens the grip (each
-// finger along the task's grip direction), W and S move the hand away and nearer. The page shows
+// finger along the task's grip direction), W and S move the hand nearer and away. The page shows
 // no condition: the server sends none.
 const TLX = [
   ["mental_demand", "Mental demand", "How mentally demanding was the task?", "Very low", "Very high"],
@@ -44,7 +44,12 @@ function showReady(p) {
     start.disabled = true;
     let n = 3;
     const tick = () => {
-      if (n === 0) { count.textContent = "Go"; command("ready"); return; }
+      if (n === 0) {
+        count.textContent = "Go";
+        command("ready").then(a => { if (!a.startsWith("ok")) { start.disabled = false; count.textContent = a; } },
+                              () => {});  // the phase ends as it answers: the next one shows
+        return;
+      }
       count.textContent = String(n--);
       setTimeout(tick, 600);
     };
@@ -52,7 +57,7 @@ function showReady(p) {
   });
   panelBox(element("h2", trialLine(p)), element("div", p.instruction, "instruction"), resultLine(p.previous),
            element("div", "You have " + p.time_limit_s.toFixed(1) + " s. Drag to move your hand, the wheel closes and " +
-                          "opens your grip, W and S move it away and nearer."), start, count);
+                          "opens your grip, W and S move it nearer and away."), start, count);
 }
 
 // A trial: the frames, the instruction and the time left; the hand starts where the fingers are.
@@ -62,6 +67,7 @@ function showTrial(p) {
   img.src = withToken("stream.mjpg?phase=" + encodeURIComponent(p.id));
   hand.fingers = gf.scene.fingers.filter(f => f.device === "web").map(f => f.name);
   hand.anchor = null;
+  hand.drag = null;
   hand.grip = 0;
   const left = element("div", "", "count");
   left.id = "time-left";
@@ -77,7 +83,7 @@ function showQuestionnaire(p) {
   for (const [key, title, question, low, high] of TLX) {
     const scale = element("div", undefined, "scale"), input = document.createElement("input"), value = element("b", "50");
     Object.assign(input, {type: "range", min: 0, max: 100, step: 5, value: 50, name: key});
-    input.addEventListener("input", () => { value.textContent = input.value; });
+    input.addEventListener("input", () => { value.textContent = input.value; input.dataset.touched = "1"; });
     const ends = element("div", undefined, "ends");
     ends.append(element("span", low), element("span", high));
     scale.append(element("div", title + ": " + question + " "), input, ends);
@@ -99,11 +105,18 @@ function showQuestionnaire(p) {
   form.append(submit, message);
   form.addEventListener("submit", async e => {
     e.preventDefault();
+    const untouched = TLX.filter(([key]) => !form.elements[key].dataset.touched).map(([, title]) => title);
+    if (untouched.length) { message.textContent = "Please answer every scale (not yet: " + untouched.join(", ") + ")."; return; }
     const realism = form.querySelector("input[name=realism]:checked");
     if (!realism) { message.textContent = "Please rate the realism (1 to 7)."; return; }
     const line = "answers " + TLX.map(([key]) => key + "=" + form.elements[key].value).join(" ") + " realism=" + realism.value;
     let answer = "";
-    try { answer = await command(line); } catch (err) { answer = "ok"; }  // the phase may end before its answer
+    try { answer = await command(line); } catch (err) {
+      // No answer: not saved, or saved as the phase ended. If saved, the next phase replaces
+      // this form in a moment; if not, the form stays and can be sent again.
+      message.textContent = "Not saved yet: the session did not answer. Press Submit again if this stays.";
+      return;
+    }
     if (!answer.startsWith("ok")) { message.textContent = answer; return; }
     panel.submitted = true;
     panelBox(element("h2", p.last ? "Thank you: the session is over." : "Thank you."),
@@ -178,7 +191,7 @@ function attachHand() {
   }, {passive: false});
   document.addEventListener("keydown", e => {
     if (!hand.anchor || hand.drag || (e.key !== "w" && e.key !== "W" && e.key !== "s" && e.key !== "S")) return;
-    const f = basis().f, step = e.key === "w" || e.key === "W" ? DEPTH_STEP_M : -DEPTH_STEP_M;
+    const f = basis().f, step = e.key === "w" || e.key === "W" ? -DEPTH_STEP_M : DEPTH_STEP_M;  // W nearer, as on the full page
     hand.anchor = hand.anchor.map((v, k) => v + step * f[k]);
     sendHand();
   });

@@ -62,7 +62,8 @@ TEST(WebParticipant, TheCommandLineNeedsAParticipantOfAWebExperiment) {
   refused(kPilot, "--participant: missing: a web experiment runs one participant a session");
   refused(kPilot + " --participant 3", "--participant: 3: the experiment has 2 participants");
   refused(kPilot + " --participant 1 --serve 70000", "--serve");
-  refused("noise-sweep --participant 1", "--participant: runs one person of a web experiment");
+  refused("noise-sweep --participant 1", "--participant: is for a web experiment");
+  refused("noise-sweep --serve 8081", "--serve: is for a web experiment");
 }
 
 }  // namespace
