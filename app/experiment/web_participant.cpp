@@ -24,6 +24,7 @@
 #include "app/runs/files.hpp"
 #include "app/runs/run_reader.hpp"
 #include "app/scene/input_error.hpp"
+#include "app/scene/scene_file.hpp"
 #include "app/serve/live_view.hpp"
 #include "app/session/session.hpp"
 #include "app/study/study_resume.hpp"

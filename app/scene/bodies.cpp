@@ -14,8 +14,6 @@
 namespace gf::app {
 namespace {
 
-constexpr double kDegToRad = std::numbers::pi / 180.0;
-
 // `shape` (and `collision` for meshes): the row of sim::shapeInfos() it names.
 const sim::ShapeInfo& readShape(Reader& r) {
   std::vector<std::string_view> shapes, collisions;
