@@ -66,8 +66,8 @@ class ExperimentCommand final : public Command {
     options.godfinger = selfExecutable();
     options.restart = args_.restart;
     options.stop_after = args_.stop_after;
-    if (e.device == "web") {
-      if (args_.participant == 0) throw commandLineError("--participant", "missing: a web experiment runs one participant a session");
+    if (e.device != "simulated") {  // a person: web or UDP
+      if (args_.participant == 0) throw commandLineError("--participant", "missing: an experiment of people (device = \"" + e.device + "\") runs one participant a session");
       if (args_.participant > e.participants) {
         throw commandLineError("--participant", std::to_string(args_.participant) + ": the experiment has " +
                                                     std::to_string(e.participants) + " participants");
@@ -79,7 +79,7 @@ class ExperimentCommand final : public Command {
     }
     for (const CLI::Option* o : {participant_, serve_, token_}) {
       if (o->count() > 0) {
-        throw commandLineError(o->get_name(), "is for a web experiment (device = \"web\"), run by a person; this one's "
+        throw commandLineError(o->get_name(), "is for an experiment of people (device = \"web\" or \"udp\"); this one's "
                                               "participants are simulated");
       }
     }

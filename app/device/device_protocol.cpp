@@ -185,7 +185,9 @@ sim::DeviceSample DeviceLink::sample(double t) {
 DeviceReply DeviceLink::reply(double t, const sim::DeviceFeedback& f) {
   const double step = (t - sample_time_) / desc_.force_ramp;  // of the gain's 0..1
   ramp_step_ = step;
-  gain_ = stale_ ? gain_ - step : gain_ + step;
+  const bool ending = t > desc_.fade_out_at;
+  if (ending) ramping_ = true;  // rate-limited to zero, however large the force
+  gain_ = stale_ || ending ? gain_ - step : gain_ + step;
   // Whole steps of the ramp add up to 1 only within rounding: the ends are exact.
   if (gain_ < kGainRounding) gain_ = 0.0;
   if (gain_ > 1.0 - kGainRounding) gain_ = 1.0;
@@ -203,7 +205,7 @@ DeviceReply DeviceLink::reply(double t, const sim::DeviceFeedback& f) {
   r.seq = seq_;
   r.channel = static_cast<std::uint32_t>(desc_.channel);
   r.flags = (stale_ ? DeviceReply::kStale : 0u) | (f.touching ? DeviceReply::kTouching : 0u) |
-            (ramping_ ? DeviceReply::kRamping : 0u);
+            (ramping_ ? DeviceReply::kRamping : 0u) | (ending ? DeviceReply::kEnding : 0u);
   r.time = t;
   r.force = sent_;
   r.radius = f.radius;

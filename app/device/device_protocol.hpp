@@ -42,6 +42,9 @@ struct DeviceReply {
   /// Another sender took the channel over: this sender's force fades to zero and stays there
   /// (its next packet takes the channel back, its force fading in again).
   static constexpr std::uint32_t kDisplaced = 1u << 3;
+  /// The run is ending (an experiment's trial): the force fades to zero at the ramp's rate and
+  /// stays there until the run's last reply.
+  static constexpr std::uint32_t kEnding = 1u << 4;
   std::uint32_t seq = 0;      ///< the newest packet's seq taken for this channel
   std::uint32_t channel = 0;
   std::uint32_t flags = 0;

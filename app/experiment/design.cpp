@@ -5,6 +5,8 @@
 #include <utility>
 
 #include "app/experiment/experiment.hpp"
+
+#include "sim/scene/settings.hpp"
 #include "app/experiment/random.hpp"
 
 namespace gf::app {
@@ -136,6 +138,16 @@ std::size_t trialCount(const ExperimentDesc& e) {
     (f.name == e.block_by ? blocks : per_block) *= f.levels.size();
   }
   return static_cast<std::size_t>(e.participants) * blocks * (per_block + static_cast<std::size_t>(e.practice));
+}
+
+std::string participantDeviceOverride(const ExperimentDesc& e, const sim::FingerDesc& finger, int channel) {
+  const sim::Vec3 p = finger.device.keyframes.empty() ? sim::Vec3::Zero() : finger.device.keyframes.front().position;
+  const std::string start = "start=[" + sim::numberText(p.x(), 17) + ", " + sim::numberText(p.y(), 17) + ", " +
+                            sim::numberText(p.z(), 17) + "]";
+  std::string quoted;  // a TOML basic string
+  for (const char c : e.udp) quoted += c == '"' || c == '\\' ? std::string("\\") + c : std::string(1, c);
+  const std::string device = e.device == "udp" ? "udp=\"" + quoted + "\", channel=" + std::to_string(channel) : std::string("web=true");
+  return "fingers." + finger.name + ".device={" + device + ", " + start + "}";
 }
 
 std::vector<std::string> trialOverrides(const ExperimentDesc& e, const Trial& t, const std::vector<std::string>& fingers) {

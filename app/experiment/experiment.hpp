@@ -88,6 +88,11 @@ struct ExperimentDesc {
   /// Who performs the trials: "simulated" (seeded hands, every participant in one go) or "web"
   /// (a person in the browser, one participant a session: app/experiment/web_participant.hpp)
   std::string device = "simulated";
+  /// device = "udp": the address the session listens on for the participant's device program
+  /// ("HOST:PORT" or a port; loopback unless a host is given); a task's fingers take channels 0,
+  /// 1, ... in the order its scene lists them
+  std::string udp = "127.0.0.1:47001";
+  StudySource udp_source;  ///< where the file gives `udp`, for errors
   OrderKind order = OrderKind::kWilliams;
   std::string block_by;    ///< a within factor: each of its levels is a block; "" one block
   int repetitions = 1;     ///< of each task × condition in a block
@@ -143,6 +148,11 @@ std::vector<std::string> expandFingers(const std::string& text, const std::vecto
 
 /// The hand's noise scale in trial `t`: the last factor level that sets one, else the experiment's.
 double trialNoise(const ExperimentDesc& e, const Trial& t);
+
+/// The device of finger `channel` (its index in the task scene) for a person's trial: the
+/// browser's pointer (web) or the session's UDP address on that channel, starting where the
+/// finger's track starts. A scene override ("fingers.NAME.device={...}").
+std::string participantDeviceOverride(const ExperimentDesc& e, const sim::FingerDesc& finger, int channel);
 
 /// The condition's overrides of a trial, with "fingers.*." expanded over `fingers`.
 std::vector<std::string> trialOverrides(const ExperimentDesc& e, const Trial& t, const std::vector<std::string>& fingers);

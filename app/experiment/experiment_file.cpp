@@ -208,15 +208,22 @@ void checkConditions(const ExperimentDesc& e) {
   }
   std::set<std::pair<int, std::vector<int>>> seen;
   std::vector<std::vector<std::string>> fingers(e.tasks.size());
+  std::vector<std::vector<sim::FingerDesc>> descs(e.tasks.size());
   for (std::size_t t = 0; t < e.tasks.size(); ++t) {
-    for (const sim::FingerDesc& f : loadSceneFile(e.tasks[t].scene).scene.fingers) fingers[t].push_back(f.name);
+    descs[t] = loadSceneFile(e.tasks[t].scene).scene.fingers;
+    for (const sim::FingerDesc& f : descs[t]) fingers[t].push_back(f.name);
   }
   for (const Trial& trial : planTrials(e)) {
     if (!seen.insert({trial.task, trial.levels}).second) continue;
     const TaskDesc& task = e.tasks[static_cast<std::size_t>(trial.task)];
     std::vector<StudyOverride> overrides;
-    for (const std::string& f : fingers[static_cast<std::size_t>(trial.task)]) {
-      overrides.push_back({"fingers." + f + ".device={csv=\"" + placeholder.string() + "\"}", {}, {}});
+    const std::vector<sim::FingerDesc>& task_fingers = descs[static_cast<std::size_t>(trial.task)];
+    for (std::size_t f = 0; f < task_fingers.size(); ++f) {
+      if (e.device == "simulated") {
+        overrides.push_back({"fingers." + task_fingers[f].name + ".device={csv=\"" + placeholder.string() + "\"}", {}, {}});
+      } else {  // a person's device (its address checked with the file)
+        overrides.push_back({participantDeviceOverride(e, task_fingers[f], static_cast<int>(f)), {}, {}});
+      }
     }
     for (std::size_t f = 0; f < e.factors.size(); ++f) {
       for (const StudyOverride& o : e.factors[f].levels[static_cast<std::size_t>(trial.levels[f])].set) {
@@ -253,6 +260,25 @@ ExperimentDesc loadExperimentFile(const std::string& name_or_path) {
   return parseExperimentText(readText(path, "experiment file"), path, fs::path(path).parent_path().string());
 }
 
+// `device` and, for a UDP participant, `udp`: its address checked as a scene's `udp` is.
+void readDevice(Reader& r, ExperimentDesc& e) {
+  static constexpr const char* kDevices[] = {"simulated", "web", "udp"};
+  e.device = kDevices[r.choice("device", kDevices, 0)];
+  const toml::node* n = r.find("udp");
+  if (!n) return;
+  if (e.device != "udp") r.fail(n, "udp", "the address of a UDP participant's device: only with device = \"udp\"");
+  e.udp = r.string("udp", e.udp);
+  e.udp_source = sourceOfNode(*n, "udp");
+  std::string quoted;  // a TOML basic string
+  for (const char c : e.udp) quoted += c == '"' || c == '\\' ? std::string("\\") + c : std::string(1, c);
+  try {
+    parseSceneText("duration = 1\neffects = []\n[bodies.ground]\nshape = \"plane\"\n[fingers.f.device]\nudp = \"" + quoted + "\"\n",
+                   "udp", "", {});
+  } catch (const InputError& error) {
+    r.fail(n, "udp", error.reason());
+  }
+}
+
 ExperimentDesc parseExperimentText(const std::string& text, const std::string& source_name, const std::string& base_dir) {
   toml::table root = parseToml(text, source_name);
   Reader r(root, "", source_name);
@@ -266,8 +292,7 @@ ExperimentDesc parseExperimentText(const std::string& text, const std::string& s
   e.participants = r.integer("participants", e.participants, 1, 99);
   e.seed = static_cast<std::uint64_t>(r.integer("seed", 1, 0, 2147483647));
   e.noise = r.number("noise", e.noise, 0.0, 10.0);
-  static constexpr const char* kDevices[] = {"simulated", "web"};
-  e.device = kDevices[r.choice("device", kDevices, 0)];
+  readDevice(r, e);
   for (const auto& [task, node] : r.strings("tasks")) {
     try {
       e.tasks.push_back(loadTaskFile(resolveTask(base_dir, task)));

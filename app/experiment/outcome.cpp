@@ -109,7 +109,7 @@ TrialOutcome judgeTrace(const TaskGoal& goal, const std::vector<std::string>& fi
 }
 
 TrialOutcome judgeTrial(const TaskGoal& goal, const std::vector<std::string>& fingers, const std::filesystem::path& dir,
-                        int exit_code) {
+                        int exit_code, double until_s) {
   TrialOutcome o;
   o.ran = false;
   if (exit_code != 0) {
@@ -117,7 +117,12 @@ TrialOutcome judgeTrial(const TaskGoal& goal, const std::vector<std::string>& fi
     return o;
   }
   try {
-    return judgeTrace(goal, fingers, readTrace(dir));
+    CsvTable trace = readTrace(dir);
+    const std::vector<double>& t = trace.column("t");
+    const auto after = std::find_if(t.begin(), t.end(), [&](double v) { return v > until_s + 1e-9; });
+    const auto keep = static_cast<std::size_t>(after - t.begin());
+    for (std::vector<double>& c : trace.columns) c.resize(std::min(c.size(), keep));
+    return judgeTrace(goal, fingers, trace);
   } catch (const std::exception& e) {
     o.failure = std::string("run failed (") + e.what() + ")";
   }

@@ -41,9 +41,11 @@ TrialOutcome judgeTrace(const TaskGoal& goal, const std::vector<std::string>& fi
 /// goal orientation where the body starts.
 std::vector<std::string> goalTargetOverrides(const TaskGoal& goal);
 
-/// The outcome of the trial run in `dir` that exited with `exit_code`: a run that failed (not 0)
-/// or left no readable trace did not run (`ran` false, failure "run failed ...").
+/// The outcome of the trial run in `dir` that exited with `exit_code`, judged on its trace's rows
+/// up to `until_s` (a run that went on after the trial's time limit: the device's force fading
+/// out): a run that failed (not 0) or left no readable trace did not run (`ran` false, failure
+/// "run failed ...").
 TrialOutcome judgeTrial(const TaskGoal& goal, const std::vector<std::string>& fingers, const std::filesystem::path& dir,
-                        int exit_code);
+                        int exit_code, double until_s = HUGE_VAL);
 
 }  // namespace gf::app

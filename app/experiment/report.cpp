@@ -8,6 +8,7 @@
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <optional>
 #include <set>
 #include <sstream>
 #include <string>
@@ -48,24 +49,45 @@ std::vector<std::string> splitTabs(const std::string& line) {
   return cells;
 }
 
+// A participant's table (header and rows, each row as many cells as the header; a row's line is
+// its index + 2); nullopt when the file is not there (a participant not reached yet).
+struct Tsv {
+  std::string file;
+  std::vector<std::string> names;
+  std::vector<std::vector<std::string>> rows;
+  // The index of column `name`; throws InputError naming the file when it has none.
+  std::size_t column(const std::string& name) const {
+    const auto at = std::find(names.begin(), names.end(), name);
+    if (at == names.end()) throw InputError(file, 1, 0, name, "missing column");
+    return static_cast<std::size_t>(at - names.begin());
+  }
+};
+
+std::optional<Tsv> readTsv(const fs::path& file) {
+  std::ifstream in(file);
+  std::string line;
+  if (!in || !std::getline(in, line)) return std::nullopt;
+  Tsv t;
+  t.file = file.string();
+  t.names = splitTabs(line);
+  for (int number = 2; std::getline(in, line); ++number) {
+    t.rows.push_back(splitTabs(line));
+    if (t.rows.back().size() != t.names.size()) throw InputError(t.file, number, 0, "", "expected " + std::to_string(t.names.size()) + " cells");
+  }
+  return t;
+}
+
 std::vector<TestRow> readTrials(const fs::path& dir, const std::string& label, int participants,
                                 const std::vector<FactorInfo>& factors, int& practice, int& failed_runs) {
   std::vector<TestRow> out;
   for (int p = 0; p < participants; ++p) {
-    const fs::path file = dir / participantId(p) / "beh" / (participantId(p) + "_task-" + label + "_beh.tsv");
-    std::ifstream in(file);
-    if (!in) continue;  // a participant not reached yet
-    std::string line;
-    std::getline(in, line);
-    const std::vector<std::string> names = splitTabs(line);
-    const auto column = [&](const std::string& name) {
-      const auto at = std::find(names.begin(), names.end(), name);
-      if (at == names.end()) throw InputError(file.string(), 1, 0, name, "missing column");
-      return static_cast<std::size_t>(at - names.begin());
-    };
-    for (int number = 2; std::getline(in, line); ++number) {
-      const std::vector<std::string> cells = splitTabs(line);
-      if (cells.size() != names.size()) throw InputError(file.string(), number, 0, "", "expected " + std::to_string(names.size()) + " cells");
+    const std::optional<Tsv> table = readTsv(dir / participantId(p) / "beh" / (participantId(p) + "_task-" + label + "_beh.tsv"));
+    if (!table) continue;
+    const fs::path file = table->file;
+    const auto column = [&](const std::string& name) { return table->column(name); };
+    for (std::size_t row = 0; row < table->rows.size(); ++row) {
+      const std::vector<std::string>& cells = table->rows[row];
+      const int number = static_cast<int>(row) + 2;
       if (cells[column("practice")] == "1") {
         ++practice;
         continue;
@@ -302,22 +324,15 @@ Answers readAnswers(const fs::path& dir, const std::string& label, int participa
   const std::size_t k = f.levels.size();
   std::vector<std::vector<double>> n(static_cast<std::size_t>(participants), std::vector<double>(k, 0.0)), tlx = n, realism = n;
   for (int p = 0; p < participants; ++p) {
-    const fs::path file = dir / participantId(p) / "beh" / (participantId(p) + "_task-" + label + "_questionnaire.tsv");
-    std::ifstream in(file);
-    std::string line;
-    if (!in || !std::getline(in, line)) continue;
+    const std::optional<Tsv> table =
+        readTsv(dir / participantId(p) / "beh" / (participantId(p) + "_task-" + label + "_questionnaire.tsv"));
+    if (!table) continue;
     ++a.tables;
-    const std::vector<std::string> names = splitTabs(line);
-    const auto column = [&](const std::string& name) {
-      const auto at = std::find(names.begin(), names.end(), name);
-      if (at == names.end()) throw InputError(file.string(), 1, 0, name, "missing column");
-      return static_cast<std::size_t>(at - names.begin());
-    };
-    for (int number = 2; std::getline(in, line); ++number) {
-      const std::vector<std::string> cells = splitTabs(line);
-      if (cells.size() != names.size()) throw InputError(file.string(), number, 0, "", "expected " + std::to_string(names.size()) + " cells");
+    const auto column = [&](const std::string& name) { return table->column(name); };
+    for (std::size_t r = 0; r < table->rows.size(); ++r) {
+      const std::vector<std::string>& cells = table->rows[r];
       const auto l = static_cast<std::size_t>(std::find(f.levels.begin(), f.levels.end(), cells[column(f.name)]) - f.levels.begin());
-      if (l >= k) throw InputError(file.string(), number, 0, f.name, "no level '" + cells[column(f.name)] + "'");
+      if (l >= k) throw InputError(table->file, static_cast<int>(r) + 2, 0, f.name, "no level '" + cells[column(f.name)] + "'");
       const auto pi = static_cast<std::size_t>(p);
       n[pi][l] += 1.0;
       tlx[pi][l] += std::strtod(cells[column("raw_tlx")].c_str(), nullptr);

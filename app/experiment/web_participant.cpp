@@ -144,10 +144,17 @@ std::optional<std::string> waitForPage(const SessionDesc& session, ServeOptions&
   while (!accepted && interruptSignal() == 0) accepted_cv.wait_for(lock, std::chrono::milliseconds(100));
   const std::optional<std::string> line = accepted;
   lock.unlock();
-  // The page hears its "ok" before this phase's server goes (a second at most).
-  for (int i = 0; line && i < 100 && server.statsJson().value("commands_running", 0L) > 0; ++i) {
+  // The page hears its "ok" before this phase's server goes: the answer is handed to the
+  // connection after the command is counted answered, so a quarter of a second more for the
+  // write (a second at most in all).
+  for (int i = 0; line && i < 75 && server.statsJson().value("commands_running", 0L) > 0; ++i) {
     lock.lock();
     accepted_cv.wait_for(lock, std::chrono::milliseconds(10));
+    lock.unlock();
+  }
+  if (line) {
+    lock.lock();
+    accepted_cv.wait_for(lock, std::chrono::milliseconds(250));
     lock.unlock();
   }
   server.stop();
@@ -180,6 +187,7 @@ json panelFor(const ExperimentDesc& e, const std::vector<Trial>& trials, std::si
     grip[finger] = {d.x(), d.y(), d.z()};
   }
   return {{"id", phase + "-" + std::to_string(t.number) + "-" + sessionMark()},
+          {"device", e.device},
           {"grip", grip},
           {"phase", phase},
           {"participant", participantId(t.participant)},
@@ -201,13 +209,9 @@ TrialRun prepareWebTrial(const ExperimentDesc& e, const Trial& t, const SessionD
   const TaskDesc& task = e.tasks[static_cast<std::size_t>(t.task)];
   TrialRun r;
   r.dir = (behDir(out, t) / "trials" / trialName(t)).string();
-  for (const sim::FingerDesc& f : scene.scene.fingers) {
-    r.fingers.push_back(f.name);
-    const sim::Vec3 p = f.device.keyframes.empty() ? sim::Vec3::Zero() : f.device.keyframes.front().position;
-    r.run.overrides.push_back({"fingers." + f.name + ".device={web=true, start=[" + sim::numberText(p.x(), 17) + ", " +
-                                   sim::numberText(p.y(), 17) + ", " + sim::numberText(p.z(), 17) + "]}",
-                               {},
-                               {}});
+  for (std::size_t f = 0; f < scene.scene.fingers.size(); ++f) {
+    r.fingers.push_back(scene.scene.fingers[f].name);
+    r.run.overrides.push_back({participantDeviceOverride(e, scene.scene.fingers[f], static_cast<int>(f)), {}, {}});
   }
   for (const std::string& o : trialOverrides(e, t, r.fingers)) r.run.overrides.push_back({o, {}, {}});
   for (const std::string& o : goalTargetOverrides(task.goal)) r.run.overrides.push_back({o, {}, {}});
@@ -222,12 +226,20 @@ TrialRun prepareWebTrial(const ExperimentDesc& e, const Trial& t, const SessionD
 
 // A trial's session as the participant sees it: the contacts' patches, the insets and the overlay
 // off, since they show the model (a god-finger's patch and SGOs, a god-object's point).
+// A UDP device's force fades out after the time limit, in a run longer by the fade (and a few
+// steps): the run that ends leaves no device pushing, and the next trial's ramp starts from zero.
 SessionDesc trialSession(const ExperimentDesc& e, const TrialRun& r) {
   SessionDesc s = loadSceneWithOverrides(e.source, r.run.scene, r.run.overrides);
   s.view.patch_highlight = false;
   s.view.patch_insets = false;
   s.view.overlay = false;
   s.view.actions.clear();
+  double fade = 0.0;
+  for (UdpDeviceDesc& d : s.udp_devices) {
+    d.fade_out_at = s.scene.duration;
+    fade = std::max(fade, d.force_ramp);
+  }
+  if (fade > 0.0) s.scene.duration += fade + 5.0 / s.scene.world.haptic_rate_hz;
   return s;
 }
 
@@ -256,7 +268,7 @@ std::optional<TrialOutcome> runWebTrial(const TaskDesc& task, const TrialRun& r,
   }
   if (interruptSignal() != 0) return std::nullopt;
   if (code == 0) recordFinishedRun(r.dir, r.key);
-  return judgeTrial(task.goal, r.fingers, r.dir, code);
+  return judgeTrial(task.goal, r.fingers, r.dir, code, task.time_limit);  // not the device's fade after it
 }
 
 // A participant's trials, their runs, and the outcomes of those finished before (unless

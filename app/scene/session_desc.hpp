@@ -1,6 +1,7 @@
 // What a scene file describes beyond the physics: recordings and cameras. Read-only once loaded.
 #pragma once
 
+#include <cmath>
 #include <string>
 #include <vector>
 
@@ -54,6 +55,10 @@ struct UdpDeviceDesc {
   double force_scale = 1.0;            ///< device N per scene N of the force sent back
   double stale_after = 0.05;           ///< s without a packet before the device is stale
   double force_ramp = 0.1;             ///< s for the force sent back to ramp from 0 to full (or back)
+  /// s: from this simulated time on the force sent back fades to zero at the ramp's rate and stays
+  /// there (flag kEnding), so a run that ends leaves no device pushing. Not a scene field: an
+  /// experiment's trial sets it to its time limit and runs force_ramp longer.
+  double fade_out_at = HUGE_VAL;
   /// s: time constant of the low-pass filter on the velocity from successive packets (0: raw
   /// differences); the coupling damps on it.
   double velocity_smoothing = 0.005;

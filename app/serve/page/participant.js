@@ -55,9 +55,10 @@ function showReady(p) {
     };
     tick();
   });
+  const how = p.device === "udp" ? "Use your haptic device; watch the picture here."
+                                  : "Drag to move your hand, the wheel closes and opens your grip, W and S move it nearer and away.";
   panelBox(element("h2", trialLine(p)), element("div", p.instruction, "instruction"), resultLine(p.previous),
-           element("div", "You have " + p.time_limit_s.toFixed(1) + " s. Drag to move your hand, the wheel closes and " +
-                          "opens your grip, W and S move it nearer and away."), start, count);
+           element("div", "You have " + p.time_limit_s.toFixed(1) + " s. " + how), start, count);
 }
 
 // A trial: the frames, the instruction and the time left; the hand starts where the fingers are.

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <map>
 #include <set>
 
@@ -256,27 +257,34 @@ TaskGoal zoneGoal(const std::string& body = std::string(1, 'b')) {
   return g;
 }
 
-// Rises into the zone at 1.0 s, drops out at 1.3 s, back at 2.0 s and stays: the first stretch
-// held long enough starts at 2.0 s.
-TEST(ExperimentOutcome, CompletionIsTheStartOfTheFirstStretchHeldLongEnough) {
+// 4 s of an upright body at 100 rows a second, its centre at height y(t) (m).
+CsvTable uprightTrace(const std::function<double(double)>& y) {
   std::vector<double> t;
   std::vector<Vec3> p;
   std::vector<sim::Quat> q;
   for (int i = 0; i <= 400; ++i) {
     t.push_back(i * 0.01);
-    const double time = t.back();
-    const bool in = (time >= 1.0 - 1e-9 && time < 1.3 - 1e-9) || time >= 2.0 - 1e-9;
-    p.emplace_back(0.0, in ? 0.08 : 0.02, 0.0);
+    p.emplace_back(0.0, y(t.back()), 0.0);
     q.push_back(sim::Quat::Identity());
   }
-  const TrialOutcome o = judgeTrace(zoneGoal(), {"f"}, bodyTrace(t, p, q));
+  return bodyTrace(t, p, q);
+}
+
+// Rises into the zone at 1.0 s, drops out at 1.3 s, back at 2.0 s and stays: the first stretch
+// held long enough starts at 2.0 s.
+TEST(ExperimentOutcome, CompletionIsTheStartOfTheFirstStretchHeldLongEnough) {
+  const CsvTable trace = uprightTrace([](double time) {
+    const bool in = (time >= 1.0 - 1e-9 && time < 1.3 - 1e-9) || time >= 2.0 - 1e-9;
+    return in ? 0.08 : 0.02;
+  });
+  const TrialOutcome o = judgeTrace(zoneGoal(), {"f"}, trace);
   EXPECT_TRUE(o.success) << o.failure;
   EXPECT_NEAR(o.completion_s, 2.0, 1e-9);
   EXPECT_NEAR(o.peak_force_n, 2.0, 1e-12);
   EXPECT_EQ(o.end_distance_m, 0.0);
   TaskGoal longer = zoneGoal();
   longer.hold = 2.5;  // 2.0 s + 2.5 s is past the trace's 4 s
-  const TrialOutcome late = judgeTrace(longer, {"f"}, bodyTrace(t, p, q));
+  const TrialOutcome late = judgeTrace(longer, {"f"}, trace);
   EXPECT_FALSE(late.success);
   EXPECT_EQ(late.failure, "not reached in 4 s");
 }
@@ -284,16 +292,12 @@ TEST(ExperimentOutcome, CompletionIsTheStartOfTheFirstStretchHeldLongEnough) {
 // With `released`, the goal holds only once no finger holds the body: a finger pressing 2 N until
 // 2.5 s delays the completion from 1.0 s (in the zone) to 2.5 s.
 TEST(ExperimentOutcome, AReleasedGoalWaitsForTheFingersToLetGo) {
-  std::vector<double> t;
-  std::vector<Vec3> p;
-  std::vector<sim::Quat> q;
-  for (int i = 0; i <= 400; ++i) {
-    t.push_back(i * 0.01);
-    p.emplace_back(0.0, t.back() >= 1.0 - 1e-9 ? 0.08 : 0.02, 0.0);
-    q.push_back(sim::Quat::Identity());
-  }
-  CsvTable trace = bodyTrace(t, p, q);
-  std::vector<double>& fy = trace.columns[static_cast<std::size_t>(std::find(trace.names.begin(), trace.names.end(), "f.fy") - trace.names.begin())];
+  CsvTable trace = uprightTrace([](double time) { return time >= 1.0 - 1e-9 ? 0.08 : 0.02; });
+  const auto column = [&](const std::string& name) -> std::vector<double>& {
+    return trace.columns[static_cast<std::size_t>(std::find(trace.names.begin(), trace.names.end(), name) - trace.names.begin())];
+  };
+  const std::vector<double>& t = column("t");
+  std::vector<double>& fy = column("f.fy");
   for (std::size_t i = 0; i < fy.size(); ++i) fy[i] = t[i] < 2.5 - 1e-9 ? 2.0 : 0.1;  // then a free proxy's inertia
   TaskGoal g = zoneGoal();
   EXPECT_NEAR(judgeTrace(g, {"f"}, trace).completion_s, 1.0, 1e-9) << "held or not";
@@ -400,8 +404,12 @@ TEST(ExperimentFile, ErrorsNameTheFileLineAndField) {
   EXPECT_EQ(experimentError(tasks + kModels), "loaded");
   expectError(tasks + "colour = 3\n" + kModels, "e.toml:2:10: colour: unknown field");
   expectError(tasks + "participants = 0\n" + kModels, "e.toml:2:16: participants: must be in 1..99");
-  expectError(tasks + "device = \"udp\"\n" + kModels, "e.toml:2:10: device: unknown value 'udp' (one of simulated, web)");
+  expectError(tasks + "device = \"glove\"\n" + kModels, "e.toml:2:10: device: unknown value 'glove' (one of simulated, web, udp)");
   EXPECT_EQ(experimentError(tasks + "device = \"web\"\n" + kModels), "loaded");
+  EXPECT_EQ(experimentError(tasks + "device = \"udp\"\nudp = \"127.0.0.1:47005\"\n" + kModels), "loaded");
+  expectError(tasks + "udp = \"127.0.0.1:47005\"\n" + kModels, "e.toml:2:7: udp: the address of a UDP participant's device: only with");
+  expectError(tasks + "device = \"udp\"\nudp = \"127.0.0.1:99999\"\n" + kModels,
+              "e.toml:3:7: udp: the port must be a whole number in 0..65535");  // as a scene's udp
   expectError(tasks + kModels + "[design]\nblock_by = \"size\"\n", "e.toml:9:12: design.block_by: 'size' is no within factor");
   expectError(tasks, "e.toml:1:1: factors: missing");
   expectError("tasks = [\"no-such-task\"]\n" + kModels, "e.toml:1:10: tasks: no such task file");

@@ -59,11 +59,11 @@ TEST(WebParticipant, TheCommandLineNeedsAParticipantOfAWebExperiment) {
     EXPECT_NE(readFile(said).find(text), std::string::npos) << args << ": " << readFile(said);
     EXPECT_FALSE(std::filesystem::exists(out)) << args << ": wrote its folder";
   };
-  refused(kPilot, "--participant: missing: a web experiment runs one participant a session");
+  refused(kPilot, "--participant: missing: an experiment of people (device = \"web\") runs one participant a session");
   refused(kPilot + " --participant 3", "--participant: 3: the experiment has 2 participants");
   refused(kPilot + " --participant 1 --serve 70000", "--serve");
-  refused("noise-sweep --participant 1", "--participant: is for a web experiment");
-  refused("noise-sweep --serve 8081", "--serve: is for a web experiment");
+  refused("noise-sweep --participant 1", "--participant: is for an experiment of people");
+  refused("noise-sweep --serve 8081", "--serve: is for an experiment of people");
 }
 
 }  // namespace
