@@ -37,8 +37,8 @@ std::string shortText(double v, int digits = 4);
 TrialOutcome judgeTrace(const TaskGoal& goal, const std::vector<std::string>& fingers, const CsvTable& trace);
 
 /// The scene overrides that draw `goal` in a trial's frames as the scene's target "goal"
-/// ([targets.NAME]): its zone's box when it has one, else the goal body's ghost turned to the
-/// goal orientation where the body starts.
+/// ([targets.NAME]): its zone's box when it has one, and the goal body's ghost turned to the
+/// goal orientation when it has one (at the zone's centre, else where the body starts).
 std::vector<std::string> goalTargetOverrides(const TaskGoal& goal);
 
 /// The outcome of the trial run in `dir` that exited with `exit_code`, judged on its trace's rows
