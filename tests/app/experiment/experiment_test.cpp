@@ -417,7 +417,7 @@ TEST(ExperimentRun, PivotingNeedsNoContactArea) {
 // A trial whose run crashes (the binary in its place aborts for trial 002 while a marker file
 // exists) is the software's failure, not the participant's: its row says n/a, the report leaves
 // it out and says so, the experiment exits 1. Run again once the crash is gone, only that trial
-// runs (the other's files untouched), and the table equals a run that never crashed.
+// runs (the other's run folder untouched), and the table equals a run that never crashed.
 TEST(ExperimentRun, ACrashedTrialIsNotAFailureAndRunsAgain) {
   const fs::path dir = freshFolder("experiment-crash");
   const fs::path file = writeFile(dir / "crash.toml", "participants = 1\nnoise = 0.0\ntasks = [\"turn-to-target\"]\n"

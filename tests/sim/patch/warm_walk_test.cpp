@@ -52,7 +52,11 @@ TEST(WarmWalks, EveryBundledSceneAgreesWithWalksFromTheContact) {
   ASSERT_GE(scenes.size(), 13u) << "the bundled scenes were not found";
   long checked = 0, carried = 0, cold = 0;
   for (const std::string& name : scenes) {
-    const sim::WorldCounters c = runChecked(TestContext::load(name, kSceneSgo, {}));
+    const sim::SceneDesc scene = TestContext::load(name, kSceneSgo, {});
+    // A finger on a soft body presses its surface nodes, with no walk to carry (sim/soft/):
+    // those scenes (soft-*) compute no patch, and take most of this test's time for nothing.
+    if (std::any_of(scene.bodies.begin(), scene.bodies.end(), [](const sim::BodyDesc& b) { return sim::isSoftShape(b.shape); })) continue;
+    const sim::WorldCounters c = runChecked(scene);
     expectAgreement(name, c);
     checked += c.walk_checks, carried += c.warm_walks, cold += c.cold_walks;
     // The held pinch carries nearly every walk (its contact stays on one face), most of them
