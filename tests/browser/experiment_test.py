@@ -29,12 +29,10 @@ import csv
 import json
 import os
 import shutil
-import sys
-import traceback
 from pathlib import Path
 
 from cdp import Browser, Page, poll
-from served import Served
+from served import Served, script, verdict
 
 ROOT = Path(__file__).resolve().parents[2]
 PILOT = ROOT / "tests" / "browser" / "experiment" / "pilot.toml"
@@ -156,7 +154,9 @@ def main(binary: Path, out_dir: Path) -> int:
     # block's questionnaire is asked, then it exits 130 with both written.
     served = Served.start([*command, "--stop-after", "1"], out_dir / "godfinger-experiment-1.log")
     browser = None
-    try:
+
+    def check() -> str:
+        nonlocal served, browser
         browser = Browser.launch(out_dir / "chromium-experiment.log")
         page = browser.new_page(width=1600, height=900)
         page.navigate(served.url("/"), until="Page.domContentEventFired")
@@ -174,12 +174,10 @@ def main(binary: Path, out_dir: Path) -> int:
         check_outputs(data)
         if os.environ.get("GF_EXPERIMENT_SCREENSHOT"):
             shutil.copyfile(out_dir / "experiment-trial.png", os.environ["GF_EXPERIMENT_SCREENSHOT"])
-        print("PASS  a participant ran both blocks with the mouse; tables and questionnaire written; no condition shown")
-        return 0
-    except Exception:  # noqa: BLE001 - report any failure with its trace and godfinger's output
-        traceback.print_exc()
-        print(f"FAIL  godfinger's output:\n{served.log_tail()}")
-        return 1
+        return "a participant ran both blocks with the mouse; tables and questionnaire written; no condition shown"
+
+    try:
+        return verdict(check, lambda: served.log_tail())
     finally:
         if browser:
             browser.close()
@@ -187,6 +185,4 @@ def main(binary: Path, out_dir: Path) -> int:
 
 
 if __name__ == "__main__":
-    if len(sys.argv) != 3:
-        sys.exit(__doc__)
-    sys.exit(main(Path(sys.argv[1]), Path(sys.argv[2])))
+    script(main, __doc__)

@@ -26,14 +26,13 @@ import math
 import shutil
 import socket
 import struct
-import sys
 import threading
 import time
-import traceback
 from pathlib import Path
 
 from cdp import poll
-from served import Served
+from experiment_test import read_tsv
+from served import Served, script, verdict
 
 ROOT = Path(__file__).resolve().parents[2]
 PACKET = struct.Struct("<IIIId3d")    # GFD1: magic, seq, channel, buttons, time, x, y, z
@@ -125,7 +124,8 @@ def main(binary: Path, out_dir: Path) -> int:
                            "--out", str(data)], out_dir / "godfinger-experiment-udp.log")
     device = DeviceProgram(port)
     device.thread.start()
-    try:
+
+    def check() -> str:
         for block in (1, 2):
             poll(lambda: phase(served).startswith(f"ready-{block}-"), f"the ready phase of block {block}")
             panel = json.loads(served.get("/scene.json").text())["participant"]
@@ -153,27 +153,21 @@ def main(binary: Path, out_dir: Path) -> int:
             print(f"  trial {k}: {len(run)} replies, peak {max(forces):.2f} N, fade over {len(fade) - 1} replies from "
                   f"{fade[0]:.2f} N, largest fade step {max(steps):.3f} N")
         beh = data / "sub-01" / "beh"
-        with open(beh / "sub-01_task-udppilot_beh.tsv") as f:
-            rows = list(csv.DictReader(f, delimiter="\t"))
+        rows = read_tsv(beh / "sub-01_task-udppilot_beh.tsv")
         assert len(rows) == 2, rows
         for row in rows:
             with open(beh / row["run"].removeprefix("beh/") / "trace.csv") as f:
                 xs = [float(r["index.dx"]) for r in csv.DictReader(f)]
             assert max(xs) - xs[0] > 0.03, f"trial {row['trial']}: the device moved {max(xs) - xs[0]:.4f} m"
-        with open(beh / "sub-01_task-udppilot_questionnaire.tsv") as f:
-            assert len(list(csv.DictReader(f, delimiter="\t"))) == 2
-        print("PASS  a UDP participant ran both blocks; the device's force faded out at each trial's end")
-        return 0
-    except Exception:  # noqa: BLE001 - report any failure with its trace and godfinger's output
-        traceback.print_exc()
-        print(f"FAIL  godfinger's output:\n{served.log_tail()}")
-        return 1
+        assert len(read_tsv(beh / "sub-01_task-udppilot_questionnaire.tsv")) == 2
+        return "a UDP participant ran both blocks; the device's force faded out at each trial's end"
+
+    try:
+        return verdict(check, served.log_tail)
     finally:
         device.running = False
         served.stop()
 
 
 if __name__ == "__main__":
-    if len(sys.argv) != 3:
-        sys.exit(__doc__)
-    sys.exit(main(Path(sys.argv[1]), Path(sys.argv[2])))
+    script(main, __doc__)

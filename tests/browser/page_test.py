@@ -21,7 +21,6 @@ import json
 import math
 import os
 import shutil
-import sys
 import time
 import tomllib
 import traceback
@@ -31,7 +30,7 @@ from pathlib import Path
 from typing import Callable
 
 from cdp import Browser, Page, poll
-from served import Served, is_jpeg, mjpeg_parts, request
+from served import Served, is_jpeg, mjpeg_parts, request, script
 
 ROOT = Path(__file__).resolve().parents[2]
 SCENE = ROOT / "assets" / "scenes" / "live-view.toml"
@@ -317,6 +316,4 @@ def main(binary: Path, out_dir: Path) -> int:
 
 
 if __name__ == "__main__":
-    if len(sys.argv) != 3:
-        sys.exit(__doc__)
-    sys.exit(main(Path(sys.argv[1]), Path(sys.argv[2])))
+    script(main, __doc__)

@@ -10,11 +10,13 @@ import os
 import re
 import signal
 import subprocess
+import sys
+import traceback
 import urllib.error
 import urllib.request
 from dataclasses import dataclass
 from pathlib import Path
-from typing import Iterator
+from typing import Callable, Iterator
 
 from cdp import TIMEOUT_S, poll
 
@@ -172,3 +174,22 @@ def is_jpeg(data: bytes) -> bool:
     """A JPEG's start (SOI) and end (EOI) markers."""
     return data[:2] == b"\xff\xd8" and data.rstrip(b"\r\n")[-2:] == b"\xff\xd9"
 
+
+
+def verdict(check: Callable[[], str], log_tail: Callable[[], str]) -> int:
+    """Runs a test's `check`: PASS and the line it returns, 0; or, on any exception, its trace and
+    godfinger's last output (`log_tail`), FAIL, 1."""
+    try:
+        print(f"PASS  {check()}")
+        return 0
+    except Exception:  # noqa: BLE001 - report any failure with its trace and godfinger's output
+        traceback.print_exc()
+        print(f"FAIL  godfinger's output:\n{log_tail()}")
+        return 1
+
+
+def script(main: Callable[[Path, Path], int], usage: str) -> None:
+    """A test script's entry: `main(GODFINGER, OUT_DIR)` from the command line, or `usage`."""
+    if len(sys.argv) != 3:
+        sys.exit(usage)
+    sys.exit(main(Path(sys.argv[1]), Path(sys.argv[2])))
