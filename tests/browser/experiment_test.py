@@ -65,10 +65,19 @@ def assert_nothing_hidden(page: Page, where: str, seen: list[str]) -> None:
 
 
 def run_trial(page: Page, served: Served, block: int, out_dir: Path) -> None:
-    """Clicks Start on the ready panel and drags the hand along +x across the box."""
+    """Clicks Start on the ready panel and drags the hand along +x across the box; checks what the
+    server refuses and hides during the trial."""
     page.wait_for(f"window.gf.panel && (window.gf.panel.id || '').startsWith('ready-{block}-')", f"the ready panel of block {block}")
     page.click(page.centre("#start"))
     page.wait_for("window.gf.panel.phase === 'trial' && !!window.gf.hand.anchor", f"trial {block} with the hand placed")
+    # The drag first: the trial is the participant's, in real time (4 s), and the checks after it
+    # take a while on a loaded machine.
+    anchor = page.evaluate("window.gf.hand.anchor")
+    start = page.evaluate(f"window.gf.project({json.dumps(anchor)})")
+    end = page.evaluate(f"window.gf.project({json.dumps([anchor[0] + 0.06, anchor[1], anchor[2]])})")
+    page.drag((start[0], start[1]), (end[0], end[1]), steps=40)
+    if block == 1:
+        page.screenshot(out_dir / "experiment-trial.png")
     for line in ("set fingers.index.n_sgo=0", "record start", "snapshot x"):
         answer = served.command(line)
         assert answer.startswith("error:") and "experiment" in answer, f"{line!r} during a trial answered {answer!r}"
@@ -80,12 +89,6 @@ def run_trial(page: Page, served: Served, block: int, out_dir: Path) -> None:
             assert word not in text, f"the page can read {word!r}: {text[:400]}"
     for f in served.state()["fingers"]:
         assert set(f) <= {"name", "proxy", "device", "force_n"}, f"/state.json's finger: {sorted(f)}"
-    anchor = page.evaluate("window.gf.hand.anchor")
-    start = page.evaluate(f"window.gf.project({json.dumps(anchor)})")
-    end = page.evaluate(f"window.gf.project({json.dumps([anchor[0] + 0.06, anchor[1], anchor[2]])})")
-    page.drag((start[0], start[1]), (end[0], end[1]), steps=40)
-    if block == 1:
-        page.screenshot(out_dir / "experiment-trial.png")
 
 
 def answer_questionnaire(page: Page, block: int, out_dir: Path) -> None:
