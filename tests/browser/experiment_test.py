@@ -71,11 +71,16 @@ def run_trial(page: Page, served: Served, block: int, out_dir: Path) -> None:
     page.click(page.centre("#start"))
     page.wait_for("window.gf.panel.phase === 'trial' && !!window.gf.hand.anchor", f"trial {block} with the hand placed")
     # The drag first: the trial is the participant's, in real time (4 s), and the checks after it
-    # take a while on a loaded machine.
+    # take a while on a loaded machine. It starts on the picture once the picture has a frame (a
+    # slow first frame leaves the image without a size, and the pointer lands beside it).
+    page.wait_for("document.querySelector('#frame').naturalWidth > 0", f"trial {block}'s first frame")
     anchor = page.evaluate("window.gf.hand.anchor")
     start = page.evaluate(f"window.gf.project({json.dumps(anchor)})")
     end = page.evaluate(f"window.gf.project({json.dumps([anchor[0] + 0.06, anchor[1], anchor[2]])})")
+    hit = page.evaluate(f"(document.elementFromPoint({start[0]}, {start[1]}) || {{}}).id")
+    assert hit == "frame", f"trial {block}: the hand's point on the page is on #{hit}, not on the picture"
     page.drag((start[0], start[1]), (end[0], end[1]), steps=40)
+    poll(lambda: served.state()["fingers"][0]["device"][0] - anchor[0] > 0.03, f"trial {block}: the device to follow the drag")
     if block == 1:
         page.screenshot(out_dir / "experiment-trial.png")
     for line in ("set fingers.index.n_sgo=0", "record start", "snapshot x"):

@@ -5,8 +5,8 @@ the page's HTTP interface (no browser needed: Start and the questionnaire are th
 commands, `ready` and `answers ...`).
 
 The device program sends a GFD1 packet about every millisecond on channel 0: the finger held at
-its start until the test clicks Start, then pushed 6 cm along x in 2 s, then pressed into the
-table (about 14 N) until the trial ends. It keeps every reply.
+its start until the trial's first reply after the test clicks Start, then pushed 6 cm along x in
+2 s, then pressed into the table (about 14 N) until the trial ends. It keeps every reply.
 Checked:
 
 - the experiment exits 0 with both trials and both questionnaires in its tables, and each trial's
@@ -52,13 +52,15 @@ class DeviceProgram:
         self.sock.setblocking(False)
         self.target = ("127.0.0.1", port)
         self.replies: list[tuple[float, int, float]] = []
-        self.push_started: float | None = None  # wall time of Start: the push begins
+        self.armed = False  # Start clicked: the push begins with the trial's first reply
+        self.push_started: float | None = None  # wall time of that reply
         self.running = True
         self.thread = threading.Thread(target=self.loop, daemon=True)
 
     def position(self) -> tuple[float, float, float]:
-        """At the start until Start; then 6 cm along x in 2 s (the push), then 2 cm down in 0.5 s
-        and held there, pressing the table (about 14 N) until the trial ends."""
+        """At the start until the trial answers (a slow machine starts it late); then 6 cm along x
+        in 2 s (the push), then 2 cm down in 0.5 s and held there, pressing the table (about 14 N)
+        until the trial ends."""
         if self.push_started is None:
             return START
         s = time.monotonic() - self.push_started
@@ -79,6 +81,8 @@ class DeviceProgram:
                     magic, _, _, flags, t, fx, fy, fz, _, _, _ = REPLY.unpack(data)
                     if magic == REPLY_MAGIC:
                         self.replies.append((t, flags, math.sqrt(fx * fx + fy * fy + fz * fz)))
+                        if self.armed and self.push_started is None:
+                            self.push_started = time.monotonic()
             time.sleep(0.001)  # a device program's own pace, not a wait of the test
 
     def stop(self) -> None:
@@ -131,9 +135,9 @@ def main(binary: Path, out_dir: Path) -> int:
             panel = json.loads(served.get("/scene.json").text())["participant"]
             assert panel["device"] == "udp", panel
             assert served.command("ready").startswith("ok")
-            device.push_started = time.monotonic()
+            device.armed = True
             poll(lambda: phase(served).startswith(f"questionnaire-{block}-"), f"the questionnaire after block {block}")
-            device.push_started = None
+            device.armed, device.push_started = False, None
             assert served.command(ANSWERS).startswith("ok")
         poll(lambda: served.process.poll() is not None, "the experiment to exit")
         assert served.process.returncode == 0, f"exit {served.process.returncode}:\n{served.log_tail()}"
