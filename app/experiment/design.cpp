@@ -140,10 +140,15 @@ std::size_t trialCount(const ExperimentDesc& e) {
   return static_cast<std::size_t>(e.participants) * blocks * (per_block + static_cast<std::size_t>(e.practice));
 }
 
+std::string exactArray(std::initializer_list<double> values) {
+  std::string out = "[";
+  for (const double v : values) out.append(out.size() > 1 ? ", " : "").append(sim::numberText(v, 17));
+  return out + "]";
+}
+
 std::string participantDeviceOverride(const ExperimentDesc& e, const sim::FingerDesc& finger, int channel) {
   const sim::Vec3 p = finger.device.keyframes.empty() ? sim::Vec3::Zero() : finger.device.keyframes.front().position;
-  const std::string start = "start=[" + sim::numberText(p.x(), 17) + ", " + sim::numberText(p.y(), 17) + ", " +
-                            sim::numberText(p.z(), 17) + "]";
+  const std::string start = "start=" + exactArray({p.x(), p.y(), p.z()});
   std::string quoted;  // a TOML basic string
   for (const char c : e.udp) quoted += c == '"' || c == '\\' ? std::string("\\") + c : std::string(1, c);
   const std::string device = e.device == "udp" ? "udp=\"" + quoted + "\", channel=" + std::to_string(channel) : std::string("web=true");

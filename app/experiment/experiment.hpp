@@ -7,6 +7,7 @@
 #pragma once
 
 #include <cstdint>
+#include <initializer_list>
 #include <optional>
 #include <string>
 #include <vector>
@@ -153,6 +154,10 @@ double trialNoise(const ExperimentDesc& e, const Trial& t);
 /// browser's pointer (web) or the session's UDP address on that channel, starting where the
 /// finger's track starts. A scene override ("fingers.NAME.device={...}").
 std::string participantDeviceOverride(const ExperimentDesc& e, const sim::FingerDesc& finger, int channel);
+
+/// Numbers as a TOML array for a scene override, each to 17 significant digits (read back
+/// exactly): "[0.1, 0.02, 0]".
+std::string exactArray(std::initializer_list<double> values);
 
 /// The condition's overrides of a trial, with "fingers.*." expanded over `fingers`.
 std::vector<std::string> trialOverrides(const ExperimentDesc& e, const Trial& t, const std::vector<std::string>& fingers);

@@ -130,16 +130,13 @@ TrialOutcome judgeTrial(const TaskGoal& goal, const std::vector<std::string>& fi
 }
 
 std::vector<std::string> goalTargetOverrides(const TaskGoal& goal) {
-  const auto vec = [](const sim::Vec3& v) {
-    return "[" + sim::numberText(v.x(), 17) + ", " + sim::numberText(v.y(), 17) + ", " + sim::numberText(v.z(), 17) + "]";
-  };
+  const auto vec = [](const sim::Vec3& v) { return exactArray({v.x(), v.y(), v.z()}); };
   std::vector<std::string> out;
   if (goal.has_zone) out.push_back("targets.goal.zone={min=" + vec(goal.zone_min) + ", max=" + vec(goal.zone_max) + "}");
   if (!goal.orientation) return out;
   const sim::Quat& q = *goal.orientation;
   out.push_back("targets.goal.body=\"" + goal.body + "\"");
-  out.push_back("targets.goal.orientation=[" + sim::numberText(q.x(), 17) + ", " + sim::numberText(q.y(), 17) + ", " +
-                sim::numberText(q.z(), 17) + ", " + sim::numberText(q.w(), 17) + "]");
+  out.push_back("targets.goal.orientation=" + exactArray({q.x(), q.y(), q.z(), q.w()}));
   if (goal.has_zone) out.push_back("targets.goal.position=" + vec(0.5 * (goal.zone_min + goal.zone_max)));
   return out;
 }

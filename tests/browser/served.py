@@ -175,7 +175,6 @@ def is_jpeg(data: bytes) -> bool:
     return data[:2] == b"\xff\xd8" and data.rstrip(b"\r\n")[-2:] == b"\xff\xd9"
 
 
-
 def verdict(check: Callable[[], str], log_tail: Callable[[], str]) -> int:
     """Runs a test's `check`: PASS and the line it returns, 0; or, on any exception, its trace and
     godfinger's last output (`log_tail`), FAIL, 1."""

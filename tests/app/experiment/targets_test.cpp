@@ -65,8 +65,9 @@ TEST(SceneFile, TargetsAreGhostsAndZonesWithBadFieldsNamed) {
 
 // Each task's goal is drawn in its trials' frames as the scene's target "goal": a zone's box
 // (pinch-carry), the goal body's ghost turned to the goal orientation where it lies
-// (turn-to-target), or both, the ghost in the zone's centre (stack). The frame at t = 0 with the target differs from the one without it, and
-// what differs is green (the target's colour, over grey bodies and the light backdrop).
+// (turn-to-target), or both, the ghost in the zone's centre (stack). The frame at t = 0 with the
+// target differs from the one without it, and what differs is green (the target's colour, over
+// grey bodies, the yellow base and the light backdrop).
 TEST(ExperimentTasks, EachGoalIsDrawnAsTheScenesTarget) {
   const std::string tasks = bundledExperimentDir() + "/tasks/";
   for (const std::string name : {"pinch-carry", "turn-to-target", "stack"}) {
