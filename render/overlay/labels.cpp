@@ -148,15 +148,24 @@ void scaleBar(ImDrawList& d, ImFont* font, float px, const LabelBox& box, double
   d.AddText(font, px, ImVec2(x0, y - tick - px - pad), kText, text);
 }
 
-// The load scale's colour bar in the view's bottom-right corner, "0 1 2" over it (in close-ups
-// "load / mean" and, when a point slips, the slip ring's meaning above).
+// The load scale's colour bar in the view's bottom-right corner: its ends' and middle's loads in
+// N over it (the middle, the contact's mean, left out when the three would not fit), and its
+// label above: "SGO load, N" with the least and most loaded points' loads (in an inset without
+// room, the label alone), and in close-ups the slip ring's meaning when a point slips.
 void colourBar(ImDrawList& d, ImFont* font, float px, const LabelBox& box, const ContactLabel& label) {
+  const ContactLoads loads = contactLoads(*label.contact);
   const float pad = kPadShare * px, length = kColourBarShare * box.size, height = std::max(4.0f, 0.45f * px);
   const float x1 = box.x + box.size - 2.0f * pad, x0 = x1 - length, y1 = box.y + box.size - 2.0f * pad, y0 = y1 - height;
   bool slipping = label.contact->point_load.slipping;
   for (const sim::PointLoad& l : label.contact->loads) slipping |= l.slipping;
-  const int rows = label.close_up ? (slipping ? 3 : 2) : 1;
-  d.AddRectFilled(ImVec2(x0 - 1.5f * pad, y0 - static_cast<float>(rows) * kLineShare * px - pad), ImVec2(x1 + pad, y1 + pad), kBox, pad);
+  const auto width = [&](const char* text) { return font->CalcTextSizeA(px, FLT_MAX, 0.0f, text).x; };
+  char name[96];
+  std::snprintf(name, sizeof name, "SGO load, N: min %.3g, max %.3g", loads.min_normal, loads.max_normal);
+  if (width(name) > box.size - 2.0f * pad) std::snprintf(name, sizeof name, "SGO load, N");
+  const float name_w = width(name);
+  const int rows = label.close_up && slipping ? 3 : 2;
+  d.AddRectFilled(ImVec2(std::min(x0, x1 - name_w) - 1.5f * pad, y0 - static_cast<float>(rows) * kLineShare * px - pad), ImVec2(x1 + pad, y1 + pad),
+                  kBox, pad);
   for (int k = 0; k < kColourBarSteps; ++k) {
     const float a = x0 + length * static_cast<float>(k) / kColourBarSteps, b = x0 + length * static_cast<float>(k + 1) / kColourBarSteps;
     const ImU32 ca = imguiColour(viridis(static_cast<double>(k) / kColourBarSteps));
@@ -164,19 +173,17 @@ void colourBar(ImDrawList& d, ImFont* font, float px, const LabelBox& box, const
     d.AddRectFilledMultiColor(ImVec2(a, y0), ImVec2(b + 0.5f, y1), ca, cb, cb, ca);
   }
   const float ty = y0 - kLineShare * px;
-  for (int k = 0; k <= static_cast<int>(kLoadScaleTop); ++k) {
-    char tick[8];
-    std::snprintf(tick, sizeof tick, "%d", k);
-    const float at = x0 + length * static_cast<float>(k / kLoadScaleTop), w = font->CalcTextSizeA(px, FLT_MAX, 0.0f, tick).x;
-    d.AddText(font, px, ImVec2(std::clamp(at - 0.5f * w, x0 - pad, x1 - w), ty), kText, tick);
-  }
-  if (!label.close_up) return;
+  char ticks[3][16];
+  for (int k = 0; k < 3; ++k) std::snprintf(ticks[k], sizeof ticks[k], "%.3g", loads.loadAt(0.5 * k));
+  const float w0 = width(ticks[0]), w1 = width(ticks[1]), w2 = width(ticks[2]);
+  d.AddText(font, px, ImVec2(x0, ty), kText, ticks[0]);
+  d.AddText(font, px, ImVec2(x1 - w2, ty), kText, ticks[2]);
+  if (w0 + w1 + w2 + 2.0f * px <= length) d.AddText(font, px, ImVec2(x0 + 0.5f * (length - w1), ty), kText, ticks[1]);
   const float name_y = ty - kLineShare * px;
-  const char* name = "load / mean";
-  d.AddText(font, px, ImVec2(x1 - font->CalcTextSizeA(px, FLT_MAX, 0.0f, name).x, name_y), kSoftText, name);
-  if (!slipping) return;
+  d.AddText(font, px, ImVec2(x1 - name_w, name_y), kSoftText, name);
+  if (!label.close_up || !slipping) return;
   const char* slip = "slipping";
-  const float sw = font->CalcTextSizeA(px, FLT_MAX, 0.0f, slip).x;
+  const float sw = width(slip);
   d.AddText(font, px, ImVec2(x1 - sw, name_y - kLineShare * px), kSoftText, slip);
   d.AddCircle(ImVec2(x1 - sw - 0.8f * px, name_y - kLineShare * px + 0.5f * px), 0.35f * px, kText, 0, 2.0f);
 }

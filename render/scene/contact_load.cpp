@@ -33,11 +33,18 @@ Eigen::Vector3f viridis(double u) {
 ContactLoads contactLoads(const sim::ContactSnapshot& c) {
   ContactLoads out;
   if (c.loads.empty() || c.loads.size() != c.sgos_world.size()) return out;
-  double total = std::max(0.0, c.point_load.normal);
-  for (const sim::PointLoad& l : c.loads) total += std::max(0.0, l.normal);
+  const double first = std::max(0.0, c.point_load.normal);  // c_p, then the SGOs
+  double total = first, least = first, most = first;
+  for (const sim::PointLoad& l : c.loads) {
+    const double n = std::max(0.0, l.normal);
+    total += n, least = std::min(least, n), most = std::max(most, n);
+  }
   if (!(total > kMinPressN)) return out;
   out.shown = true;
-  out.mean_normal = total / static_cast<double>(c.loads.size() + 1);  // the SGOs and c_p
+  out.mean_normal = total / static_cast<double>(c.loads.size() + 1);
+  out.min_normal = least;
+  out.max_normal = most;
+  out.half_span = std::max({kLoadScaleMinHalfSpan, most / out.mean_normal - 1.0, 1.0 - least / out.mean_normal});
   return out;
 }
 

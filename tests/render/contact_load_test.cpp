@@ -1,5 +1,5 @@
-// How the pictures read a contact's load, without GL: the viridis scale, each point's load over
-// the contact's mean point load, the contact's force split along its normal, and the sizes of
+// How the pictures read a contact's load, without GL: the viridis scale, each point's load on a
+// scale centred on the contact's mean point load, the contact's force split along its normal, and the sizes of
 // the labels' text and scale bars.
 #include "render/scene/contact_load.hpp"
 
@@ -33,6 +33,24 @@ double luma(const Eigen::Vector3f& linear) {
   return 0.2126 * d.x() + 0.7152 * d.y() + 0.0722 * d.z();
 }
 
+// CIE 1976 Delta-E between two colours as shown: each colour's display value (the square root
+// of the linear value the pictures store) read as sRGB, to CIELAB under D65.
+double deltaE(const Eigen::Vector3f& a, const Eigen::Vector3f& b) {
+  const auto lab = [](const Eigen::Vector3f& linear) {
+    Eigen::Vector3d rgb;
+    for (int k = 0; k < 3; ++k) {
+      const double c = std::sqrt(static_cast<double>(linear[k]));
+      rgb[k] = c <= 0.04045 ? c / 12.92 : std::pow((c + 0.055) / 1.055, 2.4);
+    }
+    Eigen::Matrix3d m;
+    m << 0.4124, 0.3576, 0.1805, 0.2126, 0.7152, 0.0722, 0.0193, 0.1192, 0.9505;
+    const Eigen::Vector3d xyz = (m * rgb).cwiseQuotient(Eigen::Vector3d(0.95047, 1.0, 1.08883));
+    const auto f = [](double t) { return t > 216.0 / 24389.0 ? std::cbrt(t) : (24389.0 / 27.0 * t + 16.0) / 116.0; };
+    return Eigen::Vector3d(116.0 * f(xyz.y()) - 16.0, 500.0 * (f(xyz.x()) - f(xyz.y())), 200.0 * (f(xyz.y()) - f(xyz.z())));
+  };
+  return (lab(a) - lab(b)).norm();
+}
+
 TEST(ContactLoad, ViridisRunsFromDarkPurpleToYellowGettingLighterAllTheWay) {
   EXPECT_NEAR(viridis(0.0).cwiseSqrt().x(), 0.267, 1e-3);
   EXPECT_NEAR(viridis(0.0).cwiseSqrt().z(), 0.329, 1e-3);
@@ -44,19 +62,38 @@ TEST(ContactLoad, ViridisRunsFromDarkPurpleToYellowGettingLighterAllTheWay) {
   EXPECT_EQ(viridis(std::nan("")), viridis(0.0));
 }
 
-TEST(ContactLoad, AUniformPressIsMidScaleAndTwiceTheMeanIsTheTop) {
+TEST(ContactLoad, TheScaleIsCentredOnTheMeanAndStretchedToThePointsSpread) {
   const sim::ContactSnapshot uniform = pressed(8, 0.5, 0.5);
   const ContactLoads loads = contactLoads(uniform);
   ASSERT_TRUE(loads.shown);
   EXPECT_NEAR(loads.mean_normal, 0.5, 1e-12);  // 4.5 N over 9 points: 8 SGOs and c_p
   EXPECT_NEAR(loads.share(0.5), 1.0, 1e-12);
+  EXPECT_EQ(loads.half_span, kLoadScaleMinHalfSpan) << "no spread: the least half-span";
   EXPECT_EQ(loads.colour(0.5), viridis(0.5));
+  EXPECT_NEAR(loads.loadAt(0.0), 0.5 * (1.0 - kLoadScaleMinHalfSpan), 1e-12);
   sim::ContactSnapshot uneven = pressed(8, 0.25, 0.0);
-  uneven.loads[0].normal = 1.0;  // 2.75 N over 9 points: mean 0.3056 N
+  uneven.loads[0].normal = 1.0;  // 2.75 N over 9 points: mean 0.3056 N; c_p carries nothing
   const ContactLoads u = contactLoads(uneven);
   EXPECT_NEAR(u.share(1.0), 9.0 / 2.75, 1e-12);
-  EXPECT_EQ(u.colour(1.0), viridis(1.0));  // above 2x the mean: the top, clamped
-  EXPECT_EQ(u.colour(0.0), viridis(0.0));
+  EXPECT_NEAR(u.half_span, 9.0 / 2.75 - 1.0, 1e-12) << "the most loaded point is further off the mean than the least";
+  EXPECT_NEAR(u.min_normal, 0.0, 1e-15);
+  EXPECT_NEAR(u.max_normal, 1.0, 1e-15);
+  EXPECT_NEAR(u.scale(1.0), 1.0, 1e-12) << "the most loaded point: the top";
+  EXPECT_NEAR(u.loadAt(1.0), 1.0, 1e-12);
+  EXPECT_NEAR(u.scale(u.mean_normal), 0.5, 1e-12);
+  EXPECT_GT(u.scale(0.0), 0.0) << "the least is nearer the mean: above the bottom";
+}
+
+// The loads of the Fig. 8 close-up (issue 54): the upper SGOs 0.48 N, the lower 0.37 N. On a
+// fixed 0..2 x mean scale they were drawn (48,147,126) and (39,117,128), a CIELAB Delta-E of
+// 23 (27 for these loads); on the stretched scale they lie at its two ends, 149 apart.
+TEST(ContactLoad, AFewPercentSpreadIsSeenInColour) {
+  sim::ContactSnapshot c = pressed(8, 0.48, 0.425);
+  for (int k = 4; k < 8; ++k) c.loads[static_cast<std::size_t>(k)].normal = 0.37;
+  const ContactLoads loads = contactLoads(c);
+  ASSERT_TRUE(loads.shown);
+  EXPECT_GE(deltaE(loads.colour(0.48), loads.colour(0.37)), 30.0);
+  EXPECT_LT(deltaE(viridis(0.48 / loads.mean_normal / 2.0), viridis(0.37 / loads.mean_normal / 2.0)), 30.0) << "the old scale";
 }
 
 TEST(ContactLoad, WithoutPerPointLoadsTheDotsAreDrawnUniformly) {

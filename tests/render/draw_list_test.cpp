@@ -132,8 +132,8 @@ TEST(DrawList, AFig8SqueezeFrameHoldsEveryPartOfTheOverlay) {
   }
 }
 
-// With per-point loads each dot takes its load's colour on the viridis scale (a uniform press
-// mid-scale, twice the mean at the top) and a slipping point a white ring (a flat cylinder
+// With per-point loads each dot takes its load's colour on the viridis scale (centred on the
+// mean, the most loaded point at the top) and a slipping point a white ring (a flat cylinder
 // along the normal) around its dot.
 TEST(DrawList, DotsAreColouredByLoadAndSlippingOnesRinged) {
   Fig8Frame frame;
@@ -142,7 +142,7 @@ TEST(DrawList, DotsAreColouredByLoadAndSlippingOnesRinged) {
   c.loads.assign(8, sim::PointLoad{});
   for (sim::PointLoad& l : c.loads) l.normal = 0.4;
   c.point_load.normal = 0.4;
-  c.loads[3].normal = 1.2;  // 4.4 N over 9 points: mean 0.489 N, this one 2.45x: the top
+  c.loads[3].normal = 1.2;  // 4.4 N over 9 points: mean 0.489 N, this one 2.45x: the top (1.45 off the mean)
   c.loads[5].slipping = true;
   DrawListBuilder builder(frame.session.scene, frame.surfaces);
   DrawList list;
@@ -153,8 +153,9 @@ TEST(DrawList, DotsAreColouredByLoadAndSlippingOnesRinged) {
   ASSERT_EQ(dots.size(), 2u * 9u);
   ASSERT_EQ(rings.size(), 1u);
   const double mean = 4.4 / 9.0;
-  EXPECT_TRUE(dots[0]->colour.isApprox(viridis(0.4 / mean / kLoadScaleTop)));  // the contact point
-  EXPECT_TRUE(dots[1 + 0]->colour.isApprox(viridis(0.4 / mean / kLoadScaleTop)));
+  const double half_span = 1.2 / mean - 1.0;
+  EXPECT_TRUE(dots[0]->colour.isApprox(viridis(0.5 + (0.4 / mean - 1.0) / (2.0 * half_span))));  // the contact point
+  EXPECT_TRUE(dots[1 + 0]->colour.isApprox(viridis(0.5 + (0.4 / mean - 1.0) / (2.0 * half_span))));
   EXPECT_EQ(dots[1 + 3]->colour, viridis(1.0));
   EXPECT_EQ(rings[0]->shape, DrawShape::kCylinder);
   EXPECT_EQ(rings[0]->colour, Eigen::Vector3f::Ones());
