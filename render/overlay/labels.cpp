@@ -150,42 +150,52 @@ void scaleBar(ImDrawList& d, ImFont* font, float px, const LabelBox& box, double
 
 // The load scale's colour bar in the view's bottom-right corner: its ends' and middle's loads in
 // N over it (the middle, the contact's mean, left out when the three would not fit), and its
-// label above: "SGO load, N" with the least and most loaded points' loads (in an inset without
-// room, the label alone), and in close-ups the slip ring's meaning when a point slips.
+// label above: "SGO load, N" with the least and most loaded points' loads, or, when not even the
+// ends' ticks fit, the ends' loads as a range; only the label when that does not fit the view. In close-ups,
+// the slip ring's meaning above that when a point slips. Each row's backdrop is as wide as the
+// row, so the scale bar in the other corner stays clear.
 void colourBar(ImDrawList& d, ImFont* font, float px, const LabelBox& box, const ContactLabel& label) {
   const ContactLoads loads = contactLoads(*label.contact);
   const float pad = kPadShare * px, length = kColourBarShare * box.size, height = std::max(4.0f, 0.45f * px);
   const float x1 = box.x + box.size - 2.0f * pad, x0 = x1 - length, y1 = box.y + box.size - 2.0f * pad, y0 = y1 - height;
+  const float line = kLineShare * px;
   bool slipping = label.contact->point_load.slipping;
   for (const sim::PointLoad& l : label.contact->loads) slipping |= l.slipping;
   const auto width = [&](const char* text) { return font->CalcTextSizeA(px, FLT_MAX, 0.0f, text).x; };
-  char name[96];
-  std::snprintf(name, sizeof name, "SGO load, N: min %.3g, max %.3g", loads.min_normal, loads.max_normal);
-  if (width(name) > box.size - 2.0f * pad) std::snprintf(name, sizeof name, "SGO load, N");
-  const float name_w = width(name);
-  const int rows = label.close_up && slipping ? 3 : 2;
-  d.AddRectFilled(ImVec2(std::min(x0, x1 - name_w) - 1.5f * pad, y0 - static_cast<float>(rows) * kLineShare * px - pad), ImVec2(x1 + pad, y1 + pad),
-                  kBox, pad);
+  // A row of text right-aligned at x1, its top at y, on a backdrop as wide as it.
+  const auto row = [&](float y, const char* text, ImU32 colour) {
+    const float w = width(text);
+    d.AddRectFilled(ImVec2(x1 - w - 1.5f * pad, y - 0.5f * pad), ImVec2(x1 + pad, y + line), kBox, pad);
+    d.AddText(font, px, ImVec2(x1 - w, y), colour, text);
+    return w;
+  };
+  d.AddRectFilled(ImVec2(x0 - 1.5f * pad, y0 - line - pad), ImVec2(x1 + pad, y1 + pad), kBox, pad);  // the bar and its ticks
   for (int k = 0; k < kColourBarSteps; ++k) {
     const float a = x0 + length * static_cast<float>(k) / kColourBarSteps, b = x0 + length * static_cast<float>(k + 1) / kColourBarSteps;
     const ImU32 ca = imguiColour(viridis(static_cast<double>(k) / kColourBarSteps));
     const ImU32 cb = imguiColour(viridis(static_cast<double>(k + 1) / kColourBarSteps));
     d.AddRectFilledMultiColor(ImVec2(a, y0), ImVec2(b + 0.5f, y1), ca, cb, cb, ca);
   }
-  const float ty = y0 - kLineShare * px;
+  const float ty = y0 - line;
   char ticks[3][16];
   for (int k = 0; k < 3; ++k) std::snprintf(ticks[k], sizeof ticks[k], "%.3g", loads.loadAt(0.5 * k));
   const float w0 = width(ticks[0]), w1 = width(ticks[1]), w2 = width(ticks[2]);
-  d.AddText(font, px, ImVec2(x0, ty), kText, ticks[0]);
-  d.AddText(font, px, ImVec2(x1 - w2, ty), kText, ticks[2]);
-  if (w0 + w1 + w2 + 2.0f * px <= length) d.AddText(font, px, ImVec2(x0 + 0.5f * (length - w1), ty), kText, ticks[1]);
-  const float name_y = ty - kLineShare * px;
-  d.AddText(font, px, ImVec2(x1 - name_w, name_y), kSoftText, name);
+  const bool ticked = w0 + w2 + px <= length;
+  char name[96];
+  if (ticked) {
+    d.AddText(font, px, ImVec2(x0, ty), kText, ticks[0]);
+    d.AddText(font, px, ImVec2(x1 - w2, ty), kText, ticks[2]);
+    if (w0 + w1 + w2 + 2.0f * px <= length) d.AddText(font, px, ImVec2(x0 + 0.5f * (length - w1), ty), kText, ticks[1]);
+    std::snprintf(name, sizeof name, "SGO load, N: min %.3g, max %.3g", loads.min_normal, loads.max_normal);
+  } else {
+    std::snprintf(name, sizeof name, "SGO load, N: %.2g - %.2g", loads.loadAt(0.0), loads.loadAt(1.0));
+  }
+  if (width(name) > box.size - 4.0f * pad) std::snprintf(name, sizeof name, "SGO load, N");
+  const float name_y = ty - line;
+  row(name_y, name, kSoftText);
   if (!label.close_up || !slipping) return;
-  const char* slip = "slipping";
-  const float sw = width(slip);
-  d.AddText(font, px, ImVec2(x1 - sw, name_y - kLineShare * px), kSoftText, slip);
-  d.AddCircle(ImVec2(x1 - sw - 0.8f * px, name_y - kLineShare * px + 0.5f * px), 0.35f * px, kText, 0, 2.0f);
+  const float sw = row(name_y - line, "slipping", kSoftText);
+  d.AddCircle(ImVec2(x1 - sw - 0.8f * px, name_y - line + 0.5f * px), 0.35f * px, kText, 0, 2.0f);
 }
 
 }  // namespace
