@@ -64,9 +64,17 @@ Caption caption(ImFont* font, float px, float width, const ContactLabel& label, 
   Caption c;
   char* t = c.token.data();
   const auto add = [&] { c.add(font, px, width); };
+  // The finger and its model, on one line when they fit, else the model on the next: a reader
+  // of any inset can tell which model it shows.
   std::snprintf(t, kLineChars, "%s: %s", label.finger->name.c_str(), sim::modelLabel(label.finger->patch).data());
-  if (small || font->CalcTextSizeA(px, FLT_MAX, 0.0f, t).x > width) std::snprintf(t, kLineChars, "%s", label.finger->name.c_str());
-  add();
+  if (font->CalcTextSizeA(px, FLT_MAX, 0.0f, t).x > width) {
+    std::snprintf(t, kLineChars, "%s:", label.finger->name.c_str());
+    add();
+    std::snprintf(t, kLineChars, "%s", sim::modelLabel(label.finger->patch).data());
+    c.add(font, px, 0.0f);  // no width to join the name's line: a line of its own
+  } else {
+    add();
+  }
   if (label.close_up) {
     std::snprintf(t, kLineChars, "t = %.3f s", label.time);
     add();
