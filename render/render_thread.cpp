@@ -22,6 +22,7 @@
 #include "render/gl/gpu.hpp"
 #include "render/gl/imgui_layer.hpp"
 #include "render/overlay/labels.hpp"
+#include "render/overlay/layout.hpp"
 #include "sim/assert.hpp"
 
 namespace gf::render {
@@ -123,13 +124,20 @@ struct Gpu {
   std::unique_ptr<ImGuiLayer> close_up_labels;
   view::Antialiasing antialiasing;
   int close_up_px;
+  sim::SceneDesc description;  // the fingers' sizes, for the layout
+  int fingers;
+  bool insets_beside_overlay;
+  LabelPlacement placement;  // the last frame's: kept while it covers nothing
   Gpu(const sim::SceneDesc& desc, const FrameOutputSettings& s)
       : scene(desc, s.scene),
         frame(s.width, s.height, s.antialiasing, s.msaa_samples),
         stamp(s.time_stamp && !s.overlay),
         stamp_px(stampLabelPx(s.height)),
         antialiasing(s.antialiasing),
-        close_up_px(s.close_up_px) {
+        close_up_px(s.close_up_px),
+        description(desc),
+        fingers(static_cast<int>(desc.fingers.size())),
+        insets_beside_overlay(s.overlay) {
     if (s.overlay) {
       OverlaySettings o = s.overlay_settings;
       o.wall_clock = s.realtime;  // offline snapshots carry no haptic timings
@@ -149,20 +157,29 @@ struct Gpu {
   }
 
   // The frame of `snap` from `camera`, with the insets and labels, into `frame` (the output bound
-  // after).
+  // after). The insets and the stamp go in corners clear of the bodies, proxies and patches
+  // (layout.hpp); beside the overlay's bottom-right panel the insets keep to the bottom left.
   void drawScene(const sim::Snapshot& snap, const view::Camera& camera, int width, int height) {
     frame.bind();
     frame.resolve(scene.draw(snap, camera, width, height));
     GLint target = 0;
     glGetIntegerv(GL_FRAMEBUFFER_BINDING, &target);
-    if (insets) insets->draw(scene, snap, static_cast<unsigned>(target));
+    const RenderSettings& r = scene.settings();
+    const double arrow_m_per_n = r.patch_highlight && r.contact_arrows ? r.force_arrow_m_per_n : 0.0;
+    const LabelSizes sizes = frameLabelSizes(width, height, fingers, insets != nullptr, stamp, snap.time, arrow_m_per_n);
+    const std::array<bool, 4> allowed = {!insets_beside_overlay, true, !insets_beside_overlay, !insets_beside_overlay};
+    placement = placeLabels(subjectBoxes(description, scene.surfaces(), snap, camera, width, height), sizes, width,
+                            height, placement, allowed);
+    if (insets) {
+      insets->place(placement.insets, placement.column);
+      insets->draw(scene, snap, static_cast<unsigned>(target));
+    }
     if (!labels) return;
     labels->beginFrame(1.0 / 60.0, {});
     if (insets) insets->drawLabels(*labels, snap);
     if (stamp) {
-      const RenderSettings& r = scene.settings();
-      drawFrameStamp(*labels, stamp_px, height, snap.time,
-                     r.patch_highlight && r.contact_arrows ? r.force_arrow_m_per_n : 0.0);
+      const ScreenBox at = placedBoxes(placement, sizes, width, height)[1];
+      drawFrameStamp(*labels, stamp_px, at.x0, at.y0, snap.time, arrow_m_per_n);
     }
     labels->render();
     glBindFramebuffer(GL_FRAMEBUFFER, static_cast<GLuint>(target));
@@ -203,6 +220,7 @@ void drawCloseUps(Gpu& gpu, const sim::SceneDesc& desc, const sim::Snapshot& sna
     label.time = snap.time;
     label.arrow_m_per_n = saved.force_arrow_m_per_n;
     label.close_up = true;
+    label.load_arrows = saved.load_arrows;
     gpu.close_up_labels->beginFrame(1.0 / 60.0, {});
     drawContactLabel(*ImGui::GetForegroundDrawList(), gpu.close_up_labels->font(px), px,
                      {0.0f, 0.0f, static_cast<float>(gpu.close_up_px)}, label);

@@ -94,7 +94,8 @@ py::dict contactDict(const sim::ContactSnapshot& c, const sim::SceneDesc& scene)
                   "press_depth"_a = c.press_depth, "radius"_a = c.radius, "sgos"_a = points(c.sgos_world),
                   "normal_loads"_a = normal, "tangential_loads"_a = tangential, "slipping"_a = slipping,
                   "force"_a = vec3(c.force), "point_load"_a = loadDict(c.point_load),
-                  "rolling_moment"_a = vec3(c.rolling_moment), "sliding"_a = c.sliding);
+                  "rolling_moment"_a = vec3(c.rolling_moment),
+                  "torsion_moment"_a = vec3(c.torsion_moment), "sliding"_a = c.sliding);
 }
 
 }  // namespace

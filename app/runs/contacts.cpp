@@ -107,6 +107,7 @@ void addLoadsJson(const sim::ContactSnapshot& c, nlohmann::json& out) {
   out["normal_force_n"] = -c.force.dot(n);
   out["tangential_force_n"] = (c.force - c.force.dot(n) * n).norm();
   out["rolling_moment_nm"] = vec(c.rolling_moment);
+  out["torsion_moment_nm"] = vec(c.torsion_moment);
   out["sliding"] = c.sliding;
   out["point_load"] = load(c.point_load);
   out["sgo_loads"] = std::move(sgos);

@@ -34,7 +34,8 @@ std::string patchExplanation(const sim::Patch& patch, const sim::PatchSettings& 
 /// The solver's forces at a contact's points (world frame, N), as fields of the contact's
 /// object: "force_n" (the contact's force on the body, what the points' loads add up to),
 /// "normal_force_n" and "tangential_force_n" (its normal and tangential magnitudes),
-/// "rolling_moment_nm" (the patch's rolling rows' moment on the body), "sliding",
+/// "rolling_moment_nm" (the patch's rolling rows' moment on the body), "torsion_moment_nm" (the
+/// moment about the normal its points do not carry: a soft finger's torsion), "sliding",
 /// "point_load" (the true contact point's) and "sgo_loads" (one per SGO and filled point, in
 /// the order of "sgos"), each {"normal_n", "tangential_n": [x, y, z], "slipping"}.
 void addLoadsJson(const sim::ContactSnapshot& contact, nlohmann::json& out);

@@ -35,6 +35,7 @@ struct ViewSettings {
   bool shadows = false;          ///< effect: soft shadows from the key light
   bool patch_insets = false;     ///< effect: a close-up of each finger's patch in a corner of each frame
   bool overlay = false;          ///< effect: the ImGui overlay
+  bool load_arrows = false;      ///< [render]: each point's normal load and friction drawn as arrows
   int width = 1280;              ///< frame size (pixels, up to 1920 x 1080)
   int height = 720;
   view::Antialiasing antialiasing = view::Antialiasing::kFxaa;

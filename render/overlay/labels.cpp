@@ -12,6 +12,7 @@
 #include "render/scene/camera.hpp"
 #include "render/scene/contact_load.hpp"
 #include "render/scene/draw_list.hpp"
+#include "render/scene/load_marks.hpp"
 #include "render/gl/imgui_layer.hpp"
 
 namespace gf::render {
@@ -32,6 +33,7 @@ constexpr double kScaleBarShare = 0.3;       // the longest a scale bar may be, 
 constexpr float kColourBarShare = 0.38f;     // the load colour bar's length, of the view's side
 constexpr int kColourBarSteps = 20;          // gradient pieces of the colour bar
 constexpr int kMaxLines = 4;
+constexpr float kGlyphAdvance = 7.0f / 13.0f;  // the built-in (monospaced) font's advance, of its height
 constexpr std::size_t kLineChars = 128;
 const ImU32 kText = IM_COL32(255, 255, 255, 255);
 const ImU32 kSoftText = IM_COL32(215, 220, 228, 255);
@@ -90,6 +92,11 @@ Caption caption(ImFont* font, float px, float width, const ContactLabel& label, 
   if (small) return c;
   std::snprintf(t, kLineChars, "F_t %.2f N", force.tangential.norm());
   add();
+  // The twist the patch resists, when its arc is drawn (load_marks.hpp).
+  if (const std::optional<TorsionArc> arc = torsionArc(*label.contact, label.finger->patch.friction, label.finger->patch.r_max)) {
+    std::snprintf(t, kLineChars, "M_n %.3f N m", std::abs(arc->moment));
+    add();
+  }
   if (detail && label.state->sgo_count > 0) {
     std::snprintf(t, kLineChars, "r %.1f mm", 1000.0 * label.contact->radius);
     add();
@@ -105,6 +112,11 @@ Caption caption(ImFont* font, float px, float width, const ContactLabel& label, 
   }
   if (label.close_up && label.arrow_m_per_n > 0.0) {
     std::snprintf(t, kLineChars, "F_t arrow 1 cm = %g N", 0.01 / label.arrow_m_per_n);
+    add();
+  }
+  const double load_m_per_n = label.load_arrows ? loadArrowScale(*label.contact, label.finger->patch.r_max) : 0.0;
+  if (label.close_up && load_m_per_n > 0.0) {
+    std::snprintf(t, kLineChars, "SGO friction arrow 1 mm = %.2g N", 0.001 / load_m_per_n);
     add();
   }
   return c;
@@ -258,21 +270,39 @@ void drawContactLabel(ImDrawList& d, ImFont* font, float px, const LabelBox& box
   d.PopClipRect();
 }
 
-void drawFrameStamp(const ImGuiLayer& layer, float px, int height, double time, double arrow_m_per_n) {
+float insetCaptionReserve(float px) { return static_cast<float>(kMaxLines) * kLineShare * px + 2.0f * kPadShare * px; }
+
+namespace {
+
+// The stamp's lines; returns how many.
+int stampLines(char (&lines)[2][64], double time, double arrow_m_per_n) {
+  std::snprintf(lines[0], sizeof lines[0], "t = %.3f s", time);
+  if (!(arrow_m_per_n > 0.0)) return 1;
+  std::snprintf(lines[1], sizeof lines[1], "force arrow 1 cm = %g N", 0.01 / arrow_m_per_n);
+  return 2;
+}
+
+}  // namespace
+
+StampSize stampSize(float px, double time, double arrow_m_per_n) {
+  char lines[2][64];
+  const int count = stampLines(lines, time, arrow_m_per_n);
+  std::size_t chars = 0;
+  for (int k = 0; k < count; ++k) chars = std::max(chars, std::strlen(lines[k]));
+  const float pad = kPadShare * px;
+  return {static_cast<float>(chars) * kGlyphAdvance * px + 2.0f * pad, static_cast<float>(count) * kLineShare * px + 2.0f * pad};
+}
+
+void drawFrameStamp(const ImGuiLayer& layer, float px, float at_x, float at_y, double time, double arrow_m_per_n) {
   ImDrawList& d = *ImGui::GetForegroundDrawList();
   ImFont* font = layer.font(px);
   char lines[2][64];
-  std::snprintf(lines[0], sizeof lines[0], "t = %.3f s", time);
-  int count = 1;
-  if (arrow_m_per_n > 0.0) std::snprintf(lines[count++], sizeof lines[1], "force arrow 1 cm = %g N", 0.01 / arrow_m_per_n);
+  const int count = stampLines(lines, time, arrow_m_per_n);
+  const StampSize size = stampSize(px, time, arrow_m_per_n);
   const float pad = kPadShare * px;
-  float w = 0.0f;
-  for (int k = 0; k < count; ++k) w = std::max(w, font->CalcTextSizeA(px, FLT_MAX, 0.0f, lines[k]).x);
-  const float left = 2.0f * pad, h = static_cast<float>(count) * kLineShare * px + 2.0f * pad;
-  const float top = static_cast<float>(height) - 2.0f * pad - h;
-  d.AddRectFilled(ImVec2(left, top), ImVec2(left + w + 2.0f * pad, top + h), IM_COL32(15, 18, 24, 120), pad);
+  d.AddRectFilled(ImVec2(at_x, at_y), ImVec2(at_x + size.w, at_y + size.h), IM_COL32(15, 18, 24, 120), pad);
   for (int k = 0; k < count; ++k) {
-    d.AddText(font, px, ImVec2(left + pad, top + pad + kLineShare * px * static_cast<float>(k)), k == 0 ? kText : kSoftText, lines[k]);
+    d.AddText(font, px, ImVec2(at_x + pad, at_y + pad + kLineShare * px * static_cast<float>(k)), k == 0 ? kText : kSoftText, lines[k]);
   }
 }
 

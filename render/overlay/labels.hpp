@@ -26,6 +26,16 @@ float contactLabelPx(int size_px);
 /// kMinLabelPx.
 float stampLabelPx(int height_px);
 
+/// The height kept above an inset for its caption (pixels) at text height `px`: its most lines.
+float insetCaptionReserve(float px);
+
+/// The size (pixels) of a frame stamp's backdrop at text height `px`, with the force arrows'
+/// scale line when `arrow_m_per_n` > 0 (the built-in font is monospaced: no font is needed).
+struct StampSize {
+  float w = 0.0f, h = 0.0f;
+};
+StampSize stampSize(float px, double time, double arrow_m_per_n);
+
 /// A square contact view on the picture, in pixels from its top-left corner.
 struct LabelBox {
   float x = 0.0f, y = 0.0f, size = 0.0f;
@@ -43,6 +53,7 @@ struct ContactLabel {
   /// A close-up PNG: the caption inside the picture's top with the time, every figure and the
   /// legend's words. Otherwise an inset: the caption above the view, as much as fits its width.
   bool close_up = false;
+  bool load_arrows = false;  ///< the view draws the points' loads as arrows: a close-up states their scale
 };
 
 /// Draws `label`'s annotations over `box` with `font` at `px` pixels: the caption (finger,
@@ -55,10 +66,9 @@ struct ContactLabel {
 void drawContactLabel(ImDrawList& d, ImFont* font, float px, const LabelBox& box, const ContactLabel& label);
 
 /// Adds a frame's stamp to the frame of `layer` (of the frame's size, between its beginFrame()
-/// and render()) in its bottom-left corner (a comparison labels its panels top left, the insets
-/// sit bottom right), at `px`: "t = 1.250 s" and, when `arrow_m_per_n` > 0, the force arrows'
-/// scale ("force arrow 1 cm = 1 N").
-void drawFrameStamp(const ImGuiLayer& layer, float px, int height, double time, double arrow_m_per_n);
+/// and render()) at the top-left corner `at` of its backdrop (layout.hpp places it), at `px`:
+/// "t = 1.250 s" and, when `arrow_m_per_n` > 0, the force arrows' scale ("force arrow 1 cm = 1 N").
+void drawFrameStamp(const ImGuiLayer& layer, float px, float at_x, float at_y, double time, double arrow_m_per_n);
 
 /// The length (m) of a scale bar for a view `view_m` metres wide: the longest of 0.1, 0.2, 0.5,
 /// 1, 2, 5, ... mm that is at most 30 % of the view.

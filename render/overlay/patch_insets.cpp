@@ -41,17 +41,52 @@ bool contactCloseUp(const sim::SceneDesc& scene, const sim::Snapshot& snapshot, 
   return true;
 }
 
-std::vector<InsetRect> insetRects(int width, int height, int fingers, InsetCorner corner) {
+namespace {
+
+int insetMargin(int height) { return std::max(2, static_cast<int>(std::lround(kMarginShare * height))); }
+
+int insetSize(int width, int height, int fingers) {
+  const int margin = insetMargin(height);
+  const int size = std::min(static_cast<int>(std::lround(kInsetShare * height)), (width - (fingers + 1) * margin) / fingers);
+  return std::max(size, 16);
+}
+
+}  // namespace
+
+std::vector<InsetRect> insetRects(int width, int height, int fingers, InsetCorner corner, bool column) {
   std::vector<InsetRect> out;
   if (fingers <= 0) return out;
-  const int margin = std::max(2, static_cast<int>(std::lround(kMarginShare * height)));
-  int size = static_cast<int>(std::lround(kInsetShare * height));
-  size = std::min(size, (width - (fingers + 1) * margin) / fingers);
-  size = std::max(size, 16);
+  const int margin = insetMargin(height), size = insetSize(width, height, fingers);
+  const int reserve = static_cast<int>(std::ceil(insetCaptionReserve(contactLabelPx(size))));
+  const bool right = corner == InsetCorner::kBottomRight || corner == InsetCorner::kTopRight;
+  const bool bottom = corner == InsetCorner::kBottomRight || corner == InsetCorner::kBottomLeft;
+  if (column) {  // each square under its caption, the first at the top
+    const int left = right ? width - margin - size : margin;
+    const int first = bottom ? height - margin - fingers * (size + reserve) + reserve : margin + reserve;
+    for (int i = 0; i < fingers; ++i) out.push_back({left, first + i * (size + reserve), size});
+    return out;
+  }
   const int row = fingers * size + (fingers - 1) * margin;
-  const int left = corner == InsetCorner::kBottomRight ? width - margin - row : margin;
-  for (int i = 0; i < fingers; ++i) out.push_back({left + i * (size + margin), height - margin - size, size});
+  const int left = right ? width - margin - row : margin;
+  const int top = bottom ? height - margin - size : margin + reserve;
+  for (int i = 0; i < fingers; ++i) out.push_back({left + i * (size + margin), top, size});
   return out;
+}
+
+LabelSizes insetBlock(int width, int height, int fingers) {
+  LabelSizes s;
+  s.margin = static_cast<float>(insetMargin(height));
+  if (fingers <= 0) return s;
+  const int size = insetSize(width, height, fingers);
+  const float reserve = std::ceil(insetCaptionReserve(contactLabelPx(size)));
+  s.insets_w = static_cast<float>(fingers * size + (fingers - 1) * insetMargin(height));
+  s.insets_h = static_cast<float>(size) + reserve;
+  const float column_h = static_cast<float>(fingers) * (static_cast<float>(size) + reserve);
+  if (fingers > 1 && column_h <= static_cast<float>(height) - 2.0f * s.margin) {
+    s.column_w = static_cast<float>(size);
+    s.column_h = column_h;
+  }
+  return s;
 }
 
 struct PatchInsets::Impl {
@@ -81,6 +116,10 @@ PatchInsets::PatchInsets(const sim::SceneDesc& scene, int frame_width, int frame
     : impl_(std::make_unique<Impl>(scene, frame_width, frame_height, corner, antialiasing, msaa_samples)) {}
 
 PatchInsets::~PatchInsets() = default;
+
+void PatchInsets::place(InsetCorner corner, bool column) {
+  impl_->rects = insetRects(impl_->width, impl_->height, static_cast<int>(impl_->rects.size()), corner, column);
+}
 
 void PatchInsets::draw(SceneRenderer& renderer, const sim::Snapshot& snapshot, unsigned target) {
   GF_ASSERT_GL_THREAD();

@@ -9,6 +9,7 @@
 
 #include "render/scene/camera.hpp"
 #include "render/gl/imgui_layer.hpp"
+#include "render/overlay/layout.hpp"
 #include "render/scene/scene_renderer.hpp"
 #include "sim/scene/scene_desc.hpp"
 #include "sim/scene/snapshot.hpp"
@@ -22,9 +23,9 @@ namespace gf::render {
 bool contactCloseUp(const sim::SceneDesc& scene, const sim::Snapshot& snapshot, std::size_t finger,
                     sim::Snapshot& only, view::Camera& camera);
 
-/// Where the insets go: the frame's bottom-right corner, or its bottom-left (beside the
-/// overlay's bottom-right panel).
-enum class InsetCorner { kBottomRight, kBottomLeft };
+/// The corner the insets go in (layout.hpp places them off the frame's subjects; beside the
+/// overlay's bottom-right panel they keep to the bottom left).
+using InsetCorner = Corner;
 
 /// A finger's inset: its square, in pixels from the frame's top-left corner.
 struct InsetRect {
@@ -33,8 +34,14 @@ struct InsetRect {
 
 /// The insets' squares of `fingers` fingers in a width x height frame: side 30 % of the height
 /// (narrower when they would not fit side by side), a margin of 1.5 % of the height, in finger
-/// order from left to right. Their captions go above them.
-std::vector<InsetRect> insetRects(int width, int height, int fingers, InsetCorner corner);
+/// order from left to right, or with `column` from top to bottom. Their captions go above them:
+/// the squares sit insetCaptionReserve() below the block's top or the square above.
+std::vector<InsetRect> insetRects(int width, int height, int fingers, InsetCorner corner, bool column = false);
+
+/// The block the insets of `fingers` fingers take in a width x height frame, captions included,
+/// side by side and (when two or more fit the height) one above the other: their sizes for
+/// placeLabels (the margin is the frame's).
+LabelSizes insetBlock(int width, int height, int fingers);
 
 class PatchInsets {
  public:
@@ -45,6 +52,9 @@ class PatchInsets {
   PatchInsets(const PatchInsets&) = delete;
   PatchInsets& operator=(const PatchInsets&) = delete;
 
+  /// Moves the insets to `corner`, in a row or a `column` (placeLabels' choice for the frame
+  /// about to be drawn).
+  void place(InsetCorner corner, bool column);
   /// Draws every finger's inset picture into framebuffer `target` (the frame, already
   /// anti-aliased) with `renderer`, whose settings it changes for the close-ups and restores.
   /// `target` is bound on return.

@@ -59,4 +59,26 @@ ContactForce contactForce(const sim::FingerSnapshot& f, const sim::ContactSnapsh
   return out;
 }
 
+sim::Vec3 pressureCentre(const sim::ContactSnapshot& c) {
+  if (c.loads.size() != c.sgos_world.size()) return c.point_world;
+  double total = std::max(0.0, c.point_load.normal);
+  sim::Vec3 sum = total * c.point_world;
+  for (std::size_t k = 0; k < c.loads.size(); ++k) {
+    const double n = std::max(0.0, c.loads[k].normal);
+    total += n;
+    sum += n * c.sgos_world[k];
+  }
+  return total > kMinPressN ? sim::Vec3(sum / total) : c.point_world;
+}
+
+double contactTorsion(const sim::ContactSnapshot& c) {
+  const sim::Vec3& n = c.outward_normal_world;
+  double moment = c.torsion_moment.dot(n);
+  if (c.loads.size() != c.sgos_world.size()) return moment;
+  const sim::Vec3 centre = pressureCentre(c);
+  moment += (c.point_world - centre).cross(c.point_load.tangential).dot(n);
+  for (std::size_t k = 0; k < c.loads.size(); ++k) moment += (c.sgos_world[k] - centre).cross(c.loads[k].tangential).dot(n);
+  return moment;
+}
+
 }  // namespace gf::render

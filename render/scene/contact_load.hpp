@@ -1,7 +1,7 @@
 // The load on a contact as the pictures show it, plain data without GL: each point's normal
 // load on a perceptually uniform colour scale (viridis) centred on the contact's mean point load
 // and stretched to its points' spread, and the contact's force split into its normal and
-// tangential parts.
+// tangential parts, and the twist it resists.
 #pragma once
 
 #include <Eigen/Core>
@@ -57,5 +57,15 @@ struct ContactForce {
 /// else the reaction of the force rendered to the device (-f.feedback_force), which is the
 /// finger's whole contact force when it touches one thing.
 ContactForce contactForce(const sim::FingerSnapshot& f, const sim::ContactSnapshot& c);
+
+/// The twist a contact resists: its moment on the body about the outward normal through the
+/// points' centre of pressure (N m; positive counter-clockwise seen from outside the body): the
+/// points' friction forces' moment there, with the moment they do not carry (a soft finger's
+/// torsion_moment). Zero without per-point loads (a god-object's point turns freely).
+double contactTorsion(const sim::ContactSnapshot& c);
+
+/// The centre of pressure of contact `c`: its points weighted by their normal loads (the
+/// contact point when they press nothing).
+sim::Vec3 pressureCentre(const sim::ContactSnapshot& c);
 
 }  // namespace gf::render

@@ -6,6 +6,7 @@
 #include <numbers>
 
 #include "render/scene/contact_load.hpp"
+#include "render/scene/load_marks.hpp"
 #include "render/scene/overlap_region.hpp"
 
 namespace gf::render {
@@ -105,6 +106,26 @@ double longestArrowInView(const DrawView& view, const Vec3& from, const Vec3& di
   return longest;
 }
 
+// A shaft and a head, drawn without depth: the part nearer the camera goes last (the head of an
+// arrow pointing at the camera covers its shaft; the shaft of one pointing away covers the head's
+// base).
+void addArrowItems(DrawList& out, const Vec3& from, const Vec3& vector, double radius, const Eigen::Vector3f& colour,
+                   const std::optional<Vec3>& eye) {
+  const double length = vector.norm();
+  if (length < 1e-6) return;
+  const Vec3 dir = vector / length;
+  const double head = std::min(0.45 * length, 5.0 * radius);
+  const sim::Quat q = fromY(dir);
+  const DrawItem shaft = shapeItem(DrawPass::kArrows, DrawShape::kCylinder,
+                                   modelMatrix(from, q, Vec3(radius, length - head, radius)), colour, 1.0f);
+  const DrawItem cone = shapeItem(DrawPass::kArrows, DrawShape::kCone,
+                                  modelMatrix(from + (length - head) * dir, q, Vec3(2.5 * radius, head, 2.5 * radius)),
+                                  colour, 1.0f);
+  const bool away = eye && dir.dot(*eye - from) < 0.0;
+  out.items.push_back(away ? cone : shaft);
+  out.items.push_back(away ? shaft : cone);
+}
+
 double proxySphereRadius(const sim::FingerSnapshot& f, double proxy_radius) {
   return f.pad.nodes.empty() ? proxy_radius : f.pad.bone_radius;
 }
@@ -124,6 +145,7 @@ DrawListBuilder::DrawListBuilder(const sim::SceneDesc& scene, std::vector<std::s
   for (const sim::FingerDesc& f : scene.fingers) {
     proxy_radius_.push_back(f.proxy.radius);
     r_max_.push_back(f.patch.r_max);
+    friction_.push_back(f.patch.friction);
   }
 }
 
@@ -166,13 +188,22 @@ void DrawListBuilder::addPatches(const sim::Snapshot& snap, const DrawSettings& 
     addRange(out, DrawPass::kPatchLines, DrawShape::kLines, lines_, 0.4f * colour, 1.0f);
     const double dot = 0.12 * proxy_radius_[i];
     for (const sim::ContactSnapshot& c : f.contacts) addMarks(c, colour, dot, out);
+    for (const sim::ContactSnapshot& c : f.contacts) {
+      if (settings.load_arrows) {
+        addLoadArrows(out, c, loadArrowScale(c, r_max_[i]), settings.contact_arrows, 0.2 * dot, view_eye_);
+      }
+      if (!settings.torsion_arcs) continue;
+      if (const std::optional<TorsionArc> arc = torsionArc(c, friction_[i], r_max_[i])) {
+        addTorsionArc(out, *arc, 0.3 * dot, kForceColour, view_eye_);
+      }
+    }
     if (!settings.contact_arrows) continue;
     for (const sim::ContactSnapshot& c : f.contacts) {
       const double length = std::max(c.radius, 0.6 * r_max_[i]);
-      addArrow(out, c.point_world, length * c.outward_normal_world, 0.3 * dot, kWhite);
+      addArrowItems(out, c.point_world, length * c.outward_normal_world, 0.3 * dot, kWhite, view_eye_);
     }
     // The force rendered to the device, from the proxy: it points away from what is touched.
-    if (!f.contacts.empty()) addArrow(out, f.proxy, forceArrow(f, settings), 0.6 * dot, kForceColour);
+    if (!f.contacts.empty()) addArrowItems(out, f.proxy, forceArrow(f, settings), 0.6 * dot, kForceColour, view_eye_);
   }
   addOverlaps(snap, out);
 }
@@ -340,26 +371,6 @@ void DrawListBuilder::addGhosts(const sim::Snapshot& snap, const DrawSettings& s
     }
     addRange(out, DrawPass::kGhosts, DrawShape::kTriangles, fill_, fingerColour(static_cast<int>(i)), kGhostAlpha);
   }
-}
-
-// A shaft and a head, drawn without depth: the part nearer the camera goes last (the head of an
-// arrow pointing at the camera covers its shaft; the shaft of one pointing away covers the head's
-// base).
-void DrawListBuilder::addArrow(DrawList& out, const Vec3& from, const Vec3& vector, double radius,
-                               const Eigen::Vector3f& colour) {
-  const double length = vector.norm();
-  if (length < 1e-6) return;
-  const Vec3 dir = vector / length;
-  const double head = std::min(0.45 * length, 5.0 * radius);
-  const sim::Quat q = fromY(dir);
-  const DrawItem shaft = shapeItem(DrawPass::kArrows, DrawShape::kCylinder,
-                                   modelMatrix(from, q, Vec3(radius, length - head, radius)), colour, 1.0f);
-  const DrawItem cone = shapeItem(DrawPass::kArrows, DrawShape::kCone,
-                                  modelMatrix(from + (length - head) * dir, q, Vec3(2.5 * radius, head, 2.5 * radius)),
-                                  colour, 1.0f);
-  const bool away = view_eye_ && dir.dot(*view_eye_ - from) < 0.0;
-  out.items.push_back(away ? cone : shaft);
-  out.items.push_back(away ? shaft : cone);
 }
 
 // A coil from the proxy centre to the device, into lines_ (joined to the list after all fingers).

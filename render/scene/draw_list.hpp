@@ -89,6 +89,11 @@ struct DrawSettings {
   /// Contact normals and force arrows; off in close-ups, whose camera looks down the normal (an
   /// arrow towards the camera is a disc over the patch; their labels draw the forces in 2D).
   bool contact_arrows = true;
+  /// The twist each contact resists, as an arc around its patch (load_marks.hpp); close-ups too.
+  bool torsion_arcs = true;
+  /// Each point's load split into its normal part and its friction, as arrows (load_marks.hpp);
+  /// in close-ups the friction only. Off unless asked for (`[render] load_arrows`).
+  bool load_arrows = false;
   double force_arrow_m_per_n = 0.01;  ///< arrow length per newton of coupling force (m/N)
   double max_arrow_m = 0.08;          ///< longest force arrow (m)
   double max_arrow_view_share = 0.25; ///< longest force arrow as a share of the view's height at its proxy
@@ -116,6 +121,12 @@ sim::Vec3 forceArrow(const sim::FingerSnapshot& finger, const DrawSettings& sett
 /// frame is limited by the share only.
 double longestArrowInView(const DrawView& view, const sim::Vec3& from, const sim::Vec3& direction, double share);
 
+/// Appends an arrow from `from` along `vector` (m) of shaft radius `radius`, drawn through
+/// everything (DrawPass::kArrows): a shaft and a head of at most 5 radii, whichever is nearer
+/// the camera at `eye` last (none: the head last).
+void addArrowItems(DrawList& out, const sim::Vec3& from, const sim::Vec3& vector, double radius,
+                   const Eigen::Vector3f& colour, const std::optional<sim::Vec3>& eye);
+
 /// Builds draw lists of one scene. Any thread (one at a time); build() allocates only while its
 /// arrays and the list's grow to the largest frame.
 class DrawListBuilder {
@@ -137,10 +148,9 @@ class DrawListBuilder {
   void addProxies(const sim::Snapshot& snapshot, DrawList& out);
   void addSprings(const sim::Snapshot& snapshot, DrawList& out);
   void addGhosts(const sim::Snapshot& snapshot, const DrawSettings& settings, DrawList& out);
-  void addArrow(DrawList& out, const sim::Vec3& from, const sim::Vec3& vector, double radius, const Eigen::Vector3f& colour);
   void addSpring(const sim::Vec3& a, const sim::Vec3& b, double coil_radius);
 
-  std::vector<double> proxy_radius_, r_max_;  // per finger (m)
+  std::vector<double> proxy_radius_, r_max_, friction_;  // per finger (m, m, pad friction)
   std::vector<Eigen::Vector3f> body_colour_;  // per body
   std::vector<std::shared_ptr<const sim::Mesh>> surfaces_;
   PatchMeshBuilder patch_builder_;

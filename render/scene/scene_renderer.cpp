@@ -104,6 +104,7 @@ struct SceneRenderer::Impl {
   std::array<BackdropSlot, 3> backdrops;
   std::size_t next_backdrop = 0;  // the slot a new size takes
   // The contact overlay: built as plain data (draw_list.hpp), its vertices in one buffer.
+  std::vector<std::shared_ptr<const sim::Mesh>> surfaces;  // per body, null for a plane
   std::optional<DrawListBuilder> overlay_builder;  // made once the bodies' surfaces are
   DrawList overlay;
   GpuMesh overlay_vertices{{}, true};
@@ -131,9 +132,8 @@ struct SceneRenderer::Impl {
       }
       bodies.push_back(std::move(d));
     }
-    std::vector<std::shared_ptr<const sim::Mesh>> surfaces;
     for (const BodyDraw& d : bodies) surfaces.push_back(d.mesh);
-    overlay_builder.emplace(scene, std::move(surfaces));
+    overlay_builder.emplace(scene, surfaces);
     std::tie(centre, extent) = sceneBounds(scene, bodies);
     // The ground: a square of 40 scene radii, fading into the background.
     const float h = static_cast<float>(40.0 * extent);
@@ -471,6 +471,7 @@ struct SceneRenderer::Impl {
     d.patch_highlight = settings.patch_highlight;
     d.fingers = settings.fingers;
     d.contact_arrows = settings.contact_arrows;
+    d.load_arrows = settings.load_arrows;
     d.force_arrow_m_per_n = settings.force_arrow_m_per_n;
     d.max_arrow_m = settings.max_arrow_m;
     d.max_arrow_view_share = settings.max_arrow_view_share;
@@ -527,6 +528,8 @@ void SceneRenderer::setSettings(const RenderSettings& settings) {
 }
 
 const RenderSettings& SceneRenderer::settings() const { return impl_->settings; }
+
+const std::vector<std::shared_ptr<const sim::Mesh>>& SceneRenderer::surfaces() const { return impl_->surfaces; }
 
 void SceneRenderer::redrawShadows() { impl_->shadow_step = -1; }
 

@@ -22,6 +22,7 @@ struct RenderSettings {
   bool fingers = true;               ///< proxies, pads, device ghosts, springs; off: no proxy or pad shadows either
   bool contact_arrows = true;        ///< contact normals and force arrows (off in close-ups down the normal)
   bool ground = true;                ///< ground planes (close-ups from under a lifted body hide them)
+  bool load_arrows = false;          ///< each point's normal load and friction as arrows (load_marks.hpp)
   int shadow_map_size = 1024;        ///< texels per side (the map covers 3 scene radii)
   double force_arrow_m_per_n = 0.01; ///< arrow length per newton of coupling force (m/N)
   double max_arrow_m = 0.08;         ///< longest force arrow (m)
@@ -55,6 +56,9 @@ class SceneRenderer {
   /// nor leaves one for a frame of the same instant.
   void redrawShadows();
   const RenderSettings& settings() const;
+  /// Each body's render surface in its description frame (null for a plane), as the overlay
+  /// and the label layout (render/overlay/layout.hpp) take them.
+  const std::vector<std::shared_ptr<const sim::Mesh>>& surfaces() const;
 
  private:
   struct Impl;

@@ -440,6 +440,9 @@ void solvedLoads(const FingerContact& c, const FrictionBlock& block, AggregateSc
   }
   out.force = toEigen(to_body * total);
   out.rolling_moment = block.solved ? toEigen(to_body * (-block.rolling_impulse / dt)) : Vec3::Zero();
+  // torsionImpulse shares the torsion over the points' levers; with none (one point) it stays here.
+  const bool unshared = block.solved && !(t.levers > 0.0);
+  out.torsion_moment = unshared ? toEigen(to_body * ((t.torsion / dt) * n)) : Vec3::Zero();
   out.sliding = sliding;
 }
 

@@ -21,6 +21,7 @@ void toSnapshotLoads(const ContactLoads& loads, const Pose& body_frame, ContactS
   out.loads.clear();
   for (const PointLoad& l : loads.points) out.loads.push_back(toWorld(l, body_frame));
   out.rolling_moment = body_frame.orientation * loads.rolling_moment;
+  out.torsion_moment = body_frame.orientation * loads.torsion_moment;
   out.sliding = loads.sliding;
 }
 

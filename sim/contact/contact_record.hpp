@@ -15,6 +15,7 @@ struct ContactLoads {
   PointLoad point;                ///< the true contact's
   std::vector<PointLoad> points;  ///< the patch's points (its SGOs, then its inner points)
   Vec3 rolling_moment = Vec3::Zero();  ///< ContactSnapshot::rolling_moment (N m)
+  Vec3 torsion_moment = Vec3::Zero();  ///< ContactSnapshot::torsion_moment (N m)
   bool sliding = false;           ///< the friction block is at its limit
 };
 
@@ -26,7 +27,7 @@ struct ContactRecord {
   Patch patch;               ///< radius, SGOs and walked paths (body frame); none for a god-object
 };
 
-/// `loads` (body frame) into `out`'s force, point_load, loads, rolling_moment and sliding, in
+/// `loads` (body frame) into `out`'s force, point_load, loads, rolling_moment, torsion_moment and sliding, in
 /// the world frame at `body_frame`. Reuses the storage of `out`. Any thread.
 void toSnapshotLoads(const ContactLoads& loads, const Pose& body_frame, ContactSnapshot& out);
 

@@ -39,6 +39,7 @@ void interpolateSnapshot(const Snapshot& a, const Snapshot& b, double time, Snap
       for (Vec3& p : c.path_points_world) carry(p);
       c.force = turn * c.force;
       c.rolling_moment = turn * c.rolling_moment;
+      c.torsion_moment = turn * c.torsion_moment;
       c.point_load.tangential = turn * c.point_load.tangential;
       for (PointLoad& l : c.loads) l.tangential = turn * l.tangential;
     }

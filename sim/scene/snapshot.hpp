@@ -45,6 +45,10 @@ struct ContactSnapshot {
   /// under the pad beyond what the points' loads do (god-finger patches; zero otherwise). With
   /// it, the points' loads make the contact's whole force and moment.
   Vec3 rolling_moment = Vec3::Zero();
+  /// The moment about the normal the points' loads do not carry (N m, along the outward
+  /// normal): a soft finger's torsion, which its one point cannot hold; zero where the points'
+  /// loads share the torsion out (a god-finger patch).
+  Vec3 torsion_moment = Vec3::Zero();
   bool sliding = false;          ///< the contact's friction is at its limit (it slides or spins)
   /// On a soft body: how far the surface at the contact point sank from where the body's rest
   /// shape, carried by its frame, puts it (m); 0 on a rigid body.

@@ -91,6 +91,7 @@ void World::Impl::padSnapshot(const Finger& f, FingerSnapshot& out) const {
     s.force = t.force;
     s.point_load = PointLoad{};
     s.rolling_moment = Vec3::Zero();
+    s.torsion_moment = Vec3::Zero();
     s.sliding = t.sliding;
     s.sgos_world.clear();
     s.loads.clear();

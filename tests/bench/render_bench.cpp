@@ -130,7 +130,7 @@ void BM_FrameStages1280x720(benchmark::State& state) {
     insets.draw(renderer, snapshot, static_cast<unsigned>(target));
     labels.beginFrame(1.0 / 60.0, {});
     insets.drawLabels(labels, snapshot);
-    render::drawFrameStamp(labels, stamp_px, 720, snapshot.time, f.scene.force_arrow_m_per_n);
+    render::drawFrameStamp(labels, stamp_px, 10.0f, 680.0f, snapshot.time, f.scene.force_arrow_m_per_n);
     labels.render();
     glFinish();
     lap(2);

@@ -1,5 +1,5 @@
-// The loads on a contact's points (ContactSnapshot::force, point_load, loads, rolling_moment)
-// against what the bodies do. A 1 kg box on a frictionless table pressed from above by one
+// The loads on a contact's points (ContactSnapshot::force, point_load, loads, rolling_moment,
+// torsion_moment) against what the bodies do. A 1 kg box on a frictionless table pressed from above by one
 // finger (friction 1, about 4.8 N; tests/sim/pressed_box.hpp): at rest the proxy is in
 // equilibrium, so the contact's force is the coupling force (within 1e-4); while the box is
 // held, slides or spins under the finger, the finger's friction is the load minus the box's
@@ -60,14 +60,15 @@ Vec3 pointSum(const ContactSnapshot& c) {
   return sum;
 }
 
-// The points' tangential forces: their sum, and their moment about the vertical through the
-// box's centre (N m).
+// The points' tangential forces: their sum, and with the moment they do not carry
+// (torsion_moment) their moment about the vertical through the box's centre (N m).
 struct Friction {
   Vec3 force = Vec3::Zero();
   double moment = 0.0;
 };
 Friction frictionOf(const ContactSnapshot& c, const Vec3& box_centre) {
   Friction f;
+  f.moment = c.torsion_moment.y();
   const auto add = [&](const Vec3& at, const PointLoad& l) {
     f.force += l.tangential;
     f.moment += (at - box_centre).cross(l.tangential).y();
@@ -186,10 +187,9 @@ TEST_P(PointLoads, WhileTheBoxSpinsTheirMomentIsTheFingersTorsion) {
   // The finger's mean torsion on the box (N m), by the box's change of angular momentum.
   const double measured =
       load.torque.y() - kInertiaY * (w.bodyAngularVelocity(1).y() - omega0) / (samples * kDt);
-  // A soft finger's torsion is a moment of its one point, not a force: only the patches split it.
-  if (GetParam().model == ContactModel::kGodFinger) {
-    EXPECT_NEAR(-moment / samples, measured, 1e-5 * measured);
-  }
+  // A soft finger's torsion is a moment of its one point (torsion_moment); a patch's is split
+  // over its points' loads.
+  EXPECT_NEAR(-moment / samples, measured, 1e-5 * measured);
   EXPECT_EQ(sliding, samples);
 }
 
@@ -213,7 +213,7 @@ TEST(PointLoadsPinch, MakeTheWholeMomentThatHoldsTheCylinder) {
       for (const FingerSnapshot& f : snap.fingers) {
         for (const ContactSnapshot& c : f.contacts) {
           const Vec3& n = c.outward_normal_world;
-          Vec3 m = c.rolling_moment +
+          Vec3 m = c.rolling_moment + c.torsion_moment +
                    (c.point_world - com).cross(c.point_load.tangential - c.point_load.normal * n);
           for (std::size_t i = 0; i < c.loads.size(); ++i) {
             m += (c.sgos_world[i] - com).cross(c.loads[i].tangential - c.loads[i].normal * n);
