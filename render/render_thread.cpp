@@ -17,6 +17,7 @@
 #include <sys/resource.h>
 #include <unistd.h>
 
+#include "render/chart/chart_pen.hpp"
 #include "render/gl/context.hpp"
 #include "render/gl/gl.hpp"
 #include "render/gl/gpu.hpp"
@@ -233,16 +234,25 @@ void drawCloseUps(Gpu& gpu, const sim::SceneDesc& desc, const sim::Snapshot& sna
   gpu.scene.redrawShadows();
 }
 
+// The SVG beside a chart's PNG: the same name, .svg for .png (appended to another name).
+std::string svgPathOf(const std::string& png_path) {
+  const bool png = png_path.size() > 4 && png_path.compare(png_path.size() - 4, 4, ".png") == 0;
+  return (png ? png_path.substr(0, png_path.size() - 4) : png_path) + ".svg";
+}
+
 void drawChartFile(const ChartSpec& chart, const std::string& path) {
   Framebuffer frame(chart.width, chart.height, view::Antialiasing::kNone);  // ImGui smooths its own edges
   ImGuiLayer layer(chart.width, chart.height, 17.0f);
   frame.bind();
   glClearColor(1, 1, 1, 1);
   glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
-  drawChart(layer, chart);
+  SvgText svg;
+  drawChart(layer, chart, &svg);
   Image image;
   frame.read(image);
   writePng(path, image);
+  const std::string text = svgDocument(svg, chart.width, chart.height);
+  writeFileAtomically(svgPathOf(path), std::vector<std::uint8_t>(text.begin(), text.end()));
 }
 
 // Close-ups and charts: work that is not a frame of the stream.

@@ -75,7 +75,7 @@ class RenderThread {
   std::vector<sim::SettingsCommand> submitFrame(const sim::Snapshot& snapshot, bool wait_for_commands);
   /// Queues close-ups of every contact in `snapshot`, written as `<prefix>-<finger>.png`.
   void submitCloseUps(const sim::Snapshot& snapshot, const std::string& prefix);
-  /// Queues a chart, written as the PNG `path`.
+  /// Queues a chart, written as the PNG `path` and as SVG beside it (`path` with .svg for .png).
   void submitChart(const ChartSpec& chart, const std::string& path);
   /// Realtime: `fill(snapshot)` writes the latest state into the free slot of the triple
   /// buffer, which is then handed to the render thread (it draws the newest at its next frame).
@@ -115,7 +115,8 @@ std::string closeUpPath(const std::string& prefix, const std::string& finger);
 void renderCloseUps(const sim::SceneDesc& scene, const sim::Snapshot& snapshot,
                     const std::string& prefix, int size_px);
 
-/// Draws `chart` and writes it as the PNG `path`, the way RenderThread::submitChart does, on the
+/// Draws `chart` and writes it as the PNG `path` and the SVG beside it, the way
+/// RenderThread::submitChart does, on the
 /// calling thread with a GL context of its own (the thread must not have one already): charts
 /// from commands and tests without a render thread. Throws GlError, ImageError; allocates.
 void writeChartPng(const ChartSpec& chart, const std::string& path);

@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <fstream>
 #include <limits>
+#include <utility>
 
 #include "app/commands/commands.hpp"
 #include "app/runs/run_reader.hpp"
@@ -16,11 +17,41 @@
 namespace gf::app {
 namespace {
 
-// Colours of successive curves (linear RGB): distinct on white and for the common colour
-// blindnesses (Okabe and Ito's qualitative set).
-const Eigen::Vector3f kCurveColours[] = {{0.00f, 0.45f, 0.70f}, {0.84f, 0.37f, 0.00f}, {0.00f, 0.62f, 0.45f},
-                                         {0.80f, 0.47f, 0.65f}, {0.34f, 0.71f, 0.91f}, {0.90f, 0.62f, 0.00f},
-                                         {0.20f, 0.20f, 0.20f}};
+constexpr float kMarkerSpacingPx = 90.0f;  // markers along each curve, this far apart in x
+
+// The unit of a trace.csv or forces.csv column, from its name's suffix (TraceWriter's columns);
+// "" when the name does not tell.
+std::string columnUnit(const std::string& name) {
+  if (name == "t") return "s";
+  const std::string suffix = name.substr(name.rfind('.') == std::string::npos ? name.size() : name.rfind('.') + 1);
+  if (suffix.ends_with("overlap_mm2")) return "mm^2";
+  if (suffix == "port_energy") return "J";
+  if (suffix == "n_sgo") return "SGOs";
+  if (suffix == "r" || (suffix.size() == 2 && (suffix[0] == 'p' || suffix[0] == 'd') && suffix[1] >= 'x' && suffix[1] <= 'z')) {
+    return "m";
+  }
+  if ((suffix.size() == 2 && suffix[0] == 'q') || (suffix.size() == 3 && suffix.starts_with("dq"))) {
+    return "dimensionless";  // a quaternion's component
+  }
+  if (suffix == "fx" || suffix == "fy" || suffix == "fz" || suffix.starts_with("sent_f")) return "N";
+  if (suffix == "vx" || suffix == "vy" || suffix == "vz") return "m/s";
+  if (suffix == "wx" || suffix == "wy" || suffix == "wz") return "rad/s";
+  return "";
+}
+
+// An axis label for columns: "index.fx, index.fy, N" when they share a unit; else each with its
+// own ("index.fx, N; ball.px, m").
+std::string columnsLabel(const std::vector<std::string>& names) {
+  std::string joined, each;
+  bool same = true;
+  for (const std::string& n : names) {
+    same = same && columnUnit(n) == columnUnit(names.front());
+    joined.append(joined.empty() ? "" : ", ").append(n);
+    each.append(each.empty() ? "" : "; ").append(n).append(columnUnit(n).empty() ? "" : ", " + columnUnit(n));
+  }
+  if (!same) return each;
+  return columnUnit(names.front()).empty() ? joined : joined + ", " + columnUnit(names.front());
+}
 
 }  // namespace
 
@@ -33,13 +64,21 @@ std::string writePlot(const PlotOptions& o) {
   render::ChartSpec chart;
   chart.width = o.width;
   chart.height = o.height;
-  chart.x_label = o.x == "t" ? "time (s)" : o.x;
-  chart.y_label = o.y.size() == 1 ? o.y.front() : "";
+  chart.x_label = o.x == "t" ? "time, s" : columnsLabel({o.x});
+  chart.y_label = columnsLabel(o.y);
   std::string joined;
   for (const std::string& y : o.y) joined.append(joined.empty() ? "" : ", ").append(y);
   chart.title = o.title.empty() ? std::filesystem::path(o.csv).filename().string() + ": " + joined : o.title;
   for (std::size_t k = 0; k < ys.size(); ++k) {
-    chart.series.push_back({o.y[k], kCurveColours[k % std::size(kCurveColours)], xs, ys[k]});
+    const render::SeriesLook look = render::seriesLook(k);
+    render::ChartSeries s{o.y[k], look.colour, xs, ys[k]};
+    s.dash = look.dash;
+    s.marker = look.marker;
+    if (ys.size() > 1) {  // markers along each curve tell them apart where they cross
+      s.marker_spacing_px = kMarkerSpacingPx;
+      s.marker_phase = static_cast<float>(k) / static_cast<float>(ys.size());
+    }
+    chart.series.push_back(std::move(s));
   }
   const std::string out =
       o.out.empty() ? (std::filesystem::path(o.csv).parent_path() / "plot.png").string() : o.out;

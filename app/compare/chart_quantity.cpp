@@ -20,12 +20,14 @@ constexpr float kModelMarkerSpacingPx = 90.0f;  // markers along a model's curve
 }  // namespace
 
 Eigen::Vector3f modelColour(const std::string& model, std::size_t index) {
-  if (model == "god_object") return {0.80f, 0.15f, 0.10f};
-  if (model == "soft_finger") return {0.05f, 0.55f, 0.25f};
-  if (model == "god_finger" || model == "god_finger_3dof") return {0.05f, 0.30f, 0.90f};
-  if (model == "god_finger_6dof") return {0.90f, 0.50f, 0.05f};
-  if (model == "fem_pad") return {0.60f, 0.25f, 0.65f};
-  return index % 2 ? Eigen::Vector3f(0.6f, 0.3f, 0.7f) : Eigen::Vector3f(0.3f, 0.3f, 0.3f);
+  // Okabe–Ito's colours (render::kOkabeIto), each model's its own in every chart.
+  const auto okabeIto = [](std::size_t i) { return render::linearFromSrgb(render::kOkabeIto[i]); };
+  if (model == "god_object") return okabeIto(1);                                  // vermillion
+  if (model == "soft_finger") return okabeIto(2);                                 // bluish green
+  if (model == "god_finger" || model == "god_finger_3dof") return okabeIto(0);   // blue
+  if (model == "god_finger_6dof") return okabeIto(4);                             // orange
+  if (model == "fem_pad") return okabeIto(3);                                     // reddish purple
+  return okabeIto(index % 2 ? 5 : 6);                                             // sky blue, black
 }
 
 void styleModelSeries(render::ChartSeries& s, const std::string& model, std::size_t index, std::size_t count) {
@@ -130,10 +132,10 @@ Quantity chartQuantity(const SessionDesc& session, const std::string& chart, con
            : chart == "tilt" || chart.empty() ? Quantity::kTilt
            : chart == "height" ? Quantity::kHeight
                                : Quantity::kSpeed;
-  q.label = q.kind == Quantity::kRotation ? q.body_name + ": angle turned since the start (deg)"
-            : q.kind == Quantity::kTilt   ? q.body_name + ": tilt from upright (deg)"
-            : q.kind == Quantity::kHeight ? q.body_name + ": height (mm)"
-                                          : q.body_name + ": speed (m/s)";
+  q.label = q.kind == Quantity::kRotation ? q.body_name + ": angle turned since the start, deg"
+            : q.kind == Quantity::kTilt   ? q.body_name + ": tilt from upright, deg"
+            : q.kind == Quantity::kHeight ? q.body_name + ": height, mm"
+                                          : q.body_name + ": speed, m/s";
   return q;
 }
 
@@ -222,7 +224,7 @@ render::ChartSeries traceSeries(const Quantity& q, const sim::SceneDesc& scene, 
 
 render::ChartSpec chartFor(const Quantity& q) {
   render::ChartSpec chart;
-  chart.x_label = "time (s)";
+  chart.x_label = "time, s";
   chart.y_label = q.label;
   return chart;
 }

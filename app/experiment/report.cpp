@@ -217,8 +217,8 @@ void writeTaskCharts(const fs::path& dir, const std::vector<TestRow>& rows, int 
     render::ChartSpec chart;
     chart.title = std::string(rate ? "Success rate" : "Completion time of the successes (s)") + " by task and " + f.name +
                   ": means over participants, bars 95 % CI";
-    chart.x_label = "task";
-    chart.y_label = rate ? "success rate" : "completion time (s)";
+    chart.x_label = "task, numbered as in the note below";
+    chart.y_label = rate ? "success rate, share of trials" : "completion time, s";
     if (rate) {
       chart.y_min = -0.05;
       chart.y_max = 1.05;
@@ -231,7 +231,7 @@ void writeTaskCharts(const fs::path& dir, const std::vector<TestRow>& rows, int 
     for (std::size_t l = 0; l < f.levels.size(); ++l) {
       // Tasks are categories: markers, no lines between them; the intervals as vertical strokes.
       render::ChartSeries mean{f.levels[l], seriesColour(l), {}, {}, render::SeriesStyle::kMarkers};
-      mean.marker = static_cast<render::MarkerShape>(l % 4);
+      mean.marker = render::seriesLook(l).marker;
       render::ChartSeries ci{"", seriesColour(l), {}, {}, render::SeriesStyle::kLine};
       for (std::size_t t = 0; t < tasks.size(); ++t) {
         const Cells c = cellsOf(rows, participants, f, tasks[t]);
@@ -257,8 +257,8 @@ std::string noiseSection(const fs::path& dir, const std::vector<TestRow>& rows, 
                          const FactorInfo& noise, const std::vector<std::string>& tasks) {
   render::ChartSpec chart;
   chart.title = "Success rate against the simulated hand's noise, every task, by " + f.name + ": means over participants";
-  chart.x_label = "noise (1: a typical adult's hand)";
-  chart.y_label = "success rate";
+  chart.x_label = "noise, times a typical adult's hand";
+  chart.y_label = "success rate, share of trials";
   chart.y_min = -0.05;
   chart.y_max = 1.05;
   std::string md = "\n## Success rate against the hand's noise\n\n| task | " + f.name + " |";
@@ -268,7 +268,8 @@ std::string noiseSection(const fs::path& dir, const std::vector<TestRow>& rows, 
   md += "\n";
   for (std::size_t l = 0; l < f.levels.size(); ++l) {
     render::ChartSeries line{f.levels[l], seriesColour(l), {}, {}, render::SeriesStyle::kLineAndMarkers};
-    line.marker = static_cast<render::MarkerShape>(l % 4);
+    line.marker = render::seriesLook(l).marker;
+    line.dash = render::seriesLook(l).dash;
     for (std::size_t j = 0; j < noise.levels.size(); ++j) {
       std::vector<TestRow> at;
       for (const TestRow& r : rows) {

@@ -106,7 +106,14 @@ render::ChartSeries godObjectForces(const SessionDesc& session) {
   ForceWriter forces(world, {session.record.force_bodies.front()}, 0, "");
   sim::runHapticLoop(world, devices, {scene.world.haptic_rate_hz, scene.duration},
                      [&](const sim::World& w) { forces.record(w, dt); });
-  return forces.series("god-object (n_SGO = 0)", {0.85f, 0.2f, 0.15f});
+  // Okabe–Ito's orange, dashed, square markers: apart from the god-finger's blue in
+  // lightness, dash and marker as well as hue.
+  render::ChartSeries out = forces.series("god-object (n_SGO = 0)", render::linearFromSrgb(render::kOkabeIto[4]));
+  out.dash = render::LineDash::kDashed;
+  out.marker = render::MarkerShape::kSquare;
+  out.marker_spacing_px = 90.0f;
+  out.marker_phase = 0.5f;
+  return out;
 }
 
 void writeForceChart(const SessionDesc& session, const ForceWriter& forces, render::RenderThread& renderer,
@@ -115,12 +122,15 @@ void writeForceChart(const SessionDesc& session, const ForceWriter& forces, rend
   chart.title = !session.record.force_chart_title.empty()
                     ? session.record.force_chart_title
                     : session.scene.name + ": y force on " + session.record.force_bodies.front() + " (N, gravity removed)";
-  chart.x_label = "time (s)";
-  chart.y_label = "F_y (N)";
+  chart.x_label = "time, s";
+  chart.y_label = "y force, N";
   chart.series.push_back(godObjectForces(session));
   int n = 0;
   for (const sim::FingerDesc& f : session.scene.fingers) n = std::max(n, f.patch.n_sgo);
-  chart.series.push_back(forces.series("god-finger (n_SGO = " + std::to_string(n) + ")", {0.1f, 0.3f, 0.9f}));
+  render::ChartSeries finger =
+      forces.series("god-finger (n_SGO = " + std::to_string(n) + ")", render::linearFromSrgb(render::kOkabeIto[0]));
+  finger.marker_spacing_px = 90.0f;  // circles, solid
+  chart.series.push_back(std::move(finger));
   renderer.submitChart(chart, path.string());
 }
 

@@ -104,9 +104,18 @@ struct StudySeries {
 
 enum class CostKind { kStep, kPatch };
 
+/// What a study asks (its `question`): what accuracy costs (a work-precision chart, the best
+/// run per budget), or how its measures change along its charted axes (charts against them).
+enum class StudyQuestion { kCost, kEffect };
+
 struct StudyDesc {
   std::string name, summary, source;
   CostKind cost = CostKind::kStep;
+  /// `scored`: whether the measures' references are the truth the runs are scored against (an
+  /// error each). When false they are comparison values (e.g. a flat pad's limit, which a tilted
+  /// pad is designed to differ from): the report shows values, no error and no budget.
+  bool scored = true;
+  StudyQuestion question = StudyQuestion::kCost;
   std::vector<StudySeries> series;
   std::vector<StudyOverride> quick_set;  ///< overrides every --quick run gets last
   /// The study-level axes with `chart = true`, by name: each measure gets a chart against each

@@ -6,6 +6,7 @@
 #include <cstdlib>
 #include <map>
 #include <set>
+#include <utility>
 
 namespace gf::app {
 namespace {
@@ -31,13 +32,9 @@ const char* valueUnit(MeasureKind kind) {
 
 const char* errorUnit(const StudyMeasure& m) { return m.error != ErrorKind::kAbsolute ? "" : valueUnit(m.kind); }
 
-namespace {
+const char* measureUnit(MeasureKind kind) { return valueUnit(kind); }
 
-// The series' colours, in the order of the study's series.
-const Eigen::Vector3f kSeriesColours[] = {
-    {0.85f, 0.2f, 0.15f}, {0.95f, 0.6f, 0.1f}, {0.15f, 0.45f, 0.85f}, {0.1f, 0.6f, 0.3f},
-    {0.55f, 0.3f, 0.75f}, {0.4f, 0.4f, 0.4f},  {0.0f, 0.7f, 0.75f},   {0.75f, 0.45f, 0.3f},
-    {0.9f, 0.4f, 0.7f},   {0.6f, 0.75f, 0.1f}, {0.1f, 0.2f, 0.5f},    {0.5f, 0.1f, 0.1f}};
+namespace {
 
 constexpr double kFrontGain = 0.99;  // a best point lowers the series' best |error| so far by 1 % or more
 
@@ -159,25 +156,98 @@ double referenceNoise(const StudyMeasure& m, const std::vector<Row>& rows) {
   return noise;
 }
 
+// "4.42" or "4.41 to 4.43" (of `scale` times the values), "" without values.
+std::string spanText(std::vector<double> v, double scale) {
+  v.erase(std::remove_if(v.begin(), v.end(), [](double x) { return !std::isfinite(x); }), v.end());
+  if (v.empty()) return "";
+  const auto [lo, hi] = std::minmax_element(v.begin(), v.end());
+  char a[32], b[32];
+  std::snprintf(a, sizeof a, "%.3g", scale * *lo);
+  std::snprintf(b, sizeof b, "%.3g", scale * *hi);
+  return std::string(a) == b ? a : std::string(a) + " to " + b;
+}
+
 }  // namespace
 
-Eigen::Vector3f seriesColour(std::size_t i) { return kSeriesColours[i % std::size(kSeriesColours)]; }
+Eigen::Vector3f seriesColour(std::size_t i) { return render::seriesLook(i).colour; }
 
-std::string costLabel(CostKind k) { return k == CostKind::kStep ? "step time, median (us)" : "patch time per call, mean (us)"; }
+std::string costName(CostKind k) { return k == CostKind::kStep ? "median step time" : "mean patch time per call"; }
+
+std::string costLabel(CostKind k) { return costName(k) + ", us"; }
+
+std::string axisLabel(const std::string& axis) {
+  const std::string name = axis.substr(axis.rfind('.') + 1);
+  const auto words = [](std::string t) {
+    std::replace(t.begin(), t.end(), '_', ' ');
+    return t;
+  };
+  if (name.size() > 4 && name.ends_with("_deg")) return words(name.substr(0, name.size() - 4)) + ", deg";
+  if (name == "haptic_rate" || name == "haptic_rate_hz") return "haptic rate, Hz";
+  if (name == "n_sgo") return "n_SGO, SGOs per patch";
+  if (name == "solver_iterations") return "solver iterations, per step";
+  if (name == "walk_resolution") return "walk resolution, subdivisions";
+  for (const auto& [suffix, unit] : {std::pair{"_mm", "mm"}, {"_m", "m"}, {"_s", "s"}, {"_n", "N"}, {"_hz", "Hz"}}) {
+    const std::string tail = suffix;
+    if (name.size() > tail.size() && name.ends_with(tail)) return words(name.substr(0, name.size() - tail.size())) + ", " + unit;
+  }
+  return words(name);
+}
+
+int measuredRuns(const std::vector<Row>& rows, std::size_t k) {
+  return static_cast<int>(std::count_if(rows.begin(), rows.end(), [&](const Row& r) {
+    return r.status == "ok" && r.measures.size() > k && std::isfinite(r.measures[k].measure);
+  }));
+}
+
+std::string pressText(const std::vector<Row>& rows, std::size_t k) {
+  std::vector<double> f, r, mu;
+  for (const Row& row : rows) {
+    if (row.status != "ok" || row.measures.size() <= k) continue;
+    f.push_back(row.measures[k].press_force_n);
+    r.push_back(row.measures[k].press_radius_m);
+    mu.push_back(row.measures[k].friction);
+  }
+  const std::string force = spanText(f, 1.0), radius = spanText(r, 1000.0), friction = spanText(mu, 1.0);
+  if (force.empty()) return "";
+  std::string out = "The press the comparison values are formed from: F = " + force +
+                    " N (the finger's measured press)";
+  if (!radius.empty()) out += ", r = " + radius + " mm (the Eq. 1 radius of that press; a soft pad's own)";
+  if (!friction.empty()) out += ", mu = " + friction + " (the pad's friction)";
+  return out + "; over the runs measured.\n";
+}
+
+std::string runsStamp(const std::vector<Row>& rows, std::size_t k) {
+  const int n = measuredRuns(rows, k), m = static_cast<int>(rows.size());
+  if (n == m) return "";
+  return std::to_string(n) + " of " + std::to_string(m) + " runs measured (" + std::to_string(m - n) +
+         " missing, failed or without a value: see report.md)";
+}
+
+// A relative error or a deviation is drawn in percent; an absolute one in its measure's unit.
+double errorScale(const StudyMeasure& m) { return m.error == ErrorKind::kAbsolute ? 1.0 : 100.0; }
+
+// The work-precision chart's y label: the error as formed, with its unit.
+std::string errorLabel(const StudyPlan& plan) {
+  const StudyMeasure& m = plan.study.series.front().measures.front();
+  for (const StudySeries& s : plan.study.series) {
+    if (s.measures.front().error != m.error || s.measures.front().kind != m.kind) {
+      return "|error|, each series in its own measure's unit (see report.md)";
+    }
+  }
+  if (m.error == ErrorKind::kRelative) return "|error| = |" + m.name + " / reference - 1|, %";
+  if (m.error == ErrorKind::kDeviation) return "RMS deviation from the reference path, % of its RMS displacement";
+  const char* unit = errorUnit(m);
+  return "|error| = |" + m.name + " - reference|, " + (*unit ? std::string(unit + 1) : std::string("dimensionless"));
+}
 
 render::ChartSpec workPrecisionChart(const StudyPlan& plan, const std::vector<Row>& rows) {
   const StudyMeasure& m = plan.study.series.front().measures.front();
+  const double scale = errorScale(m);
   render::ChartSpec chart;
   chart.title = plan.study.name + ": error against cost (one line per series through its best points)";
   chart.x_label = costLabel(plan.study.cost);
-  chart.y_label = m.error == ErrorKind::kRelative    ? "|error| = |" + m.name + " / reference - 1|"
-                  : m.error == ErrorKind::kDeviation ? "RMS deviation / RMS displacement of the reference"
-                                                     : "|error| = |" + m.name + " - reference|" + errorUnit(m);
-  for (const StudySeries& s : plan.study.series) {
-    if (s.measures.front().error != m.error || s.measures.front().kind != m.kind) {
-      chart.y_label = "|error| (each series in its own measure's terms: see report.md)";
-    }
-  }
+  chart.y_label = errorLabel(plan);
+  chart.stamp = runsStamp(rows);
   chart.log_x = chart.log_y = true;
   chart.width = 1280;
   chart.height = 720;
@@ -186,15 +256,19 @@ render::ChartSpec workPrecisionChart(const StudyPlan& plan, const std::vector<Ro
   for (const StudySeries& s : plan.study.series) {
     const std::vector<const Row*> points = chartable(rows, s.name, plan.study.cost);
     if (points.empty()) continue;
-    const Eigen::Vector3f c = kSeriesColours[colour++ % std::size(kSeriesColours)];
-    render::ChartSeries markers{s.name, c, {}, {}};
+    const render::SeriesLook look = render::seriesLook(colour++);
+    render::ChartSeries markers{s.name, look.colour, {}, {}};
     markers.style = render::SeriesStyle::kMarkers;
-    render::ChartSeries front{"", c, {}, {}};
+    markers.marker = look.marker;
+    markers.dash = look.dash;  // the legend shows the front's line too
+    markers.legend_line = true;
+    render::ChartSeries front{"", look.colour, {}, {}};
+    front.dash = look.dash;
     const std::vector<std::string> varying = varyingAxes(rows, s.name);
     double best = HUGE_VAL;
     for (const Row* r : points) {
       markers.x.push_back(r->cost(plan.study.cost));
-      markers.y.push_back(std::abs(r->error()));
+      markers.y.push_back(scale * std::abs(r->error()));
       // The best error at this cost or less, by a margin: a point 0.01 % better than a cheaper one
       // is the same accuracy, and labelling it would crowd the labels that matter.
       const bool on_front = std::abs(r->error()) < kFrontGain * best;
@@ -202,7 +276,7 @@ render::ChartSpec workPrecisionChart(const StudyPlan& plan, const std::vector<Ro
       if (on_front) {
         best = std::abs(r->error());
         front.x.push_back(r->cost(plan.study.cost));
-        front.y.push_back(best);
+        front.y.push_back(scale * best);
       }
     }
     // |error| 0 has no place on a log axis: say how many points that leaves out.
@@ -270,17 +344,58 @@ double axisNumber(const Row& r, const std::string& axis) {
   return NAN;
 }
 
+// The value a chart against an axis draws of a row's measure: a trajectory's deviation in
+// percent of the reference path's displacement, else the measure in its unit.
+double chartedValue(const StudyMeasure& m, const MeasureResult& x) {
+  return m.kind == MeasureKind::kTrajectory ? 100.0 * x.error : x.measure;
+}
+
+// The first series' reference against the axis, dotted grey: "reference: ..." for a scored
+// study, "comparison: ..." for one that is not. None for a trajectory (its value is a distance
+// from its reference).
+void addReferenceLine(render::ChartSpec& chart, const StudyPlan& plan, const std::vector<Row>& rows, std::size_t k,
+                      const std::string& axis) {
+  const StudyMeasure& m = plan.study.series.front().measures[k];
+  if (m.kind == MeasureKind::kTrajectory) return;
+  const std::string first = plan.study.series.front().name;
+  render::ChartSeries reference{std::string(plan.study.scored ? "reference: " : "comparison, a flat pad: ") +
+                                    referenceName(m.reference) + " (" + first + "'s runs)",
+                                Eigen::Vector3f(0.3f, 0.3f, 0.3f), {}, {}};
+  reference.dash = render::LineDash::kDotted;
+  for (const Row& r : rows) {
+    if (r.series != first || r.measures.size() <= k || !std::isfinite(r.measures[k].reference)) continue;
+    reference.x.push_back(axisNumber(r, axis));
+    reference.y.push_back(r.measures[k].reference);
+  }
+  if (!reference.x.empty()) chart.series.push_back(std::move(reference));
+}
+
+// Log axes where the values call for them: x when its values are positive and span a factor 8
+// or more (rates that double), y for a trajectory's deviation (decades apart).
+void chooseScales(render::ChartSpec& chart, const StudyMeasure& m) {
+  double lo = HUGE_VAL, hi = 0.0;
+  for (const render::ChartSeries& s : chart.series) {
+    for (double x : s.x) {
+      lo = std::min(lo, x);
+      hi = std::max(hi, x);
+    }
+  }
+  chart.log_x = lo > 0.0 && hi >= 8.0 * lo;
+  chart.log_y = m.kind == MeasureKind::kTrajectory;
+}
+
 render::ChartSpec measureAgainstAxis(const StudyPlan& plan, const std::vector<Row>& rows, std::size_t k,
                                      const std::string& axis) {
   const StudyMeasure& m = plan.study.series.front().measures[k];
   render::ChartSpec chart;
   chart.title = plan.study.name + ": " + m.name + " against " + axis;
-  chart.x_label = axis;
-  chart.y_label = m.name + (*valueUnit(m.kind) ? std::string(" (") + (valueUnit(m.kind) + 1) + ")" : "");
+  chart.x_label = axisLabel(axis);
+  chart.y_label = m.kind == MeasureKind::kTrajectory
+                      ? m.name + ": RMS deviation from the reference path, % of its RMS displacement"
+                      : m.name + ", " + (*valueUnit(m.kind) ? std::string(valueUnit(m.kind) + 1) : "dimensionless");
+  chart.stamp = runsStamp(rows, k);
   chart.width = 1280;
   chart.height = 720;
-  static const render::MarkerShape kMarkers[] = {render::MarkerShape::kCircle, render::MarkerShape::kSquare,
-                                                 render::MarkerShape::kTriangle, render::MarkerShape::kDiamond};
   std::map<std::string, std::size_t> line_of;
   for (const StudySeries& s : plan.study.series) {
     const std::vector<std::string> varying = varyingAxes(rows, s.name);
@@ -290,32 +405,28 @@ render::ChartSpec measureAgainstAxis(const StudyPlan& plan, const std::vector<Ro
       if (!line_of.count(key)) {
         const std::size_t i = chart.series.size();
         line_of[key] = i;
-        render::ChartSeries line{key, kSeriesColours[i % std::size(kSeriesColours)], {}, {}};
+        const render::SeriesLook look = render::seriesLook(i);
+        render::ChartSeries line{key, look.colour, {}, {}};
         line.style = render::SeriesStyle::kLineAndMarkers;
-        line.marker = kMarkers[i % std::size(kMarkers)];
+        line.marker = look.marker;
+        line.dash = look.dash;
         chart.series.push_back(std::move(line));
       }
       render::ChartSeries& line = chart.series[line_of[key]];
       line.x.push_back(axisNumber(r, axis));
-      line.y.push_back(r.measures[k].measure);
+      line.y.push_back(chartedValue(m, r.measures[k]));
     }
   }
-  render::ChartSeries reference{std::string("reference: ") + referenceText(m.reference) + " (" +
-                                    plan.study.series.front().name + "'s runs)",
-                                Eigen::Vector3f(0.45f, 0.45f, 0.45f), {}, {}};
-  reference.dash = render::LineDash::kDotted;
-  for (const Row& r : rows) {
-    if (r.series != plan.study.series.front().name || r.measures.size() <= k) continue;
-    if (!std::isfinite(r.measures[k].reference)) continue;
-    reference.x.push_back(axisNumber(r, axis));
-    reference.y.push_back(r.measures[k].reference);
-  }
-  if (!reference.x.empty()) chart.series.push_back(std::move(reference));
+  addReferenceLine(chart, plan, rows, k, axis);
   for (render::ChartSeries& line : chart.series) sortByX(line);
+  chooseScales(chart, m);
+  if (const std::string press = pressText(rows, k); !press.empty()) chart.notes.push_back(press);
   return chart;
 }
 
 }  // namespace
+
+std::string referenceName(ReferenceKind k) { return referenceText(k); }
 
 std::vector<AxisChart> axisCharts(const StudyPlan& plan, const std::vector<Row>& rows) {
   std::vector<AxisChart> out;

@@ -27,6 +27,7 @@ constexpr const char* kReferenceKinds[] = {"run", "two_thirds_mu_f_r", "mu_f_r",
                                            "rolling_prediction", "patch_radius", "f_r"};
 constexpr const char* kErrorKinds[] = {"relative", "absolute", "deviation"};
 constexpr const char* kCostKinds[] = {"step", "patch"};
+constexpr const char* kQuestions[] = {"cost", "effect"};
 
 // The analytic references each measure can be compared with (the reference run always can).
 bool referenceFits(MeasureKind m, ReferenceKind r) {
@@ -282,6 +283,28 @@ void checkGridSize(const StudyDesc& study, bool quick) {
   }
 }
 
+// `scored` and `question` fit together and the study: a cost question ranks runs by their error,
+// so it is scored; an effect is shown against a charted axis; an unscored study has no measure
+// that is itself an error (a trajectory is a distance from its reference run).
+void checkQuestion(Reader& r, const StudyDesc& study) {
+  const toml::node* question = r.nodeOf("question");
+  if (study.question == StudyQuestion::kCost && !study.scored) {
+    r.fail(question ? question : r.nodeOf("scored"), question ? "question" : "scored",
+           "a cost question ranks runs by their error against the references: it needs scored = true "
+           "(or question = \"effect\")");
+  }
+  if (study.question == StudyQuestion::kEffect && study.chart_axes.empty()) {
+    r.fail(question, "question", "\"effect\" is shown against an axis: give an [[axes]] chart = true");
+  }
+  for (const StudySeries& s : study.series) {
+    for (const StudyMeasure& m : s.measures) {
+      if (study.scored || m.kind != MeasureKind::kTrajectory) continue;
+      r.fail(r.nodeOf("scored"), "scored",
+             "false, but measure '" + m.name + "' is a trajectory: its value is a distance from the reference run, an error");
+    }
+  }
+}
+
 }  // namespace
 
 std::string resolveSceneIn(const std::string& base_dir, const std::string& scene) {
@@ -345,6 +368,8 @@ StudyDesc parseStudyText(const std::string& text, const std::string& source_name
   study.name = r.string("name", fs::path(source_name).stem().string());
   study.summary = r.string("summary", "");
   study.cost = static_cast<CostKind>(r.choice("cost", kCostKinds, 0));
+  study.scored = r.boolean("scored", true);
+  study.question = static_cast<StudyQuestion>(r.choice("question", kQuestions, 0));
   const auto sceneOf = [&](Reader& at, const std::string& fallback) {
     const std::string scene = at.string("scene", "");
     if (scene.empty()) return fallback;
@@ -400,6 +425,7 @@ StudyDesc parseStudyText(const std::string& text, const std::string& source_name
     sr.finish();
     study.series.push_back(std::move(s));
   }
+  checkQuestion(r, study);
   r.finish();
   return study;
 }

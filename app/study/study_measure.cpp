@@ -153,6 +153,11 @@ class View {
   // coupling force over the window's first kPressRows rows, before the load tips the body (N),
   // r the Eq. 1 radius of its press depth F / k (m).
   double pressMoment() const {
+    const auto [press, radius] = pressAcross();
+    return press * radius;
+  }
+  // F and r of pressMoment() (N, m).
+  std::pair<double, double> pressAcross() const {
     constexpr std::size_t kPressRows = 50;
     const std::string f = finger_->name;
     const std::size_t n = std::min(rows_.size(), kPressRows);
@@ -163,8 +168,8 @@ class View {
     }
     const double press = sum / static_cast<double>(n);
     const sim::PatchSettings& p = finger_->patch;
-    if (softPad()) return press * patchRadius();
-    return press * sim::contactRadius(press / finger_->coupling.stiffness, p.r_max, p.d0);
+    if (softPad()) return {press, patchRadius()};
+    return {press, sim::contactRadius(press / finger_->coupling.stiffness, p.r_max, p.d0)};
   }
   // The loads on the body at time t: force (N) and torque (N m).
   std::pair<Vec3, Vec3> loads(double t) const {
@@ -379,6 +384,30 @@ double measureError(ErrorKind kind, double measure, double reference) {
   return NAN;
 }
 
+namespace {
+
+// The press an analytic reference was formed from, in `r`.
+void statePress(ReferenceKind k, const View& v, MeasureResult& r) {
+  switch (k) {
+    case ReferenceKind::kTwoThirdsMuFR:
+    case ReferenceKind::kMuFR:
+    case ReferenceKind::kHertzMuFR:
+    case ReferenceKind::kThinLayerMuFR:
+      r.press_force_n = v.normalForce();
+      r.press_radius_m = v.pressRadius();
+      r.friction = v.friction();
+      return;
+    case ReferenceKind::kMuF:
+      r.press_force_n = v.normalForce();
+      r.friction = v.friction();
+      return;
+    case ReferenceKind::kFR: std::tie(r.press_force_n, r.press_radius_m) = v.pressAcross(); return;
+    default: return;
+  }
+}
+
+}  // namespace
+
 MeasureResult evaluateMeasure(const StudyMeasure& m, const RunOutputs& run, const RunOutputs* reference_run) {
   MeasureResult r;
   const View v(m, run);
@@ -408,6 +437,7 @@ MeasureResult evaluateMeasure(const StudyMeasure& m, const RunOutputs& run, cons
       case ReferenceKind::kFR: r.reference = v.pressMoment(); break;
       case ReferenceKind::kPatchRadius: r.reference = contactAt(m, run, v).at("radius_m").get<double>(); break;
     }
+    statePress(m.reference, v, r);
   }
   r.error = measureError(m.error, r.measure, r.reference);
   return r;

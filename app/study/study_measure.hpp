@@ -31,6 +31,10 @@ RunOutputs readRunOutputs(const std::string& dir, const SessionDesc& session);
 struct MeasureResult {
   double measure = NAN, reference = NAN, error = NAN;
   std::string note;  ///< why the measure is NaN when the run gives it none (a roll ratio of a body at rest)
+  /// What an analytic reference of the press was formed from (NaN for other references): the
+  /// press force F (N), the pad radius r (m: the Eq. 1 radius of the press, or a soft pad's own)
+  /// and the friction coefficient mu (NaN for F r, which has none).
+  double press_force_n = NAN, press_radius_m = NAN, friction = NAN;
 };
 
 /// Measure `m` of `run` against its reference: the analytic formula of the run's own measured

@@ -18,6 +18,7 @@
 #include "app/study/study.hpp"
 #include "app/study/study_chart.hpp"
 #include "app/study/study_measure.hpp"
+#include "app/study/study_report.hpp"
 #include "app/study/study_resume.hpp"
 #include "render/render_thread.hpp"
 #include "sim/scene/effective_settings.hpp"
@@ -116,10 +117,6 @@ std::string axisValue(const StudyRun& run, const std::string& field) {
   return "";
 }
 
-const std::vector<StudyMeasure>& measuresOf(const StudyPlan& plan, const StudyRun& run) {
-  return plan.study.series[static_cast<std::size_t>(run.measured_as)].measures;
-}
-
 std::string resultsCsv(const StudyPlan& plan, const std::vector<Row>& rows) {
   const std::vector<std::string> axes = axisFields(plan);
   const std::vector<StudyMeasure>& first = plan.study.series.front().measures;
@@ -145,108 +142,6 @@ std::string resultsCsv(const StudyPlan& plan, const std::vector<Row>& rows) {
   return out;
 }
 
-std::string errorText(const StudyMeasure& m, double e) {
-  char b[48];
-  if (!std::isfinite(e)) return "n/a";
-  if (m.error == ErrorKind::kAbsolute) std::snprintf(b, sizeof b, "%.3g%s", e, errorUnit(m));
-  else std::snprintf(b, sizeof b, "%+.2f %%", 100.0 * e);
-  return b;
-}
-
-std::string configurationText(const Row& r) {
-  std::string s = r.series;
-  for (const auto& [field, value] : r.run->axis_values) s += ", " + field.substr(field.rfind('.') + 1) + " " + value;
-  return s;
-}
-
-// True when a further measure is not the first one's quantity against another reference
-// (another kind, body, finger, axis or window): the report then shows its value too.
-bool otherQuantity(const StudyMeasure& a, const StudyMeasure& b) {
-  return a.kind != b.kind || a.body != b.body || a.finger != b.finger || a.axis != b.axis || a.from != b.from ||
-         a.to != b.to;
-}
-
-// Why some measures have no value (a roll ratio of a body at rest), one line each.
-std::string notesMd(const StudyPlan& plan, const std::vector<Row>& rows) {
-  std::string out;
-  for (const Row& r : rows) {
-    const std::vector<StudyMeasure>& own = measuresOf(plan, *r.run);
-    for (std::size_t k = 0; k < r.measures.size() && k < own.size(); ++k) {
-      if (r.measures[k].note.empty()) continue;
-      out += "- " + configurationText(r) + ", `" + own[k].name + "`: " + r.measures[k].note + "\n";
-    }
-  }
-  return out.empty() ? out : "\nNo value:\n\n" + out;
-}
-
-std::string reportMd(const StudyPlan& plan, const std::vector<Row>& rows, bool parallel_times) {
-  const StudyDesc& study = plan.study;
-  const std::vector<StudyMeasure>& measures = study.series.front().measures;
-  const StudyMeasure& m = measures.front();
-  std::string out = "# Study `" + study.name + "`\n\n" + study.summary + "\n\n";
-  out += "Study file: `" + study.source + "`. " + std::to_string(rows.size()) + " runs" +
-         (plan.quick ? " (the --quick grid)" : "") + ". ";
-  for (const std::string& e : plan.extra) out += "`--set " + e + "` ";
-  out += parallel_times ? "Step times were taken with several runs at once on one machine (or a run does not say "
-                          "when and where it ran): they include contention for the cores; use `--jobs 1` for "
-                          "published figures.\n\n"
-                        : "Step times were taken one run at a time on each machine.\n\n";
-  out += "Error: ";
-  out += m.error == ErrorKind::kRelative    ? "measure / reference - 1.\n\n"
-         : m.error == ErrorKind::kAbsolute  ? "measure - reference, in the measure's unit.\n\n"
-                                            : "RMS deviation from the reference path / its RMS displacement.\n\n";
-  bool same_measure = true;
-  for (const StudySeries& s : study.series) same_measure = same_measure && s.measures.front().name == m.name;
-  out += "| configuration | " + (same_measure ? m.name : std::string("measure (its series')")) + " | reference | error |";
-  for (std::size_t k = 1; k < measures.size(); ++k) {
-    out += (otherQuantity(measures[k], m) ? " " + measures[k].name + " |" : "") + " " + measures[k].name + " error |";
-  }
-  out += " step us (median) | step us (p99) | patch us |\n|---|---|---|---|";
-  for (std::size_t k = 1; k < measures.size(); ++k) out += otherQuantity(measures[k], m) ? "---|---|" : "---|";
-  out += "---|---|---|\n";
-  char b[160];
-  for (const Row& r : rows) {
-    const MeasureResult x = r.measures.empty() ? MeasureResult{} : r.measures.front();
-    const std::vector<StudyMeasure>& own = measuresOf(plan, *r.run);  // a series may measure otherwise
-    std::snprintf(b, sizeof b, " | %.5g | %.5g | %s |", x.measure, x.reference, errorText(own.front(), x.error).c_str());
-    out.append("| ").append(configurationText(r));
-    if (r.status != "ok") out.append(" (").append(r.status).append(")");
-    out += b;
-    for (std::size_t k = 1; k < measures.size(); ++k) {
-      const StudyMeasure& mk = k < own.size() ? own[k] : measures[k];
-      const MeasureResult xk = k < r.measures.size() ? r.measures[k] : MeasureResult{};
-      if (otherQuantity(measures[k], m)) {
-        std::snprintf(b, sizeof b, " %.5g |", xk.measure);
-        out += b;
-      }
-      out.append(1, ' ').append(errorText(mk, xk.error)).append(" |");
-    }
-    std::snprintf(b, sizeof b, " %.1f | %.1f | %.2f |\n", r.step_median, r.step_p99, r.patch_mean);
-    out += b;
-  }
-  out += notesMd(plan, rows);
-  out += "\n## The most accurate configuration per budget\n\n";
-  out += "Budget on the " + costLabel(study.cost) + "; reference runs left out, and runs measured otherwise than " +
-         "the first series (`" + m.name + "`).\n\n| budget (us) | configuration | error | cost (us) |\n|---|---|---|---|\n";
-  for (double budget : {10.0, 20.0, 50.0, 100.0}) {
-    const Row* best = nullptr;
-    for (const Row& r : rows) {
-      if (r.run->series < 0 || r.status != "ok" || !std::isfinite(r.error()) || !(r.cost(study.cost) <= budget)) continue;
-      const StudyMeasure& own = measuresOf(plan, *r.run).front();
-      if (own.kind != m.kind || own.error != m.error || own.reference != m.reference) continue;  // not comparable
-      if (!best || std::abs(r.error()) < std::abs(best->error())) best = &r;
-    }
-    if (best) {
-      std::snprintf(b, sizeof b, "| %.0f | %s | %s | %.1f |\n", budget, configurationText(*best).c_str(),
-                    errorText(m, best->error()).c_str(), best->cost(study.cost));
-    } else {
-      std::snprintf(b, sizeof b, "| %.0f | none fits | | |\n", budget);
-    }
-    out += b;
-  }
-  return out;
-}
-
 // True when two runs' steps overlapped in time on one host, or when a run does not say when and
 // where it ran (summary.json's finished_unix_s, wall_time_s and host).
 bool ranAtOnce(const std::vector<std::optional<RunOutputs>>& outputs) {
@@ -265,6 +160,21 @@ bool ranAtOnce(const std::vector<std::optional<RunOutputs>>& outputs) {
     }
   }
   return false;
+}
+
+// Each chart as PNG and SVG into `out`; the work-precision chart answers a scored cost question
+// only. Returns ", FILE.png" per chart.
+std::string writeCharts(const StudyPlan& plan, const std::vector<Row>& rows, const std::string& out) {
+  std::string charts;
+  if (plan.study.scored && plan.study.question == StudyQuestion::kCost) {
+    render::writeChartPng(workPrecisionChart(plan, rows), (fs::path(out) / "work-precision.png").string());
+    charts += ", work-precision.png";
+  }
+  for (const AxisChart& c : axisCharts(plan, rows)) {
+    render::writeChartPng(c.chart, (fs::path(out) / c.file).string());
+    charts += ", " + c.file;
+  }
+  return charts;
 }
 
 }  // namespace
@@ -329,21 +239,16 @@ int collectStudy(const StudyPlan& plan, const std::string& runs_dir, const std::
   if (ec) throw std::runtime_error(out + ": cannot create folder: " + ec.message());
   writeFileAtomically((fs::path(out) / kResultsFile).string(), resultsCsv(plan, rows));
   writeFileAtomically((fs::path(out) / "report.md").string(), reportMd(plan, rows, parallel_times));
-  render::writeChartPng(workPrecisionChart(plan, rows), (fs::path(out) / "work-precision.png").string());
-  std::string also;
-  for (const AxisChart& c : axisCharts(plan, rows)) {
-    render::writeChartPng(c.chart, (fs::path(out) / c.file).string());
-    also += ", " + c.file;
-  }
+  const std::string charts = writeCharts(plan, rows, out);
   int unmeasured = 0, incomplete = 0, absent = 0;
   for (const Row& r : rows) {
     unmeasured += r.status == "unmeasured";
     incomplete += r.status == "incomplete";
     absent += r.status == "missing";
   }
-  std::printf("%s: %zu runs (%d missing, %d incomplete, %d unmeasured); wrote %s/results.csv, report.md, "
-              "work-precision.png%s\n",
-              plan.study.name.c_str(), rows.size(), absent, incomplete, unmeasured, out.c_str(), also.c_str());
+  std::printf("%s: %zu runs (%d missing, %d incomplete, %d unmeasured); wrote %s/results.csv, report.md%s (and "
+              "an SVG beside each PNG)\n",
+              plan.study.name.c_str(), rows.size(), absent, incomplete, unmeasured, out.c_str(), charts.c_str());
   return missing + unmeasured == 0 ? 0 : 1;
 }
 

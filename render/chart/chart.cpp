@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "render/chart/chart_axes.hpp"
 #include "render/chart/chart_marks.hpp"
 #include "render/gl/context.hpp"
 #include "render/gl/imgui_layer.hpp"
@@ -19,179 +20,9 @@ namespace {
 
 using chart_marks::Box;
 using chart_marks::kMarkerRadiusPx;
-constexpr double kLogPad = 0.04;         // share of a log axis's span (decades) added each side
-constexpr float kMinorDecadePx = 30.0f;  // minor log grid lines only on decades this wide
-constexpr int kMaxDecadeLabels = 12;
+using namespace chart_axes;
 constexpr ImU32 kInk = IM_COL32(30, 30, 30, 255), kGrid = IM_COL32(220, 220, 220, 255);
 constexpr ImU32 kMinorGrid = IM_COL32(238, 238, 238, 255);
-
-struct Range {
-  double lo = 0.0, hi = 1.0;
-};
-
-// Whether `v` can be drawn on a linear (log = false) or log axis.
-bool onAxis(double v, bool log) {
-  return std::isfinite(v) && (!log || v > 0.0);
-}
-
-// One axis: its data range, its scale and the pixels of its two ends.
-struct Axis {
-  Range range;
-  bool log = false;
-  float px_lo = 0.0f, px_hi = 1.0f;  // pixels of range.lo and range.hi
-
-  double coord(double v) const { return log ? std::log10(v) : v; }
-  float pixel(double v) const {
-    const double t = (coord(v) - coord(range.lo)) / (coord(range.hi) - coord(range.lo));
-    return px_lo + static_cast<float>(t) * (px_hi - px_lo);
-  }
-  float decadePx() const {
-    return std::abs(px_hi - px_lo) / static_cast<float>(std::log10(range.hi / range.lo));
-  }
-};
-
-// A tick: a grid line, labelled or not; minor lines are fainter.
-struct Tick {
-  double value;
-  bool labelled, major;
-};
-
-// A "nice" tick step (1, 2 or 5 times a power of ten) giving about `count` ticks over `span`.
-double tickStep(double span, int count) {
-  const double raw = span / count, power = std::pow(10.0, std::floor(std::log10(raw)));
-  for (double m : {1.0, 2.0, 5.0}) {
-    if (m * power >= raw) return m * power;
-  }
-  return 10.0 * power;
-}
-
-// The coordinates of the points drawable on both axes.
-struct DrawnValues {
-  std::vector<double> x, y;
-};
-
-DrawnValues drawnValues(const ChartSpec& chart) {
-  DrawnValues out;
-  for (const ChartSeries& s : chart.series) {
-    for (std::size_t i = 0; i < std::min(s.x.size(), s.y.size()); ++i) {
-      if (!onAxis(s.x[i], chart.log_x) || !onAxis(s.y[i], chart.log_y)) continue;
-      out.x.push_back(s.x[i]);
-      out.y.push_back(s.y[i]);
-    }
-  }
-  return out;
-}
-
-// Linear x: the data's full span.
-Range fitLinearX(const std::vector<double>& v) {
-  if (v.empty()) return {0.0, 1.0};
-  const auto [lo, hi] = std::minmax_element(v.begin(), v.end());
-  return *hi > *lo ? Range{*lo, *hi} : Range{0.0, 1.0};
-}
-
-// Linear y: every value, padded by 5 %; or, when that span is more than kClipRatio times the
-// 0.2 % to 99.8 % quantiles' (single-step impacts that would flatten every curve), the
-// quantiles padded by 5 %, and `clipped` set so the values beyond are marked. Or the chart's
-// fixed range (values beyond it marked too).
-constexpr double kClipRatio = 4.0;
-
-Range fitLinearY(std::vector<double> v, const ChartSpec& chart) {
-  if (chart.y_max > chart.y_min) return {chart.y_min, chart.y_max};
-  Range y{0.0, 0.0};
-  if (!v.empty()) {
-    std::sort(v.begin(), v.end());
-    const Range all{v.front(), v.back()};
-    // Outward-rounded indices: a series of fewer than 500 values keeps its extremes.
-    const Range middle{v[static_cast<std::size_t>(std::floor(0.002 * static_cast<double>(v.size() - 1)))],
-                       v[static_cast<std::size_t>(std::ceil(0.998 * static_cast<double>(v.size() - 1)))]};
-    y = all.hi - all.lo > kClipRatio * (middle.hi - middle.lo) && middle.hi > middle.lo ? middle : all;
-  }
-  if (!(y.hi > y.lo)) {  // one value: a span around it that its magnitude can show
-    const double half = y.lo != 0.0 ? 0.05 * std::abs(y.lo) : 1.0;
-    y = {y.lo - half, y.lo + half};
-  }
-  const double pad = 0.05 * (y.hi - y.lo);
-  return {y.lo - pad, y.hi + pad};
-}
-
-// Log axis: the positive data's full span, snapped outward to decades when it is more than
-// one decade (at least one decade, centred on the data, so a tick is always labelled), then
-// padded by kLogPad of its span in decades.
-Range fitLog(const std::vector<double>& v) {
-  if (v.empty()) return {1.0, 10.0};
-  const auto [lo, hi] = std::minmax_element(v.begin(), v.end());
-  double a = std::log10(*lo), b = std::log10(*hi);
-  if (b - a > 1.0) {
-    a = std::floor(a + 1e-9);
-    b = std::ceil(b - 1e-9);
-  }
-  if (b - a < 1.0) {
-    const double middle = 0.5 * (a + b);
-    a = middle - 0.5;
-    b = middle + 0.5;
-  }
-  const double pad = kLogPad * (b - a);
-  return {std::pow(10.0, a - pad), std::pow(10.0, b + pad)};
-}
-
-Range fitY(const ChartSpec& chart, const std::vector<double>& v) {
-  if (!chart.log_y) return fitLinearY(v, chart);
-  if (chart.y_max > chart.y_min && chart.y_min > 0.0) return {chart.y_min, chart.y_max};
-  return fitLog(v);
-}
-
-std::vector<Tick> linearTicks(Range r, int count) {
-  std::vector<Tick> out;
-  const double step = tickStep(r.hi - r.lo, count);
-  for (double v = std::ceil(r.lo / step) * step; v <= r.hi + 1e-9; v += step) {
-    out.push_back({std::abs(v) < 1e-12 ? 0.0 : v, true, true});
-  }
-  return out;
-}
-
-// Decades (labelled; at most kMaxDecadeLabels of them), minor lines at 2..9 times a decade
-// (with `minor`; 2 and 5 labelled when the axis spans less than a decade) and, when fewer than
-// two ticks would be labelled, labels on every tick.
-std::vector<Tick> logTicks(const Axis& axis) {
-  const double a = std::log10(axis.range.lo), b = std::log10(axis.range.hi), eps = 1e-9;
-  const bool minor = axis.decadePx() >= kMinorDecadePx, sub_decade = b - a < 1.0;
-  const int k0 = static_cast<int>(std::floor(a)), k1 = static_cast<int>(std::ceil(b));
-  const int every = std::max(1, (k1 - k0 + kMaxDecadeLabels - 1) / kMaxDecadeLabels);
-  std::vector<Tick> out;
-  int labelled = 0;
-  for (int k = k0; k <= k1; ++k) {
-    for (int m = 1; m <= 9; ++m) {
-      const double v = m * std::pow(10.0, k), t = std::log10(v);
-      if (t < a - eps || t > b + eps) continue;
-      const bool label =
-          m == 1 ? (k % every + every) % every == 0 : sub_decade && (m == 2 || m == 5);
-      if (m == 1 || minor) out.push_back({v, label, m == 1});
-      labelled += label;
-    }
-  }
-  if (labelled < 2) {
-    for (Tick& tick : out) tick.labelled = true;
-  }
-  return out;
-}
-
-std::vector<Tick> ticks(const Axis& axis, int linear_count) {
-  return axis.log ? logTicks(axis) : linearTicks(axis.range, linear_count);
-}
-
-// "%g", with the exponent unpadded: 1e-05 -> 1e-5, 1e+06 -> 1e6.
-std::string tickText(double v) {
-  char buffer[32];
-  std::snprintf(buffer, sizeof buffer, "%g", v);
-  std::string text = buffer;
-  std::size_t i = text.find('e');
-  if (i == std::string::npos) return text;
-  ++i;
-  if (text[i] == '+') text.erase(i, 1);
-  if (text[i] == '-') ++i;
-  while (i + 1 < text.size() && text[i] == '0') text.erase(i, 1);
-  return text;
-}
 
 // One legend entry: its series and its width in pixels (swatch, gap, text, gap).
 struct LegendEntry {
@@ -206,6 +37,7 @@ struct Layout {
   // The legend: rows of entries above the plot, right-aligned, off the data.
   std::vector<std::vector<LegendEntry>> legend;
   float legend_top = 0.0f;
+  float stamp_y = 0.0f;  // the stamp's text's top: on the title's line, or a line of its own under it
 };
 
 float legendRowHeight(float font) { return 1.3f * font; }
@@ -233,6 +65,15 @@ Layout layout(const ChartSpec& chart, float font, ImVec2 origin) {
   // A y label that would run into the title gets a line of its own above the plot.
   const float y_label_end = origin.x + 0.4f * font + ImGui::CalcTextSize(chart.y_label.c_str()).x;
   if (!chart.title.empty() && y_label_end > l.lo.x - 0.5f * font) l.lo.y += 1.4f * font;
+  // The stamp on the title's line at the right, or on a line of its own when the title fills it.
+  l.stamp_y = origin.y + 0.6f * font;
+  if (!chart.stamp.empty()) {
+    const float title_end = l.lo.x + ImGui::CalcTextSize(chart.title.c_str()).x;
+    if (title_end + 2.0f * font + ImGui::CalcTextSize(chart.stamp.c_str()).x > l.hi.x) {
+      l.stamp_y += 1.5f * font;
+      l.lo.y += 1.5f * font;
+    }
+  }
   // Legend rows between the title and the plot, as many as its entries need beside the y label.
   const float room = l.hi.x - std::max(l.lo.x, y_label_end + font);
   float used = 0.0f;
@@ -262,7 +103,7 @@ Layout layout(const ChartSpec& chart, float font, ImVec2 origin) {
 
 // The chart being drawn: its draw list, fitted axes and plot corners.
 struct Canvas {
-  ImDrawList& d;
+  ChartPen& d;
   Axis x, y;
   ImVec2 lo, hi;
   float font;
@@ -275,7 +116,7 @@ struct Canvas {
   }
 };
 
-Canvas canvas(ImDrawList& d, const ChartSpec& chart, const Layout& l, float font) {
+Canvas canvas(ChartPen& d, const ChartSpec& chart, const Layout& l, float font) {
   DrawnValues v = drawnValues(chart);
   for (const ChartBand& b : chart.bands) {  // a log axis fitted to the data shows the bands too
     for (double y : {b.y_lo, b.y_hi}) {
@@ -298,25 +139,24 @@ void drawGrid(const Canvas& c) {
     const ImU32 colour = major ? kGrid : kMinorGrid;
     for (const Tick& t : xt) {
       if (t.major == major)
-        c.d.AddLine(ImVec2(c.x.pixel(t.value), c.lo.y), ImVec2(c.x.pixel(t.value), c.hi.y), colour);
+        c.d.line(ImVec2(c.x.pixel(t.value), c.lo.y), ImVec2(c.x.pixel(t.value), c.hi.y), colour);
     }
     for (const Tick& t : yt) {
       if (t.major == major)
-        c.d.AddLine(ImVec2(c.lo.x, c.y.pixel(t.value)), ImVec2(c.hi.x, c.y.pixel(t.value)), colour);
+        c.d.line(ImVec2(c.lo.x, c.y.pixel(t.value)), ImVec2(c.hi.x, c.y.pixel(t.value)), colour);
     }
   }
   for (const Tick& t : xt) {
     if (!t.labelled) continue;
     const std::string text = tickText(t.value);
     const float width = ImGui::CalcTextSize(text.c_str()).x;
-    c.d.AddText(ImVec2(c.x.pixel(t.value) - width / 2, c.hi.y + 0.3f * c.font), kInk, text.c_str());
+    c.d.text(ImVec2(c.x.pixel(t.value) - width / 2, c.hi.y + 0.3f * c.font), c.font, kInk, text);
   }
   for (const Tick& t : yt) {
     if (!t.labelled) continue;
     const std::string text = tickText(t.value);
     const float width = ImGui::CalcTextSize(text.c_str()).x;
-    c.d.AddText(ImVec2(c.lo.x - width - 0.4f * c.font, c.y.pixel(t.value) - c.font / 2), kInk,
-                text.c_str());
+    c.d.text(ImVec2(c.lo.x - width - 0.4f * c.font, c.y.pixel(t.value) - c.font / 2), c.font, kInk, text);
   }
 }
 
@@ -399,7 +239,11 @@ std::vector<Box> markerBoxes(const Canvas& c, const ChartSpec& chart) {
   return out;
 }
 
-// Point labels in small dark text on a faint white backing, by their markers or, where those
+// A point label's ink: its series' colour, darkened to read on white (Okabe–Ito's orange and
+// sky blue are pale as text).
+ImU32 labelInk(const Eigen::Vector3f& colour) { return imguiColour(0.45f * colour); }
+
+// Point labels in small text in their series' colour on a faint white backing, by their markers or, where those
 // places are taken, further out with a thin leader line; each kept off the markers and the
 // labels placed before it.
 void drawPointLabels(const Canvas& c, const ChartSpec& chart, const std::vector<Box>& band_labels) {
@@ -417,10 +261,10 @@ void drawPointLabels(const Canvas& c, const ChartSpec& chart, const std::vector<
       taken.push_back(box);
       if (placed.leader) {
         const ImVec2 end(std::clamp(p.x, box.lo.x, box.hi.x), std::clamp(p.y, box.lo.y, box.hi.y));
-        c.d.AddLine(p, end, IM_COL32(90, 90, 90, 255), 1.0f);
+        c.d.line(p, end, IM_COL32(90, 90, 90, 255), 1.0f);
       }
-      c.d.AddRectFilled(box.lo, box.hi, IM_COL32(255, 255, 255, 170));
-      c.d.AddText(ImGui::GetFont(), size, box.lo, kInk, text);
+      c.d.rectFilled(box.lo, box.hi, IM_COL32(255, 255, 255, 170));
+      c.d.text(box.lo, size, labelInk(s.colour), text);
     }
   }
 }
@@ -437,13 +281,13 @@ void drawLegend(const Canvas& c, const Layout& l) {
     for (const LegendEntry& e : row) {
       const ChartSeries& s = *e.series;
       const float middle = y + f / 2;
-      if (s.style != SeriesStyle::kMarkers) {
+      if (s.style != SeriesStyle::kMarkers || s.legend_line) {
         chart_marks::strokePath(c.d, {ImVec2(x, middle), ImVec2(x + swatch, middle)}, imguiColour(s.colour),
                                 s.dash == LineDash::kDotted ? 3.4f : 3.0f, s.dash);
       }
       if (s.style != SeriesStyle::kLine || s.marker_spacing_px > 0.0f)
         chart_marks::drawMarker(c.d, ImVec2(x + swatch / 2, middle), imguiColour(s.colour), s.marker);
-      c.d.AddText(ImVec2(x + swatch + 0.5f * f, y), kInk, s.label.c_str());
+      c.d.text(ImVec2(x + swatch + 0.5f * f, y), f, kInk, s.label);
       x += e.width;
     }
     y += legendRowHeight(f);
@@ -469,9 +313,9 @@ bool markBeyondRange(const Canvas& c, const ChartSeries& s) {
     last = x;
     any = true;
     if (above) {
-      c.d.AddTriangleFilled(ImVec2(x, c.lo.y), ImVec2(x - size, c.lo.y + 1.6f * size), ImVec2(x + size, c.lo.y + 1.6f * size), colour);
+      c.d.polygonFilled({ImVec2(x, c.lo.y), ImVec2(x - size, c.lo.y + 1.6f * size), ImVec2(x + size, c.lo.y + 1.6f * size)}, colour);
     } else {
-      c.d.AddTriangleFilled(ImVec2(x, c.hi.y), ImVec2(x - size, c.hi.y - 1.6f * size), ImVec2(x + size, c.hi.y - 1.6f * size), colour);
+      c.d.polygonFilled({ImVec2(x, c.hi.y), ImVec2(x - size, c.hi.y - 1.6f * size), ImVec2(x + size, c.hi.y - 1.6f * size)}, colour);
     }
   }
   return any;
@@ -491,15 +335,15 @@ std::vector<Box> drawBands(const Canvas& c, const ChartSpec& chart) {
     const float hi = onAxis(b.y_hi, c.y.log) ? std::clamp(c.y.pixel(b.y_hi), top, bottom) : top;
     if (!(lo > hi)) continue;
     const Eigen::Vector3f& k = b.colour;
-    c.d.AddRectFilled(ImVec2(c.lo.x + 1.0f, hi), ImVec2(c.hi.x - 1.0f, lo), imguiColour(k, 0.22f));
-    c.d.AddLine(ImVec2(c.lo.x + 1.0f, hi), ImVec2(c.hi.x - 1.0f, hi), imguiColour(k, 0.8f), 1.0f);
+    c.d.rectFilled(ImVec2(c.lo.x + 1.0f, hi), ImVec2(c.hi.x - 1.0f, lo), imguiColour(k, 0.22f));
+    c.d.line(ImVec2(c.lo.x + 1.0f, hi), ImVec2(c.hi.x - 1.0f, hi), imguiColour(k, 0.8f), 1.0f);
     if (!b.label.empty()) {
       // At the band's bottom-left when there is room under its top (points at the band's edge,
       // e.g. at the floor itself, keep off it), else at its top-left.
       const ImVec2 extent = ImGui::GetFont()->CalcTextSizeA(size, FLT_MAX, 0.0f, b.label.c_str());
       const bool room = lo - hi > 2.0f * extent.y + 0.3f * c.font;
       const ImVec2 at(c.lo.x + 0.4f * c.font, room ? lo - extent.y - 0.15f * c.font : hi + 0.15f * c.font);
-      c.d.AddText(ImGui::GetFont(), size, at, kInk, b.label.c_str());
+      c.d.text(at, size, kInk, b.label);
       labels.push_back({at, ImVec2(at.x + extent.x, at.y + extent.y)});
     }
   }
@@ -511,28 +355,21 @@ std::vector<Box> drawBands(const Canvas& c, const ChartSpec& chart) {
 void drawCursor(const Canvas& c, const ChartSpec& chart) {
   if (!std::isfinite(chart.cursor_x) || !onAxis(chart.cursor_x, chart.log_x)) return;
   const float x = c.x.pixel(chart.cursor_x);
-  c.d.AddLine(ImVec2(x, c.lo.y), ImVec2(x, c.hi.y), kInk, 1.5f);
+  c.d.line(ImVec2(x, c.lo.y), ImVec2(x, c.hi.y), kInk, 1.5f);
   if (chart.cursor_label.empty()) return;
   const ImVec2 size = ImGui::CalcTextSize(chart.cursor_label.c_str());
   const float pad = 0.3f * c.font;
   const bool right = x + 2 * pad + size.x <= c.hi.x;
   const ImVec2 lo(right ? x + 1.0f : x - 1.0f - 2 * pad - size.x, c.lo.y + 1.0f);
-  c.d.AddRectFilled(lo, ImVec2(lo.x + 2 * pad + size.x, lo.y + size.y + pad), IM_COL32(255, 255, 255, 230));
-  c.d.AddText(ImVec2(lo.x + pad, lo.y + 0.5f * pad), kInk, chart.cursor_label.c_str());
+  c.d.rectFilled(lo, ImVec2(lo.x + 2 * pad + size.x, lo.y + size.y + pad), IM_COL32(255, 255, 255, 230));
+  c.d.text(ImVec2(lo.x + pad, lo.y + 0.5f * pad), c.font, kInk, chart.cursor_label);
 }
 
-}  // namespace
-
-void addChart(ImDrawList& d, const ChartSpec& chart, float left, float top) {
-  const float font = ImGui::GetFontSize();
-  const Layout l = layout(chart, font, ImVec2(left, top));
-  const Canvas c = canvas(d, chart, l, font);
-  const float right = left + static_cast<float>(chart.width), bottom = top + static_cast<float>(chart.height);
-  d.AddRectFilled(ImVec2(left, top), ImVec2(right, bottom), IM_COL32(255, 255, 255, 255));
-  drawGrid(c);
-  // Data, clipped to the plot: bands under everything, every series' lines (solid ones first),
-  // then markers over them, then point labels.
-  d.PushClipRect(l.lo, l.hi, true);
+// The data, clipped to the plot: bands under everything, every series' lines (solid ones first),
+// then markers over them, then point labels, edge marks and the cursor. Returns whether a value
+// lay beyond the y axis.
+bool drawData(const Canvas& c, const ChartSpec& chart) {
+  c.d.pushClip(c.lo, c.hi);
   const std::vector<Box> band_labels = drawBands(c, chart);
   std::vector<const ChartSeries*> lines;
   for (const ChartSeries& s : chart.series) {
@@ -550,30 +387,56 @@ void addChart(ImDrawList& d, const ChartSpec& chart, float left, float top) {
   bool beyond = false;
   for (const ChartSeries& s : chart.series) beyond = markBeyondRange(c, s) || beyond;
   drawCursor(c, chart);
-  d.PopClipRect();
-  d.AddRect(l.lo, l.hi, kInk);  // the frame, over the bands
-  // Title, axis labels, legend, notes.
+  c.d.popClip();
+  return beyond;
+}
+
+// The stamp at the title's line on the right, in a box of its own: what the chart lacks.
+void drawStamp(const Canvas& c, const ChartSpec& chart, const Layout& l) {
+  if (chart.stamp.empty()) return;
+  const ImVec2 size = ImGui::CalcTextSize(chart.stamp.c_str());
+  const float pad = 0.3f * c.font;
+  const ImVec2 lo(c.hi.x - size.x - 2 * pad, l.stamp_y - 0.5f * pad), hi(c.hi.x, l.stamp_y + size.y + 0.5f * pad);
+  c.d.rectFilled(lo, hi, IM_COL32(255, 244, 214, 255));
+  c.d.rect(lo, hi, IM_COL32(160, 90, 0, 255));
+  c.d.text(ImVec2(lo.x + pad, l.stamp_y), c.font, kInk, chart.stamp);
+}
+
+}  // namespace
+
+void addChart(ImDrawList& list, const ChartSpec& chart, float left, float top, SvgText* svg) {
+  const float font = ImGui::GetFontSize();
+  ChartPen d(list, svg);
+  const Layout l = layout(chart, font, ImVec2(left, top));
+  const Canvas c = canvas(d, chart, l, font);
+  const float right = left + static_cast<float>(chart.width), bottom = top + static_cast<float>(chart.height);
+  d.rectFilled(ImVec2(left, top), ImVec2(right, bottom), IM_COL32(255, 255, 255, 255));
+  drawGrid(c);
+  const bool beyond = drawData(c, chart);
+  d.rect(l.lo, l.hi, kInk);  // the frame, over the bands
+  // Title, axis labels, legend, stamp, notes.
   const float x_label_y = l.hi.y + 1.9f * font;
-  d.AddText(l.title, kInk, chart.title.c_str());
-  d.AddText(ImVec2((l.lo.x + l.hi.x - ImGui::CalcTextSize(chart.x_label.c_str()).x) / 2, x_label_y), kInk,
-            chart.x_label.c_str());
-  d.AddText(l.y_label, kInk, chart.y_label.c_str());
+  d.text(l.title, font, kInk, chart.title);
+  d.text(ImVec2((l.lo.x + l.hi.x - ImGui::CalcTextSize(chart.x_label.c_str()).x) / 2, x_label_y), font, kInk,
+         chart.x_label);
+  d.text(l.y_label, font, kInk, chart.y_label);
   drawLegend(c, l);
+  drawStamp(c, chart, l);
   if (beyond) {  // say what the edge triangles mean, under the plot on the right
     const char* note = "triangles at the edges: values beyond the y axis";
-    d.AddText(ImVec2(l.hi.x - ImGui::CalcTextSize(note).x, x_label_y), kInk, note);
+    d.text(ImVec2(l.hi.x - ImGui::CalcTextSize(note).x, x_label_y), font, kInk, note);
   }
   const std::vector<std::string> notes = noteLines(chart, font);
   for (std::size_t k = 0; k < notes.size(); ++k) {
     const float y = x_label_y + 1.3f * font + static_cast<float>(k) * noteRowHeight(font);
-    d.AddText(ImGui::GetFont(), noteSize(font), ImVec2(left + 0.4f * font, y), kInk, notes[k].c_str());
+    d.text(ImVec2(left + 0.4f * font, y), noteSize(font), kInk, notes[k]);
   }
 }
 
-void drawChart(ImGuiLayer& layer, const ChartSpec& chart) {
+void drawChart(ImGuiLayer& layer, const ChartSpec& chart, SvgText* svg) {
   GF_ASSERT_GL_THREAD();
   layer.beginFrame(1.0 / 60.0, {});
-  addChart(*ImGui::GetForegroundDrawList(), chart, 0.0f, 0.0f);
+  addChart(*ImGui::GetForegroundDrawList(), chart, 0.0f, 0.0f, svg);
   layer.render();
 }
 

@@ -1,5 +1,6 @@
-// Charts drawn with ImGui's draw lists into a PNG: the Fig. 8 force curve (lines on linear
-// axes) and work-precision diagrams (markers with point labels on log-log axes).
+// Charts drawn with ImGui's draw lists into a PNG, and the same picture as SVG: the Fig. 8 force
+// curve (lines on linear axes) and work-precision diagrams (markers with point labels on log-log
+// axes). Series are told apart by colour, marker and dash together (seriesLook()).
 #pragma once
 
 #include <Eigen/Core>
@@ -20,8 +21,9 @@ struct ChartSeries {
   Eigen::Vector3f colour = Eigen::Vector3f(0.1f, 0.3f, 0.9f);  ///< linear RGB
   std::vector<double> x, y;
   SeriesStyle style = SeriesStyle::kLine;
-  /// Empty, or one per point (as many as x): small text up-right of each point's marker, kept
-  /// inside the plot and off other labels and markers. Empty strings are not drawn.
+  /// Empty, or one per point (as many as x): small text in the series' colour (darkened) up-right
+  /// of each point's marker, kept inside the plot and off other labels and markers. Empty
+  /// strings are not drawn.
   std::vector<std::string> point_labels = {};
   LineDash dash = LineDash::kSolid;
   MarkerShape marker = MarkerShape::kCircle;
@@ -29,6 +31,9 @@ struct ChartSeries {
   /// x, shifted by `marker_phase` (a share of the spacing), so that curves lying on one another
   /// keep their markers apart; 0: none.
   float marker_spacing_px = 0.0f, marker_phase = 0.0f;
+  /// kMarkers: the legend's swatch shows a line in `dash` behind the marker too (for markers
+  /// joined by a line drawn as an unlabelled series of its own).
+  bool legend_line = false;
 };
 
 /// A horizontal band shaded across the plot (e.g. a reference's own noise floor), with its
@@ -72,17 +77,22 @@ struct ChartSpec {
   /// Lines of small text under the x axis's label, left-aligned (e.g. what the point labels
   /// mean); the plot gives up their height.
   std::vector<std::string> notes;
+  /// A stamp at the top right in a box of its own, e.g. "88 of 104 runs" when runs are missing;
+  /// none when empty.
+  std::string stamp;
 };
 
 class ImGuiLayer;
+struct SvgText;
 
 /// Builds the chart as an ImGui frame in `layer` (whose size must match) and renders it over
-/// the bound framebuffer. Render thread only; allocates.
-void drawChart(ImGuiLayer& layer, const ChartSpec& chart);
+/// the bound framebuffer; also writes it into `svg` when not null (svgDocument() of
+/// render/chart/chart_pen.hpp makes it a file). Render thread only; allocates.
+void drawChart(ImGuiLayer& layer, const ChartSpec& chart, SvgText* svg = nullptr);
 
 /// Adds the chart, chart.width x chart.height pixels with its top-left corner at (left, top),
 /// to `list` inside an ImGui frame the caller has begun (e.g. under other pictures of a
-/// frame). Render thread only; allocates.
-void addChart(ImDrawList& list, const ChartSpec& chart, float left, float top);
+/// frame), and into `svg` when not null. Render thread only; allocates.
+void addChart(ImDrawList& list, const ChartSpec& chart, float left, float top, SvgText* svg = nullptr);
 
 }  // namespace gf::render

@@ -5,6 +5,7 @@
 #include <cfloat>
 #include <cmath>
 #include <optional>
+#include <utility>
 
 namespace gf::render::chart_marks {
 namespace {
@@ -32,13 +33,17 @@ Pattern pattern(LineDash dash) {
 
 int drawOrder(LineDash dash) { return static_cast<int>(dash); }
 
-void strokePath(ImDrawList& d, const std::vector<ImVec2>& path, ImU32 colour, float width, LineDash dash) {
+void strokePath(ChartPen& pen, const std::vector<ImVec2>& path, ImU32 colour, float width, LineDash dash) {
   if (path.size() < 2) return;
+  const Pattern p = pattern(dash);
+  pen.svgPolyline(path, colour, width,
+                  dash == LineDash::kSolid ? std::vector<float>{}
+                                           : std::vector<float>(p.stretch.begin(), p.stretch.begin() + p.count));
+  ImDrawList& d = pen.list();
   if (dash == LineDash::kSolid) {
     for (std::size_t i = 1; i < path.size(); ++i) d.AddLine(path[i - 1], path[i], colour, width);
     return;
   }
-  const Pattern p = pattern(dash);
   int stretch = 0;
   float left = p.stretch[0];  // pixels left of the current stretch
   for (std::size_t i = 1; i < path.size(); ++i) {
@@ -61,37 +66,54 @@ void strokePath(ImDrawList& d, const std::vector<ImVec2>& path, ImU32 colour, fl
   }
 }
 
-void drawMarker(ImDrawList& d, ImVec2 c, ImU32 colour, MarkerShape shape) {
+namespace {
+
+// A cross or plus: two bars, a dark one under a coloured one. `diagonal`: a cross.
+void drawBars(ChartPen& d, ImVec2 c, ImU32 colour, bool diagonal) {
+  const float h = diagonal ? 0.95f * kMarkerRadiusPx : 1.2f * kMarkerRadiusPx;
+  const ImVec2 a = diagonal ? ImVec2(h, h) : ImVec2(h, 0.0f), b = diagonal ? ImVec2(h, -h) : ImVec2(0.0f, h);
+  for (const auto& [ink, width] : {std::pair{kOutline, 4.2f}, std::pair{colour, 2.4f}}) {
+    d.line(ImVec2(c.x - a.x, c.y - a.y), ImVec2(c.x + a.x, c.y + a.y), ink, width);
+    d.line(ImVec2(c.x - b.x, c.y - b.y), ImVec2(c.x + b.x, c.y + b.y), ink, width);
+  }
+}
+
+}  // namespace
+
+void drawMarker(ChartPen& d, ImVec2 c, ImU32 colour, MarkerShape shape) {
   const float r = kMarkerRadiusPx;
+  const auto polygon = [&](const std::vector<ImVec2>& p) {
+    d.polygonFilled(p, colour);
+    d.polygon(p, kOutline);
+  };
   switch (shape) {
     case MarkerShape::kCircle:
-      d.AddCircleFilled(c, r, colour, 16);
-      d.AddCircle(c, r, kOutline, 16, 1.0f);
+      d.circleFilled(c, r, colour);
+      d.circle(c, r, kOutline);
       return;
     case MarkerShape::kSquare: {
       const float h = 0.85f * r;  // the same ink as the circle's
-      d.AddRectFilled(ImVec2(c.x - h, c.y - h), ImVec2(c.x + h, c.y + h), colour);
-      d.AddRect(ImVec2(c.x - h, c.y - h), ImVec2(c.x + h, c.y + h), kOutline);
+      d.rectFilled(ImVec2(c.x - h, c.y - h), ImVec2(c.x + h, c.y + h), colour);
+      d.rect(ImVec2(c.x - h, c.y - h), ImVec2(c.x + h, c.y + h), kOutline);
       return;
     }
-    case MarkerShape::kTriangle: {
-      const float h = 1.25f * r;
-      const ImVec2 top(c.x, c.y - h), left(c.x - h, c.y + 0.75f * h), right(c.x + h, c.y + 0.75f * h);
-      d.AddTriangleFilled(top, left, right, colour);
-      d.AddTriangle(top, left, right, kOutline);
+    case MarkerShape::kTriangle:
+    case MarkerShape::kTriangleDown: {
+      const float h = 1.25f * r, s = shape == MarkerShape::kTriangle ? 1.0f : -1.0f;
+      polygon({ImVec2(c.x, c.y - s * h), ImVec2(c.x - h, c.y + s * 0.75f * h), ImVec2(c.x + h, c.y + s * 0.75f * h)});
       return;
     }
     case MarkerShape::kDiamond: {
       const float h = 1.2f * r;
-      const ImVec2 top(c.x, c.y - h), right(c.x + h, c.y), bottom(c.x, c.y + h), left(c.x - h, c.y);
-      d.AddQuadFilled(top, right, bottom, left, colour);
-      d.AddQuad(top, right, bottom, left, kOutline);
+      polygon({ImVec2(c.x, c.y - h), ImVec2(c.x + h, c.y), ImVec2(c.x, c.y + h), ImVec2(c.x - h, c.y)});
       return;
     }
+    case MarkerShape::kCross:
+    case MarkerShape::kPlus: drawBars(d, c, colour, shape == MarkerShape::kCross); return;
   }
 }
 
-void markersAlong(ImDrawList& d, const std::vector<ImVec2>& path, float x0, float spacing, float phase, ImU32 colour,
+void markersAlong(ChartPen& d, const std::vector<ImVec2>& path, float x0, float spacing, float phase, ImU32 colour,
                   MarkerShape shape) {
   if (path.size() < 2 || !(spacing > 0.0f)) return;
   // The first marker position at or right of the path's start.

@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "render/chart/chart_pen.hpp"
 #include "render/chart/chart_style.hpp"
 
 namespace gf::render::chart_marks {
@@ -14,14 +15,15 @@ namespace gf::render::chart_marks {
 /// The marker's size: the radius of a circle, half the side of a square (pixels).
 inline constexpr float kMarkerRadiusPx = 4.5f;
 
-/// Draws `path` (pixels) in `dash`'s pattern, the pattern running on across its corners.
-void strokePath(ImDrawList& d, const std::vector<ImVec2>& path, ImU32 colour, float width, LineDash dash);
+/// Draws `path` (pixels) in `dash`'s pattern, the pattern running on across its corners (in the
+/// SVG, one polyline with its dash array).
+void strokePath(ChartPen& d, const std::vector<ImVec2>& path, ImU32 colour, float width, LineDash dash);
 
 /// A filled marker of `shape` centred at `centre`, with a dark outline.
-void drawMarker(ImDrawList& d, ImVec2 centre, ImU32 colour, MarkerShape shape);
+void drawMarker(ChartPen& d, ImVec2 centre, ImU32 colour, MarkerShape shape);
 
 /// Markers of `shape` where `path` (left to right) crosses x = x0 + (k + phase) * spacing.
-void markersAlong(ImDrawList& d, const std::vector<ImVec2>& path, float x0, float spacing, float phase, ImU32 colour,
+void markersAlong(ChartPen& d, const std::vector<ImVec2>& path, float x0, float spacing, float phase, ImU32 colour,
                   MarkerShape shape);
 
 /// A rectangle of pixels.

@@ -15,6 +15,7 @@ GF_PACKAGES=(
   libcli11-dev libtomlplusplus-dev nlohmann-json3-dev
   ffmpeg
   parallel
+  tesseract-ocr               # OCR of the charts' axis units (ctest ChartOcr.*)
   python3 python3-jsonschema  # examples/device-udp/client.py, the scene schema's test
   python3-dev pybind11-dev python3-numpy python3-pytest  # the Python module (app/python/), its tests
   mkdocs                      # the manual (docs/), built with --strict by ctest Docs.*

@@ -99,8 +99,14 @@ TEST_P(BundledStudy, QuickGridRunsWithEveryColumnAndAFiniteError) {
     EXPECT_TRUE(std::isfinite(std::stod(row[static_cast<std::size_t>(csv.column("error"))]))) << row.back();
     EXPECT_GT(std::stod(row[static_cast<std::size_t>(csv.column("step_us_median"))]), 0.0) << row.back();
   }
-  EXPECT_GT(fs::file_size(out / "work-precision.png"), 1000u);
-  EXPECT_NE(readFile(out / "report.md").find("most accurate configuration per budget"), std::string::npos);
+  // A cost question: the work-precision chart (PNG and SVG) and the best run per budget; an effect:
+  // a chart against each charted axis, no budget.
+  const bool cost = plan.study.question == StudyQuestion::kCost;
+  const std::string chart = cost ? "work-precision" : plan.study.series.front().measures.front().name + "-vs-" +
+                                                          plan.study.chart_axes.front();
+  EXPECT_GT(fs::file_size(out / (chart + ".png")), 1000u);
+  EXPECT_NE(readFile(out / (chart + ".svg")).find("</svg>"), std::string::npos);
+  EXPECT_EQ(readFile(out / "report.md").find("most accurate configuration per budget") != std::string::npos, cost);
 }
 
 INSTANTIATE_TEST_SUITE_P(Study, BundledStudy,
@@ -463,8 +469,8 @@ name = "b"
   const std::vector<AxisChart> charts = axisCharts(plan, rows);
   ASSERT_EQ(charts.size(), 1u);
   EXPECT_EQ(charts[0].file, "torsion_limit-vs-pad_angle_deg.png");
-  EXPECT_EQ(charts[0].chart.x_label, "pad_angle_deg");
-  EXPECT_EQ(charts[0].chart.y_label, "torsion_limit (N m)");
+  EXPECT_EQ(charts[0].chart.x_label, "pad angle, deg");
+  EXPECT_EQ(charts[0].chart.y_label, "torsion_limit, N m");
   ASSERT_EQ(charts[0].chart.series.size(), 3u);
   EXPECT_EQ(charts[0].chart.series[0].label, "a");
   EXPECT_EQ(charts[0].chart.series[0].x, (std::vector<double>{0.0, 30.0}));
