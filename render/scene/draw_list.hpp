@@ -95,6 +95,8 @@ struct DrawSettings {
   std::optional<DrawView> view;       ///< the camera; none: arrows capped by max_arrow_m only
   /// The scene's targets, drawn translucent (a ghost, lit) with the zone's edges; null: none
   const std::vector<view::Target>* targets = nullptr;
+  /// Proxies as spheres, or as fingertips (finger_marks.hpp; a fem_pad finger keeps its pad)
+  view::ProxyLook proxy = view::ProxyLook::kSphere;
 };
 
 /// Linear RGB of a fem_pad finger's skin: warm, apart from the bodies' and fingers' colours.
@@ -134,7 +136,7 @@ class DrawListBuilder {
   void addPads(const sim::Snapshot& snapshot, DrawList& out);
   void addSoftBodies(const sim::Snapshot& snapshot, DrawList& out);
   void addTargets(const std::vector<view::Target>& targets, DrawList& out);
-  void addProxies(const sim::Snapshot& snapshot, DrawList& out);
+  void addProxies(const sim::Snapshot& snapshot, const DrawSettings& settings, DrawList& out);
   void addSprings(const sim::Snapshot& snapshot, DrawList& out);
   void addGhosts(const sim::Snapshot& snapshot, const DrawSettings& settings, DrawList& out);
   void addArrow(DrawList& out, const sim::Vec3& from, const sim::Vec3& vector, double radius, const Eigen::Vector3f& colour);
