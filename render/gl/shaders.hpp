@@ -73,10 +73,11 @@ inline const std::string kLitFragment = std::string(kSurfaceCommon) + R"(
 in vec3 v_local;
 uniform vec3 u_pattern_centre;  // the body's centre in its own frame (m)
 
-// Scale of the body colour's display value: eight bands about the body's y axis on its upper
-// half (+y), lighter and darker by turns (+-18 %), the lower half plain, so a turn about any
-// axis moves them and a half turn puts them below. Edges are smoothed over about a pixel
-// (fwidth); where the bands crowd together (near the axis) they fade to plain.
+// Scale of the body colour's display value: eight bands about the body's y axis, lighter and
+// darker by turns, +-15 % on the upper half (+y) and +-6 % on the lower, where they are shifted
+// by one band: a turn about any axis moves them, seen from any side, and a half turn puts the
+// strong ones below. Edges are smoothed over about a pixel (fwidth); where the bands crowd
+// together (near the axis) they fade to plain.
 float bodyPattern() {
   vec3 p = v_local - u_pattern_centre;
   float band = atan(p.z, p.x) * (4.0 / 3.14159265);   // one unit per band
@@ -88,7 +89,7 @@ float bodyPattern() {
   float crowded = smoothstep(0.3, 0.6, soft);          // bands under about two pixels wide
   float soft_y = fwidth(p.y) + 1e-6;
   float upper = smoothstep(-soft_y, soft_y, p.y);
-  return 1.0 + 0.18 * upper * (1.0 - crowded) * (1.0 - 2.0 * bands);
+  return 1.0 + 0.15 * mix(-0.4, 1.0, upper) * (1.0 - crowded) * (1.0 - 2.0 * bands);
 }
 #endif
 

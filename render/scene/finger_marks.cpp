@@ -119,7 +119,7 @@ void addFingerMarks(const sim::FingerSnapshot& f, int index, double r, view::Pro
   const Vec3 up = deviceUp(f);
   const bool fingertip = look == view::ProxyLook::kFingertip && f.pad.nodes.empty();
   if (fingertip) {
-    const Vec3 back = across(f.device_orientation * Vec3::UnitZ(), up);
+    const Vec3 back = across(f.device_orientation * -Vec3::UnitZ(), up);
     const sim::Quat nail = frameOf(up, back);
     out.items.push_back(markItem(DrawPass::kProxies, DrawShape::kSphere,
                                  modelMatrix(f.proxy + 1.6 * r * up + 0.9 * r * back, nail, Vec3(0.55 * r, 0.8 * r, 0.18 * r)),

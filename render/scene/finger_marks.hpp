@@ -19,10 +19,10 @@ inline constexpr double kPadOutlineAngle = 0.6981317007977318;
 
 /// The marks' radius (the outline's tube, the stalk), in proxy radii: at least about a pixel
 /// where a view is given.
-inline constexpr double kMarkWidthShare = 0.05;
+inline constexpr double kMarkWidthShare = 0.06;
 
 /// How far the tilt marker reaches beyond the proxy sphere, in proxy radii.
-inline constexpr double kTiltMarkerShare = 1.0;
+inline constexpr double kTiltMarkerShare = 1.3;
 
 /// A fingertip's body: its length from the pad's centre to its top's, in proxy radii.
 inline constexpr double kFingertipLengthShare = 2.5;
@@ -56,13 +56,13 @@ double fingerReach(const sim::FingerSnapshot& finger, double proxy_radius, view:
 void appendFingertip(const sim::FingerSnapshot& finger, double proxy_radius, std::vector<Vertex>& out);
 
 /// Appends the marks of finger `index` to `out`: a fingertip's nail (kProxies, on its back, the
-/// device's +z side) when `look` is a fingertip; then, as drawsPadOutline() and drawsTiltMarker()
-/// say, the pad's outline (a lit ring on the proxy sphere around the device's pad axis, at
-/// kPadOutlineAngle: seen from the side it narrows), a bead on it towards deviceSide() (a twist
-/// about the pad axis turns it) and the tilt marker (a stalk with a head along deviceUp() out of
-/// the sphere; a fingertip's body is its marker), opaque and depth-tested (kMarks), in the
-/// finger's colour, at least about a pixel thick in `view` when one is given. `scratch` is
-/// overwritten.
+/// device's -z side: on top when the device leans forward about +x) when `look` is a
+/// fingertip; then, as drawsPadOutline() and drawsTiltMarker() say, the pad's outline (a lit
+/// ring on the proxy sphere around the device's pad axis, at kPadOutlineAngle: seen from the
+/// side it narrows), a bead on it towards deviceSide() (a twist about the pad axis turns it) and
+/// the tilt marker (a stalk with a head along deviceUp() out of the sphere; a fingertip's body
+/// is its marker), opaque and depth-tested (kMarks), in the finger's colour, at least about a
+/// pixel thick in `view` when one is given. `scratch` is overwritten.
 void addFingerMarks(const sim::FingerSnapshot& finger, int index, double proxy_radius, view::ProxyLook look,
                     const std::optional<DrawView>& view, std::vector<Vertex>& scratch, DrawList& out);
 

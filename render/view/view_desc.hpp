@@ -47,8 +47,8 @@ inline const char* antialiasingName(Antialiasing aa) {
 enum class BodyPattern { kStripes, kNone };
 
 /// The scene-file names of the BodyPattern values, in enum order: "stripes" (eight bands about
-/// the body's own y axis on its upper half, lighter and darker by turns; the lower half plain)
-/// or "none" (one colour).
+/// the body's own y axis, lighter and darker by turns, strong on its upper half, faint and
+/// shifted by one band on the lower) or "none" (one colour).
 inline constexpr std::array<std::string_view, 2> kBodyPatternNames = {"stripes", "none"};
 
 /// How a finger's proxy is drawn (`[render] proxy`).

@@ -130,8 +130,8 @@ TEST(FingerMarks, ADiscFingerShowsOnlyATurnedDevice) {
 
 // The proxy is a sphere unless a fingertip is asked for; then one translucent capsule whose
 // lower end is the proxy sphere and whose body goes up the device's axis 2.5 radii, every
-// triangle facing outward (the proxies' pass culls back faces), a nail on its back, and no stalk
-// (the body shows the tilt).
+// triangle facing outward (the proxies' pass culls back faces), a nail on its back (the
+// device's -z side), and no stalk (the body shows the tilt).
 TEST(FingerMarks, TheFingertipIsDrawnOnlyOnRequest) {
   const sim::Quat turn = aboutX(40.0);
   const Vec3 up = turn * Vec3::UnitY();
@@ -144,7 +144,10 @@ TEST(FingerMarks, TheFingertipIsDrawnOnlyOnRequest) {
   const DrawList tip = finger.build(settings);
   const std::vector<const DrawItem*> capsule = itemsOf(tip, DrawPass::kProxies, DrawShape::kTriangles);
   ASSERT_EQ(capsule.size(), 1u);
-  EXPECT_EQ(itemsOf(tip, DrawPass::kProxies, DrawShape::kSphere).size(), 1u) << "the nail";
+  const std::vector<const DrawItem*> nail = itemsOf(tip, DrawPass::kProxies, DrawShape::kSphere);
+  ASSERT_EQ(nail.size(), 1u);
+  const Vec3 nail_at = nail[0]->model.block<3, 1>(0, 3).cast<double>() - kProxy;
+  EXPECT_GT(nail_at.dot(turn * -Vec3::UnitZ()), 0.8 * kRadius) << "on the device's -z side";
   EXPECT_TRUE(itemsOf(tip, DrawPass::kMarks, DrawShape::kCylinder).empty());
   double lowest = 1.0, highest = -1.0;
   int inward = 0;
