@@ -233,6 +233,9 @@ nlohmann::json sceneSchema() {
                                  {"height", {{"type", "integer"}, {"minimum", 16}, {"maximum", 1080}}},
                                  {"antialiasing", enumSchema(std::array<const char*, 3>{"fxaa", "msaa", "none"}, "")},
                                  {"msaa_samples", {{"type", "integer"}, {"minimum", 2}, {"maximum", 8}}},
+                                 {"body_pattern", enumSchema(view::kBodyPatternNames, "rigid bodies striped in their own frames, or plain")},
+                                 {"proxy", enumSchema(view::kProxyLookNames, "proxies drawn as spheres or as fingertips")},
+                                 {"load_arrows", {{"type", "boolean"}, {"description", "each point's normal load and friction drawn as arrows"}}},
                                  {"actions", {{"type", "array"}, {"items", action}}}},
                                 "how frames are drawn");
   json schema = object(properties, "a godfinger scene file (TOML), field by field: assets/scenes/README.md",

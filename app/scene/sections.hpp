@@ -33,7 +33,8 @@ std::vector<std::string_view> effectNames();
 
 /// `effects`: every effect listed is on, every other one off.
 void readEffects(Reader& r, sim::EffectSet& e, ViewSettings& view);
-/// [render]: frame size, anti-aliasing and scripted overlay input (after the fingers are read).
+/// [render]: frame size, anti-aliasing, body pattern, proxy look and scripted overlay input (after
+/// the fingers are read).
 void readView(Reader& parent, SessionDesc& s);
 /// [targets.NAME]: a ghost of a body at a pose, a zone, or both (after the bodies are read).
 void readTargets(Reader& parent, SessionDesc& s);

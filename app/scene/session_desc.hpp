@@ -41,6 +41,8 @@ struct ViewSettings {
   view::Antialiasing antialiasing = view::Antialiasing::kFxaa;
   int msaa_samples = 4;          ///< samples with antialiasing = "msaa" (2..8)
   std::vector<view::WidgetAction> actions;  ///< scripted overlay input, by time
+  view::BodyPattern body_pattern = view::BodyPattern::kStripes;  ///< rigid bodies striped in their own frames
+  view::ProxyLook proxy = view::ProxyLook::kSphere;              ///< proxies as spheres or fingertips
 };
 
 /// A finger driven by a live device over UDP (docs/device-protocol.md); its sim track holds

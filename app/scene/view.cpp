@@ -83,7 +83,8 @@ void readEffects(Reader& r, sim::EffectSet& e, ViewSettings& view) {
   }
 }
 
-// [render]: frame size, anti-aliasing, point-load arrows and scripted overlay input.
+// [render]: frame size, anti-aliasing, how bodies and proxies look, point-load arrows and
+// scripted overlay input.
 void readView(Reader& parent, SessionDesc& s) {
   ViewSettings& v = s.view;
   if (const toml::node* n = parent.find("render")) {
@@ -99,6 +100,9 @@ void readView(Reader& parent, SessionDesc& s) {
     }
     v.msaa_samples = r.integer("msaa_samples", v.msaa_samples, 2, 8);
     v.load_arrows = r.boolean("load_arrows", v.load_arrows);
+    const int pattern = r.choice("body_pattern", view::kBodyPatternNames, static_cast<int>(v.body_pattern));
+    v.body_pattern = static_cast<view::BodyPattern>(pattern);
+    v.proxy = static_cast<view::ProxyLook>(r.choice("proxy", view::kProxyLookNames, static_cast<int>(v.proxy)));
     if (const toml::node* k = r.find("actions")) {
       const toml::array* a = k->as_array();
       if (!a) r.fail(k, "actions", "expected an array of {t = s, widget = \"FINGER/FIELD\", value = \"...\"}");

@@ -5,7 +5,8 @@
 
 namespace gf::render::shaders {
 
-/// Surfaces: world position, normal and light-space position for the fragment programs below.
+/// Surfaces: world position, normal and light-space position for the fragment programs below;
+/// PATTERN: the body-frame position too.
 inline constexpr const char* kSurfaceVertex = R"(#version 330 core
 layout(location = 0) in vec3 a_position;
 layout(location = 1) in vec3 a_normal;
@@ -16,7 +17,13 @@ uniform mat4 u_light_view_proj;
 out vec3 v_world;
 out vec3 v_normal;
 out vec4 v_light;
+#ifdef PATTERN
+out vec3 v_local;  // the body's own frame (m): its pattern turns with it
+#endif
 void main() {
+#ifdef PATTERN
+  v_local = a_position;
+#endif
   vec4 world = u_model * vec4(a_position, 1.0);
   v_world = world.xyz;
   v_normal = u_normal_matrix * a_normal;
@@ -60,7 +67,32 @@ vec3 display(vec3 linear) { return sqrt(max(linear, vec3(0.0))); }
 )";
 
 /// Lit surfaces: bodies, patches, fingers, arrows. SHADOWS: receives the key light's shadow.
+/// PATTERN: a body's stripes (view::BodyPattern), fixed in its own frame.
 inline const std::string kLitFragment = std::string(kSurfaceCommon) + R"(
+#ifdef PATTERN
+in vec3 v_local;
+uniform vec3 u_pattern_centre;  // the body's centre in its own frame (m)
+
+// Scale of the body colour's display value: eight bands about the body's y axis, lighter and
+// darker by turns, +-15 % on the upper half (+y) and +-6 % on the lower, where they are shifted
+// by one band: a turn about any axis moves them, seen from any side, and a half turn puts the
+// strong ones below. Edges are smoothed over about a pixel (fwidth); where the bands crowd
+// together (near the axis) they fade to plain.
+float bodyPattern() {
+  vec3 p = v_local - u_pattern_centre;
+  float band = atan(p.z, p.x) * (4.0 / 3.14159265);   // one unit per band
+  float wave = abs(fract(0.5 * band) - 0.5) * 2.0;    // 0 at a light band's middle, 1 at a dark one's
+  // A pixel, in bands (wave's slope is 1); the angle measured from -x too, whose seam (where
+  // atan jumps) lies elsewhere.
+  float soft = min(fwidth(band), fwidth(atan(-p.z, -p.x) * (4.0 / 3.14159265))) + 1e-4;
+  float bands = smoothstep(0.5 - soft, 0.5 + soft, wave);
+  float crowded = smoothstep(0.3, 0.6, soft);          // bands under about two pixels wide
+  float soft_y = fwidth(p.y) + 1e-6;
+  float upper = smoothstep(-soft_y, soft_y, p.y);
+  return 1.0 + 0.15 * mix(-0.4, 1.0, upper) * (1.0 - crowded) * (1.0 - 2.0 * bands);
+}
+#endif
+
 void main() {
   vec3 n = normalize(v_normal);
   vec3 l = u_light_dir;
@@ -74,6 +106,10 @@ void main() {
   float lit = 1.0;
 #endif
   vec3 base = u_colour.rgb;
+#ifdef PATTERN
+  float scale = bodyPattern();
+  base *= scale * scale;  // the display value is the square root
+#endif
   vec3 colour = base * sky(n) + lit * (base * diffuse * kKey + vec3(0.3 * s2));
   frag = vec4(display(colour), u_colour.a);
 }

@@ -6,6 +6,7 @@
 #include <numbers>
 
 #include "render/scene/contact_load.hpp"
+#include "render/scene/finger_marks.hpp"
 #include "render/scene/load_marks.hpp"
 #include "render/scene/overlap_region.hpp"
 
@@ -161,7 +162,7 @@ void DrawListBuilder::build(const sim::Snapshot& snapshot, const DrawSettings& s
   if (settings.fingers) addPads(snapshot, out);
   if (settings.targets) addTargets(*settings.targets, out);  // translucent: after the opaque pads
   if (settings.fingers) {
-    addProxies(snapshot, out);
+    addProxies(snapshot, settings, out);
     addSprings(snapshot, out);
   }
   if (settings.patch_highlight) addPatches(snapshot, settings, out);
@@ -319,14 +320,26 @@ void DrawListBuilder::addTargets(const std::vector<view::Target>& targets, DrawL
 }
 
 // The proxies: translucent, drawn before the patches without writing depth, so the patch under
-// the finger shows through. A pad's bone, inside its skin, in the proxy's place.
-void DrawListBuilder::addProxies(const sim::Snapshot& snap, DrawList& out) {
+// the finger shows through. A pad's bone, inside its skin, in the proxy's place; on request a
+// fingertip, the proxy sphere its pad's end. Then each finger's marks of its device's
+// orientation (finger_marks.hpp).
+void DrawListBuilder::addProxies(const sim::Snapshot& snap, const DrawSettings& settings, DrawList& out) {
   for (std::size_t i = 0; i < snap.fingers.size(); ++i) {
     const Eigen::Vector3f colour = fingerColour(static_cast<int>(i)) * 0.8f + Eigen::Vector3f::Constant(0.15f);
     const double r = proxySphereRadius(snap.fingers[i], proxy_radius_[i]);
+    fill_.clear();
+    if (settings.proxy == view::ProxyLook::kFingertip) appendFingertip(snap.fingers[i], r, fill_);
+    if (!fill_.empty()) {
+      addRange(out, DrawPass::kProxies, DrawShape::kTriangles, fill_, colour, kProxyAlpha);
+      continue;
+    }
     out.items.push_back(shapeItem(DrawPass::kProxies, DrawShape::kSphere,
                                   modelMatrix(snap.fingers[i].proxy, sim::Quat::Identity(), Vec3::Constant(r)), colour,
                                   kProxyAlpha));
+  }
+  for (std::size_t i = 0; i < snap.fingers.size(); ++i) {
+    const double r = proxySphereRadius(snap.fingers[i], proxy_radius_[i]);
+    addFingerMarks(snap.fingers[i], static_cast<int>(i), r, settings.proxy, settings.view, fill_, out);
   }
 }
 

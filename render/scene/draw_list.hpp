@@ -100,6 +100,8 @@ struct DrawSettings {
   std::optional<DrawView> view;       ///< the camera; none: arrows capped by max_arrow_m only
   /// The scene's targets, drawn translucent (a ghost, lit) with the zone's edges; null: none
   const std::vector<view::Target>* targets = nullptr;
+  /// Proxies as spheres, or as fingertips (finger_marks.hpp; a fem_pad finger keeps its pad)
+  view::ProxyLook proxy = view::ProxyLook::kSphere;
 };
 
 /// Linear RGB of a fem_pad finger's skin: warm, apart from the bodies' and fingers' colours.
@@ -145,7 +147,7 @@ class DrawListBuilder {
   void addPads(const sim::Snapshot& snapshot, DrawList& out);
   void addSoftBodies(const sim::Snapshot& snapshot, DrawList& out);
   void addTargets(const std::vector<view::Target>& targets, DrawList& out);
-  void addProxies(const sim::Snapshot& snapshot, DrawList& out);
+  void addProxies(const sim::Snapshot& snapshot, const DrawSettings& settings, DrawList& out);
   void addSprings(const sim::Snapshot& snapshot, DrawList& out);
   void addGhosts(const sim::Snapshot& snapshot, const DrawSettings& settings, DrawList& out);
   void addSpring(const sim::Vec3& a, const sim::Vec3& b, double coil_radius);

@@ -8,6 +8,7 @@
 
 #include "render/gl/context.hpp"
 #include "render/scene/draw_list.hpp"
+#include "render/scene/finger_marks.hpp"
 #include "render/scene/geometry.hpp"
 #include "render/scene/pad_mesh.hpp"
 #include "render/gl/gl.hpp"
@@ -28,6 +29,7 @@ struct BodyDraw {
   std::shared_ptr<const sim::Mesh> mesh;  // render surface, description frame; null for planes
   std::unique_ptr<GpuMesh> gpu;
   Eigen::Vector3f colour;
+  Eigen::Vector3f centre = Eigen::Vector3f::Zero();  // of its bounds, description frame: its stripes' centre
   bool ground = false;
   bool closed = false;  // closed and wound outwards: back faces are hidden and need not be drawn
 };
@@ -74,6 +76,9 @@ struct SceneRenderer::Impl {
   // One program per kind of surface: llvmpipe would run every side of a uniform branch.
   Program lit{"lit", shaders::kSurfaceVertex, shaders::kLitFragment.c_str()};
   Program lit_shadowed{"lit+shadow", shaders::kSurfaceVertex, shaders::kLitFragment.c_str(), "#define SHADOWS"};
+  Program striped{"lit+pattern", shaders::kSurfaceVertex, shaders::kLitFragment.c_str(), "#define PATTERN"};
+  Program striped_shadowed{"lit+shadow+pattern", shaders::kSurfaceVertex, shaders::kLitFragment.c_str(),
+                           "#define SHADOWS\n#define PATTERN"};
   Program ground{"ground", shaders::kSurfaceVertex, shaders::kGroundFragment.c_str()};
   Program receiver{"shadow receiver", shaders::kSurfaceVertex, shaders::kShadowReceiverFragment.c_str()};
   Program flat{"flat", shaders::kSurfaceVertex, shaders::kFlatFragment};
@@ -129,6 +134,7 @@ struct SceneRenderer::Impl {
       if (d.mesh) {
         d.gpu = std::make_unique<GpuMesh>(shadedTriangles(*d.mesh, 35.0));
         d.closed = closedOutward(*d.mesh);
+        d.centre = (0.5 * (d.mesh->boundsMin() + d.mesh->boundsMax())).cast<float>();
       }
       bodies.push_back(std::move(d));
     }
@@ -212,6 +218,7 @@ struct SceneRenderer::Impl {
         const double r = proxySphereRadius(snap.fingers[i], scene.fingers[i].proxy.radius);
         cast(sphere, modelMatrix(snap.fingers[i].proxy, Eigen::Quaterniond::Identity(), Vec3::Constant(r)));
         pad_builder.build(snap.fingers[i].pad, pad_vertices);
+        if (settings.proxy == view::ProxyLook::kFingertip) appendFingertip(snap.fingers[i], r, pad_vertices);
       }
       glDisable(GL_CULL_FACE);  // a pad's skin is open on its bone's side
       if (!pad_vertices.empty()) {
@@ -235,7 +242,7 @@ struct SceneRenderer::Impl {
     // Grid: 1 cm minor, 10 cm major lines for table-top scenes; scaled up for larger ones.
     const float minor = static_cast<float>(std::pow(10.0, std::floor(std::log10(extent * 0.5))));
     if (shadow) (settings.fingers ? shadow : body_shadow)->bindTexture(0);
-    for (const Program* p : {&lit, &lit_shadowed, &ground, &receiver, &flat}) {
+    for (const Program* p : {&lit, &lit_shadowed, &striped, &striped_shadowed, &ground, &receiver, &flat}) {
       p->use();
       glUniformMatrix4fv(p->uniform("u_view_proj"), 1, GL_FALSE, view_proj.data());
       glUniformMatrix4fv(p->uniform("u_light_view_proj"), 1, GL_FALSE, light_view_proj.data());
@@ -310,7 +317,7 @@ struct SceneRenderer::Impl {
     for (std::size_t i = 0; i < snap.fingers.size(); ++i) {
       const sim::FingerSnapshot& f = snap.fingers[i];
       const double r = scene.fingers[i].proxy.radius;
-      add(f.proxy, std::max(r, padReach(f.pad, f.proxy)));
+      add(f.proxy, std::max(fingerReach(f, r, settings.proxy), padReach(f.pad, f.proxy)));
       add(f.device, r);
       if (!f.contacts.empty()) add(f.proxy + forceArrow(f, drawSettings()), r);
       for (const sim::ContactSnapshot& c : f.contacts) add(c.point_world, std::max(c.radius, scene.fingers[i].patch.r_max));
@@ -344,7 +351,7 @@ struct SceneRenderer::Impl {
     if (settings.fingers) {
       for (std::size_t i = 0; i < snap.fingers.size(); ++i) {
         const sim::FingerSnapshot& f = snap.fingers[i];
-        add(f.proxy, std::max(scene.fingers[i].proxy.radius, padReach(f.pad, f.proxy)));
+        add(f.proxy, std::max(fingerReach(f, scene.fingers[i].proxy.radius, settings.proxy), padReach(f.pad, f.proxy)));
       }
     }
     if (rect.isEmpty()) return;
@@ -377,11 +384,15 @@ struct SceneRenderer::Impl {
     glDisable(GL_BLEND);
   }
 
+  // The rigid bodies, striped in their own frames unless the pattern is off.
   void drawBodies(const sim::Snapshot& snap) {
-    use(shadow ? lit_shadowed : lit);
+    const bool pattern = settings.body_pattern == view::BodyPattern::kStripes;
+    use(pattern ? (shadow ? striped_shadowed : striped) : (shadow ? lit_shadowed : lit));
     for (std::size_t b = 0; b < bodies.size(); ++b) {
       if (bodies[b].ground || !bodies[b].gpu) continue;
       if (bodies[b].closed) glEnable(GL_CULL_FACE);
+      const Eigen::Vector3f& c = bodies[b].centre;
+      if (pattern) glUniform3f(current->uniform("u_pattern_centre"), c.x(), c.y(), c.z());
       drawShape(*bodies[b].gpu, bodyModel(snap, b), bodies[b].colour, 1.0f);
       glDisable(GL_CULL_FACE);
     }
@@ -477,6 +488,7 @@ struct SceneRenderer::Impl {
     d.max_arrow_view_share = settings.max_arrow_view_share;
     d.view = draw_view;
     d.targets = settings.targets.get();
+    d.proxy = settings.proxy;
     return d;
   }
 

@@ -27,6 +27,8 @@ struct RenderSettings {
   double force_arrow_m_per_n = 0.01; ///< arrow length per newton of coupling force (m/N)
   double max_arrow_m = 0.08;         ///< longest force arrow (m)
   double max_arrow_view_share = 0.25; ///< longest force arrow, as a share of the view's height at its proxy
+  view::BodyPattern body_pattern = view::BodyPattern::kStripes;  ///< rigid bodies' stripes, fixed in their frames
+  view::ProxyLook proxy = view::ProxyLook::kSphere;  ///< proxies as spheres, or as fingertips
   /// The scene's targets (ghost poses and zones, draw_list.hpp); null or empty: none. Shared, so
   /// that settings are copied without allocating.
   std::shared_ptr<const std::vector<view::Target>> targets;

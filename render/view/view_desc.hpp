@@ -43,6 +43,21 @@ inline const char* antialiasingName(Antialiasing aa) {
   return kAntialiasingNames[static_cast<std::size_t>(aa)].data();
 }
 
+/// How rigid bodies are patterned so that a turn shows (`[render] body_pattern`).
+enum class BodyPattern { kStripes, kNone };
+
+/// The scene-file names of the BodyPattern values, in enum order: "stripes" (eight bands about
+/// the body's own y axis, lighter and darker by turns, strong on its upper half, faint and
+/// shifted by one band on the lower) or "none" (one colour).
+inline constexpr std::array<std::string_view, 2> kBodyPatternNames = {"stripes", "none"};
+
+/// How a finger's proxy is drawn (`[render] proxy`).
+enum class ProxyLook { kSphere, kFingertip };
+
+/// The scene-file names of the ProxyLook values, in enum order: "sphere" (the god-object as it
+/// is) or "fingertip" (the sphere as the pad of a fingertip going up from it).
+inline constexpr std::array<std::string_view, 2> kProxyLookNames = {"sphere", "fingertip"};
+
 /// One scripted use of a widget: at `time` (s, simulated) the overlay moves the mouse to the
 /// widget and operates it with real input events over the next frames (click for a checkbox;
 /// ctrl+click, select all, type `value`, Enter for a slider), as a user would.

@@ -22,6 +22,7 @@ void interpolateSnapshot(const Snapshot& a, const Snapshot& b, double time, Snap
     FingerSnapshot& o = out.fingers[f];
     const FingerSnapshot &fa = a.fingers[f], &fb = b.fingers[f];
     o.device = (1 - w) * fa.device + w * fb.device;
+    o.device_orientation = fa.device_orientation.slerp(w, fb.device_orientation);
     o.proxy = (1 - w) * fa.proxy + w * fb.proxy;
     o.coupling_force = (1 - w) * fa.coupling_force + w * fb.coupling_force;
     o.feedback_force = (1 - w) * fa.feedback_force + w * fb.feedback_force;

@@ -76,6 +76,9 @@ struct SoftBodySnapshot {
 /// One finger.
 struct FingerSnapshot {
   Vec3 device = Vec3::Zero();          ///< device position (m)
+  /// The device's orientation (device frame to world; identity unless its track or transport
+  /// gives one): what an oriented pad (PatchSettings::pad_axis) turns with.
+  Quat device_orientation = Quat::Identity();
   Vec3 proxy = Vec3::Zero();           ///< proxy centre, the god-object (m)
   Vec3 coupling_force = Vec3::Zero();  ///< force of the coupling on the proxy (N)
   Vec3 feedback_force = Vec3::Zero();  ///< force rendered to the device: -coupling (N)
@@ -108,9 +111,9 @@ struct Snapshot {
 };
 
 /// The world at `time` between snapshots a (earlier) and b (later) of the same world: body
-/// poses, proxies, devices and forces interpolated (slerp for orientations); contacts and
-/// patches taken from b and carried along with their body's interpolated pose. `out` reuses
-/// its storage. Any thread.
+/// poses, proxies, devices' poses and forces interpolated (slerp for orientations); contacts
+/// and patches taken from b and carried along with their body's interpolated pose. `out`
+/// reuses its storage. Any thread.
 void interpolateSnapshot(const Snapshot& a, const Snapshot& b, double time, Snapshot& out);
 
 }  // namespace gf::sim

@@ -328,6 +328,7 @@ void World::snapshot(Snapshot& out) const {
     const Impl::Finger& f = w.fingers[i];
     FingerSnapshot& fs = out.fingers[i];
     fs.device = f.device.position;
+    fs.device_orientation = f.device.orientation;
     fs.proxy = toEigen(f.proxy->getCenterOfMassPosition());
     fs.coupling_force = f.force;
     fs.feedback_force = feedbackForce(static_cast<int>(i));

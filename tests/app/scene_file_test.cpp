@@ -126,20 +126,6 @@ TEST(SceneFile, ErrorsNameFileLineAndField) {
   }
 }
 
-TEST(SceneFile, AntialiasingIsOneOfThreeNames) {
-  EXPECT_EQ(parseSceneText(kMinimal, "scene.toml", "").view.antialiasing, view::Antialiasing::kFxaa);
-  const std::string text = std::string(kMinimal) + "[render]\nantialiasing = \"msaa\"\nmsaa_samples = 8\n";
-  const SessionDesc s = parseSceneText(text, "scene.toml", "");
-  EXPECT_EQ(s.view.antialiasing, view::Antialiasing::kMsaa);
-  EXPECT_EQ(s.view.msaa_samples, 8);
-  const std::string minimal = kMinimal;
-  const int render_line = static_cast<int>(std::count(minimal.begin(), minimal.end(), '\n')) + 2;
-  const InputError e = errorOf(minimal + "[render]\nantialiasing = \"smaa\"\n");
-  EXPECT_EQ(e.line(), render_line) << e.what();
-  EXPECT_EQ(e.field(), "render.antialiasing");
-  EXPECT_NE(std::string(e.what()).find("expected \"fxaa\", \"msaa\" or \"none\""), std::string::npos) << e.what();
-}
-
 TEST(SceneFile, MissingAndEmptyMeshesAreNamed) {
   const fs::path dir = gf::test::scratchRoot() / "gf_scene_file_test";
   fs::create_directories(dir);

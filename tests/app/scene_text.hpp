@@ -1,5 +1,6 @@
-// Scene-file text for the scene reader's tests (scene_file_test.cpp, scene_file_loads_test.cpp): a
-// minimal scene, the error a text gives, and the minimal scene with one piece replaced.
+// Scene-file text for the scene reader's tests (scene_file_test.cpp, scene_file_loads_test.cpp,
+// scene_file_render_test.cpp): a minimal scene, the error a text gives, and the minimal scene
+// with one piece replaced.
 #pragma once
 
 #include <gtest/gtest.h>

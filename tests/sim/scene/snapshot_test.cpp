@@ -3,6 +3,8 @@
 
 #include <gtest/gtest.h>
 
+#include <numbers>
+
 namespace gf {
 namespace {
 
@@ -30,6 +32,21 @@ TEST(Snapshot, InterpolatesPosesAndCarriesPatches) {
   // Body frame: R(-1) (1, 0, 0); carried to the halfway pose: centre + R(0.5) R(-1) (1, 0, 0).
   const sim::Vec3 expected = sim::Vec3(1, 0, 0) + Eigen::AngleAxisd(-0.5, sim::Vec3::UnitY()) * sim::Vec3(1, 0, 0);
   EXPECT_NEAR((out.fingers[0].contacts[0].point_world - expected).norm(), 0.0, 1e-12);
+}
+
+// A device's orientation is slerped: a third of the way from flat to 90 degrees about x is 30
+// degrees about x.
+TEST(Snapshot, SlerpsTheDeviceOrientation) {
+  sim::Snapshot a, b, out;
+  a.time = 0.0;
+  b.time = 3.0;
+  a.fingers.resize(1);
+  b.fingers.resize(1);
+  b.fingers[0].device_orientation = Eigen::AngleAxisd(0.5 * std::numbers::pi, sim::Vec3::UnitX());
+  sim::interpolateSnapshot(a, b, 1.0, out);
+  const Eigen::AngleAxisd turn(out.fingers[0].device_orientation);
+  EXPECT_NEAR(turn.angle(), std::numbers::pi / 6.0, 1e-12);
+  EXPECT_NEAR((turn.axis() - sim::Vec3::UnitX()).norm(), 0.0, 1e-12);
 }
 
 }  // namespace
