@@ -38,6 +38,7 @@ constexpr std::size_t kLineChars = 128;
 const ImU32 kText = IM_COL32(255, 255, 255, 255);
 const ImU32 kSoftText = IM_COL32(215, 220, 228, 255);
 const ImU32 kBox = IM_COL32(15, 18, 24, 170);
+const ImU32 kStampBox = IM_COL32(15, 18, 24, 225);  // nearly opaque: the ground's grid lines would cross the time
 const ImU32 kOutline = IM_COL32(10, 10, 12, 230);
 
 // Short pieces of text packed into lines no wider than `width`, joined by two spaces.
@@ -300,7 +301,7 @@ void drawFrameStamp(const ImGuiLayer& layer, float px, float at_x, float at_y, d
   const int count = stampLines(lines, time, arrow_m_per_n);
   const StampSize size = stampSize(px, time, arrow_m_per_n);
   const float pad = kPadShare * px;
-  d.AddRectFilled(ImVec2(at_x, at_y), ImVec2(at_x + size.w, at_y + size.h), IM_COL32(15, 18, 24, 120), pad);
+  d.AddRectFilled(ImVec2(at_x, at_y), ImVec2(at_x + size.w, at_y + size.h), kStampBox, pad);
   for (int k = 0; k < count; ++k) {
     d.AddText(font, px, ImVec2(at_x + pad, at_y + pad + kLineShare * px * static_cast<float>(k)), k == 0 ? kText : kSoftText, lines[k]);
   }

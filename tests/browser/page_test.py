@@ -197,14 +197,15 @@ def part_digest(part: tuple[dict[str, str], bytes]) -> str:
     return hashlib.sha256(body).hexdigest()
 
 
-# Pixels of a fresh frame (/frame.jpg, decoded by the page's browser) in its bottom-right quarter
-# that are light blue: the patch highlight in `index`'s inset (the insets sit in that corner; the
-# blue bodies and fingers stand in the left half; the inset's blue frame alone is about 1 700).
+# Pixels of a fresh frame (/frame.jpg, decoded by the page's browser) in its right half that are
+# light blue: the patch highlight in `index`'s inset (the insets stand there, a column clear of
+# the bodies in the middle, render/overlay/layout.hpp; the blue cylinder and fingers stand in the
+# left half; the inset's blue frame alone is about 1 700).
 BLUE_IN_INSETS_JS = """(async () => {
   const bitmap = await createImageBitmap(await (await fetch(withToken("frame.jpg"))).blob());
   const canvas = new OffscreenCanvas(bitmap.width, bitmap.height), g = canvas.getContext("2d");
   g.drawImage(bitmap, 0, 0);
-  const d = g.getImageData(bitmap.width / 2, bitmap.height / 2, bitmap.width / 2, bitmap.height / 2).data;
+  const d = g.getImageData(bitmap.width / 2, 0, bitmap.width / 2, bitmap.height).data;
   let n = 0;
   for (let i = 0; i < d.length; i += 4) n += d[i + 2] > 150 && d[i + 2] - d[i] > 40;
   return n;

@@ -18,6 +18,7 @@
 #include "render/overlay/overlay.hpp"
 #include "render/overlay/patch_insets.hpp"
 #include "render/render_thread.hpp"
+#include "tests/render/still_layout.hpp"
 
 namespace gf {
 namespace {
@@ -199,7 +200,9 @@ TEST(Stills, InsetsColourTheDotsByLoadWithAColourBar) {
     settings.height = h;
     const render::Image image = render::renderStill(session.scene, snap, settings);
     render::writePng((out / ("load-colours-" + std::to_string(h) + ".png")).string(), image);
-    const std::vector<render::InsetRect> insets = render::insetRects(w, h, 2, render::InsetCorner::kBottomRight);
+    const test::StillLayout layout = test::stillLayout(session.scene, snap, settings);
+    const std::vector<render::InsetRect> insets =
+        render::insetRects(w, h, 2, layout.placement.insets, layout.placement.column);
     for (std::size_t f = 0; f < 2; ++f) {
       int yellow = 0, purple = 0;
       const render::InsetRect& r = insets[f];
