@@ -128,6 +128,7 @@ struct Gpu {
   sim::SceneDesc description;  // the fingers' sizes, for the layout
   int fingers;
   bool insets_beside_overlay;
+  bool top_left_free;
   LabelPlacement placement;  // the last frame's: kept while it covers nothing
   Gpu(const sim::SceneDesc& desc, const FrameOutputSettings& s)
       : scene(desc, s.scene),
@@ -138,7 +139,8 @@ struct Gpu {
         close_up_px(s.close_up_px),
         description(desc),
         fingers(static_cast<int>(desc.fingers.size())),
-        insets_beside_overlay(s.overlay) {
+        insets_beside_overlay(s.overlay),
+        top_left_free(!s.top_left_taken) {
     if (s.overlay) {
       OverlaySettings o = s.overlay_settings;
       o.wall_clock = s.realtime;  // offline snapshots carry no haptic timings
@@ -168,9 +170,10 @@ struct Gpu {
     const RenderSettings& r = scene.settings();
     const double arrow_m_per_n = r.patch_highlight && r.contact_arrows ? r.force_arrow_m_per_n : 0.0;
     const LabelSizes sizes = frameLabelSizes(width, height, fingers, insets != nullptr, stamp, snap.time, arrow_m_per_n);
-    const std::array<bool, 4> allowed = {!insets_beside_overlay, true, !insets_beside_overlay, !insets_beside_overlay};
-    placement = placeLabels(subjectBoxes(description, scene.surfaces(), snap, camera, width, height), sizes, width,
-                            height, placement, allowed);
+    const bool free = !insets_beside_overlay;
+    const std::array<bool, 4> allowed = {free, true, free, free && top_left_free};
+    placement = placeLabels(subjectBoxes(description, scene.surfaces(), snap, camera, width, height, arrow_m_per_n), sizes, width,
+                            height, placement, allowed, {true, true, true, top_left_free});
     if (insets) {
       insets->place(placement.insets, placement.column);
       insets->draw(scene, snap, static_cast<unsigned>(target));

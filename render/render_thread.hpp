@@ -41,6 +41,9 @@ struct FrameOutputSettings {
   bool patch_insets = false;      ///< the patch_insets effect (render/overlay/patch_insets.hpp)
   bool overlay = false;           ///< the ImGui overlay effect
   bool time_stamp = true;         ///< the time (and arrow scale) in the frame's corner; the overlay's panel shows them instead
+  /// Something is drawn over the frame's top-left corner (a comparison's panel label): the
+  /// insets and the stamp keep out of it.
+  bool top_left_taken = false;
   OverlaySettings overlay_settings;
   int close_up_px = 480;          ///< side of contact close-up images (pixels)
   bool realtime = false;          ///< draw the latest snapshot at `fps` of wall-clock time

@@ -208,7 +208,8 @@ void CompareRun::prepare() {
   jobs_ = std::min(o_.jobs, static_cast<int>(o_.models.size()));
 }
 
-// Each model's `godfinger run` line: the overrides, the model on every finger, panel-sized frames.
+// Each model's `godfinger run` line: the overrides, the model on every finger, panel-sized frames
+// whose labels keep out of the top-left corner, where the panel's label goes.
 std::vector<std::string> CompareRun::runLines() const {
   std::vector<std::string> lines;
   for (std::size_t i = 0; i < o_.models.size(); ++i) {
@@ -217,6 +218,7 @@ std::vector<std::string> CompareRun::runLines() const {
     for (const std::string& s : modelOverrides(*base_, o_.models[i])) args.insert(args.end(), {"--set", s});
     for (const std::string& s : {"render.width=" + std::to_string(layout_.panel_width),
                                  "render.height=" + std::to_string(layout_.panel_height), std::string("record.trace=true"),
+                                 std::string("render.reserve_top_left=true"),  // the panel's label
                                  std::string("record.force_chart=false")}) {
       args.insert(args.end(), {"--set", s});
     }
@@ -436,7 +438,9 @@ render::Image renderCompareFrame(const std::string& scene, const std::vector<std
     chart.series.push_back(std::move(series));
     SessionOptions options;
     options.camera = camera;
-    images.push_back(render::renderStill(s.scene, at, frameSettings(s, options)));
+    render::FrameOutputSettings settings = frameSettings(s, options);
+    settings.top_left_taken = true;  // the panel's label
+    images.push_back(render::renderStill(s.scene, at, settings));
   }
   render::GlContext context;
   render::CompareCompositor compositor(width, height, panels, chart);

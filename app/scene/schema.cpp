@@ -236,6 +236,7 @@ nlohmann::json sceneSchema() {
                                  {"body_pattern", enumSchema(view::kBodyPatternNames, "rigid bodies striped in their own frames, or plain")},
                                  {"proxy", enumSchema(view::kProxyLookNames, "proxies drawn as spheres or as fingertips")},
                                  {"load_arrows", {{"type", "boolean"}, {"description", "each point's normal load and friction drawn as arrows"}}},
+                                 {"reserve_top_left", {{"type", "boolean"}, {"description", "the insets and time stamp keep out of the top-left corner"}}},
                                  {"actions", {{"type", "array"}, {"items", action}}}},
                                 "how frames are drawn");
   json schema = object(properties, "a godfinger scene file (TOML), field by field: assets/scenes/README.md",

@@ -36,6 +36,7 @@ struct ViewSettings {
   bool patch_insets = false;     ///< effect: a close-up of each finger's patch in a corner of each frame
   bool overlay = false;          ///< effect: the ImGui overlay
   bool load_arrows = false;      ///< [render]: each point's normal load and friction drawn as arrows
+  bool reserve_top_left = false; ///< [render]: the insets and time stamp keep out of the top-left corner
   int width = 1280;              ///< frame size (pixels, up to 1920 x 1080)
   int height = 720;
   view::Antialiasing antialiasing = view::Antialiasing::kFxaa;

@@ -100,6 +100,7 @@ void readView(Reader& parent, SessionDesc& s) {
     }
     v.msaa_samples = r.integer("msaa_samples", v.msaa_samples, 2, 8);
     v.load_arrows = r.boolean("load_arrows", v.load_arrows);
+    v.reserve_top_left = r.boolean("reserve_top_left", v.reserve_top_left);
     const int pattern = r.choice("body_pattern", view::kBodyPatternNames, static_cast<int>(v.body_pattern));
     v.body_pattern = static_cast<view::BodyPattern>(pattern);
     v.proxy = static_cast<view::ProxyLook>(r.choice("proxy", view::kProxyLookNames, static_cast<int>(v.proxy)));

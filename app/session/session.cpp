@@ -560,6 +560,7 @@ render::FrameOutputSettings frameSettings(const SessionDesc& session, const Sess
   f.scene.shadows = v.shadows;
   f.scene.patch_highlight = v.patch_highlight;
   f.scene.load_arrows = v.load_arrows;
+  f.top_left_taken = v.reserve_top_left;
   f.scene.body_pattern = v.body_pattern;
   f.scene.proxy = v.proxy;
   if (!session.targets.empty()) f.scene.targets = std::make_shared<const std::vector<view::Target>>(session.targets);

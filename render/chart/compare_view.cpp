@@ -14,6 +14,8 @@
 #include "render/gl/gl.hpp"
 #include "render/gl/gpu.hpp"
 #include "render/gl/imgui_layer.hpp"
+#include "render/scene/contact_load.hpp"
+#include "render/scene/overlap_region.hpp"
 
 namespace gf::render {
 namespace {
@@ -71,11 +73,8 @@ CompareLayout compareLayout(int width, int height, int panels) {
   if (panels >= 3) {  // 2 x 2 half-size panels over a chart as tall as one of them
     l.panel_width = std::max(16, width / 2);
     l.panel_height = std::max(16, static_cast<int>(std::lround(l.panel_width * aspect)));
-    for (int i = 0; i < panels; ++i) {
-      const bool alone = panels == 3 && i == 2;
-      const int left = alone ? (width - l.panel_width) / 2 : (i % 2) * l.panel_width;
-      l.panels.emplace_back(std::max(0, left), (i / 2) * l.panel_height);
-    }
+    for (int i = 0; i < panels; ++i) l.panels.emplace_back((i % 2) * l.panel_width, (i / 2) * l.panel_height);
+    if (panels == 3) l.key = Eigen::Vector2i(l.panel_width, l.panel_height);
     l.chart_top = 2 * l.panel_height;
     l.chart_height = std::max(l.panel_height, kMinGridChartPx);
     l.chart_height += l.chart_height % 2;  // H.264's 4:2:0 needs an even height
@@ -165,6 +164,61 @@ struct CompareCompositor::Impl {
   }
 };
 
+namespace {
+
+// The key to the marks the panels draw, in the grid's empty cell at `lo` of `size`: one row each,
+// a small drawing and what it means (draw_list.hpp and load_marks.hpp draw them in 3D).
+void drawKey(ImDrawList& d, ImVec2 lo, ImVec2 size) {
+  ImFont* font = ImGui::GetFont();
+  const float f = std::clamp(size.x / 30.0f, kMinFontPx, kFontPx), row = 1.55f * f, pad = 0.8f * f;
+  d.PushClipRect(lo, ImVec2(lo.x + size.x, lo.y + size.y), true);
+  const ImU32 text = IM_COL32(235, 238, 242, 255), soft = IM_COL32(200, 205, 212, 255);
+  d.AddText(font, f, ImVec2(lo.x + pad, lo.y + pad), text, "What the pictures show");
+  const float icon = 2.2f * f;
+  float y = lo.y + pad + 1.6f * row;
+  const auto entry = [&](const char* what, auto&& draw) {
+    const ImVec2 c(lo.x + pad + 0.5f * icon, y + 0.5f * f);
+    draw(c);
+    d.AddText(font, f, ImVec2(lo.x + 2.0f * pad + icon, y), soft, what);
+    y += row;
+  };
+  const ImU32 amber = imguiColour(Eigen::Vector3f(1.0f, 0.75f, 0.1f));
+  entry("force on the device (1 cm = 1 N)", [&](ImVec2 c) {
+    d.AddLine(ImVec2(c.x - 0.5f * icon, c.y), ImVec2(c.x + 0.3f * icon, c.y), amber, 3.0f);
+    d.AddTriangleFilled(ImVec2(c.x + 0.5f * icon, c.y), ImVec2(c.x + 0.2f * icon, c.y - 0.3f * f), ImVec2(c.x + 0.2f * icon, c.y + 0.3f * f), amber);
+  });
+  entry("twist the patch resists (M_n)", [&](ImVec2 c) {
+    d.PathArcTo(c, 0.45f * f, 0.3f, 5.0f, 16);
+    d.PathStroke(amber, 0, 2.5f);
+  });
+  entry("SGO load, low to high (each patch)", [&](ImVec2 c) {
+    for (int k = 0; k < 3; ++k) {
+      d.AddCircleFilled(ImVec2(c.x + (static_cast<float>(k) - 1.0f) * 0.35f * icon, c.y), 0.28f * f, imguiColour(viridis(0.5 * k)));
+    }
+  });
+  entry("point slipping", [&](ImVec2 c) {
+    d.AddCircleFilled(c, 0.25f * f, imguiColour(viridis(0.5)));
+    d.AddCircle(c, 0.45f * f, IM_COL32(255, 255, 255, 255), 0, 2.0f);
+  });
+  entry("device, under the proxy", [&](ImVec2 c) {
+    d.AddCircle(c, 0.45f * f, imguiColour(Eigen::Vector3f(0.10f, 0.35f, 0.95f)), 12, 2.0f);
+  });
+  entry("two patches overlap", [&](ImVec2 c) {
+    d.AddRectFilled(ImVec2(c.x - 0.4f * f, c.y - 0.35f * f), ImVec2(c.x + 0.4f * f, c.y + 0.35f * f),
+                    imguiColour(Eigen::Vector3f(kOverlapColour[0], kOverlapColour[1], kOverlapColour[2])));
+  });
+  entry("bands turn with their body", [&](ImVec2 c) {
+    for (int k = 0; k < 4; ++k) {
+      const float x0 = c.x - 0.5f * icon + 0.25f * icon * static_cast<float>(k);
+      d.AddRectFilled(ImVec2(x0, c.y - 0.4f * f), ImVec2(x0 + 0.25f * icon, c.y + 0.4f * f),
+                      k % 2 ? IM_COL32(150, 95, 55, 255) : IM_COL32(185, 125, 80, 255));
+    }
+  });
+  d.PopClipRect();
+}
+
+}  // namespace
+
 CompareCompositor::CompareCompositor(int width, int height, std::vector<ComparePanel> panels, ChartSpec chart)
     : impl_(std::make_unique<Impl>(width, height, std::move(panels), std::move(chart))) {}
 
@@ -185,7 +239,7 @@ void CompareCompositor::compose(const std::vector<const Image*>& images, double 
   m.imgui.beginFrame(1.0 / 60.0, {});
   ImDrawList& d = *ImGui::GetBackgroundDrawList();
   const CompareLayout& l = m.layout;
-  // The panels' area is dark where no panel is (beside a third panel alone in its row).
+  // The panels' area is dark where no panel is (beside a third panel, under the key).
   d.AddRectFilled(ImVec2(0.0f, 0.0f), ImVec2(static_cast<float>(l.width), static_cast<float>(l.chart_top)),
                   IM_COL32(60, 60, 60, 255));
   for (std::size_t i = 0; i < m.panels.size() && i < l.panels.size(); ++i) {
@@ -195,6 +249,10 @@ void CompareCompositor::compose(const std::vector<const Image*>& images, double 
     m.label(d, m.panels[i], lo);
     d.AddRect(ImVec2(lo.x - 1.0f, lo.y - 1.0f), ImVec2(hi.x + 1.0f, hi.y + 1.0f), IM_COL32(255, 255, 255, 255), 0.0f, 0,
               2.0f);  // a white seam between panels
+  }
+  if (l.key.x() >= 0) {
+    drawKey(d, ImVec2(static_cast<float>(l.key.x()), static_cast<float>(l.key.y())),
+            ImVec2(static_cast<float>(l.panel_width), static_cast<float>(l.panel_height)));
   }
   if (l.chart_height > 0) {
     m.chart.cursor_x = time_s;

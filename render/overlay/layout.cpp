@@ -7,6 +7,7 @@
 #include "render/overlay/labels.hpp"
 #include "render/overlay/patch_insets.hpp"
 #include "render/scene/camera.hpp"
+#include "render/scene/draw_list.hpp"
 
 namespace gf::render {
 namespace {
@@ -86,7 +87,8 @@ float ScreenBox::overlap(const ScreenBox& o) const {
 }
 
 std::vector<ScreenBox> subjectBoxes(const sim::SceneDesc& scene, const std::vector<std::shared_ptr<const sim::Mesh>>& surfaces,
-                                    const sim::Snapshot& snap, const view::Camera& camera, int width, int height) {
+                                    const sim::Snapshot& snap, const view::Camera& camera, int width, int height,
+                                    double arrow_m_per_n) {
   const Projector project(camera, width, height);
   std::vector<ScreenBox> out;
   const auto keep = [&](ScreenBox box, bool any) {
@@ -116,6 +118,11 @@ std::vector<ScreenBox> subjectBoxes(const sim::SceneDesc& scene, const std::vect
     ScreenBox box;
     bool any = false;
     project.add(box, any, finger.proxy, scene.fingers[f].proxy.radius);
+    const double force = finger.feedback_force.norm();
+    if (!finger.contacts.empty() && arrow_m_per_n > 0.0 && force > 1e-9) {  // DrawSettings::max_arrow_m at most
+      const double length = std::min(DrawSettings{}.max_arrow_m, force * arrow_m_per_n);
+      project.add(box, any, finger.proxy + (length / force) * finger.feedback_force, 0.0);
+    }
     keep(box, any);
     for (const sim::ContactSnapshot& c : finger.contacts) {
       const double r = std::max(c.radius, scene.fingers[f].patch.r_max);
@@ -149,7 +156,8 @@ LabelSizes frameLabelSizes(int width, int height, int fingers, bool insets, bool
 }
 
 LabelPlacement placeLabels(const std::vector<ScreenBox>& subjects, const LabelSizes& sizes, int width, int height,
-                           const LabelPlacement& previous, const std::array<bool, 4>& insets_allowed) {
+                           const LabelPlacement& previous, const std::array<bool, 4>& insets_allowed,
+                           const std::array<bool, 4>& stamp_allowed) {
   LabelPlacement out;
   std::vector<ScreenBox> taken = subjects;
   std::vector<Slot> slots;
@@ -177,7 +185,7 @@ LabelPlacement placeLabels(const std::vector<ScreenBox>& subjects, const LabelSi
   std::vector<Slot> stamps;
   std::size_t keep = 4;
   for (const Corner c : kStampOrder) {
-    if (!slots.empty() && c == out.insets) continue;
+    if ((!slots.empty() && c == out.insets) || !stamp_allowed[static_cast<std::size_t>(c)]) continue;
     if (c == previous.stamp) keep = stamps.size();
     stamps.push_back({c, false, sizes.stamp_w, sizes.stamp_h});
   }

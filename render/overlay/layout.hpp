@@ -27,11 +27,14 @@ struct ScreenBox {
 /// The screen boxes of what a frame of `snapshot` from `camera` (width x height pixels) is
 /// about: each body but the ground (the corners of its render surface's box at its pose, from
 /// `surfaces`, one per body as DrawListBuilder takes them; null for a plane), each proxy (its
-/// sphere) and each contact's patch (a disc of its radius, at least r_max, across the normal),
-/// cut to the picture; those entirely behind the camera or outside the picture are left out.
+/// sphere, with its force arrow at `arrow_m_per_n` when it touches something, as far as the
+/// longest arrow, 8 cm; 0: none drawn) and each contact's patch (a disc of its radius, at least
+/// r_max, across the normal), cut to the picture; those entirely behind the camera or outside
+/// the picture are left out.
 std::vector<ScreenBox> subjectBoxes(const sim::SceneDesc& scene,
                                     const std::vector<std::shared_ptr<const sim::Mesh>>& surfaces,
-                                    const sim::Snapshot& snapshot, const view::Camera& camera, int width, int height);
+                                    const sim::Snapshot& snapshot, const view::Camera& camera, int width, int height,
+                                    double arrow_m_per_n = 0.0);
 
 /// A corner of the picture, in the order a label is tried there by default.
 enum class Corner : std::uint8_t { kBottomRight, kBottomLeft, kTopRight, kTopLeft };
@@ -66,10 +69,11 @@ LabelSizes frameLabelSizes(int width, int height, int fingers, bool insets, bool
 /// first, side by side in the first corner of kCorners (allowed by `insets_allowed`, indexed by
 /// Corner) that covers no subject, else one above the other in the same order, else where it
 /// covers the least of them, staying where `previous` put it while it covers nothing there (no
-/// jump from frame to frame); then the stamp in the same way in another corner, its default
-/// bottom left.
+/// jump from frame to frame); then the stamp in the same way in another corner allowed by
+/// `stamp_allowed`, its default bottom left.
 LabelPlacement placeLabels(const std::vector<ScreenBox>& subjects, const LabelSizes& sizes, int width, int height,
-                           const LabelPlacement& previous, const std::array<bool, 4>& insets_allowed = {true, true, true, true});
+                           const LabelPlacement& previous, const std::array<bool, 4>& insets_allowed = {true, true, true, true},
+                           const std::array<bool, 4>& stamp_allowed = {true, true, true, true});
 
 /// The boxes `placement` gives `sizes` in a width x height picture: the insets' block, the stamp.
 std::array<ScreenBox, 2> placedBoxes(const LabelPlacement& placement, const LabelSizes& sizes, int width, int height);

@@ -57,8 +57,8 @@ TEST(Compare, PanelsKeepTheFrameAspectAndLeaveTheChartAThird) {
   EXPECT_EQ(two.height, 720);
 }
 
-// Three or four models: the same 640 x 360 panels as two, in a 2 x 2 grid (a third alone in the
-// middle of the second row) over a 360-pixel chart, a third of a 1280 x 1080 frame; a 640 x 360
+// Three or four models: the same 640 x 360 panels as two, in a 2 x 2 grid (beside a third, the key
+// to the marks in the empty cell) over a 360-pixel chart, a third of a 1280 x 1080 frame; a 640 x 360
 // scene gives 320 x 180 panels over a chart of at least 220 pixels.
 TEST(Compare, ThreeOrFourModelsGoInATwoByTwoGridOverAThirdOfTheFrame) {
   const render::CompareLayout three = render::compareLayout(1280, 720, 3);
@@ -69,9 +69,11 @@ TEST(Compare, ThreeOrFourModelsGoInATwoByTwoGridOverAThirdOfTheFrame) {
   EXPECT_EQ(three.chart_height, 360);
   EXPECT_EQ(three.panels[0], Eigen::Vector2i(0, 0));
   EXPECT_EQ(three.panels[1], Eigen::Vector2i(640, 0));
-  EXPECT_EQ(three.panels[2], Eigen::Vector2i(320, 360));
+  EXPECT_EQ(three.panels[2], Eigen::Vector2i(0, 360));
+  EXPECT_EQ(three.key, Eigen::Vector2i(640, 360));
   const render::CompareLayout four = render::compareLayout(1280, 720, 4);
   EXPECT_EQ(four.panels[3], Eigen::Vector2i(640, 360));
+  EXPECT_LT(four.key.x(), 0) << "no empty cell: no key";
   const render::CompareLayout small = render::compareLayout(640, 360, 4);
   EXPECT_EQ(small.panel_width, 320);
   EXPECT_EQ(small.panel_height, 180);

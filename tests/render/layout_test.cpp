@@ -1,7 +1,8 @@
 // Where a frame's labels go (render/overlay/layout.hpp), without GL: the corner arithmetic, the
 // placement's rules (clear corners first, no jump while clear), and every bundled scene's frames
 // from its own camera: the insets' block and the time stamp, placed as the render thread places
-// them, cover no body, proxy or patch (their screen boxes from the scene's render surfaces).
+// them, cover no body, proxy, force arrow or patch (their screen boxes from the scene's render
+// surfaces).
 #include "render/overlay/layout.hpp"
 
 #include <gtest/gtest.h>
@@ -128,7 +129,7 @@ TEST(Layout, NoLabelCoversABodyInTheBundledScenesFrames) {
       world.snapshot(snap);
       const LabelSizes sizes = frameLabelSizes(kWidth, kHeight, static_cast<int>(scene.fingers.size()),
                                                session.view.patch_insets, !overlay, snap.time, 0.01);
-      const std::vector<ScreenBox> subjects = subjectBoxes(scene, surfaces, snap, camera, kWidth, kHeight);
+      const std::vector<ScreenBox> subjects = subjectBoxes(scene, surfaces, snap, camera, kWidth, kHeight, 0.01);
       placement = placeLabels(subjects, sizes, kWidth, kHeight, placement, allowed);
       const std::array<ScreenBox, 2> placed = placedBoxes(placement, sizes, kWidth, kHeight);
       for (int k = 0; k < 2; ++k) {

@@ -23,13 +23,13 @@ inline StillLayout stillLayout(const sim::SceneDesc& scene, const sim::Snapshot&
   for (const sim::BodyDesc& b : scene.bodies) surfaces.push_back(render::bodyRenderMesh(b));
   const int w = settings.width, h = settings.height;
   const bool arrows = settings.scene.patch_highlight && settings.scene.contact_arrows;
+  const double arrow_m_per_n = arrows ? settings.scene.force_arrow_m_per_n : 0.0;
   StillLayout out;
   out.sizes = render::frameLabelSizes(w, h, static_cast<int>(scene.fingers.size()), settings.patch_insets,
-                                      settings.time_stamp && !settings.overlay, snap.time,
-                                      arrows ? settings.scene.force_arrow_m_per_n : 0.0);
-  const std::array<bool, 4> allowed = {!settings.overlay, true, !settings.overlay, !settings.overlay};
-  out.placement = render::placeLabels(render::subjectBoxes(scene, surfaces, snap, settings.camera, w, h), out.sizes, w, h,
-                                      {}, allowed);
+                                      settings.time_stamp && !settings.overlay, snap.time, arrow_m_per_n);
+  const bool free = !settings.overlay, top_left = !settings.top_left_taken;
+  out.placement = render::placeLabels(render::subjectBoxes(scene, surfaces, snap, settings.camera, w, h, arrow_m_per_n),
+                                      out.sizes, w, h, {}, {free, true, free, free && top_left}, {true, true, true, top_left});
   return out;
 }
 
