@@ -172,8 +172,9 @@ struct Gpu {
     const LabelSizes sizes = frameLabelSizes(width, height, fingers, insets != nullptr, stamp, snap.time, arrow_m_per_n);
     const bool free = !insets_beside_overlay;
     const std::array<bool, 4> allowed = {free, true, free, free && top_left_free};
-    placement = placeLabels(subjectBoxes(description, scene.surfaces(), snap, camera, width, height, arrow_m_per_n), sizes, width,
-                            height, placement, allowed, {true, true, true, top_left_free});
+    const std::vector<ScreenBox> subjects =
+        subjectBoxes(description, scene.surfaces(), snap, camera, width, height, arrow_m_per_n, r.proxy);
+    placement = placeLabels(subjects, sizes, width, height, placement, allowed, {true, true, true, top_left_free});
     if (insets) {
       insets->place(placement.insets, placement.column);
       insets->draw(scene, snap, static_cast<unsigned>(target));

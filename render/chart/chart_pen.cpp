@@ -1,5 +1,6 @@
 #include "render/chart/chart_pen.hpp"
 
+#include <algorithm>
 #include <cstdio>
 
 namespace gf::render {
@@ -34,17 +35,21 @@ std::string points(const std::vector<ImVec2>& p) {
   return out;
 }
 
-// Text with &, < and > escaped.
+// Text with &, < and > escaped and control characters (which XML refuses) dropped; bytes from
+// 0x80 pass (the labels are ASCII or UTF-8 from our own files).
 std::string escaped(const std::string& text) {
   std::string out;
   for (char c : text) {
     if (c == '&') out += "&amp;";
     else if (c == '<') out += "&lt;";
     else if (c == '>') out += "&gt;";
-    else out += c;
+    else if (static_cast<unsigned char>(c) >= 0x20 || c == '\t') out += c;
   }
   return out;
 }
+
+// A length that SVG accepts: never negative (a rectangle under a pixel, a clip turned inside out).
+float side(float length) { return std::max(0.0f, length); }
 
 }  // namespace
 
@@ -71,7 +76,7 @@ void ChartPen::rect(ImVec2 lo, ImVec2 hi, ImU32 colour, float width) {
   // ImGui strokes a rectangle half a pixel inside its corners.
   char e[128];
   std::snprintf(e, sizeof e, "<rect x=\"%.2f\" y=\"%.2f\" width=\"%.2f\" height=\"%.2f\"", lo.x + 0.5f, lo.y + 0.5f,
-                hi.x - lo.x - 1.0f, hi.y - lo.y - 1.0f);
+                side(hi.x - lo.x - 1.0f), side(hi.y - lo.y - 1.0f));
   svg_->body += e + stroke(colour, width) + "/>\n";
 }
 
@@ -79,8 +84,8 @@ void ChartPen::rectFilled(ImVec2 lo, ImVec2 hi, ImU32 colour) {
   list_.AddRectFilled(lo, hi, colour);
   if (!svg_) return;
   char e[128];
-  std::snprintf(e, sizeof e, "<rect x=\"%.2f\" y=\"%.2f\" width=\"%.2f\" height=\"%.2f\"", lo.x, lo.y, hi.x - lo.x,
-                hi.y - lo.y);
+  std::snprintf(e, sizeof e, "<rect x=\"%.2f\" y=\"%.2f\" width=\"%.2f\" height=\"%.2f\"", lo.x, lo.y, side(hi.x - lo.x),
+                side(hi.y - lo.y));
   svg_->body += e + paint("fill", colour) + "/>\n";
 }
 
@@ -140,7 +145,7 @@ void ChartPen::pushClip(ImVec2 lo, ImVec2 hi) {
   std::snprintf(e, sizeof e,
                 "<clipPath id=\"c%d\"><rect x=\"%.2f\" y=\"%.2f\" width=\"%.2f\" height=\"%.2f\"/></clipPath>\n"
                 "<g clip-path=\"url(#c%d)\">\n",
-                id, lo.x, lo.y, hi.x - lo.x, hi.y - lo.y, id);
+                id, lo.x, lo.y, side(hi.x - lo.x), side(hi.y - lo.y), id);
   svg_->body += e;
 }
 

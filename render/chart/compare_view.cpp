@@ -183,7 +183,7 @@ void drawKey(ImDrawList& d, ImVec2 lo, ImVec2 size) {
     y += row;
   };
   const ImU32 amber = imguiColour(Eigen::Vector3f(1.0f, 0.75f, 0.1f));
-  entry("force on the device (1 cm = 1 N)", [&](ImVec2 c) {
+  entry("force on the device (scale in each stamp)", [&](ImVec2 c) {
     d.AddLine(ImVec2(c.x - 0.5f * icon, c.y), ImVec2(c.x + 0.3f * icon, c.y), amber, 3.0f);
     d.AddTriangleFilled(ImVec2(c.x + 0.5f * icon, c.y), ImVec2(c.x + 0.2f * icon, c.y - 0.3f * f), ImVec2(c.x + 0.2f * icon, c.y + 0.3f * f), amber);
   });

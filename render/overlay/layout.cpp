@@ -8,6 +8,8 @@
 #include "render/overlay/patch_insets.hpp"
 #include "render/scene/camera.hpp"
 #include "render/scene/draw_list.hpp"
+#include "render/scene/finger_marks.hpp"
+#include "render/scene/pad_mesh.hpp"
 
 namespace gf::render {
 namespace {
@@ -88,7 +90,7 @@ float ScreenBox::overlap(const ScreenBox& o) const {
 
 std::vector<ScreenBox> subjectBoxes(const sim::SceneDesc& scene, const std::vector<std::shared_ptr<const sim::Mesh>>& surfaces,
                                     const sim::Snapshot& snap, const view::Camera& camera, int width, int height,
-                                    double arrow_m_per_n) {
+                                    double arrow_m_per_n, view::ProxyLook look) {
   const Projector project(camera, width, height);
   std::vector<ScreenBox> out;
   const auto keep = [&](ScreenBox box, bool any) {
@@ -117,7 +119,9 @@ std::vector<ScreenBox> subjectBoxes(const sim::SceneDesc& scene, const std::vect
     const sim::FingerSnapshot& finger = snap.fingers[f];
     ScreenBox box;
     bool any = false;
-    project.add(box, any, finger.proxy, scene.fingers[f].proxy.radius);
+    const double reach = std::max(fingerReach(finger, proxySphereRadius(finger, scene.fingers[f].proxy.radius), look),
+                                  padReach(finger.pad, finger.proxy));
+    project.add(box, any, finger.proxy, reach);
     const double force = finger.feedback_force.norm();
     if (!finger.contacts.empty() && arrow_m_per_n > 0.0 && force > 1e-9) {  // DrawSettings::max_arrow_m at most
       const double length = std::min(DrawSettings{}.max_arrow_m, force * arrow_m_per_n);
@@ -189,7 +193,7 @@ LabelPlacement placeLabels(const std::vector<ScreenBox>& subjects, const LabelSi
     if (c == previous.stamp) keep = stamps.size();
     stamps.push_back({c, false, sizes.stamp_w, sizes.stamp_h});
   }
-  out.stamp = stamps[pick(taken, stamps, keep, width, height, sizes.margin)].corner;
+  if (!stamps.empty()) out.stamp = stamps[pick(taken, stamps, keep, width, height, sizes.margin)].corner;
   return out;
 }
 

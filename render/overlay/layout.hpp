@@ -26,15 +26,16 @@ struct ScreenBox {
 
 /// The screen boxes of what a frame of `snapshot` from `camera` (width x height pixels) is
 /// about: each body but the ground (the corners of its render surface's box at its pose, from
-/// `surfaces`, one per body as DrawListBuilder takes them; null for a plane), each proxy (its
-/// sphere, with its force arrow at `arrow_m_per_n` when it touches something, as far as the
+/// `surfaces`, one per body as DrawListBuilder takes them; null for a plane), each proxy (as far
+/// as what is drawn there reaches: its sphere, marks, a fingertip drawn as `look`, a fem_pad's
+/// skin; with its force arrow at `arrow_m_per_n` when it touches something, as far as the
 /// longest arrow, 8 cm; 0: none drawn) and each contact's patch (a disc of its radius, at least
 /// r_max, across the normal), cut to the picture; those entirely behind the camera or outside
 /// the picture are left out.
 std::vector<ScreenBox> subjectBoxes(const sim::SceneDesc& scene,
                                     const std::vector<std::shared_ptr<const sim::Mesh>>& surfaces,
                                     const sim::Snapshot& snapshot, const view::Camera& camera, int width, int height,
-                                    double arrow_m_per_n = 0.0);
+                                    double arrow_m_per_n = 0.0, view::ProxyLook look = view::ProxyLook::kSphere);
 
 /// A corner of the picture, in the order a label is tried there by default.
 enum class Corner : std::uint8_t { kBottomRight, kBottomLeft, kTopRight, kTopLeft };

@@ -33,15 +33,16 @@ Eigen::Vector3f viridis(double u) {
 ContactLoads contactLoads(const sim::ContactSnapshot& c) {
   ContactLoads out;
   if (c.loads.empty() || c.loads.size() != c.sgos_world.size()) return out;
-  const double first = std::max(0.0, c.point_load.normal);  // c_p, then the SGOs
-  double total = first, least = first, most = first;
+  // c_p, when it is one of the solver's points, then the SGOs.
+  const double first = c.point_loaded ? std::max(0.0, c.point_load.normal) : std::max(0.0, c.loads.front().normal);
+  double total = c.point_loaded ? first : 0.0, least = first, most = first;
   for (const sim::PointLoad& l : c.loads) {
     const double n = std::max(0.0, l.normal);
     total += n, least = std::min(least, n), most = std::max(most, n);
   }
   if (!(total > kMinPressN)) return out;
   out.shown = true;
-  out.mean_normal = total / static_cast<double>(c.loads.size() + 1);
+  out.mean_normal = total / static_cast<double>(c.loads.size() + (c.point_loaded ? 1 : 0));
   out.min_normal = least;
   out.max_normal = most;
   out.half_span = std::max({kLoadScaleMinHalfSpan, most / out.mean_normal - 1.0, 1.0 - least / out.mean_normal});
@@ -61,7 +62,7 @@ ContactForce contactForce(const sim::FingerSnapshot& f, const sim::ContactSnapsh
 
 sim::Vec3 pressureCentre(const sim::ContactSnapshot& c) {
   if (c.loads.size() != c.sgos_world.size()) return c.point_world;
-  double total = std::max(0.0, c.point_load.normal);
+  double total = c.point_loaded ? std::max(0.0, c.point_load.normal) : 0.0;
   sim::Vec3 sum = total * c.point_world;
   for (std::size_t k = 0; k < c.loads.size(); ++k) {
     const double n = std::max(0.0, c.loads[k].normal);

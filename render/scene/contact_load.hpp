@@ -61,7 +61,7 @@ ContactForce contactForce(const sim::FingerSnapshot& f, const sim::ContactSnapsh
 /// The twist a contact resists: its moment on the body about the outward normal through the
 /// points' centre of pressure (N m; positive counter-clockwise seen from outside the body): the
 /// points' friction forces' moment there, with the moment they do not carry (a soft finger's
-/// torsion_moment). Zero without per-point loads (a god-object's point turns freely).
+/// torsion_moment, all there is of a soft finger's). Zero for a god-object (its point turns freely).
 double contactTorsion(const sim::ContactSnapshot& c);
 
 /// The centre of pressure of contact `c`: its points weighted by their normal loads (the

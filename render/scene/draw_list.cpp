@@ -46,17 +46,6 @@ constexpr float kTargetZoneAlpha = 0.15f;   // a zone's faces; its edges are opa
 // Rotation taking +y onto `direction` (unit).
 sim::Quat fromY(const Vec3& direction) { return sim::Quat::FromTwoVectors(Vec3::UnitY(), direction); }
 
-DrawItem shapeItem(DrawPass pass, DrawShape shape, const Eigen::Matrix4f& model, const Eigen::Vector3f& colour,
-                   float alpha) {
-  DrawItem item;
-  item.pass = pass;
-  item.shape = shape;
-  item.model = model;
-  item.colour = colour;
-  item.alpha = alpha;
-  return item;
-}
-
 // Appends `vertices` to the list as one range item (nothing when empty).
 void addRange(DrawList& out, DrawPass pass, DrawShape shape, const std::vector<Vertex>& vertices,
               const Eigen::Vector3f& colour, float alpha) {
@@ -73,6 +62,17 @@ void addRange(DrawList& out, DrawPass pass, DrawShape shape, const std::vector<V
 }
 
 }  // namespace
+
+DrawItem shapeItem(DrawPass pass, DrawShape shape, const Eigen::Matrix4f& model, const Eigen::Vector3f& colour,
+                   float alpha) {
+  DrawItem item;
+  item.pass = pass;
+  item.shape = shape;
+  item.model = model;
+  item.colour = colour;
+  item.alpha = alpha;
+  return item;
+}
 
 Eigen::Vector3f fingerColour(int finger) {
   static const Eigen::Vector3f kPalette[] = {{0.10f, 0.35f, 0.95f}, {0.90f, 0.12f, 0.30f},
@@ -238,7 +238,7 @@ void DrawListBuilder::addMarks(const sim::ContactSnapshot& c, const Eigen::Vecto
   const ContactLoads loads = contactLoads(c);
   const sim::Quat along_normal = fromY(c.outward_normal_world);
   const auto mark = [&](const Vec3& at, double radius, const Eigen::Vector3f& uniform, const sim::PointLoad* load) {
-    if (loads.shown && load->slipping) {
+    if (loads.shown && load && load->slipping) {
       const double ring = kSlipRingShare * dot;
       out.items.push_back(shapeItem(DrawPass::kMarks, DrawShape::kCylinder,
                                     modelMatrix(at + kSlipRingLiftM * c.outward_normal_world, along_normal,
@@ -247,10 +247,10 @@ void DrawListBuilder::addMarks(const sim::ContactSnapshot& c, const Eigen::Vecto
     }
     out.items.push_back(shapeItem(DrawPass::kMarks, DrawShape::kDot,
                                   modelMatrix(at, sim::Quat::Identity(), Vec3::Constant(radius)),
-                                  loads.shown ? loads.colour(load->normal) : uniform, 1.0f));
+                                  loads.shown && load ? loads.colour(load->normal) : uniform, 1.0f));
   };
   // The god-object's contact point; with n_SGO = 0 it is the whole patch.
-  mark(c.point_world, 1.3 * dot, kWhite, &c.point_load);
+  mark(c.point_world, 1.3 * dot, kWhite, c.point_loaded || !loads.shown ? &c.point_load : nullptr);
   for (std::size_t k = 0; k < c.sgos_world.size(); ++k) {
     mark(c.sgos_world[k], dot, colour, loads.shown ? &c.loads[k] : nullptr);
   }

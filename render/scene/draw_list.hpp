@@ -61,6 +61,10 @@ struct DrawItem {
   int first = 0, count = 0;                              ///< kTriangles, kLines: the vertex range
 };
 
+/// An item drawing unit shape `shape` placed by `model` in `pass`.
+DrawItem shapeItem(DrawPass pass, DrawShape shape, const Eigen::Matrix4f& model, const Eigen::Vector3f& colour,
+                   float alpha = 1.0f);
+
 /// One frame's overlay. clear() keeps the arrays' storage.
 struct DrawList {
   std::vector<Vertex> vertices;  ///< world frame (m)

@@ -32,17 +32,6 @@ double metresPerPixel(const std::optional<DrawView>& view, const Vec3& at) {
   return 2.0 * std::max(depth, 0.002) * view->tan_half_fov / std::max(1, view->height_px);
 }
 
-DrawItem markItem(DrawPass pass, DrawShape shape, const Eigen::Matrix4f& model, const Eigen::Vector3f& colour,
-                  float alpha) {
-  DrawItem item;
-  item.pass = pass;
-  item.shape = shape;
-  item.model = model;
-  item.colour = colour;
-  item.alpha = alpha;
-  return item;
-}
-
 // A ring of tube radius `tube` (m): centre `c`, radius `rho` (m), in the plane across unit `n`,
 // as triangles wound outward.
 void appendRing(const Vec3& c, const Vec3& n, double rho, double tube, std::vector<Vertex>& out) {
@@ -121,7 +110,7 @@ void addFingerMarks(const sim::FingerSnapshot& f, int index, double r, view::Pro
   if (fingertip) {
     const Vec3 back = across(f.device_orientation * -Vec3::UnitZ(), up);
     const sim::Quat nail = frameOf(up, back);
-    out.items.push_back(markItem(DrawPass::kProxies, DrawShape::kSphere,
+    out.items.push_back(shapeItem(DrawPass::kProxies, DrawShape::kSphere,
                                  modelMatrix(f.proxy + 1.6 * r * up + 0.9 * r * back, nail, Vec3(0.55 * r, 0.8 * r, 0.18 * r)),
                                  kNailColour, kNailAlpha));
   }
@@ -134,13 +123,13 @@ void addFingerMarks(const sim::FingerSnapshot& f, int index, double r, view::Pro
     const double rho = lift * std::sin(kPadOutlineAngle);
     scratch.clear();
     appendRing(centre, up, rho, width, scratch);
-    DrawItem ring = markItem(DrawPass::kMarks, DrawShape::kTriangles, Eigen::Matrix4f::Identity(), colour, 1.0f);
+    DrawItem ring = shapeItem(DrawPass::kMarks, DrawShape::kTriangles, Eigen::Matrix4f::Identity(), colour, 1.0f);
     ring.first = static_cast<int>(out.vertices.size());
     ring.count = static_cast<int>(scratch.size());
     out.vertices.insert(out.vertices.end(), scratch.begin(), scratch.end());
     out.items.push_back(ring);
     const Vec3 bead = centre + rho * across(deviceSide(f), up);
-    out.items.push_back(markItem(DrawPass::kMarks, DrawShape::kDot,
+    out.items.push_back(shapeItem(DrawPass::kMarks, DrawShape::kDot,
                                  modelMatrix(bead, sim::Quat::Identity(), Vec3::Constant(kBeadShare * width)),
                                  Eigen::Vector3f::Constant(0.95f), 1.0f));
   }
@@ -148,9 +137,9 @@ void addFingerMarks(const sim::FingerSnapshot& f, int index, double r, view::Pro
   // The stalk: from the sphere's surface along deviceUp(), its head the last third.
   const double length = kTiltMarkerShare * r, head = std::min(length / 3.0, 5.0 * width);
   const sim::Quat along = sim::Quat::FromTwoVectors(Vec3::UnitY(), up);
-  out.items.push_back(markItem(DrawPass::kMarks, DrawShape::kCylinder,
+  out.items.push_back(shapeItem(DrawPass::kMarks, DrawShape::kCylinder,
                                modelMatrix(f.proxy + r * up, along, Vec3(width, length - head, width)), colour, 1.0f));
-  out.items.push_back(markItem(DrawPass::kMarks, DrawShape::kCone,
+  out.items.push_back(shapeItem(DrawPass::kMarks, DrawShape::kCone,
                                modelMatrix(f.proxy + (r + length - head) * up, along, Vec3(2.5 * width, head, 2.5 * width)),
                                colour, 1.0f));
 }

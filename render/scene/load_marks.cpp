@@ -20,15 +20,6 @@ constexpr double kHeadTubes = 3.0;           // the head's arc, in tube diameter
 const Eigen::Vector3f kNormalLoadColour(0.85f, 0.85f, 0.9f);
 const Eigen::Vector3f kFrictionLoadColour(1.0f, 0.45f, 0.1f);
 
-DrawItem item(DrawShape shape, const Eigen::Matrix4f& model, const Eigen::Vector3f& colour) {
-  DrawItem i;
-  i.pass = DrawPass::kArrows;
-  i.shape = shape;
-  i.model = model;
-  i.colour = colour;
-  return i;
-}
-
 }  // namespace
 
 std::optional<TorsionArc> torsionArc(const sim::ContactSnapshot& c, double friction, double r_fallback) {
@@ -62,7 +53,7 @@ void addTorsionArc(DrawList& out, const TorsionArc& arc, double tube_radius, con
   for (int s = 0; s < segments; ++s) {
     const Vec3 a = at(body * s / segments), b = at(body * (s + 1) / segments);
     const Vec3 d = b - a;
-    out.items.push_back(item(DrawShape::kCylinder,
+    out.items.push_back(shapeItem(DrawPass::kArrows, DrawShape::kCylinder,
                              modelMatrix(a, sim::Quat::FromTwoVectors(Vec3::UnitY(), d.normalized()),
                                          Vec3(tube_radius, d.norm(), tube_radius)),
                              colour));

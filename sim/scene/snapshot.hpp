@@ -40,6 +40,9 @@ struct ContactSnapshot {
   /// what `point_load` and `loads` add up to. Zero when the solver did not see the contact.
   Vec3 force = Vec3::Zero();
   PointLoad point_load;          ///< the true contact point's share (at point_world)
+  /// The contact point is one of the solver's points (point_load is its share); false where the
+  /// loads are elsewhere alone (a god-finger's pressed nodes on a soft body).
+  bool point_loaded = true;
   std::vector<PointLoad> loads;  ///< one per sgos_world; empty when the solver did not see them
   /// The moment of the patch's rolling rows on the body (N m): what keeps the body from rolling
   /// under the pad beyond what the points' loads do (god-finger patches; zero otherwise). With

@@ -304,6 +304,7 @@ void World::Impl::softSnapshot(const Finger& f, FingerSnapshot& out) const {
     // A god-object's one press is the contact point's; a god-finger's are its pad's nodes.
     const std::size_t first = t.centre_press && !t.loads.empty() ? 1 : 0;
     s.point_load = first ? t.loads.front() : PointLoad{};
+    s.point_loaded = first != 0 || t.loads.empty();
     s.sgos_world.assign(t.sgos.begin() + static_cast<std::ptrdiff_t>(first), t.sgos.end());
     s.loads.assign(t.loads.begin() + static_cast<std::ptrdiff_t>(first), t.loads.end());
     s.path_points_world = t.patch.valid ? t.patch.path_points : std::vector<Vec3>{};

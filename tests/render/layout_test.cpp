@@ -8,6 +8,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cstdio>
 #include <filesystem>
 #include <string>
 #include <vector>
@@ -17,6 +18,7 @@
 #include "render/overlay/labels.hpp"
 #include "render/overlay/patch_insets.hpp"
 #include "render/scene/geometry.hpp"
+#include "tests/render/still_layout.hpp"
 #include "sim/world/world.hpp"
 
 namespace gf::render {
@@ -100,9 +102,9 @@ std::vector<std::string> bundledScenes() {
 }
 
 // Every bundled scene from its default camera, one frame every 0.1 s of its run (up to
-// kLongestRun): the labels
-// placed as the render thread places them (the insets with patch_insets, the stamp without the
-// overlay, the insets beside the overlay's panel with it) cover none of the frame's subjects.
+// kLongestRun), at its own frame settings: the labels placed as the render thread places them
+// (the insets with patch_insets, the stamp without the overlay, the insets beside the overlay's
+// panel with it) cover none of the frame's subjects.
 TEST(Layout, NoLabelCoversABodyInTheBundledScenesFrames) {
   const std::vector<std::string> scenes = bundledScenes();
   ASSERT_GE(scenes.size(), 20u);
@@ -110,15 +112,12 @@ TEST(Layout, NoLabelCoversABodyInTheBundledScenesFrames) {
   for (const std::string& path : scenes) {
     const app::SessionDesc session = app::loadSceneFile(path);
     const sim::SceneDesc& scene = session.scene;
-    std::vector<std::shared_ptr<const sim::Mesh>> surfaces;
-    for (const sim::BodyDesc& b : scene.bodies) surfaces.push_back(bodyRenderMesh(b));
-    const view::Camera camera = app::sessionCamera(session, "");
+    const FrameOutputSettings settings = app::frameSettings(session, {});
+    const std::vector<std::shared_ptr<const sim::Mesh>> surfaces = test::renderSurfaces(scene);
     sim::World world(scene);
     const std::vector<sim::DeviceTrack> devices = sim::deviceTracks(scene);
     std::vector<sim::DeviceSample> samples(devices.size());
     const double dt = 1.0 / scene.world.haptic_rate_hz;
-    const bool overlay = session.view.overlay;
-    const std::array<bool, 4> allowed = {!overlay, true, !overlay, !overlay};
     LabelPlacement placement;
     sim::Snapshot snap;
     for (double next = 0.0; next <= std::min(scene.duration, kLongestRun) + 1e-9; next += 0.1) {
@@ -127,14 +126,14 @@ TEST(Layout, NoLabelCoversABodyInTheBundledScenesFrames) {
         world.step(dt, samples);
       }
       world.snapshot(snap);
-      const LabelSizes sizes = frameLabelSizes(kWidth, kHeight, static_cast<int>(scene.fingers.size()),
-                                               session.view.patch_insets, !overlay, snap.time, 0.01);
-      const std::vector<ScreenBox> subjects = subjectBoxes(scene, surfaces, snap, camera, kWidth, kHeight, 0.01);
-      placement = placeLabels(subjects, sizes, kWidth, kHeight, placement, allowed);
-      const std::array<ScreenBox, 2> placed = placedBoxes(placement, sizes, kWidth, kHeight);
+      // The subjects and placement as the render thread makes them (tests/render/still_layout.hpp).
+      const test::StillLayout layout = test::stillLayout(scene, surfaces, snap, settings, placement);
+      placement = layout.placement;
+      const std::vector<ScreenBox>& subjects = layout.subjects;
+      const std::array<ScreenBox, 2> placed = placedBoxes(placement, layout.sizes, settings.width, settings.height);
       for (int k = 0; k < 2; ++k) {
-        if (k == 0 && !session.view.patch_insets) continue;
-        if (k == 1 && overlay) continue;
+        if (k == 0 && !settings.patch_insets) continue;
+        if (k == 1 && (settings.overlay || !settings.time_stamp)) continue;
         for (const ScreenBox& s : subjects) {
           EXPECT_EQ(placed[k].overlap(s), 0.0f)
               << path << " t = " << snap.time << ": the " << (k == 0 ? "insets" : "stamp") << " [" << placed[k].x0 << ", "
@@ -145,6 +144,7 @@ TEST(Layout, NoLabelCoversABodyInTheBundledScenesFrames) {
       ++frames;
     }
   }
+  std::printf("%d frames of %zu scenes checked\n", frames, scenes.size());
   EXPECT_GT(frames, kLongestRun > 5.0 ? 500 : 200);
 }
 
