@@ -106,6 +106,12 @@ std::vector<std::string> bundledScenes() {
 // (the insets with patch_insets, the stamp without the overlay, the insets beside the overlay's
 // panel with it) cover none of the frame's subjects.
 TEST(Layout, NoLabelCoversABodyInTheBundledScenesFrames) {
+#if defined(__SANITIZE_THREAD__)
+  // ThreadSanitizer steps the scenes' physics (the soft bodies' solves above all) past the
+  // test's 600 s; this test has no threads of its own, and the release and AddressSanitizer
+  // builds run it.
+  GTEST_SKIP() << "the scenes' physics is too slow under ThreadSanitizer; release and asan-ubsan run this";
+#endif
   const std::vector<std::string> scenes = bundledScenes();
   ASSERT_GE(scenes.size(), 20u);
   int frames = 0;
