@@ -24,6 +24,7 @@
 #include "render/gl/imgui_layer.hpp"
 #include "render/overlay/labels.hpp"
 #include "render/overlay/layout.hpp"
+#include "render/scene/same_picture.hpp"
 #include "sim/assert.hpp"
 
 namespace gf::render {
@@ -130,6 +131,13 @@ struct Gpu {
   bool insets_beside_overlay;
   bool top_left_free;
   LabelPlacement placement;  // the last frame's: kept while it covers nothing
+  std::vector<ScreenBox> subjects;  // this frame's, for the layout (storage reused)
+  // The state, camera and label corners the frame's last drawn scene picture shows, and whether
+  // `frame` keeps that picture for the frames that draw the same (drawScene).
+  sim::Snapshot drawn;
+  view::Camera drawn_camera;
+  bool drawn_any = false, picture_kept = false;
+  long pictures_reused = 0;
   Gpu(const sim::SceneDesc& desc, const FrameOutputSettings& s)
       : scene(desc, s.scene),
         frame(s.width, s.height, s.antialiasing, s.msaa_samples),
@@ -162,23 +170,41 @@ struct Gpu {
   // The frame of `snap` from `camera`, with the insets and labels, into `frame` (the output bound
   // after). The insets and the stamp go in corners clear of the bodies, proxies and patches
   // (layout.hpp); beside the overlay's bottom-right panel the insets keep to the bottom left.
+  // A frame whose scene draws as the picture drawn last (same_picture.hpp: nothing moved, same
+  // camera and label corners) reuses that picture: only the labels are drawn again. The picture
+  // is kept from the second frame of a still spell on, so moving frames copy nothing.
   void drawScene(const sim::Snapshot& snap, const view::Camera& camera, int width, int height) {
-    frame.bind();
-    frame.resolve(scene.draw(snap, camera, width, height));
-    GLint target = 0;
-    glGetIntegerv(GL_FRAMEBUFFER_BINDING, &target);
     const RenderSettings& r = scene.settings();
     const double arrow_m_per_n = r.patch_highlight && r.contact_arrows ? r.force_arrow_m_per_n : 0.0;
     const LabelSizes sizes = frameLabelSizes(width, height, fingers, insets != nullptr, stamp, snap.time, arrow_m_per_n);
     const bool free = !insets_beside_overlay;
     const std::array<bool, 4> allowed = {free, true, free, free && top_left_free};
-    const std::vector<ScreenBox> subjects =
-        subjectBoxes(description, scene.surfaces(), snap, camera, width, height, arrow_m_per_n, r.proxy);
-    placement = placeLabels(subjects, sizes, width, height, placement, allowed, {true, true, true, top_left_free});
-    if (insets) {
-      insets->place(placement.insets, placement.column);
-      insets->draw(scene, snap, static_cast<unsigned>(target));
+    subjects = subjectBoxes(description, scene.surfaces(), snap, camera, width, height, arrow_m_per_n, r.proxy);
+    const LabelPlacement placed =
+        placeLabels(subjects, sizes, width, height, placement, allowed, {true, true, true, top_left_free});
+    const bool still = drawn_any && placed == placement && camera.position == drawn_camera.position &&
+                       camera.target == drawn_camera.target && camera.fov_deg == drawn_camera.fov_deg &&
+                       width == frame.width() && height == frame.height() && drawsTheSame(snap, drawn, r.load_arrows);
+    placement = placed;
+    if (still && picture_kept && frame.restorePicture()) {
+      ++pictures_reused;
+    } else {
+      frame.bind();
+      frame.resolve(scene.draw(snap, camera, width, height));
+      if (insets) {
+        GLint output = 0;
+        glGetIntegerv(GL_FRAMEBUFFER_BINDING, &output);
+        insets->place(placement.insets, placement.column);
+        insets->draw(scene, snap, static_cast<unsigned>(output));
+      }
+      picture_kept = still;
+      if (picture_kept) frame.keepPicture();
+      drawn = snap;
+      drawn_camera = camera;
+      drawn_any = true;
     }
+    GLint target = 0;
+    glGetIntegerv(GL_FRAMEBUFFER_BINDING, &target);
     if (!labels) return;
     labels->beginFrame(1.0 / 60.0, {});
     if (insets) insets->drawLabels(*labels, snap);
@@ -285,11 +311,17 @@ struct RenderThread::Impl {
   bool closing = false;
   std::string error;
   TripleBuffer latest;
+  // Realtime: set by hurry() (haptic thread), taken by the render thread, which waits on
+  // `ticks` (under `mutex`) until its next tick or this.
+  std::atomic<bool> hurry{false};
+  std::condition_variable ticks;
+  long hurried = 0;
   std::mutex command_mutex;
   std::vector<sim::SettingsCommand> commands;
   std::vector<float> frame_ms;
   Clock::time_point start = Clock::now();
   std::string gl_description;
+  long pictures_reused = 0;  // copied from the Gpu when the thread ends
   bool background_priority = false;  // the render thread runs at nice kBackgroundNice
   std::thread thread;
 
@@ -340,7 +372,14 @@ struct RenderThread::Impl {
   void runRealtime(Gpu& gpu) {
     const auto period = std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(1.0 / settings.fps));
     for (auto next = Clock::now();; next += period) {
-      std::this_thread::sleep_until(next);
+      {
+        std::unique_lock lock(mutex);
+        ticks.wait_until(lock, next, [&] { return hurry.load(std::memory_order_acquire) || closing; });
+      }
+      if (hurry.exchange(false, std::memory_order_acq_rel)) {  // a viewer's input: drawn now
+        ++hurried;
+        next = Clock::now();
+      }
       // Close-ups and charts still come through the queue in realtime runs; they are drawn
       // outside the lock so the haptic thread never waits on a draw.
       std::deque<Job> side;
@@ -386,6 +425,7 @@ struct RenderThread::Impl {
     } catch (const std::exception& e) {
       fail(e.what());
     }
+    pictures_reused = gpu->pictures_reused;
   }
 };
 
@@ -461,6 +501,11 @@ void RenderThread::submitChart(const ChartSpec& chart, const std::string& path) 
 
 sim::Snapshot& RenderThread::latestSlot() { return impl_->latest.back(); }
 
+void RenderThread::hurry() {
+  impl_->hurry.store(true, std::memory_order_release);
+  impl_->ticks.notify_one();  // without the lock: never waits (a wake lost to a race waits for the tick)
+}
+
 void RenderThread::publishSlot() { impl_->latest.publish(); }
 
 std::vector<sim::SettingsCommand> RenderThread::takeCommands() {
@@ -476,11 +521,14 @@ RenderStats RenderThread::finish() {
     std::lock_guard lock(r.mutex);
     r.closing = true;
     r.changed.notify_all();
+    r.ticks.notify_all();
   }
   if (r.thread.joinable()) r.thread.join();
   RenderStats stats;
   stats.gl = r.gl_description;
   stats.frame_ms = r.frame_ms;
+  stats.pictures_reused = r.pictures_reused;
+  stats.hurried = r.hurried;
   stats.background_priority = r.background_priority;
   // Each sink is finished on its own: a PNG folder that fails does not cost the video.
   const auto finishSink = [&](auto& sink, SinkStats& out) {

@@ -57,6 +57,10 @@ struct FrameOutputSettings {
 /// What the render thread did.
 struct RenderStats {
   std::vector<float> frame_ms;    ///< draw + overlay + read-back of each frame drawn (ms)
+  long hurried = 0;               ///< realtime frames drawn at once for a viewer's input (hurry())
+  /// Frames whose scene picture was the one before's, not drawn again (only their labels and
+  /// overlay were): nothing had moved (render/scene/same_picture.hpp).
+  long pictures_reused = 0;
   double wall_seconds = 0.0;      ///< from start to finish()
   SinkStats png, video;
   std::string gl;                 ///< GL version and renderer
@@ -89,6 +93,10 @@ class RenderThread {
     fill(latestSlot());
     publishSlot();
   }
+  /// Realtime: the snapshot just published shows a viewer's input (a move from the browser
+  /// view): the render thread draws it now, not at its next 1/fps tick (and counts its ticks from
+  /// then). Never blocks: it wakes the thread (a futex wake when it sleeps). Haptic thread.
+  void hurry();
   /// Realtime: settings changes made in the overlay since the last call; never blocks.
   std::vector<sim::SettingsCommand> takeCommands();
   /// Draws what is queued, stops the thread and the encoders, rethrows the first error.

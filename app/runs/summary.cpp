@@ -117,6 +117,8 @@ nlohmann::json renderJson(render::RenderStats r, long published) {
   const long frames = static_cast<long>(r.frame_ms.size());
   return {{"frames", frames},
           {"published", published},
+          {"pictures_reused", r.pictures_reused},
+          {"hurried", r.hurried},
           {"render_ms", {{"median", sim::percentile(r.frame_ms, 0.5)}, {"p99", sim::percentile(r.frame_ms, 0.99)}}},
           {"png", {{"frames", r.png.frames}, {"encode_fps", fps(r.png)}, {"repeated", r.png.repeated}}},
           {"video", {{"frames", r.video.frames}, {"bytes", r.video.bytes}}},

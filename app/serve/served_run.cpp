@@ -42,11 +42,15 @@ std::span<sim::DeviceSource* const> ServedRun::sources(std::span<sim::DeviceSour
   return sources_;
 }
 
-void ServedRun::afterStep(sim::World& world) {
-  if (!has_posted_.load(std::memory_order_acquire)) return;
+bool ServedRun::afterStep(sim::World& world) {
+  long moves = 0;
+  for (const auto& d : devices_) moves += d->moves();
+  const bool moved = moves != moves_seen_;
+  moves_seen_ = moves;
+  if (!has_posted_.load(std::memory_order_acquire)) return moved;
   {
     std::unique_lock lock(mutex_, std::try_to_lock);
-    if (!lock.owns_lock()) return;  // the next step takes them
+    if (!lock.owns_lock()) return moved;  // the next step takes them
     taking_.swap(posted_);
     has_posted_.store(false, std::memory_order_relaxed);
   }
@@ -59,6 +63,7 @@ void ServedRun::afterStep(sim::World& world) {
   }
   settings_applied_.fetch_add(static_cast<long>(taking_.size()), std::memory_order_relaxed);
   taking_.clear();
+  return true;
 }
 
 // One `live` command, answered as `godfinger live` answers it on standard input.

@@ -49,9 +49,13 @@ void FrameDriver::start(sim::World& world) {
   next_frame_ = 1;
 }
 
-void FrameDriver::afterStep(sim::World& world, double dt) {
+void FrameDriver::afterStep(sim::World& world, double dt, bool input) {
   const double t = world.time();
   if (realtime_) {
+    if (input) {
+      publishLatest(world);
+      renderer_.hurry();
+    }
     if (t + kTimeEps < frameTime(next_frame_)) return;
     while (t + kTimeEps >= frameTime(next_frame_)) ++next_frame_;
     publishLatest(world);

@@ -26,8 +26,10 @@ class FrameDriver {
               const std::vector<view::WidgetAction>& actions, const sim::LiveTimings* live);
   /// Frame 0, before the first step.
   void start(sim::World& world);
-  /// After every step of `dt` seconds.
-  void afterStep(sim::World& world, double dt);
+  /// After every step of `dt` seconds. Realtime, `input`: the step took input from a viewer (a
+  /// move posted from the browser view): its state is published now and the render thread woken
+  /// to draw it, not at the next frame time, so the move is in the next frame drawn and sent.
+  void afterStep(sim::World& world, double dt, bool input = false);
   long frames() const { return next_frame_; }
   const std::vector<AppliedChange>& changes() const { return changes_; }
 

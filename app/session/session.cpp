@@ -397,7 +397,7 @@ void SessionRun::failedOutput(const std::exception& e) {
 void SessionRun::afterStep(const sim::World& w) {
   if ((interrupt_ || options_.stop_on_held_interrupt) && interruptSignal() != 0) halt_.store(true, std::memory_order_relaxed);
   expect_->afterStep(w);
-  if (served_) served_->afterStep(*world_);
+  const bool input = served_ && served_->afterStep(*world_);
   try {
     if (trace_) trace_->record(w);
     if (!forces_->empty()) forces_->record(w, dt_);
@@ -406,7 +406,7 @@ void SessionRun::afterStep(const sim::World& w) {
   }
   takeContactSnapshots(w);
   try {
-    if (frames_) frames_->afterStep(*world_, dt_);
+    if (frames_) frames_->afterStep(*world_, dt_, input);
   } catch (const std::exception& e) {
     failedOutput(e);
   }

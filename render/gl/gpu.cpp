@@ -239,10 +239,10 @@ Framebuffer::Framebuffer(int width, int height, view::Antialiasing aa, int msaa_
 Framebuffer::~Framebuffer() {
   GF_ASSERT_GL_THREAD();
   fxaa_.reset();
-  const unsigned fbos[] = {scene_fbo_, output_fbo_};
-  glDeleteFramebuffers(2, fbos);
-  const unsigned buffers[] = {scene_colour_, scene_depth_, output_colour_};
-  glDeleteRenderbuffers(3, buffers);
+  const unsigned fbos[] = {scene_fbo_, output_fbo_, kept_fbo_};
+  glDeleteFramebuffers(3, fbos);
+  const unsigned buffers[] = {scene_colour_, scene_depth_, output_colour_, kept_colour_};
+  glDeleteRenderbuffers(4, buffers);
 }
 
 void Framebuffer::bind() {
@@ -304,6 +304,37 @@ void Framebuffer::copyInto(unsigned target, int x, int y) {
   glBindFramebuffer(GL_FRAMEBUFFER, target);
 }
 
+void Framebuffer::keepPicture() {
+  GF_ASSERT_GL_THREAD();
+  if (!resolved_) resolve();
+  if (kept_fbo_ == 0) {
+    glGenFramebuffers(1, &kept_fbo_);
+    glBindFramebuffer(GL_FRAMEBUFFER, kept_fbo_);
+    kept_colour_ = renderbuffer(GL_RGBA8, width_, height_, 1);
+    glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, kept_colour_);
+    requireComplete("kept picture");
+  }
+  const unsigned output = aa_ == view::Antialiasing::kMsaa ? output_fbo_ : scene_fbo_;
+  glBindFramebuffer(GL_READ_FRAMEBUFFER, output);
+  glBindFramebuffer(GL_DRAW_FRAMEBUFFER, kept_fbo_);
+  glBlitFramebuffer(0, 0, width_, height_, 0, 0, width_, height_, GL_COLOR_BUFFER_BIT, GL_NEAREST);
+  glBindFramebuffer(GL_FRAMEBUFFER, output);
+  glViewport(0, 0, width_, height_);
+}
+
+bool Framebuffer::restorePicture() {
+  GF_ASSERT_GL_THREAD();
+  if (kept_fbo_ == 0) return false;
+  const unsigned output = aa_ == view::Antialiasing::kMsaa ? output_fbo_ : scene_fbo_;
+  glBindFramebuffer(GL_READ_FRAMEBUFFER, kept_fbo_);
+  glBindFramebuffer(GL_DRAW_FRAMEBUFFER, output);
+  glBlitFramebuffer(0, 0, width_, height_, 0, 0, width_, height_, GL_COLOR_BUFFER_BIT, GL_NEAREST);
+  glBindFramebuffer(GL_FRAMEBUFFER, output);
+  glViewport(0, 0, width_, height_);
+  resolved_ = true;
+  return true;
+}
+
 void Framebuffer::read(Image& out) {
   GF_ASSERT_GL_THREAD();
   if (!resolved_) resolve();
@@ -346,13 +377,21 @@ void Backdrop::bind() const {
   glViewport(0, 0, width_, height_);
 }
 
-void Backdrop::restoreInto(unsigned target) const {
+void Backdrop::restoreColourInto(unsigned target) const {
   GF_ASSERT_GL_THREAD();
   glBindFramebuffer(GL_READ_FRAMEBUFFER, fbo_);
   glBindFramebuffer(GL_DRAW_FRAMEBUFFER, target);
-  glBlitFramebuffer(0, 0, width_, height_, 0, 0, width_, height_, GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT,
-                    GL_NEAREST);
+  glBlitFramebuffer(0, 0, width_, height_, 0, 0, width_, height_, GL_COLOR_BUFFER_BIT, GL_NEAREST);
   glBindFramebuffer(GL_FRAMEBUFFER, target);
+  glViewport(0, 0, width_, height_);
+}
+
+void Backdrop::takeFrom(unsigned source) const {
+  GF_ASSERT_GL_THREAD();
+  glBindFramebuffer(GL_READ_FRAMEBUFFER, source);
+  glBindFramebuffer(GL_DRAW_FRAMEBUFFER, fbo_);
+  glBlitFramebuffer(0, 0, width_, height_, 0, 0, width_, height_, GL_COLOR_BUFFER_BIT, GL_NEAREST);
+  glBindFramebuffer(GL_FRAMEBUFFER, source);
   glViewport(0, 0, width_, height_);
 }
 

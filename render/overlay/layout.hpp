@@ -50,6 +50,8 @@ struct LabelPlacement {
   Corner insets = Corner::kBottomRight;  ///< the patch insets' block (with the captions above)
   bool column = false;                   ///< the insets one above the other, not side by side
   Corner stamp = Corner::kBottomLeft;    ///< the time stamp
+
+  bool operator==(const LabelPlacement&) const = default;
 };
 
 /// What is placed: the sizes (pixels) of the insets' block (0 x 0: none) and of the stamp.

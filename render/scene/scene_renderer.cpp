@@ -11,6 +11,7 @@
 #include "render/scene/finger_marks.hpp"
 #include "render/scene/geometry.hpp"
 #include "render/scene/pad_mesh.hpp"
+#include "render/scene/same_picture.hpp"
 #include "render/gl/gl.hpp"
 #include "render/gl/shaders.hpp"
 
@@ -68,6 +69,14 @@ bool sameView(const view::Camera& a, const view::Camera& b) {
   return a.position == b.position && a.target == b.target && a.fov_deg == b.fov_deg;
 }
 
+// The switches a view's bodies' layer is drawn with.
+struct LayerSwitches {
+  bool shadows = false, ground = false, fingers = false;
+  view::BodyPattern pattern = view::BodyPattern::kStripes;
+  view::ProxyLook proxy = view::ProxyLook::kSphere;
+  bool operator==(const LayerSwitches&) const = default;
+};
+
 }  // namespace
 
 struct SceneRenderer::Impl {
@@ -89,9 +98,10 @@ struct SceneRenderer::Impl {
   // such as the patch insets, show no shadow of a proxy they do not show.
   std::unique_ptr<ShadowMap> shadow, body_shadow;
   // The state the shadow maps were last drawn for: a second view of the same instant (the patch
-  // insets) reuses them.
-  double shadow_time = -1.0;
-  long shadow_step = -1;
+  // insets), and every later one while nothing that casts a shadow moved (samePlaces), reuses
+  // them.
+  sim::Snapshot shadow_state;
+  bool shadow_valid = false;
   bool shadow_has_fingers = false;  // `shadow` holds the proxies of that instant
   std::vector<BodyDraw> bodies;
   // Proxies and ghosts are large on screen; contact dots are a few pixels (and many).
@@ -101,13 +111,22 @@ struct SceneRenderer::Impl {
   std::vector<Vertex> receiver_vertices;
   // Clear colour and ground for the last camera of each frame size, restored each frame instead
   // of redrawn (a frame and its patch insets are two sizes).
+  // One view's backdrop, and its bodies' layer: the backdrop with the bodies and the ground's
+  // shadows of `layer_state` drawn on it, kept from the second frame that places everything
+  // alike (samePlaces) and restored, colour and depth, while nothing moves: then only the
+  // contact overlay is drawn on it.
   struct BackdropSlot {
-    std::unique_ptr<Backdrop> backdrop;
+    std::unique_ptr<Backdrop> backdrop, layer;
     view::Camera camera;
     bool ground = true;  // drawn with the ground planes
+    sim::Snapshot layer_state;
+    LayerSwitches layer_switches;
+    bool layer_state_valid = false, layer_kept = false;
+    long used = -1;  // when it was last drawn with (draws counted)
   };
-  std::array<BackdropSlot, 3> backdrops;
-  std::size_t next_backdrop = 0;  // the slot a new size takes
+  // The frame, two patch insets and a close-up: one slot each.
+  std::array<BackdropSlot, 4> backdrops;
+  long draws = 0;
   // The contact overlay: built as plain data (draw_list.hpp), its vertices in one buffer.
   std::vector<std::shared_ptr<const sim::Mesh>> surfaces;  // per body, null for a plane
   std::optional<DrawListBuilder> overlay_builder;  // made once the bodies' surfaces are
@@ -259,22 +278,31 @@ struct SceneRenderer::Impl {
 
   // Background colour and ground: drawn into the backdrop when the view changed, then copied
   // into the frame. Ground planes are static bodies, so only the camera and the frame size
-  // change what the backdrop holds.
-  void drawBackdrop(const sim::Snapshot& snap, const view::Camera& camera, int width, int height) {
+  // change what the backdrop holds. Then the bodies and the ground's shadows, or their layer
+  // when nothing has moved since it was kept (BackdropSlot).
+  void drawBase(const sim::Snapshot& snap, const view::Camera& camera, int width, int height) {
     GLint target = 0, samples = 0;
     glGetIntegerv(GL_FRAMEBUFFER_BINDING, &target);
     glGetIntegerv(GL_SAMPLES, &samples);
     samples = std::max(samples, 1);
+    // This view's slot; else the least recently used of its size; else the least recently used.
     BackdropSlot* slot = nullptr;
     for (BackdropSlot& b : backdrops) {
-      if (b.backdrop && b.backdrop->fits(width, height, samples)) slot = &b;
+      if (!b.backdrop || !b.backdrop->fits(width, height, samples)) continue;
+      if (sameView(camera, b.camera) && b.ground == settings.ground) {
+        slot = &b;
+        break;
+      }
+      if (!slot || b.used < slot->used) slot = &b;
     }
     if (!slot) {
-      slot = &backdrops[next_backdrop];
-      next_backdrop = (next_backdrop + 1) % backdrops.size();
+      slot = &*std::min_element(backdrops.begin(), backdrops.end(),
+                                [](const BackdropSlot& a, const BackdropSlot& b) { return a.used < b.used; });
       slot->backdrop = std::make_unique<Backdrop>(width, height, samples);
+      slot->layer.reset();
       slot->camera.fov_deg = -1.0;  // matches no camera: drawn below
     }
+    slot->used = ++draws;
     if (!sameView(camera, slot->camera) || slot->ground != settings.ground) {
       slot->backdrop->bind();
       const Eigen::Vector3f bg = kBackground.cwiseSqrt();  // the shaders' display gamma
@@ -286,8 +314,49 @@ struct SceneRenderer::Impl {
       }
       slot->camera = camera;
       slot->ground = settings.ground;
+      slot->layer_state_valid = slot->layer_kept = false;
     }
-    slot->backdrop->restoreInto(static_cast<unsigned>(target));
+    const LayerSwitches switches{shadow != nullptr, settings.ground, settings.fingers, settings.body_pattern,
+                                 settings.proxy};
+    const bool still =
+        slot->layer_state_valid && slot->layer_switches == switches && samePlaces(snap, slot->layer_state);
+    if (still && slot->layer_kept) {
+      slot->layer->restoreColourInto(static_cast<unsigned>(target));
+      drawDepth(snap, true);
+      return;
+    }
+    slot->backdrop->restoreColourInto(static_cast<unsigned>(target));
+    drawDepth(snap, false);
+    drawBodies(snap);
+    if (shadow && settings.ground) drawGroundShadows(snap);
+    slot->layer_kept = still;
+    if (still) {
+      if (!slot->layer) slot->layer = std::make_unique<Backdrop>(width, height, samples);
+      slot->layer->takeFrom(static_cast<unsigned>(target));
+    } else {
+      slot->layer_state = snap;
+      slot->layer_switches = switches;
+      slot->layer_state_valid = true;
+    }
+  }
+
+  // The depth of the ground planes and, with `bodies_too`, the bodies of `snap`, colour untouched:
+  // what a restored backdrop or bodies' layer needs under what is drawn on it. The same vertex
+  // shader as their colour pass, so the same depths.
+  void drawDepth(const sim::Snapshot& snap, bool bodies_too) {
+    glClear(GL_DEPTH_BUFFER_BIT);
+    glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
+    use(flat);
+    for (std::size_t b = 0; b < bodies.size(); ++b) {
+      if (bodies[b].ground) {
+        if (settings.ground) drawShape(*ground_quad, bodyModel(snap, b), Eigen::Vector3f::Ones(), 1.0f);
+      } else if (bodies_too && bodies[b].gpu) {
+        if (bodies[b].closed) glEnable(GL_CULL_FACE);
+        drawShape(*bodies[b].gpu, bodyModel(snap, b), Eigen::Vector3f::Ones(), 1.0f);
+        glDisable(GL_CULL_FACE);
+      }
+    }
+    glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
   }
 
   // Pixels that the bodies, fingers and contact marks of `snap` can cover: each drawn thing's
@@ -531,7 +600,7 @@ void SceneRenderer::setSettings(const RenderSettings& settings) {
   if (settings.shadows && !impl_->shadow) {
     impl_->shadow = std::make_unique<ShadowMap>(settings.shadow_map_size);
     impl_->body_shadow = std::make_unique<ShadowMap>(settings.shadow_map_size);
-    impl_->shadow_step = -1;  // new maps: drawn at the next draw
+    impl_->shadow_valid = false;  // new maps: drawn at the next draw
   }
   if (!settings.shadows) {
     impl_->shadow.reset();
@@ -543,7 +612,7 @@ const RenderSettings& SceneRenderer::settings() const { return impl_->settings; 
 
 const std::vector<std::shared_ptr<const sim::Mesh>>& SceneRenderer::surfaces() const { return impl_->surfaces; }
 
-void SceneRenderer::redrawShadows() { impl_->shadow_step = -1; }
+void SceneRenderer::redrawShadows() { impl_->shadow_valid = false; }
 
 PixelRect SceneRenderer::draw(const sim::Snapshot& snapshot, const view::Camera& camera, int width, int height) {
   GF_ASSERT_GL_THREAD();
@@ -553,19 +622,17 @@ PixelRect SceneRenderer::draw(const sim::Snapshot& snapshot, const view::Camera&
   glEnable(GL_DEPTH_TEST);
   glDepthFunc(GL_LEQUAL);
   glBlendFunc(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA);
-  const bool stale = snapshot.time != impl_->shadow_time || snapshot.step != impl_->shadow_step ||
+  const bool stale = !impl_->shadow_valid || !samePlaces(snapshot, impl_->shadow_state) ||
                      (impl_->settings.fingers && !impl_->shadow_has_fingers);
   if (impl_->shadow && stale) {
     impl_->shadowPass(snapshot);
-    impl_->shadow_time = snapshot.time;
-    impl_->shadow_step = snapshot.step;
+    impl_->shadow_state = snapshot;
+    impl_->shadow_valid = true;
   }
   glBindFramebuffer(GL_FRAMEBUFFER, static_cast<GLuint>(target));
   glViewport(0, 0, width, height);
   impl_->beginSurfacePass(camera, width, height);
-  impl_->drawBackdrop(snapshot, camera, width, height);
-  impl_->drawBodies(snapshot);
-  if (impl_->shadow && impl_->settings.ground) impl_->drawGroundShadows(snapshot);
+  impl_->drawBase(snapshot, camera, width, height);
   impl_->drawOverlay(snapshot);
   return impl_->dynamicRect(snapshot, camera, width, height);
 }

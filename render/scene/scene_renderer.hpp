@@ -47,9 +47,12 @@ class SceneRenderer {
 
   /// Draws `snapshot` seen from `camera` into the bound framebuffer of `width` x `height`.
   /// Returns the pixels where it drew anything but the backdrop (what anti-aliasing must see).
-  /// The shadow map is drawn once per instant (snapshot time and step): further views of the
-  /// same instant, such as the patch insets, reuse it. It is kept twice, with and without the
-  /// proxies: a view without fingers casts no proxy shadows.
+  /// The shadow map is drawn again only when something that casts a shadow moved (samePlaces,
+  /// same_picture.hpp): further views of the same instant, such as the patch insets, and later
+  /// frames of a still scene reuse it. It is kept twice, with and without the proxies: a view
+  /// without fingers casts no proxy shadows. Each view (camera and size; up to four) also keeps
+  /// its bodies' layer (backdrop, bodies, ground shadows) while nothing moves, so a still scene
+  /// draws only its contact overlay again.
   PixelRect draw(const sim::Snapshot& snapshot, const view::Camera& camera, int width, int height);
   /// Changes the switches for the next draw (close-ups hide the fingers).
   void setSettings(const RenderSettings& settings);

@@ -103,6 +103,8 @@ struct PatchSettings {
   /// oriented: the pad's outward normal, device frame; fem_pad: the way its soft cap faces (world)
   Vec3 pad_axis = Vec3(0.0, -1.0, 0.0);
   double tip_ratio = 0.4;  ///< oriented: the tip's contact size over the flat pad's, in (0, 1]
+
+  bool operator==(const PatchSettings&) const = default;
 };
 
 /// The model a finger's settings give: n_sgo 0 makes the god-finger a god-object.
