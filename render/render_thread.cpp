@@ -24,7 +24,7 @@
 #include "render/gl/imgui_layer.hpp"
 #include "render/overlay/labels.hpp"
 #include "render/overlay/layout.hpp"
-#include "render/scene/same_picture.hpp"
+#include "render/state/same_picture.hpp"
 #include "sim/assert.hpp"
 
 namespace gf::render {

@@ -59,7 +59,7 @@ struct RenderStats {
   std::vector<float> frame_ms;    ///< draw + overlay + read-back of each frame drawn (ms)
   long hurried = 0;               ///< realtime frames drawn at once for a viewer's input (hurry())
   /// Frames whose scene picture was the one before's, not drawn again (only their labels and
-  /// overlay were): nothing had moved (render/scene/same_picture.hpp).
+  /// overlay were): nothing had moved (render/state/same_picture.hpp).
   long pictures_reused = 0;
   double wall_seconds = 0.0;      ///< from start to finish()
   SinkStats png, video;

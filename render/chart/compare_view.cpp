@@ -14,7 +14,7 @@
 #include "render/gl/gl.hpp"
 #include "render/gl/gpu.hpp"
 #include "render/gl/imgui_layer.hpp"
-#include "render/scene/contact_load.hpp"
+#include "render/state/contact_load.hpp"
 #include "render/scene/overlap_region.hpp"
 
 namespace gf::render {

@@ -10,7 +10,7 @@
 #include <numbers>
 
 #include "render/scene/camera.hpp"
-#include "render/scene/contact_load.hpp"
+#include "render/state/contact_load.hpp"
 #include "render/scene/draw_list.hpp"
 #include "render/scene/load_marks.hpp"
 #include "render/gl/imgui_layer.hpp"

@@ -5,7 +5,7 @@
 #include <cmath>
 #include <numbers>
 
-#include "render/scene/contact_load.hpp"
+#include "render/state/contact_load.hpp"
 #include "render/scene/finger_marks.hpp"
 #include "render/scene/load_marks.hpp"
 #include "render/scene/overlap_region.hpp"

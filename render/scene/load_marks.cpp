@@ -4,7 +4,7 @@
 #include <cmath>
 #include <numbers>
 
-#include "render/scene/contact_load.hpp"
+#include "render/state/contact_load.hpp"
 
 namespace gf::render {
 namespace {

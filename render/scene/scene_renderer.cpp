@@ -11,7 +11,8 @@
 #include "render/scene/finger_marks.hpp"
 #include "render/scene/geometry.hpp"
 #include "render/scene/pad_mesh.hpp"
-#include "render/scene/same_picture.hpp"
+#include "render/state/same_picture.hpp"
+#include "render/state/view_layers.hpp"
 #include "render/gl/gl.hpp"
 #include "render/gl/shaders.hpp"
 
@@ -65,17 +66,6 @@ Vec3 boxCorner(const sim::Mesh& m, const sim::Pose& pose, int k) {
   return pose.position + pose.orientation * corner;
 }
 
-bool sameView(const view::Camera& a, const view::Camera& b) {
-  return a.position == b.position && a.target == b.target && a.fov_deg == b.fov_deg;
-}
-
-// The switches a view's bodies' layer is drawn with.
-struct LayerSwitches {
-  bool shadows = false, ground = false, fingers = false;
-  view::BodyPattern pattern = view::BodyPattern::kStripes;
-  view::ProxyLook proxy = view::ProxyLook::kSphere;
-  bool operator==(const LayerSwitches&) const = default;
-};
 
 }  // namespace
 
@@ -111,22 +101,7 @@ struct SceneRenderer::Impl {
   std::vector<Vertex> receiver_vertices;
   // Clear colour and ground for the last camera of each frame size, restored each frame instead
   // of redrawn (a frame and its patch insets are two sizes).
-  // One view's backdrop, and its bodies' layer: the backdrop with the bodies and the ground's
-  // shadows of `layer_state` drawn on it, kept from the second frame that places everything
-  // alike (samePlaces) and restored, colour and depth, while nothing moves: then only the
-  // contact overlay is drawn on it.
-  struct BackdropSlot {
-    std::unique_ptr<Backdrop> backdrop, layer;
-    view::Camera camera;
-    bool ground = true;  // drawn with the ground planes
-    sim::Snapshot layer_state;
-    LayerSwitches layer_switches;
-    bool layer_state_valid = false, layer_kept = false;
-    long used = -1;  // when it was last drawn with (draws counted)
-  };
-  // The frame, two patch insets and a close-up: one slot each.
-  std::array<BackdropSlot, 4> backdrops;
-  long draws = 0;
+  ViewLayers views;  // each view's backdrop and bodies' layer
   // The contact overlay: built as plain data (draw_list.hpp), its vertices in one buffer.
   std::vector<std::shared_ptr<const sim::Mesh>> surfaces;  // per body, null for a plane
   std::optional<DrawListBuilder> overlay_builder;  // made once the bodies' surfaces are
@@ -279,31 +254,15 @@ struct SceneRenderer::Impl {
   // Background colour and ground: drawn into the backdrop when the view changed, then copied
   // into the frame. Ground planes are static bodies, so only the camera and the frame size
   // change what the backdrop holds. Then the bodies and the ground's shadows, or their layer
-  // when nothing has moved since it was kept (BackdropSlot).
+  // when nothing has moved since it was kept (ViewSlot).
   void drawBase(const sim::Snapshot& snap, const view::Camera& camera, int width, int height) {
     GLint target = 0, samples = 0;
     glGetIntegerv(GL_FRAMEBUFFER_BINDING, &target);
     glGetIntegerv(GL_SAMPLES, &samples);
     samples = std::max(samples, 1);
-    // This view's slot; else the least recently used of its size; else the least recently used.
-    BackdropSlot* slot = nullptr;
-    for (BackdropSlot& b : backdrops) {
-      if (!b.backdrop || !b.backdrop->fits(width, height, samples)) continue;
-      if (sameView(camera, b.camera) && b.ground == settings.ground) {
-        slot = &b;
-        break;
-      }
-      if (!slot || b.used < slot->used) slot = &b;
-    }
-    if (!slot) {
-      slot = &*std::min_element(backdrops.begin(), backdrops.end(),
-                                [](const BackdropSlot& a, const BackdropSlot& b) { return a.used < b.used; });
-      slot->backdrop = std::make_unique<Backdrop>(width, height, samples);
-      slot->layer.reset();
-      slot->camera.fov_deg = -1.0;  // matches no camera: drawn below
-    }
-    slot->used = ++draws;
-    if (!sameView(camera, slot->camera) || slot->ground != settings.ground) {
+    bool stale = false;
+    ViewSlot* slot = &views.slotFor(camera, width, height, samples, settings.ground, stale);
+    if (stale) {
       slot->backdrop->bind();
       const Eigen::Vector3f bg = kBackground.cwiseSqrt();  // the shaders' display gamma
       glClearColor(bg.x(), bg.y(), bg.z(), 1.0f);
@@ -312,9 +271,6 @@ struct SceneRenderer::Impl {
       for (std::size_t b = 0; b < bodies.size() && settings.ground; ++b) {
         if (bodies[b].ground) drawShape(*ground_quad, bodyModel(snap, b), kGround.cwiseProduct(bodies[b].colour / 0.7f), 1.0f);
       }
-      slot->camera = camera;
-      slot->ground = settings.ground;
-      slot->layer_state_valid = slot->layer_kept = false;
     }
     const LayerSwitches switches{shadow != nullptr, settings.ground, settings.fingers, settings.body_pattern,
                                  settings.proxy};

@@ -44,6 +44,7 @@ FLOORS = [
     ["render/view"],                              # cameras and overlay descriptions (header-only)
     ["render/frames"],                            # images, their comparison; video and JPEG sinks
     ["render/gl"],                                # OSMesa, GL, shaders and the ImGui layer
+    ["render/state"],                             # what a snapshot's contacts carry; what a frame may keep
     ["render/scene"],                             # the scene drawn: bodies, patches, loads
     ["render/overlay", "render/chart"],           # labels, panels, insets; charts
     ["render"],                                   # the render thread

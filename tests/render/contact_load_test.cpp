@@ -1,7 +1,7 @@
 // How the pictures read a contact's load, without GL: the viridis scale, each point's load on a
 // scale centred on the contact's mean point load, the contact's force split along its normal, and the sizes of
 // the labels' text and scale bars.
-#include "render/scene/contact_load.hpp"
+#include "render/state/contact_load.hpp"
 
 #include <gtest/gtest.h>
 

@@ -17,7 +17,7 @@
 #include "app/scene/data_folder.hpp"
 #include "app/scene/scene_file.hpp"
 #include "render/scene/camera.hpp"
-#include "render/scene/contact_load.hpp"
+#include "render/state/contact_load.hpp"
 #include "render/scene/geometry.hpp"
 #include "sim/world/world.hpp"
 

@@ -9,7 +9,7 @@
 #include <cmath>
 #include <numbers>
 
-#include "render/scene/contact_load.hpp"
+#include "render/state/contact_load.hpp"
 
 namespace gf::render {
 namespace {

@@ -1,7 +1,7 @@
 // Frames that draw what the frame before drew: which snapshot changes count
-// (render/scene/same_picture.hpp), and that a kept bodies' layer, shadow map or whole picture
+// (render/state/same_picture.hpp), and that a kept bodies' layer, shadow map or whole picture
 // gives the frame a fresh draw gives.
-#include "render/scene/same_picture.hpp"
+#include "render/state/same_picture.hpp"
 
 #include <gtest/gtest.h>
 
@@ -17,7 +17,7 @@
 #include "render/gl/context.hpp"
 #include "render/gl/gpu.hpp"
 #include "render/render_thread.hpp"
-#include "render/scene/contact_load.hpp"
+#include "render/state/contact_load.hpp"
 #include "render/scene/scene_renderer.hpp"
 
 namespace gf {

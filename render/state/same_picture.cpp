@@ -1,6 +1,6 @@
-#include "render/scene/same_picture.hpp"
+#include "render/state/same_picture.hpp"
 
-#include "render/scene/contact_load.hpp"
+#include "render/state/contact_load.hpp"
 
 #include <algorithm>
 #include <cmath>

@@ -1,4 +1,4 @@
-#include "render/scene/contact_load.hpp"
+#include "render/state/contact_load.hpp"
 
 #include <algorithm>
 #include <array>

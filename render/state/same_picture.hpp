@@ -12,7 +12,7 @@ namespace gf::render {
 /// resting world's solver jitter moves them by 1e-20 to 4e-12 between frames (the Fig. 8 hold).
 inline constexpr double kSamePictureTolerance = 1e-9;
 /// How far a drawn force or moment may move, as a share of its size (plus kSameLoadFloor): a
-/// tenth of a load-colour level on the narrowest load scale (render/scene/contact_load.hpp: at
+/// tenth of a load-colour level on the narrowest load scale (render/state/contact_load.hpp: at
 /// least 10 % of the contact's mean point load over 255 levels, 3.9e-4 of the mean), 3 um on the
 /// longest force arrow (8 cm). In the Fig. 8 hold the solver keeps shifting the normal load
 /// between the SGOs (about 3.3e-6 of an SGO's load a frame over the first 20 s, while the body and
