@@ -195,6 +195,16 @@ unsigned colourDepthTarget(int width, int height, int samples, unsigned& colour,
   return fbo;
 }
 
+// Copies the colour of framebuffer `from` into `to` (both width x height), then binds `bound`
+// with the viewport over the picture.
+void copyColour(unsigned from, unsigned to, int width, int height, unsigned bound) {
+  glBindFramebuffer(GL_READ_FRAMEBUFFER, from);
+  glBindFramebuffer(GL_DRAW_FRAMEBUFFER, to);
+  glBlitFramebuffer(0, 0, width, height, 0, 0, width, height, GL_COLOR_BUFFER_BIT, GL_NEAREST);
+  glBindFramebuffer(GL_FRAMEBUFFER, bound);
+  glViewport(0, 0, width, height);
+}
+
 }  // namespace
 
 // The FXAA pass: its program and a colour texture holding a copy of the pixels it filters.
@@ -315,22 +325,14 @@ void Framebuffer::keepPicture() {
     requireComplete("kept picture");
   }
   const unsigned output = aa_ == view::Antialiasing::kMsaa ? output_fbo_ : scene_fbo_;
-  glBindFramebuffer(GL_READ_FRAMEBUFFER, output);
-  glBindFramebuffer(GL_DRAW_FRAMEBUFFER, kept_fbo_);
-  glBlitFramebuffer(0, 0, width_, height_, 0, 0, width_, height_, GL_COLOR_BUFFER_BIT, GL_NEAREST);
-  glBindFramebuffer(GL_FRAMEBUFFER, output);
-  glViewport(0, 0, width_, height_);
+  copyColour(output, kept_fbo_, width_, height_, output);
 }
 
 bool Framebuffer::restorePicture() {
   GF_ASSERT_GL_THREAD();
   if (kept_fbo_ == 0) return false;
   const unsigned output = aa_ == view::Antialiasing::kMsaa ? output_fbo_ : scene_fbo_;
-  glBindFramebuffer(GL_READ_FRAMEBUFFER, kept_fbo_);
-  glBindFramebuffer(GL_DRAW_FRAMEBUFFER, output);
-  glBlitFramebuffer(0, 0, width_, height_, 0, 0, width_, height_, GL_COLOR_BUFFER_BIT, GL_NEAREST);
-  glBindFramebuffer(GL_FRAMEBUFFER, output);
-  glViewport(0, 0, width_, height_);
+  copyColour(kept_fbo_, output, width_, height_, output);
   resolved_ = true;
   return true;
 }
@@ -379,20 +381,12 @@ void Backdrop::bind() const {
 
 void Backdrop::restoreColourInto(unsigned target) const {
   GF_ASSERT_GL_THREAD();
-  glBindFramebuffer(GL_READ_FRAMEBUFFER, fbo_);
-  glBindFramebuffer(GL_DRAW_FRAMEBUFFER, target);
-  glBlitFramebuffer(0, 0, width_, height_, 0, 0, width_, height_, GL_COLOR_BUFFER_BIT, GL_NEAREST);
-  glBindFramebuffer(GL_FRAMEBUFFER, target);
-  glViewport(0, 0, width_, height_);
+  copyColour(fbo_, target, width_, height_, target);
 }
 
 void Backdrop::takeFrom(unsigned source) const {
   GF_ASSERT_GL_THREAD();
-  glBindFramebuffer(GL_READ_FRAMEBUFFER, source);
-  glBindFramebuffer(GL_DRAW_FRAMEBUFFER, fbo_);
-  glBlitFramebuffer(0, 0, width_, height_, 0, 0, width_, height_, GL_COLOR_BUFFER_BIT, GL_NEAREST);
-  glBindFramebuffer(GL_FRAMEBUFFER, source);
-  glViewport(0, 0, width_, height_);
+  copyColour(source, fbo_, width_, height_, source);
 }
 
 ShadowMap::ShadowMap(int size) : size_(size) {
