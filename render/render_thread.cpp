@@ -14,6 +14,8 @@
 
 #include <malloc.h>
 #include <pthread.h>
+#include <semaphore.h>
+#include <time.h>
 #include <sys/resource.h>
 #include <unistd.h>
 
@@ -131,7 +133,7 @@ struct Gpu {
   bool insets_beside_overlay;
   bool top_left_free;
   LabelPlacement placement;  // the last frame's: kept while it covers nothing
-  std::vector<ScreenBox> subjects;  // this frame's, for the layout (storage reused)
+  std::vector<ScreenBox> subjects;  // this frame's, for the layout
   // The state, camera and label corners the frame's last drawn scene picture shows, and whether
   // `frame` keeps that picture for the frames that draw the same (drawScene).
   sim::Snapshot drawn;
@@ -311,11 +313,27 @@ struct RenderThread::Impl {
   bool closing = false;
   std::string error;
   TripleBuffer latest;
-  // Realtime: set by hurry() (haptic thread), taken by the render thread, which waits on
-  // `ticks` (under `mutex`) until its next tick or this.
-  std::atomic<bool> hurry{false};
-  std::condition_variable ticks;
+  // Realtime: posted by hurry() (haptic thread) and finish(); the render thread sleeps on it
+  // until its next tick. A semaphore's post is an atomic add and, when the thread sleeps, a futex
+  // wake: no lock the render thread could hold.
+  struct Wake {
+    sem_t sem;
+    Wake() { sem_init(&sem, 0, 0); }
+    ~Wake() { sem_destroy(&sem); }
+  } wake;
   long hurried = 0;
+
+  // Sleeps until `t` or a post to `wake`; true when woken by a post (all taken).
+  bool sleepUntil(Clock::time_point t) {
+    const auto ns = std::chrono::duration_cast<std::chrono::nanoseconds>(t.time_since_epoch()).count();
+    const timespec at{static_cast<time_t>(ns / 1000000000), static_cast<long>(ns % 1000000000)};
+    while (sem_clockwait(&wake.sem, CLOCK_MONOTONIC, &at) != 0) {  // steady_clock is CLOCK_MONOTONIC
+      if (errno != EINTR) return false;                              // ETIMEDOUT
+    }
+    while (sem_trywait(&wake.sem) == 0) {
+    }
+    return true;
+  }
   std::mutex command_mutex;
   std::vector<sim::SettingsCommand> commands;
   std::vector<float> frame_ms;
@@ -371,15 +389,13 @@ struct RenderThread::Impl {
 
   void runRealtime(Gpu& gpu) {
     const auto period = std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(1.0 / settings.fps));
-    for (auto next = Clock::now();; next += period) {
-      {
-        std::unique_lock lock(mutex);
-        ticks.wait_until(lock, next, [&] { return hurry.load(std::memory_order_acquire) || closing; });
-      }
-      if (hurry.exchange(false, std::memory_order_acq_rel)) {  // a viewer's input: drawn now
-        ++hurried;
-        next = Clock::now();
-      }
+    // A viewer's input (hurry()) is drawn at once, but at most twice the frame rate: moves
+    // taken on consecutive steps are one frame. Ticks count from a hurried frame.
+    auto last_draw = Clock::now() - period;
+    bool pending = false;
+    for (auto next = Clock::now();;) {
+      pending = sleepUntil(next) || pending;
+      const auto now = Clock::now();
       // Close-ups and charts still come through the queue in realtime runs; they are drawn
       // outside the lock so the haptic thread never waits on a draw.
       std::deque<Job> side;
@@ -391,7 +407,16 @@ struct RenderThread::Impl {
       }
       for (const Job& job : side) drawSideJob(gpu, scene, job);
       if (stop) break;
+      if (pending && now < last_draw + period / 2) {
+        next = last_draw + period / 2;
+        continue;
+      }
+      const bool hurried_frame = pending;
+      pending = false;
+      next = (hurried_frame ? now : next) + period;
       if (!latest.update()) continue;
+      last_draw = now;
+      if (hurried_frame) ++hurried;
       std::vector<sim::SettingsCommand> made = drawFrame(gpu, latest.front());
       if (made.empty()) continue;
       std::lock_guard lock(command_mutex);
@@ -501,10 +526,7 @@ void RenderThread::submitChart(const ChartSpec& chart, const std::string& path) 
 
 sim::Snapshot& RenderThread::latestSlot() { return impl_->latest.back(); }
 
-void RenderThread::hurry() {
-  impl_->hurry.store(true, std::memory_order_release);
-  impl_->ticks.notify_one();  // without the lock: never waits (a wake lost to a race waits for the tick)
-}
+void RenderThread::hurry() { sem_post(&impl_->wake.sem); }
 
 void RenderThread::publishSlot() { impl_->latest.publish(); }
 
@@ -521,7 +543,7 @@ RenderStats RenderThread::finish() {
     std::lock_guard lock(r.mutex);
     r.closing = true;
     r.changed.notify_all();
-    r.ticks.notify_all();
+    sem_post(&r.wake.sem);
   }
   if (r.thread.joinable()) r.thread.join();
   RenderStats stats;

@@ -57,7 +57,7 @@ struct FrameOutputSettings {
 /// What the render thread did.
 struct RenderStats {
   std::vector<float> frame_ms;    ///< draw + overlay + read-back of each frame drawn (ms)
-  long hurried = 0;               ///< realtime frames drawn at once for a viewer's input (hurry())
+  long hurried = 0;               ///< realtime frames drawn early for a viewer's input (hurry())
   /// Frames whose scene picture was the one before's, not drawn again (only their labels and
   /// overlay were): nothing had moved (render/state/same_picture.hpp).
   long pictures_reused = 0;
@@ -95,7 +95,8 @@ class RenderThread {
   }
   /// Realtime: the snapshot just published shows a viewer's input (a move from the browser
   /// view): the render thread draws it now, not at its next 1/fps tick (and counts its ticks from
-  /// then). Never blocks: it wakes the thread (a futex wake when it sleeps). Haptic thread.
+  /// then), unless it drew less than half a period ago (then at that point). Never blocks: a
+  /// semaphore post (an atomic add, a futex wake when the thread sleeps). Any thread.
   void hurry();
   /// Realtime: settings changes made in the overlay since the last call; never blocks.
   std::vector<sim::SettingsCommand> takeCommands();

@@ -18,6 +18,7 @@ sim::DeviceSample SteeredDevice::sample(double t) {
       t0_ = t;
       t1_ = t + posted_seconds_;
       steered_ = true;
+      arrived_ = false;
       posted_.store(false, std::memory_order_relaxed);
       moves_.fetch_add(1, std::memory_order_relaxed);
     }
@@ -31,6 +32,10 @@ sim::DeviceSample SteeredDevice::sample(double t) {
   s.orientation = track_.sample(t).orientation;  // the page moves the position only
   if (t >= t1_) {
     s.position = to_;
+    if (!arrived_) {
+      arrived_ = true;
+      arrivals_.fetch_add(1, std::memory_order_relaxed);
+    }
   } else {
     const double span = t1_ - t0_;
     s.position = from_ + (to_ - from_) * ((t - t0_) / span);

@@ -28,6 +28,8 @@ class SteeredDevice final : public sim::DeviceSource {
   bool web() const { return web_; }
   /// Moves taken by the haptic thread so far. Any thread.
   long moves() const { return moves_.load(std::memory_order_relaxed); }
+  /// Moves whose device reached its target so far (a move of 0 s at once). Any thread.
+  long arrivals() const { return arrivals_.load(std::memory_order_relaxed); }
 
  private:
   const sim::DeviceTrack& track_;
@@ -41,7 +43,8 @@ class SteeredDevice final : public sim::DeviceSource {
   bool steered_ = false;
   sim::Vec3 from_ = sim::Vec3::Zero(), to_ = sim::Vec3::Zero(), last_ = sim::Vec3::Zero();
   double t0_ = 0.0, t1_ = 0.0;
-  std::atomic<long> moves_{0};
+  bool arrived_ = true;
+  std::atomic<long> moves_{0}, arrivals_{0};
 };
 
 }  // namespace gf::app

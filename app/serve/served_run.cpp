@@ -43,8 +43,8 @@ std::span<sim::DeviceSource* const> ServedRun::sources(std::span<sim::DeviceSour
 }
 
 bool ServedRun::afterStep(sim::World& world) {
-  long moves = 0;
-  for (const auto& d : devices_) moves += d->moves();
+  long moves = 0;  // moves taken and moves arrived: a frame should show both at once
+  for (const auto& d : devices_) moves += d->moves() + d->arrivals();
   const bool moved = moves != moves_seen_;
   moves_seen_ = moves;
   if (!has_posted_.load(std::memory_order_acquire)) return moved;

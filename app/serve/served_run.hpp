@@ -38,8 +38,8 @@ class ServedRun {
   /// Haptic thread, after each step: applies the settings posted since (never waits; allocates
   /// only when there is one). The page's settings are the base of its next `set`: changes made
   /// meanwhile by a scene's `[[changes]]` or the overlay are not merged into them. Returns
-  /// whether the step took the page's input: a move (its finger's device sampled it) or
-  /// settings, which the frames should show at once.
+  /// whether the step took the page's input: a move (its finger's device sampled it, or it
+  /// reached its target) or settings, which the frames should show at once.
   bool afterStep(sim::World& world);
   /// Stops the server and the recording; returns what they did, for summary.json.
   nlohmann::json finish();
@@ -58,7 +58,7 @@ class ServedRun {
   std::vector<sim::SettingsCommand> posted_, taking_;
   std::atomic<bool> has_posted_{false};
   std::atomic<long> settings_applied_{0}, settings_refused_{0};
-  long moves_seen_ = 0;  // haptic thread: the devices' moves taken, as of the last step
+  long moves_seen_ = 0;  // haptic thread: the devices' moves taken and arrived, as of the last step
   bool participant_ = false;  // an experiment participant's page: no set, record or snapshot
   std::function<std::optional<std::string>(const std::string&)> participant_command_;
   std::unique_ptr<WebServer> server_;  // started last, stopped first

@@ -101,7 +101,7 @@ struct SceneRenderer::Impl {
   std::vector<Vertex> receiver_vertices;
   // Clear colour and ground for the last camera of each frame size, restored each frame instead
   // of redrawn (a frame and its patch insets are two sizes).
-  ViewLayers views;  // each view's backdrop and bodies' layer
+  ViewLayers views;  // each view's backdrop and bodies' layer (view_layers.hpp)
   // The contact overlay: built as plain data (draw_list.hpp), its vertices in one buffer.
   std::vector<std::shared_ptr<const sim::Mesh>> surfaces;  // per body, null for a plane
   std::optional<DrawListBuilder> overlay_builder;  // made once the bodies' surfaces are

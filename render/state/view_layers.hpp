@@ -36,9 +36,9 @@ struct ViewSlot {
 class ViewLayers {
  public:
   /// The slot of the view `camera` at `width` x `height` (`samples` per pixel, with the ground or
-  /// not): its own; else the least recently used of its size; else the least recently used,
-  /// given a new backdrop. `stale`: its backdrop must be drawn (a new view), and its layer
-  /// was dropped.
+  /// not): its own (sameView); else an empty one; else the least recently used of its size;
+  /// else the least recently used, given a new backdrop. `stale`: its backdrop must be drawn (a
+  /// new view), and its layer was dropped.
   ViewSlot& slotFor(const view::Camera& camera, int width, int height, int samples, bool ground, bool& stale);
 
  private:
@@ -46,7 +46,9 @@ class ViewLayers {
   long draws_ = 0;
 };
 
-/// Two cameras that give the same view.
+/// Two cameras that give the same view: position and target within kSamePictureTolerance (a
+/// patch inset's camera follows its contact point, which a held body's solver jitter moves by
+/// about 1e-12 m), the same field of view.
 bool sameView(const view::Camera& a, const view::Camera& b);
 
 }  // namespace gf::render

@@ -111,7 +111,7 @@ void BM_FrameStages1280x720(benchmark::State& state) {
   sim::Snapshot snapshot = p.snapshot;
   double cpu[6] = {};  // scene (shadow map included), anti-aliasing, insets, their labels and the stamp, read-back, PNG
   for (auto _ : state) {
-    snapshot.step += 1;  // a new instant: the shadow map is redrawn, as in a run
+    snapshot.step += 1;  // a new instant that places everything alike: shadow map and bodies' layers kept, as in a hold
     double t = processCpuSeconds();
     const auto lap = [&](int stage) {
       const double now = processCpuSeconds();

@@ -2,6 +2,7 @@
 // (render/state/same_picture.hpp), and that a kept bodies' layer, shadow map or whole picture
 // gives the frame a fresh draw gives.
 #include "render/state/same_picture.hpp"
+#include "render/state/view_layers.hpp"
 
 #include <gtest/gtest.h>
 
@@ -167,6 +168,45 @@ TEST_F(SamePicture, KeptLayersDrawWhatAFreshDrawDraws) {
   draw(once, snapshot_);
   const render::ImageDifference d = render::compareImages(after, draw(once, moved), 0);
   EXPECT_EQ(d.differing_share, 0.0) << d.max_channel_difference;
+}
+
+// Each view keeps its own slot: two insets of one size with different cameras, the frame and a
+// close-up, each drawn again with its camera (or one moved by solver jitter, 1e-12 m) finds its
+// slot as it left it; a fifth view takes the least recently used slot of its size.
+TEST(ViewLayers, EachViewKeepsItsSlot) {
+  render::GlContext context;
+  render::ViewLayers layers;
+  view::Camera frame, inset_a, inset_b, close_up;
+  inset_a.position = sim::Vec3(0.1, 0.0, 0.0);
+  inset_b.position = sim::Vec3(-0.1, 0.0, 0.0);
+  close_up.position = sim::Vec3(0.0, 0.2, 0.0);
+  bool stale = false;
+  render::ViewSlot* a = &layers.slotFor(inset_a, 216, 216, 1, false, stale);
+  EXPECT_TRUE(stale);
+  render::ViewSlot* f = &layers.slotFor(frame, 1280, 720, 1, true, stale);
+  EXPECT_TRUE(stale);
+  render::ViewSlot* b = &layers.slotFor(inset_b, 216, 216, 1, false, stale);
+  EXPECT_TRUE(stale);
+  EXPECT_NE(a, b);
+  render::ViewSlot* c = &layers.slotFor(close_up, 480, 480, 1, false, stale);
+  EXPECT_TRUE(stale);
+  for (int round = 0; round < 3; ++round) {
+    view::Camera jittered = inset_a;
+    jittered.target.x() += 1e-12;
+    EXPECT_EQ(&layers.slotFor(jittered, 216, 216, 1, false, stale), a);
+    EXPECT_FALSE(stale);
+    EXPECT_EQ(&layers.slotFor(frame, 1280, 720, 1, true, stale), f);
+    EXPECT_FALSE(stale);
+    EXPECT_EQ(&layers.slotFor(inset_b, 216, 216, 1, false, stale), b);
+    EXPECT_FALSE(stale);
+    EXPECT_EQ(&layers.slotFor(close_up, 480, 480, 1, false, stale), c);
+    EXPECT_FALSE(stale);
+  }
+  view::Camera moved = inset_a;
+  moved.position.y() += 0.001;  // inset A's contact moved: A's slot, the older of the two
+  EXPECT_EQ(&layers.slotFor(inset_b, 216, 216, 1, false, stale), b);
+  EXPECT_EQ(&layers.slotFor(moved, 216, 216, 1, false, stale), a);
+  EXPECT_TRUE(stale);
 }
 
 // A whole frame (insets, labels, stamp) of a held state equals the frame renderStill draws of

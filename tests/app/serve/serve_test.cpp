@@ -297,6 +297,31 @@ TEST(Serve, ASteeredDeviceGoesStraightToEachTargetFromWhereItIs) {
   EXPECT_EQ(d.moves(), 2);
 }
 
+// A move counts once when taken and once when its device reaches the target (at once for 0 s):
+// the steps whose frame should be drawn early (ServedRun::afterStep, RenderThread::hurry).
+TEST(Serve, ASteeredDeviceCountsEachMoveTakenAndArrived) {
+  sim::DeviceTrack track;
+  track.keyframes = {{0.0, sim::Vec3(0, 0.1, 0)}};
+  SteeredDevice d(track, true);
+  d.sample(0.1);
+  EXPECT_EQ(d.moves(), 0);
+  EXPECT_EQ(d.arrivals(), 0);
+  d.moveTo(sim::Vec3(0.05, 0.1, 0.0), 0.03);
+  d.sample(0.2);
+  EXPECT_EQ(d.moves(), 1);
+  EXPECT_EQ(d.arrivals(), 0);  // gliding
+  d.sample(0.229);
+  EXPECT_EQ(d.arrivals(), 0);
+  d.sample(0.23);
+  EXPECT_EQ(d.arrivals(), 1);  // there
+  d.sample(0.5);
+  EXPECT_EQ(d.arrivals(), 1);  // once
+  d.moveTo(sim::Vec3(0.0, 0.1, 0.0), 0.0);
+  d.sample(0.6);
+  EXPECT_EQ(d.moves(), 2);
+  EXPECT_EQ(d.arrivals(), 2);
+}
+
 // A steered device keeps its track's orientation (a web device's tilt): the moves are positions.
 TEST(Serve, ASteeredDeviceKeepsItsTracksOrientation) {
   const sim::Quat tilt(Eigen::AngleAxisd(0.5, sim::Vec3::UnitX()));
