@@ -27,6 +27,7 @@
 #include "render/overlay/labels.hpp"
 #include "render/overlay/layout.hpp"
 #include "render/state/same_picture.hpp"
+#include "render/state/view_layers.hpp"
 #include "sim/assert.hpp"
 
 namespace gf::render {
@@ -184,9 +185,8 @@ struct Gpu {
     subjects = subjectBoxes(description, scene.surfaces(), snap, camera, width, height, arrow_m_per_n, r.proxy);
     const LabelPlacement placed =
         placeLabels(subjects, sizes, width, height, placement, allowed, {true, true, true, top_left_free});
-    const bool still = drawn_any && placed == placement && camera.position == drawn_camera.position &&
-                       camera.target == drawn_camera.target && camera.fov_deg == drawn_camera.fov_deg &&
-                       width == frame.width() && height == frame.height() && drawsTheSame(snap, drawn, r.load_arrows);
+    const bool still = drawn_any && placed == placement && sameView(camera, drawn_camera) && width == frame.width() &&
+                       height == frame.height() && drawsTheSame(snap, drawn, r.load_arrows);
     placement = placed;
     if (still && picture_kept && frame.restorePicture()) {
       ++pictures_reused;

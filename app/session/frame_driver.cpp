@@ -52,13 +52,12 @@ void FrameDriver::start(sim::World& world) {
 void FrameDriver::afterStep(sim::World& world, double dt, bool input) {
   const double t = world.time();
   if (realtime_) {
-    if (input) {
-      publishLatest(world);
-      renderer_.hurry();
-    }
-    if (t + kTimeEps < frameTime(next_frame_)) return;
+    const bool frame_time = t + kTimeEps >= frameTime(next_frame_);
+    if (!input && !frame_time) return;
     while (t + kTimeEps >= frameTime(next_frame_)) ++next_frame_;
     publishLatest(world);
+    if (input) renderer_.hurry();
+    if (!frame_time) return;
     apply(world, renderer_.takeCommands());
     return;
   }

@@ -64,8 +64,9 @@ bool samePlace(const sim::FingerSnapshot& a, const sim::FingerSnapshot& b) {
          nearVec3s(a.pad.nodes, b.pad.nodes);
 }
 
-bool sameFinger(const sim::FingerSnapshot& a, const sim::FingerSnapshot& b, bool load_arrows) {
-  return a.sgo_count == b.sgo_count && samePlace(a, b) && a.pad.resets == b.pad.resets &&
+// What a finger draws beyond its place (samePlace): its contacts and forces.
+bool sameLoads(const sim::FingerSnapshot& a, const sim::FingerSnapshot& b, bool load_arrows) {
+  return a.sgo_count == b.sgo_count && a.pad.resets == b.pad.resets &&
          nearLoad(a.coupling_force, b.coupling_force) && nearLoad(a.feedback_force, b.feedback_force) &&
          all(a.contacts, b.contacts,
              [&](const sim::ContactSnapshot& x, const sim::ContactSnapshot& y) { return sameContact(x, y, load_arrows); });
@@ -87,10 +88,9 @@ bool samePlaces(const sim::Snapshot& a, const sim::Snapshot& b) {
 }
 
 bool drawsTheSame(const sim::Snapshot& a, const sim::Snapshot& b, bool load_arrows) {
-  return all(a.bodies, b.bodies, samePose) &&
+  return samePlaces(a, b) &&
          all(a.fingers, b.fingers,
-             [&](const sim::FingerSnapshot& x, const sim::FingerSnapshot& y) { return sameFinger(x, y, load_arrows); }) &&
-         all(a.soft_bodies, b.soft_bodies, sameSoftBody);
+             [&](const sim::FingerSnapshot& x, const sim::FingerSnapshot& y) { return sameLoads(x, y, load_arrows); });
 }
 
 }  // namespace gf::render
