@@ -165,6 +165,25 @@ Start startFace(const WalkContext& ctx, const SurfacePoint& hit, double side, co
   return best;
 }
 
+// A few indices, remembered in the order met; insert says whether one is new. Past its
+// capacity it remembers nothing more and calls every index new (the caller then repeats work
+// whose answer it already has, which changes nothing).
+class SmallSet {
+ public:
+  bool insert(std::int32_t x) {
+    for (int i = 0; i < size_; ++i) {
+      if (items_[static_cast<std::size_t>(i)] == x) return false;
+    }
+    if (size_ < kCapacity) items_[static_cast<std::size_t>(size_++)] = x;
+    return true;
+  }
+
+ private:
+  static constexpr int kCapacity = 48;
+  std::array<std::int32_t, kCapacity> items_{};
+  int size_ = 0;
+};
+
 // The point of segment [a, b] closest to p.
 Vec3 onSegment(const Vec3& p, const Vec3& a, const Vec3& b) {
   const Vec3 e = b - a;
@@ -435,14 +454,18 @@ SurfacePoint contactFeature(const Mesh& m, const PatchContact& c, double tol) {
   // Distances compared squared: most candidates are far and cost no square root.
   const double corner_reach = std::numbers::sqrt2 * c.rounding + tol, edge_reach = c.rounding + tol;
   const double corner_reach2 = corner_reach * corner_reach, edge_reach2 = edge_reach * edge_reach;
+  // A face around two or three of the hit's corners is looked at once, and a corner found
+  // outside its cone is not tested again: the answer is the one of the first visit.
+  SmallSet faces_seen, corners_outside;
   for (int hk = 0; hk < 3; ++hk) {
     const std::int32_t hv = m.triangles()[hit.face][hk];
     for (const std::int32_t* g = m.vertexFacesBegin(hv); g != m.vertexFacesEnd(hv); ++g) {
+      if (!faces_seen.insert(*g)) continue;
       for (int k = 0; k < 3; ++k) {
         // A rounded corner: n in the interior of the vertex's normal cone, where every edge
         // leaving the vertex points away from n.
         const Vec3& v = m.corner(*g, k);
-        if ((p - v).squaredNorm() <= corner_reach2) {
+        if ((p - v).squaredNorm() <= corner_reach2 && corners_outside.insert(m.triangles()[*g][k])) {
           const std::int32_t vi = m.triangles()[*g][k];
           bool inside = true;
           for (const std::int32_t* h = m.vertexFacesBegin(vi); h != m.vertexFacesEnd(vi) && inside; ++h) {
@@ -455,16 +478,18 @@ SurfacePoint contactFeature(const Mesh& m, const PatchContact& c, double tol) {
         }
         // A rounded edge: n turned from both faces towards the edge (off each face's inward
         // direction), the point within the rounding of the edge.
+        // The normals first: on a face hit n lies along the face, and no edge passes.
         const FaceLink& link = m.link(*g, k);
-        if (link.face < 0) continue;
+        if (link.face < 0 || !(n.dot(m.edgeInwardNormal(*g, k)) < turned) ||
+            !(n.dot(m.edgeInwardNormal(link.face, link.edge)) < turned)) {
+          continue;
+        }
         const Vec3 e = m.corner(*g, (k + 1) % 3) - v;
         const Vec3 on_edge = v + std::clamp((p - v).dot(e) / e.squaredNorm(), 0.0, 1.0) * e;
         const double distance2 = (p - on_edge).squaredNorm();
         if (distance2 > edge_reach2 || distance2 >= edge_distance2) continue;
-        if (n.dot(m.edgeInwardNormal(*g, k)) < turned && n.dot(m.edgeInwardNormal(link.face, link.edge)) < turned) {
-          edge_hit = {*g, Feature::kEdge, k, on_edge, std::sqrt(distance2)};
-          edge_distance2 = distance2;
-        }
+        edge_hit = {*g, Feature::kEdge, k, on_edge, std::sqrt(distance2)};
+        edge_distance2 = distance2;
       }
     }
   }
