@@ -344,39 +344,43 @@ void Framebuffer::read(Image& out) {
   out.width = width_;
   out.height = height_;
   const std::size_t w = static_cast<std::size_t>(width_), h = static_cast<std::size_t>(height_);
-  // RGBA is Mesa's fast read path; dropping alpha while flipping is one pass of our own.
+  // RGBA is Mesa's fast read path; dropping alpha while flipping is one pass of our own. Read in
+  // bands of kReadBandBytes, not the whole picture: a 1280x720 RGBA copy is 3.7 MB held for
+  // the frame's life, a band 256 kB, and the 8 reads cost what one does.
+  constexpr std::size_t kReadBandBytes = 256 << 10;
+  const std::size_t band = std::clamp<std::size_t>(kReadBandBytes / (4 * w), 1, h);
   std::vector<std::uint8_t>& rgba = rgba_;
-  rgba.resize(4 * w * h);
+  rgba.resize(4 * w * band);
   glPixelStorei(GL_PACK_ALIGNMENT, 1);
-  glReadPixels(0, 0, width_, height_, GL_RGBA, GL_UNSIGNED_BYTE, rgba.data());
   out.rgb.resize(3 * w * h);
-  for (std::size_t y = 0; y < h; ++y) {  // GL's rows run bottom to top; images top to bottom
-    const std::uint8_t* src = rgba.data() + 4 * w * (h - 1 - y);
-    std::uint8_t* dst = out.rgb.data() + 3 * w * y;
-    // Four bytes per pixel stored 3 apart, each store's alpha overwritten by the next pixel;
-    // the row's last pixel is copied bytewise so nothing is written past the row.
-    for (std::size_t x = 0; x + 1 < w; ++x) std::memcpy(dst + 3 * x, src + 4 * x, 4);
-    std::memcpy(dst + 3 * (w - 1), src + 4 * (w - 1), 3);
+  for (std::size_t y0 = 0; y0 < h; y0 += band) {  // GL rows y0 .. y0 + rows - 1, bottom up
+    const std::size_t rows = std::min(band, h - y0);
+    glReadPixels(0, static_cast<GLint>(y0), width_, static_cast<GLsizei>(rows), GL_RGBA, GL_UNSIGNED_BYTE, rgba.data());
+    for (std::size_t r = 0; r < rows; ++r) {  // GL's rows run bottom to top; images top to bottom
+      const std::uint8_t* src = rgba.data() + 4 * w * r;
+      std::uint8_t* dst = out.rgb.data() + 3 * w * (h - 1 - (y0 + r));
+      // Four bytes per pixel stored 3 apart, each store's alpha overwritten by the next pixel;
+      // the row's last pixel is copied bytewise so nothing is written past the row.
+      for (std::size_t x = 0; x + 1 < w; ++x) std::memcpy(dst + 3 * x, src + 4 * x, 4);
+      std::memcpy(dst + 3 * (w - 1), src + 4 * (w - 1), 3);
+    }
   }
   glBindFramebuffer(GL_FRAMEBUFFER, 0);
 }
 
 Backdrop::Backdrop(int width, int height, int samples) : width_(width), height_(height), samples_(samples) {
   GF_ASSERT_GL_THREAD();
-  fbo_ = colourDepthTarget(width, height, samples, colour_, depth_, "backdrop");
+  glGenFramebuffers(1, &fbo_);
+  glBindFramebuffer(GL_FRAMEBUFFER, fbo_);
+  colour_ = renderbuffer(GL_RGBA8, width, height, samples);
+  glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, colour_);
+  requireComplete("backdrop");
 }
 
 Backdrop::~Backdrop() {
   GF_ASSERT_GL_THREAD();
   glDeleteFramebuffers(1, &fbo_);
-  const unsigned buffers[] = {colour_, depth_};
-  glDeleteRenderbuffers(2, buffers);
-}
-
-void Backdrop::bind() const {
-  GF_ASSERT_GL_THREAD();
-  glBindFramebuffer(GL_FRAMEBUFFER, fbo_);
-  glViewport(0, 0, width_, height_);
+  glDeleteRenderbuffers(1, &colour_);
 }
 
 void Backdrop::restoreColourInto(unsigned target) const {

@@ -251,10 +251,10 @@ struct SceneRenderer::Impl {
     use(lit);
   }
 
-  // Background colour and ground: drawn into the backdrop when the view changed, then copied
-  // into the frame. Ground planes are static bodies, so only the camera and the frame size
-  // change what the backdrop holds. Then the bodies and the ground's shadows, or their layer
-  // when nothing has moved since it was kept (ViewSlot).
+  // Background colour and ground: drawn in the frame and taken into the backdrop when the view
+  // changed, else copied from the backdrop into the frame. Ground planes are static bodies, so
+  // only the camera and the frame size change what the backdrop holds. Then the bodies and the
+  // ground's shadows, or their layer when nothing has moved since it was kept (ViewSlot).
   void drawBase(const sim::Snapshot& snap, const view::Camera& camera, int width, int height) {
     GLint target = 0, samples = 0;
     glGetIntegerv(GL_FRAMEBUFFER_BINDING, &target);
@@ -263,7 +263,7 @@ struct SceneRenderer::Impl {
     bool stale = false;
     ViewSlot* slot = &views.slotFor(camera, width, height, samples, settings.ground, stale);
     if (stale) {
-      slot->backdrop->bind();
+      glBindFramebuffer(GL_FRAMEBUFFER, static_cast<GLuint>(target));  // a new backdrop binds its own
       const Eigen::Vector3f bg = kBackground.cwiseSqrt();  // the shaders' display gamma
       glClearColor(bg.x(), bg.y(), bg.z(), 1.0f);
       glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
@@ -271,6 +271,7 @@ struct SceneRenderer::Impl {
       for (std::size_t b = 0; b < bodies.size() && settings.ground; ++b) {
         if (bodies[b].ground) drawShape(*ground_quad, bodyModel(snap, b), kGround.cwiseProduct(bodies[b].colour / 0.7f), 1.0f);
       }
+      slot->backdrop->takeFrom(static_cast<unsigned>(target));
     }
     const LayerSwitches switches{shadow != nullptr, settings.ground, settings.fingers, settings.body_pattern,
                                  settings.proxy};
@@ -281,7 +282,7 @@ struct SceneRenderer::Impl {
       drawDepth(snap, true);
       return;
     }
-    slot->backdrop->restoreColourInto(static_cast<unsigned>(target));
+    if (!stale) slot->backdrop->restoreColourInto(static_cast<unsigned>(target));
     drawDepth(snap, false);
     drawBodies(snap);
     if (shadow && settings.ground) drawGroundShadows(snap);
