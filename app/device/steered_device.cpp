@@ -1,11 +1,16 @@
 #include "app/device/steered_device.hpp"
 
+#include <algorithm>
+#include <limits>
+
 namespace gf::app {
 
-void SteeredDevice::moveTo(const sim::Vec3& target, double seconds) {
+void SteeredDevice::moveTo(const sim::Vec3& target, double seconds, long number) {
   std::lock_guard lock(mutex_);
   posted_target_ = target;
   posted_seconds_ = seconds;
+  if (!posted_.load(std::memory_order_relaxed)) first_posted_ = number;
+  posted_number_ = number;
   posted_.store(true, std::memory_order_release);
 }
 
@@ -18,7 +23,9 @@ sim::DeviceSample SteeredDevice::sample(double t) {
       t0_ = t;
       t1_ = t + posted_seconds_;
       steered_ = true;
+      if (arrived_) unreached_from_ = first_posted_;  // else the move cut short stays unreached
       arrived_ = false;
+      taken_number_ = posted_number_;
       posted_.store(false, std::memory_order_relaxed);
       moves_.fetch_add(1, std::memory_order_relaxed);
     }
@@ -43,6 +50,15 @@ sim::DeviceSample SteeredDevice::sample(double t) {
   }
   last_ = s.position;
   return s;
+}
+
+MoveMarks moveMarks(const std::vector<std::unique_ptr<SteeredDevice>>& devices) {
+  long taken = 0, reached = std::numeric_limits<long>::max();
+  for (const auto& d : devices) {
+    taken = std::max(taken, d->takenNumber());
+    if (!d->arrived()) reached = std::min(reached, d->unreachedFrom() - 1);
+  }
+  return {taken, std::min(taken, reached)};
 }
 
 }  // namespace gf::app

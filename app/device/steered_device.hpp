@@ -5,7 +5,9 @@
 #pragma once
 
 #include <atomic>
+#include <memory>
 #include <mutex>
+#include <vector>
 
 #include "sim/scene/device.hpp"
 
@@ -18,8 +20,10 @@ class SteeredDevice final : public sim::DeviceSource {
   SteeredDevice(const sim::DeviceTrack& track, bool web) : track_(track), web_(web) {}
 
   /// From the next step on, moves the device from where it is straight to `target` (m) over
-  /// `seconds` (0: at once). Any thread but the haptic one.
-  void moveTo(const sim::Vec3& target, double seconds);
+  /// `seconds` (0: at once). `number`: the move's number in the run (ServedRun numbers every
+  /// device's moves in one increasing sequence; 0 for none), reported by takenNumber() and
+  /// arrivedNumber(). Any thread but the haptic one.
+  void moveTo(const sim::Vec3& target, double seconds, long number = 0);
 
   sim::DeviceSample sample(double t) override;
   /// The browser's pointer renders no force: the force the World sends is the force told.
@@ -30,6 +34,14 @@ class SteeredDevice final : public sim::DeviceSource {
   long moves() const { return moves_.load(std::memory_order_relaxed); }
   /// Moves whose device reached its target so far (a move of 0 s at once). Any thread.
   long arrivals() const { return arrivals_.load(std::memory_order_relaxed); }
+  /// The number of the newest move taken (0: none; a move posted over one not yet taken
+  /// replaces it, and both count as taken with it), whether the device has reached its target,
+  /// and the number of the first move it has not reached since it last did: a move replaced
+  /// before its device got there counts as reached with the move that replaced it. Haptic
+  /// thread (they change there).
+  long takenNumber() const { return taken_number_; }
+  bool arrived() const { return arrived_; }
+  long unreachedFrom() const { return unreached_from_; }
 
  private:
   const sim::DeviceTrack& track_;
@@ -39,12 +51,24 @@ class SteeredDevice final : public sim::DeviceSource {
   std::atomic<bool> posted_{false};
   sim::Vec3 posted_target_ = sim::Vec3::Zero();
   double posted_seconds_ = 0.0;
+  long posted_number_ = 0;
+  long first_posted_ = 0;  // the first move posted since the last one taken
   // Haptic thread only.
   bool steered_ = false;
   sim::Vec3 from_ = sim::Vec3::Zero(), to_ = sim::Vec3::Zero(), last_ = sim::Vec3::Zero();
   double t0_ = 0.0, t1_ = 0.0;
   bool arrived_ = true;
+  long taken_number_ = 0, unreached_from_ = 0;
   std::atomic<long> moves_{0}, arrivals_{0};
 };
+
+/// What a state shows of the numbered moves (sim::Snapshot's moves_taken and moves_arrived):
+/// the newest move any device has taken, and the newest that, with every earlier one, its
+/// device has reached: those below the first move not reached of any device still on its way
+/// (SteeredDevice::unreachedFrom). Haptic thread.
+struct MoveMarks {
+  long taken = 0, arrived = 0;
+};
+MoveMarks moveMarks(const std::vector<std::unique_ptr<SteeredDevice>>& devices);
 
 }  // namespace gf::app

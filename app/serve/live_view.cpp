@@ -83,7 +83,7 @@ void LiveView::frame(const render::Image& image, const sim::Snapshot& snapshot, 
       frame_ms_sum_ += frame_ms;
       if (recording_) recorder = recorder_;
     }
-    jpeg_.push(image, number, snapshot.time);
+    jpeg_.push(image, number, snapshot.time, snapshot.moves_taken, snapshot.moves_arrived);
     {
       std::lock_guard lock(mutex_);
       drawn_step_ = snapshot.step;

@@ -66,6 +66,12 @@ bool ServedRun::afterStep(sim::World& world) {
   return true;
 }
 
+void ServedRun::markMoves(sim::Snapshot& snapshot) const {
+  const MoveMarks marks = moveMarks(devices_);
+  snapshot.moves_taken = marks.taken;
+  snapshot.moves_arrived = marks.arrived;
+}
+
 // One `live` command, answered as `godfinger live` answers it on standard input.
 std::string ServedRun::answer(const std::string& line) {
   using K = LiveCommand::Kind;
@@ -98,8 +104,12 @@ std::string ServedRun::answer(const std::string& line) {
           return "error: move: fingers." + session_.scene.fingers[static_cast<std::size_t>(c.finger)].name +
                  " follows its UDP device";
         }
-        devices_[static_cast<std::size_t>(c.finger)]->moveTo(c.target, c.seconds);
-        return moveAnswer(c, session_.scene, snap.time + c.seconds);
+        {
+          // One thread answers the commands (WebServer's commander): numbers follow the posts.
+          const long number = moves_numbered_.fetch_add(1, std::memory_order_relaxed) + 1;
+          devices_[static_cast<std::size_t>(c.finger)]->moveTo(c.target, c.seconds, number);
+          return moveAnswer(c, session_.scene, snap.time + c.seconds) + " move " + std::to_string(number);
+        }
       case K::kSet: {
         std::lock_guard lock(mutex_);
         sim::PatchSettings& p = settings_[static_cast<std::size_t>(c.finger)];

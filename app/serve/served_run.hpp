@@ -41,6 +41,9 @@ class ServedRun {
   /// whether the step took the page's input: a move (its finger's device sampled it, or it
   /// reached its target) or settings, which the frames should show at once.
   bool afterStep(sim::World& world);
+  /// Haptic thread, with the state the frames show: its moveMarks (Snapshot::moves_taken,
+  /// moves_arrived), which the stream's parts carry to the page.
+  void markMoves(sim::Snapshot& snapshot) const;
   /// Stops the server and the recording; returns what they did, for summary.json.
   nlohmann::json finish();
 
@@ -59,6 +62,7 @@ class ServedRun {
   std::atomic<bool> has_posted_{false};
   std::atomic<long> settings_applied_{0}, settings_refused_{0};
   long moves_seen_ = 0;  // haptic thread: the devices' moves taken and arrived, as of the last step
+  std::atomic<long> moves_numbered_{0};  // the last number given to a move (server thread)
   bool participant_ = false;  // an experiment participant's page: no set, record or snapshot
   std::function<std::optional<std::string>(const std::string&)> participant_command_;
   std::unique_ptr<WebServer> server_;  // started last, stopped first

@@ -292,11 +292,11 @@ struct WebServer::Impl {
 
   static std::shared_ptr<const StreamPart> partOf(const render::JpegFrame& f) {
     auto part = std::make_shared<StreamPart>();
-    char head[200];
+    char head[256];
     const int n = std::snprintf(head, sizeof head,
                                 "--%s\r\nContent-Type: image/jpeg\r\nContent-Length: %zu\r\nX-Frame: %ld\r\n"
-                                "X-Sim-Time: %.4f\r\n\r\n",
-                                kBoundary, f.bytes->size(), f.number, f.time);
+                                "X-Sim-Time: %.4f\r\nX-Moves-Taken: %ld\r\nX-Moves-Arrived: %ld\r\n\r\n",
+                                kBoundary, f.bytes->size(), f.number, f.time, f.moves_taken, f.moves_arrived);
     part->head.assign(head, static_cast<std::size_t>(n));
     part->bytes = f.bytes;
     part->tail = "\r\n";
@@ -321,7 +321,8 @@ struct WebServer::Impl {
         HttpAnswer a;
         a.type = "image/jpeg";
         a.bytes = f.bytes;
-        a.headers = {{"X-Frame", std::to_string(f.number)}, {"X-Sim-Time", shortestTime(f.time)}};
+        a.headers = {{"X-Frame", std::to_string(f.number)}, {"X-Sim-Time", shortestTime(f.time)},
+                     {"X-Moves-Taken", std::to_string(f.moves_taken)}, {"X-Moves-Arrived", std::to_string(f.moves_arrived)}};
         w.exchange->answer(std::move(a));
         return true;
       }

@@ -36,6 +36,7 @@ void FrameDriver::publishLatest(const sim::World& world) {
   renderer_.publishLatest([&](sim::Snapshot& slot) {
     world.snapshot(slot);
     slot.timings = live_ ? live_->summary() : sim::HapticTimings{};
+    if (marks_) marks_(slot);
   });
 }
 

@@ -2,6 +2,7 @@
 // the render thread, and applies the settings the overlay's widgets change.
 #pragma once
 
+#include <functional>
 #include <vector>
 
 #include "render/render_thread.hpp"
@@ -30,6 +31,10 @@ class FrameDriver {
   /// move posted from the browser view): its state is published now and the render thread woken
   /// to draw it, not at the next frame time, so the move is in the next frame drawn and sent.
   void afterStep(sim::World& world, double dt, bool input = false);
+  /// Realtime: called on each published state after the World's snapshot, to add what the
+  /// World does not know (the browser view's move numbers, ServedRun::markMoves). Haptic
+  /// thread; must not block.
+  void setMarks(std::function<void(sim::Snapshot&)> marks) { marks_ = std::move(marks); }
   long frames() const { return next_frame_; }
   const std::vector<AppliedChange>& changes() const { return changes_; }
 
@@ -47,6 +52,7 @@ class FrameDriver {
   long next_frame_ = 0;
   sim::Snapshot before_, after_, frame_;
   std::vector<AppliedChange> changes_;
+  std::function<void(sim::Snapshot&)> marks_;
 };
 
 }  // namespace gf::app

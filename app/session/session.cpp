@@ -350,6 +350,7 @@ void SessionRun::startThreads() {
   }
   forces_.emplace(*world_, session_.record.force_bodies, steps_, (dir_ / kForcesFile).string());
   if (stream) frames_ = std::make_unique<FrameDriver>(*renderer_, 60.0, options_.realtime, session_.view.actions, &live_);
+  if (frames_ && served_) frames_->setMarks([served = served_.get()](sim::Snapshot& s) { served->markMoves(s); });
   if (frames_) frames_->start(*world_);
   expect_.emplace(session_.expect, *world_);
   quiet_threads_.reset();  // this thread takes the signals again

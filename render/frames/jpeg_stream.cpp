@@ -52,7 +52,7 @@ JpegStream::JpegStream(int quality, bool background) : quality_(quality), backgr
 
 JpegStream::~JpegStream() { close(); }
 
-void JpegStream::push(const Image& image, long number, double time) {
+void JpegStream::push(const Image& image, long number, double time, long moves_taken, long moves_arrived) {
   std::lock_guard lock(mutex_);
   ++stats_.pushed;
   if (closing_) return;
@@ -62,6 +62,8 @@ void JpegStream::push(const Image& image, long number, double time) {
   pending_.rgb.assign(image.rgb.begin(), image.rgb.end());
   pending_time_ = time;
   pending_number_ = number;
+  pending_taken_ = moves_taken;
+  pending_arrived_ = moves_arrived;
   has_pending_ = true;
   if (encodeWanted()) changed_.notify_all();
 }
@@ -115,7 +117,7 @@ void JpegStream::run() {
   std::vector<std::uint8_t> bytes;
   for (;;) {
     double time = 0.0;
-    long number = 0;
+    long number = 0, taken = 0, arrived = 0;
     {
       std::unique_lock lock(mutex_);
       changed_.wait(lock, [&] { return encodeWanted() || closing_; });
@@ -123,6 +125,8 @@ void JpegStream::run() {
       std::swap(frame, pending_);
       time = pending_time_;
       number = pending_number_;
+      taken = pending_taken_;
+      arrived = pending_arrived_;
       encoding_number_ = number;
       has_pending_ = false;
     }
@@ -135,7 +139,7 @@ void JpegStream::run() {
     auto shared = std::make_shared<const std::vector<std::uint8_t>>(bytes);
     const double seconds = std::chrono::duration<double>(Clock::now() - begin).count();
     std::lock_guard lock(mutex_);
-    newest_ = {std::move(shared), number, time};
+    newest_ = {std::move(shared), number, time, taken, arrived};
     ++stats_.encoded;
     stats_.encode_seconds += seconds;
     stats_.bytes += static_cast<long>(newest_.bytes->size());

@@ -23,6 +23,8 @@ struct JpegFrame {
   std::shared_ptr<const std::vector<std::uint8_t>> bytes;
   long number = 0;     ///< the frame's number as pushed (increasing; 0: none yet)
   double time = 0.0;   ///< s: simulated time of the frame
+  /// The browser view's moves the frame's state has taken and reached (sim::Snapshot's).
+  long moves_taken = 0, moves_arrived = 0;
 };
 
 /// What the encoder did.
@@ -44,8 +46,9 @@ class JpegStream {
 
   /// The newest frame, number `number` (greater than every number pushed before) at simulated
   /// time `time`: copied in place of the one kept (storage reused), and encoded at once when a
-  /// reader waits or none has been encoded yet. Any one thread (the render thread).
-  void push(const Image& image, long number, double time);
+  /// reader waits or none has been encoded yet; `moves_taken` and `moves_arrived` go with it
+  /// (JpegFrame). Any one thread (the render thread).
+  void push(const Image& image, long number, double time, long moves_taken = 0, long moves_arrived = 0);
   /// The newest encoded frame (number 0 when none yet). Any thread.
   JpegFrame newest() const;
   /// Waits until a frame newer than `after`, and no older than the newest pushed before the
@@ -71,6 +74,7 @@ class JpegStream {
   Image pending_;           // the newest frame pushed, not yet encoded
   double pending_time_ = 0.0;
   long pending_number_ = 0;
+  long pending_taken_ = 0, pending_arrived_ = 0;
   bool has_pending_ = false;
   long encoding_number_ = 0;  // the frame the encoder took last
   int waiting_ = 0;         // readers in waitNewer

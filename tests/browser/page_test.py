@@ -7,6 +7,7 @@ driven over the DevTools pipe (cdp.py), against the server's contract of issue 3
 - a pointer drag (and wheel, for depth) on the image presses the web finger `index` onto the
   cylinder of the scene live-view: /state.json then shows its contact;
 - the page's n_sgo control sets the finger's setting; /command answers `ok`/`error:`;
+- the page times its own moves to the frames that show them (the parts' X-Moves-* headers);
 - with --token, every request without the token gets 401.
 
 Usage: page_test.py GODFINGER OUT_DIR
@@ -236,6 +237,26 @@ def test_drag_presses_index_on_the_cylinder(ctx: Context) -> None:
     print(f"  contact {contact}; light blue pixels in the insets {blue_before} -> {blue_after}; screenshot {shot}")
 
 
+def test_page_times_its_moves_to_the_frames(ctx: Context) -> None:
+    """(d) The page reads the stream's parts itself and times each of its moves (the drags
+    above, and one more posted through it now) to the decoded frame that shows it taken and the
+    one that shows it reached: gf.latency holds both per move, each positive, a move reached no
+    sooner than taken, and the top bar shows their medians."""
+    target = add(proxy(ctx.served, "thumb"), [0.0, 0.01, 0.0])
+    moves = ctx.page.evaluate("gf.latency.taken.length")
+    answer = ctx.page.evaluate("gf.command('move thumb {} {} {} 0.03')".format(*target))
+    assert " move " in answer, f"a move's answer without its number: {answer!r}"
+    poll(lambda: ctx.page.evaluate("gf.latency.taken.length") > moves, "the page's timing of its move")
+    latency = ctx.page.evaluate("gf.latency")
+    assert len(latency["taken"]) == len(latency["arrived"]) > 0, latency
+    for taken, arrived in zip(latency["taken"], latency["arrived"]):
+        assert 0 < taken <= arrived, f"a move shown taken after {taken} ms and reached after {arrived} ms"
+    shown = poll(lambda: (t := ctx.page.evaluate("document.querySelector('#latency').textContent")) and t,
+                 "the delay in the top bar")
+    assert shown.startswith("move → frame "), shown
+    print(f"  {len(latency['taken'])} moves timed by the page; {shown}")
+
+
 def test_n_sgo_control_sets_the_setting(ctx: Context) -> None:
     """(c) The page's n_sgo input of `index`, changed to 16, sets the finger's n_sgo."""
     set_control(ctx.page, "input[data-finger=index][data-field=n_sgo]", "16")
@@ -301,7 +322,8 @@ def main(binary: Path, out_dir: Path) -> int:
         browser = Browser.launch(out_dir / "chromium.log")
         ctx = Context(served, browser.new_page(width=1600, height=900), out_dir)
         tests = [test_page_shows_the_stream, test_drag_presses_index_on_the_cylinder,
-                 test_n_sgo_control_sets_the_setting, test_commands_answer_ok_or_error]
+                 test_page_times_its_moves_to_the_frames, test_n_sgo_control_sets_the_setting,
+                 test_commands_answer_ok_or_error]
         passed = [run(t.__name__, lambda t=t: t(ctx), ctx) for t in tests]
         served.stop()
         passed.append(run("test_token_is_required_off_loopback",

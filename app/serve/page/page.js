@@ -2,7 +2,8 @@
 const token = new URLSearchParams(location.search).get("token");
 const withToken = u => token ? u + (u.includes("?") ? "&" : "?") + "token=" + encodeURIComponent(token) : u;
 const $ = s => document.querySelector(s);
-const gf = window.gf = {scene: null, state: null, history: [], depth: null, last_n_sgo: {}};
+const gf = window.gf = {scene: null, state: null, history: [], depth: null, last_n_sgo: {},
+  moves: new Map(), latency: {taken: [], arrived: []}};
 const sub = (a, b) => [a[0]-b[0], a[1]-b[1], a[2]-b[2]];
 const dot = (a, b) => a[0]*b[0] + a[1]*b[1] + a[2]*b[2];
 const cross = (a, b) => [a[1]*b[2]-a[2]*b[1], a[2]*b[0]-a[0]*b[2], a[0]*b[1]-a[1]*b[0]];
@@ -29,8 +30,14 @@ function unproject(px, py, depth) {
 }
 
 async function command(line) {
+  const posted = performance.now();
   const res = await fetch(withToken("command"), {method: "POST", body: line});
   const text = (await res.text()).trim();
+  const move = /^ok .* move (\d+)$/.exec(text);
+  if (move) {
+    const n = Number(move[1]), m = {posted};
+    if (!match(n, m)) gf.moves.set(n, m);
+  }
   const a = $("#answer");
   a.textContent = line + "\n→ " + (text.length > 300 ? text.slice(0, 300) + "…" : text);
   a.className = text.startsWith("ok") ? "" : "err";
@@ -163,7 +170,7 @@ async function poll() {
       if (h.length && s.t < h[h.length - 1].t) h.length = 0;
       if (!h.length || s.t > h[h.length - 1].t) h.push({t: s.t, f: s.fingers.map(f => Math.hypot(...f.force_n))});
       while (h.length && h[0].t < s.t - 10) h.shift();
-      showFingers(s); showDevices(s); drawChart();
+      showFingers(s); showDevices(s); drawChart(); showLatency();
       $("#record").classList.toggle("on", !!(s.view && s.view.recording));
       $("#record").textContent = s.view && s.view.recording ? "stop recording (" + s.view.frames_recorded + ")" : "record frames";
     }
@@ -205,13 +212,92 @@ function nearer(metres) {
   send(from.map((v, i) => v + metres * b.f[i]));
 }
 
+// The stream, read here rather than by the <img> itself, so that the page sees each part's
+// headers: X-Moves-Taken and X-Moves-Arrived number the newest move its frame has taken and
+// reached (each move's number comes back in the answer to its POST). A move's delay is from
+// its POST to the decoded frame that shows it taken (the device set off) and reached (the
+// device at its target, after the move's glide): gf.latency, in ms, the last kLatencyKept.
+const kLatencyKept = 50;
+const ascii = new TextDecoder("ascii");
+function find(buf, from, to, seq) {
+  for (let i = from; i + seq.length <= Math.min(to, buf.length); i++) {
+    let k = 0;
+    while (k < seq.length && buf[i + k] === seq[k]) k++;
+    if (k === seq.length) return i;
+  }
+  return -1;
+}
+// The frames decoded lately (their marks and when), for moves whose answer comes after them.
+const shown = [];
+function keep(list, ms) { list.push(ms); if (list.length > kLatencyKept) list.shift(); }
+// Times move n (posted at `m.posted`) to the first frames at or after its POST that show it.
+function match(n, m) {
+  for (const f of shown) {
+    if (f.at < m.posted) continue;
+    if (m.taken === undefined && n <= f.taken) m.taken = f.at;
+    if (m.taken !== undefined && n <= f.arrived) {
+      keep(gf.latency.taken, m.taken - m.posted);
+      keep(gf.latency.arrived, f.at - m.posted);
+      return true;
+    }
+  }
+  return performance.now() - m.posted > 10000;  // never shown (the session ended): dropped
+}
+function noteShown(taken, arrived, at) {
+  shown.push({taken, arrived, at});
+  if (shown.length > 256) shown.shift();
+  for (const [n, m] of gf.moves) if (match(n, m)) gf.moves.delete(n);
+}
+function showPart(img, bytes, headers) {
+  const value = name => { const m = new RegExp("^" + name + ": *(\\d+)", "mi").exec(headers); return m ? Number(m[1]) : 0; };
+  const taken = value("X-Moves-Taken"), arrived = value("X-Moves-Arrived"), old = img.src;
+  img.src = URL.createObjectURL(new Blob([bytes], {type: "image/jpeg"}));
+  if (old.startsWith("blob:")) URL.revokeObjectURL(old);
+  img.decode().then(() => noteShown(taken, arrived, performance.now()), () => {});
+}
+async function readStream(img) {
+  const crlf2 = [13, 10, 13, 10];
+  for (;;) {
+    try {
+      const reader = (await fetch(withToken("stream.mjpg"), {cache: "no-store"})).body.getReader();
+      let buf = new Uint8Array(0);
+      for (;;) {
+        const {value, done} = await reader.read();
+        if (done) break;
+        const joined = new Uint8Array(buf.length + value.length);
+        joined.set(buf); joined.set(value, buf.length);
+        buf = joined;
+        for (;;) {  // each whole part: "--boundary", headers, a blank line, Content-Length bytes
+          const end = find(buf, 0, 2048, crlf2);
+          if (end < 0) break;
+          const headers = ascii.decode(buf.subarray(0, end));
+          const length = /^Content-Length: *(\d+)/mi.exec(headers);
+          if (!length) throw new Error("a stream part without Content-Length");
+          const start = end + 4, stop = start + Number(length[1]);
+          if (buf.length < stop + 2) break;
+          showPart(img, buf.slice(start, stop), headers);
+          buf = buf.slice(stop + 2);
+        }
+      }
+    } catch (e) { $("#status").textContent = "stream: " + e.message; }
+    await new Promise(r => setTimeout(r, 1000));  // the session may be back: read again
+  }
+}
+const median = a => { const s = [...a].sort((x, y) => x - y); return s.length ? s[s.length >> 1] : NaN; };
+function showLatency() {
+  const l = gf.latency;
+  $("#latency").textContent = l.taken.length ? "move → frame " + median(l.taken.slice(-20)).toFixed(0) + " ms, at target " +
+    median(l.arrived.slice(-20)).toFixed(0) + " ms (median of the last " + Math.min(20, l.taken.length) + ")" : "";
+}
+
 async function start() {
   gf.scene = await (await fetch(withToken("scene.json"))).json();
   if (gf.scene.participant) return participantStart();  // an experiment's participant (participant.js)
   $("#scene").textContent = gf.scene.scene;
   $("#mode").textContent = gf.scene.mode === "live" ? "live: steps on command" : "realtime";
   const img = $("#frame");
-  img.src = withToken("stream.mjpg");
+  readStream(img);
+  gf.command = command;
   const select = $("#web-finger");
   for (const f of gf.scene.fingers.filter(f => f.device === "web")) select.add(new Option(f.name, f.name));
   if (!select.options.length) select.add(new Option("(no web finger)", ""));

@@ -271,7 +271,8 @@ TEST(ServeLoad, AFloodOfCommandsIsBounded) {
 }
 
 // A newcomer sees what is drawn now: frames drawn while nobody watched are not encoded, and the
-// first /frame.jpg and the first part of a new stream are the frame drawn last.
+// first /frame.jpg and the first part of a new stream are the frame drawn last, with its time
+// and the move numbers its state shows.
 TEST(ServeLoad, ANewViewerGetsTheFrameDrawnLast) {
   const SessionDesc session = loadSceneFile(resolveScenePath("live-view"));
   LiveView view(session, sessionCamera(session, ""), "live", out("gf_serve_load_fresh"), false);
@@ -280,6 +281,8 @@ TEST(ServeLoad, ANewViewerGetsTheFrameDrawnLast) {
   sim::Snapshot snap;
   for (int k = 1; k <= 30; ++k) {
     snap.time = 0.001 * k;
+    snap.moves_taken = k / 2;  // the browser view's moves the state has taken and reached
+    snap.moves_arrived = k / 3;
     view.frame(image, snap, 1.0f);
   }
   httplib::Client client("127.0.0.1", portOf(*server));
@@ -289,10 +292,13 @@ TEST(ServeLoad, ANewViewerGetsTheFrameDrawnLast) {
   EXPECT_EQ(frame->status, 200);
   EXPECT_EQ(frame->get_header_value("X-Frame"), "30");
   EXPECT_EQ(frame->get_header_value("X-Sim-Time"), "0.0300");
+  EXPECT_EQ(frame->get_header_value("X-Moves-Taken"), "15");
+  EXPECT_EQ(frame->get_header_value("X-Moves-Arrived"), "10");
   RawClient stream(portOf(*server), "127.0.0.1");
   stream.send(head(portOf(*server), "GET /stream.mjpg HTTP/1.1"));
   const std::string answer = stream.readAll(400);
   EXPECT_NE(answer.find("X-Frame: 30\r\n"), std::string::npos) << answer.substr(0, 300);
+  EXPECT_NE(answer.find("X-Moves-Taken: 15\r\nX-Moves-Arrived: 10\r\n"), std::string::npos) << answer.substr(0, 300);
   EXPECT_LE(view.jpeg().stats().encoded, 2) << "frames were encoded while nobody watched";
 }
 

@@ -106,11 +106,13 @@ TEST(Serve, AReaderGetsTheNewestFrameDrawnNeverABacklog) {
   const render::Image image{16, 16, std::vector<std::uint8_t>(16 * 16 * 3, 100)};
   stream.push(image, 1, 0.001);  // the first frame is encoded whoever waits
   EXPECT_EQ(stream.waitNewer(0, std::chrono::seconds(30)).number, 1);
-  for (long k = 2; k <= 10; ++k) stream.push(image, k, 0.001 * static_cast<double>(k));  // nobody waits
+  for (long k = 2; k <= 10; ++k) stream.push(image, k, 0.001 * static_cast<double>(k), k / 2, k / 3);  // nobody waits
   EXPECT_EQ(stream.stats().encoded, 1) << "frames were encoded while nobody watched";
   const render::JpegFrame newest = stream.waitNewer(0, std::chrono::seconds(30));
   EXPECT_EQ(newest.number, 10) << "a newcomer was not given the frame drawn last";
   EXPECT_DOUBLE_EQ(newest.time, 0.010);
+  EXPECT_EQ(newest.moves_taken, 5) << "the frame's move marks did not come with it";
+  EXPECT_EQ(newest.moves_arrived, 3);
   long got = 0;
   std::thread reader([&] { got = stream.waitNewer(10, std::chrono::seconds(30)).number; });
   while (stream.waiting() == 0) std::this_thread::yield();
@@ -320,6 +322,41 @@ TEST(Serve, ASteeredDeviceCountsEachMoveTakenAndArrived) {
   d.sample(0.6);
   EXPECT_EQ(d.moves(), 2);
   EXPECT_EQ(d.arrivals(), 2);
+}
+
+// The marks a frame carries to the page (moveMarks): moves numbered across two fingers' devices;
+// a move counts as reached only when it and every earlier one are, whichever finger made it; a
+// move posted over one not yet taken counts as taken with it, and a move replaced (before or
+// during its glide) as reached with the one that replaced it.
+TEST(Serve, MoveMarksSayWhichNumberedMovesAStateHasTakenAndReached) {
+  sim::DeviceTrack track;
+  track.keyframes = {{0.0, sim::Vec3(0, 0.1, 0)}};
+  std::vector<std::unique_ptr<SteeredDevice>> d;
+  d.push_back(std::make_unique<SteeredDevice>(track, true));
+  d.push_back(std::make_unique<SteeredDevice>(track, true));
+  const auto marks = [&] { const MoveMarks m = moveMarks(d); return std::pair(m.taken, m.arrived); };
+  const auto step = [&](double t) { for (auto& x : d) x->sample(t); };
+  step(0.1);
+  EXPECT_EQ(marks(), std::pair(0L, 0L));  // nothing moved yet
+  d[0]->moveTo(sim::Vec3(0.05, 0.1, 0.0), 0.03, 1);
+  EXPECT_EQ(marks(), std::pair(0L, 0L));  // posted, not yet taken
+  step(0.2);
+  EXPECT_EQ(marks(), std::pair(1L, 0L));  // taken, gliding
+  d[1]->moveTo(sim::Vec3(0.0, 0.1, 0.05), 0.0, 2);
+  step(0.21);
+  EXPECT_EQ(marks(), std::pair(2L, 0L));  // 2 is there at once, but 1 still glides
+  step(0.23);
+  EXPECT_EQ(marks(), std::pair(2L, 2L));  // both there
+  d[0]->moveTo(sim::Vec3(0.01, 0.1, 0.0), 0.05, 3);
+  d[0]->moveTo(sim::Vec3(0.02, 0.1, 0.0), 0.05, 4);  // replaces 3 before a step takes it
+  step(0.3);
+  EXPECT_EQ(marks(), std::pair(4L, 2L));
+  d[0]->moveTo(sim::Vec3(0.03, 0.1, 0.0), 0.05, 5);
+  step(0.32);  // 4 cut short by 5: it is not reached until 5 is
+  EXPECT_EQ(marks(), std::pair(5L, 2L));
+  step(0.4);
+  EXPECT_EQ(marks(), std::pair(5L, 5L));
+  EXPECT_EQ(d[0]->moves(), 3);  // 1, 4 and 5: 3 was never sampled
 }
 
 // A steered device keeps its track's orientation (a web device's tilt): the moves are positions.
