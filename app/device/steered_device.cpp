@@ -9,7 +9,7 @@ void SteeredDevice::moveTo(const sim::Vec3& target, double seconds, long number)
   std::lock_guard lock(mutex_);
   posted_target_ = target;
   posted_seconds_ = seconds;
-  if (!posted_.load(std::memory_order_relaxed)) first_posted_ = number;
+  if (!posted_.load(std::memory_order_relaxed)) first_pending_.store(number, std::memory_order_release);
   posted_number_ = number;
   posted_.store(true, std::memory_order_release);
 }
@@ -23,7 +23,8 @@ sim::DeviceSample SteeredDevice::sample(double t) {
       t0_ = t;
       t1_ = t + posted_seconds_;
       steered_ = true;
-      if (arrived_) unreached_from_ = first_posted_;  // else the move cut short stays unreached
+      if (arrived_) unreached_from_ = first_pending_.load(std::memory_order_relaxed);  // else the move cut short stays unreached
+      first_pending_.store(0, std::memory_order_release);
       arrived_ = false;
       taken_number_ = posted_number_;
       posted_.store(false, std::memory_order_relaxed);
@@ -53,11 +54,13 @@ sim::DeviceSample SteeredDevice::sample(double t) {
 }
 
 MoveMarks moveMarks(const std::vector<std::unique_ptr<SteeredDevice>>& devices) {
-  long taken = 0, reached = std::numeric_limits<long>::max();
+  long taken = 0, all_taken = std::numeric_limits<long>::max(), reached = all_taken;
   for (const auto& d : devices) {
     taken = std::max(taken, d->takenNumber());
+    if (const long pending = d->firstPending(); pending > 0) all_taken = std::min(all_taken, pending - 1);
     if (!d->arrived()) reached = std::min(reached, d->unreachedFrom() - 1);
   }
+  taken = std::min(taken, all_taken);
   return {taken, std::min(taken, reached)};
 }
 

@@ -21,8 +21,8 @@ class SteeredDevice final : public sim::DeviceSource {
 
   /// From the next step on, moves the device from where it is straight to `target` (m) over
   /// `seconds` (0: at once). `number`: the move's number in the run (ServedRun numbers every
-  /// device's moves in one increasing sequence; 0 for none), reported by takenNumber() and
-  /// arrivedNumber(). Any thread but the haptic one.
+  /// device's moves in one increasing sequence; 0 for none), reported through moveMarks. Any
+  /// thread but the haptic one.
   void moveTo(const sim::Vec3& target, double seconds, long number = 0);
 
   sim::DeviceSample sample(double t) override;
@@ -42,6 +42,8 @@ class SteeredDevice final : public sim::DeviceSource {
   long takenNumber() const { return taken_number_; }
   bool arrived() const { return arrived_; }
   long unreachedFrom() const { return unreached_from_; }
+  /// The number of the first move posted and not yet taken (0: none). Any thread.
+  long firstPending() const { return first_pending_.load(std::memory_order_acquire); }
 
  private:
   const sim::DeviceTrack& track_;
@@ -52,7 +54,7 @@ class SteeredDevice final : public sim::DeviceSource {
   sim::Vec3 posted_target_ = sim::Vec3::Zero();
   double posted_seconds_ = 0.0;
   long posted_number_ = 0;
-  long first_posted_ = 0;  // the first move posted since the last one taken
+  std::atomic<long> first_pending_{0};  // the first move posted since the last one taken (0: none)
   // Haptic thread only.
   bool steered_ = false;
   sim::Vec3 from_ = sim::Vec3::Zero(), to_ = sim::Vec3::Zero(), last_ = sim::Vec3::Zero();
@@ -63,9 +65,10 @@ class SteeredDevice final : public sim::DeviceSource {
 };
 
 /// What a state shows of the numbered moves (sim::Snapshot's moves_taken and moves_arrived):
-/// the newest move any device has taken, and the newest that, with every earlier one, its
-/// device has reached: those below the first move not reached of any device still on its way
-/// (SteeredDevice::unreachedFrom). Haptic thread.
+/// the newest move that, with every earlier one, the loop has taken (below the first move still
+/// posted to any device), and the newest that, with every earlier one, its device has reached
+/// (below, too, the first move not reached of any device on its way,
+/// SteeredDevice::unreachedFrom). Haptic thread.
 struct MoveMarks {
   long taken = 0, arrived = 0;
 };

@@ -111,8 +111,9 @@ struct Snapshot {
   std::vector<FingerSnapshot> fingers;
   std::vector<SoftBodySnapshot> soft_bodies;  ///< one per soft body, in body order
   HapticTimings timings;
-  /// The browser view's numbered moves (app/serve, realtime): the newest this state has taken,
-  /// and the newest that, with every earlier one, its device has reached (0: none, and offline).
+  /// The browser view's numbered moves (app/serve, realtime): the newest that, with every
+  /// earlier one, this state has taken, and the newest that, with every earlier one, its
+  /// device has reached (0: none, and offline).
   long moves_taken = 0, moves_arrived = 0;
 };
 

@@ -34,7 +34,7 @@ async function command(line) {
   const res = await fetch(withToken("command"), {method: "POST", body: line});
   const text = (await res.text()).trim();
   const move = /^ok .* move (\d+)$/.exec(text);
-  if (move) {
+  if (move && gf.timing) {  // only while this page reads the stream (not a participant's page)
     const n = Number(move[1]), m = {posted};
     if (!match(n, m)) gf.moves.set(n, m);
   }
@@ -217,7 +217,7 @@ function nearer(metres) {
 // reached (each move's number comes back in the answer to its POST). A move's delay is from
 // its POST to the decoded frame that shows it taken (the device set off) and reached (the
 // device at its target, after the move's glide): gf.latency, in ms, the last kLatencyKept.
-const kLatencyKept = 50;
+const kLatencyKept = 200;
 const ascii = new TextDecoder("ascii");
 function find(buf, from, to, seq) {
   for (let i = from; i + seq.length <= Math.min(to, buf.length); i++) {
@@ -257,9 +257,12 @@ function showPart(img, bytes, headers) {
 }
 async function readStream(img) {
   const crlf2 = [13, 10, 13, 10];
+  gf.timing = true;
   for (;;) {
     try {
-      const reader = (await fetch(withToken("stream.mjpg"), {cache: "no-store"})).body.getReader();
+      const res = await fetch(withToken("stream.mjpg"), {cache: "no-store"});
+      if (!res.ok) throw new Error("HTTP " + res.status);
+      const reader = res.body.getReader();
       let buf = new Uint8Array(0);
       for (;;) {
         const {value, done} = await reader.read();
@@ -279,15 +282,16 @@ async function readStream(img) {
           buf = buf.slice(stop + 2);
         }
       }
-    } catch (e) { $("#status").textContent = "stream: " + e.message; }
+    } catch (e) { $("#latency").textContent = "stream: " + e.message; }
     await new Promise(r => setTimeout(r, 1000));  // the session may be back: read again
   }
 }
 const median = a => { const s = [...a].sort((x, y) => x - y); return s.length ? s[s.length >> 1] : NaN; };
 function showLatency() {
   const l = gf.latency;
-  $("#latency").textContent = l.taken.length ? "move → frame " + median(l.taken.slice(-20)).toFixed(0) + " ms, at target " +
-    median(l.arrived.slice(-20)).toFixed(0) + " ms (median of the last " + Math.min(20, l.taken.length) + ")" : "";
+  if (!l.taken.length) return;  // nothing timed yet (or the stream's error stays shown)
+  $("#latency").textContent = "move → frame " + median(l.taken.slice(-20)).toFixed(0) + " ms, at target " +
+    median(l.arrived.slice(-20)).toFixed(0) + " ms (median of the last " + Math.min(20, l.taken.length) + ")";
 }
 
 async function start() {

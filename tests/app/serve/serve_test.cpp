@@ -325,7 +325,7 @@ TEST(Serve, ASteeredDeviceCountsEachMoveTakenAndArrived) {
 }
 
 // The marks a frame carries to the page (moveMarks): moves numbered across two fingers' devices;
-// a move counts as reached only when it and every earlier one are, whichever finger made it; a
+// a move counts as taken (reached) only when it and every earlier one are, whichever finger made it; a
 // move posted over one not yet taken counts as taken with it, and a move replaced (before or
 // during its glide) as reached with the one that replaced it.
 TEST(Serve, MoveMarksSayWhichNumberedMovesAStateHasTakenAndReached) {
@@ -348,6 +348,8 @@ TEST(Serve, MoveMarksSayWhichNumberedMovesAStateHasTakenAndReached) {
   step(0.23);
   EXPECT_EQ(marks(), std::pair(2L, 2L));  // both there
   d[0]->moveTo(sim::Vec3(0.01, 0.1, 0.0), 0.05, 3);
+  d[1]->sample(0.25);  // a step in which only the other finger's device is sampled (or takes a move)
+  EXPECT_EQ(marks(), std::pair(2L, 2L));  // 3 posted, not taken
   d[0]->moveTo(sim::Vec3(0.02, 0.1, 0.0), 0.05, 4);  // replaces 3 before a step takes it
   step(0.3);
   EXPECT_EQ(marks(), std::pair(4L, 2L));
@@ -356,7 +358,13 @@ TEST(Serve, MoveMarksSayWhichNumberedMovesAStateHasTakenAndReached) {
   EXPECT_EQ(marks(), std::pair(5L, 2L));
   step(0.4);
   EXPECT_EQ(marks(), std::pair(5L, 5L));
-  EXPECT_EQ(d[0]->moves(), 3);  // 1, 4 and 5: 3 was never sampled
+  d[0]->moveTo(sim::Vec3(0.0, 0.1, 0.0), 0.05, 6);
+  d[1]->moveTo(sim::Vec3(0.0, 0.1, 0.0), 0.0, 7);
+  d[1]->sample(0.45);  // 7 taken and there before 6 is taken
+  EXPECT_EQ(marks(), std::pair(5L, 5L));
+  step(0.46);
+  EXPECT_EQ(marks(), std::pair(7L, 5L));
+  EXPECT_EQ(d[0]->moves(), 4);  // 1, 4, 5 and 6: 3 was never sampled
 }
 
 // A steered device keeps its track's orientation (a web device's tilt): the moves are positions.
