@@ -164,6 +164,10 @@ void main() {
 /// pixels whose neighbourhood has little luma contrast are left alone; elsewhere the luma of
 /// the four neighbours gives the direction across the edge, two pairs of filtered taps along
 /// the edge blend it, and the wider pair is dropped when it leaves the local luma range.
+/// With GF_FXAA_MARK defined, only the contrast test: the pixels it keeps are marked in the
+/// stencil, and the whole filter then runs under a stencil test. llvmpipe runs every line of a
+/// shader for every pixel of a block, discarded or not, but skips blocks that fail an early
+/// stencil test: so the filtered taps are paid for on edges only.
 inline constexpr const char* kFxaaFragment = R"(#version 330 core
 uniform sampler2D u_scene;
 uniform vec2 u_texel;  // 1 / size in pixels
@@ -184,6 +188,11 @@ void main() {
   float hi = max(c, max(max(n, s), max(e, w)));
   // No edge here: keep the pixel. (The pass writes over the scene it reads a copy of.)
   if (hi - lo < max(1.0 / 32.0, 0.125 * hi)) discard;
+#ifdef GF_FXAA_MARK
+  // The marking pass: the stencil under this pixel is set; the filter runs only where it is.
+  frag = vec4(0.0);
+  return;
+#endif
   // Along the edge: perpendicular to the luma gradient, stretched towards the nearer axis.
   vec2 along = vec2(n - s, w - e);
   float bias = max(0.0625 * (n + s + e + w), 1.0 / 128.0);

@@ -266,7 +266,7 @@ struct SceneRenderer::Impl {
       glBindFramebuffer(GL_FRAMEBUFFER, static_cast<GLuint>(target));  // a new backdrop binds its own
       const Eigen::Vector3f bg = kBackground.cwiseSqrt();  // the shaders' display gamma
       glClearColor(bg.x(), bg.y(), bg.z(), 1.0f);
-      glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+      glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT | GL_STENCIL_BUFFER_BIT);  // stencil: see below
       use(ground);
       for (std::size_t b = 0; b < bodies.size() && settings.ground; ++b) {
         if (bodies[b].ground) drawShape(*ground_quad, bodyModel(snap, b), kGround.cwiseProduct(bodies[b].colour / 0.7f), 1.0f);
@@ -301,7 +301,9 @@ struct SceneRenderer::Impl {
   // what a restored backdrop or bodies' layer needs under what is drawn on it. The same vertex
   // shader as their colour pass, so the same depths.
   void drawDepth(const sim::Snapshot& snap, bool bodies_too) {
-    glClear(GL_DEPTH_BUFFER_BIT);
+    // The stencil too, when the target has one (FXAA's edge marks): llvmpipe clears packed depth
+    // and stencil together in one fill, depth alone pixel by pixel.
+    glClear(GL_DEPTH_BUFFER_BIT | GL_STENCIL_BUFFER_BIT);
     glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
     use(flat);
     for (std::size_t b = 0; b < bodies.size(); ++b) {

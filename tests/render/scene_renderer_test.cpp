@@ -75,6 +75,27 @@ TEST_F(Frames, AntialiasingChangesOnlyEdgePixels) {
   }
 }
 
+// FXAA marks its edges in the stencil with a value per resolve and filters where the mark is
+// this resolve's: over 300 resolves of one framebuffer (the value wraps after 255 and the
+// stencil is cleared once), two views taking turns, each frame is the one a fresh framebuffer
+// draws, so no earlier mark is taken for this frame's and none is missed.
+TEST_F(Frames, FxaaEdgeMarksStayTheirFramesOverManyResolves) {
+  view::Camera other = settings_.camera;
+  other.position += sim::Vec3(0.03, -0.01, 0.02);
+  const view::Camera cameras[2] = {settings_.camera, other};
+  render::Image fresh[2];
+  for (int k = 0; k < 2; ++k) {
+    render::Framebuffer frame(kWidth, kHeight, view::Antialiasing::kFxaa);
+    fresh[k] = draw(frame, cameras[k]);
+  }
+  ASSERT_NE(fresh[0].rgb, fresh[1].rgb);
+  ASSERT_NE(fresh[0].rgb, draw(view::Antialiasing::kNone).rgb);  // the filter changed something
+  render::Framebuffer frame(kWidth, kHeight, view::Antialiasing::kFxaa);
+  int differing = 0;
+  for (int i = 0; i < 300; ++i) differing += draw(frame, cameras[i % 2]).rgb != fresh[i % 2].rgb;
+  EXPECT_EQ(differing, 0);
+}
+
 // The backdrop is cached per camera: drawing again gives the same frame, and a frame after a
 // different camera's frame is the same as before (the cache was rebuilt for each view).
 TEST_F(Frames, CachedBackdropFollowsTheCamera) {
