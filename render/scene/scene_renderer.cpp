@@ -26,6 +26,12 @@ const Eigen::Vector3f kGround(0.55f, 0.55f, 0.53f);
 constexpr int kRoundSegments = 24;
 constexpr double kLightHalf = 1.5;  // half side of the key light's view, in scene radii
 
+Eigen::AlignedBox3f boundsOf(const std::vector<Vertex>& vertices) {
+  Eigen::AlignedBox3f box;
+  for (const Vertex& v : vertices) box.extend(Eigen::Map<const Eigen::Vector3f>(v.position));
+  return box;
+}
+
 // One body as the GPU sees it.
 struct BodyDraw {
   std::shared_ptr<const sim::Mesh> mesh;  // render surface, description frame; null for planes
@@ -96,6 +102,10 @@ struct SceneRenderer::Impl {
   std::vector<BodyDraw> bodies;
   // Proxies and ghosts are large on screen; contact dots are a few pixels (and many).
   GpuMesh sphere{unitSphere(3)}, dot_sphere{unitSphere(1)}, cylinder{unitCylinder(kRoundSegments)}, cone{unitCone(kRoundSegments)};
+  // Their bounding boxes, in the order of DrawShape (for the pixels an overlay can cover).
+  const std::array<Eigen::AlignedBox3f, 4> shape_bounds{boundsOf(unitSphere(3)), boundsOf(unitSphere(1)),
+                                                       boundsOf(unitCylinder(kRoundSegments)),
+                                                       boundsOf(unitCone(kRoundSegments))};
   std::unique_ptr<GpuMesh> ground_quad;
   GpuMesh receiver_quad{{}, true};  // where shadows can fall on one ground plane
   std::vector<Vertex> receiver_vertices;
@@ -279,7 +289,13 @@ struct SceneRenderer::Impl {
         slot->layer_state_valid && slot->layer_switches == switches && samePlaces(snap, slot->layer_state);
     if (still && slot->layer_kept) {
       slot->layer->restoreColourInto(static_cast<unsigned>(target));
+      // Depth only where the overlay can draw: nothing else is depth-tested after the layer.
+      const PixelRect r = overlayRect(width, height);
+      if (r.empty()) return;
+      glEnable(GL_SCISSOR_TEST);
+      glScissor(r.x0, r.y0, r.x1 - r.x0, r.y1 - r.y0);
       drawDepth(snap, true);
+      glDisable(GL_SCISSOR_TEST);
       return;
     }
     if (!stale) slot->backdrop->restoreColourInto(static_cast<unsigned>(target));
@@ -316,6 +332,41 @@ struct SceneRenderer::Impl {
       }
     }
     glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+  }
+
+  // Pixels that this frame's overlay (built) can cover: its vertices and its unit shapes'
+  // boxes, projected, with 2 pixels to spare for lines and rounding; all of the frame when one
+  // of them is not in front of the eye.
+  PixelRect overlayRect(int width, int height) const {
+    if (overlay.items.empty()) return {};
+    double x0 = 1, x1 = -1, y0 = 1, y1 = -1;  // NDC
+    bool everywhere = false;
+    const auto add = [&](const Eigen::Vector3f& p) {
+      const Eigen::Vector4f c = view_proj * p.homogeneous();
+      if (c.w() < 1e-3f) {
+        everywhere = true;
+        return;
+      }
+      x0 = std::min(x0, double(c.x() / c.w())), x1 = std::max(x1, double(c.x() / c.w()));
+      y0 = std::min(y0, double(c.y() / c.w())), y1 = std::max(y1, double(c.y() / c.w()));
+    };
+    for (const DrawItem& item : overlay.items) {
+      if (item.shape == DrawShape::kTriangles || item.shape == DrawShape::kLines) {
+        for (int v = item.first; v < item.first + item.count; ++v) {
+          add(Eigen::Map<const Eigen::Vector3f>(overlay.vertices[static_cast<std::size_t>(v)].position));
+        }
+      } else {
+        const Eigen::AlignedBox3f& box = shape_bounds[static_cast<std::size_t>(item.shape)];
+        for (int k = 0; k < 8; ++k) {
+          add((item.model * box.corner(static_cast<Eigen::AlignedBox3f::CornerType>(k)).homogeneous()).head<3>());
+        }
+      }
+      if (everywhere) return {0, 0, width, height};
+    }
+    const auto px = [](double ndc, int size, int pad) {
+      return static_cast<int>(std::clamp(std::floor((0.5 * ndc + 0.5) * size) + pad, 0.0, double(size)));
+    };
+    return {px(x0, width, -2), px(y0, height, -2), px(x1, width, 3), px(y1, height, 3)};
   }
 
   // Pixels that the bodies, fingers and contact marks of `snap` can cover: each drawn thing's
@@ -521,8 +572,8 @@ struct SceneRenderer::Impl {
   }
 
   // Draws the overlay of `snap`: the list is built without GL, then each item drawn in order.
-  void drawOverlay(const sim::Snapshot& snap) {
-    overlay_builder->build(snap, drawSettings(), overlay);
+  // Draws the overlay built for this frame (`overlay`).
+  void drawOverlay() {
     if (overlay.items.empty()) return;
     overlay_vertices.upload(overlay.vertices);
     const GpuMesh* shapes[] = {&sphere, &dot_sphere, &cylinder, &cone};
@@ -591,8 +642,9 @@ PixelRect SceneRenderer::draw(const sim::Snapshot& snapshot, const view::Camera&
   glBindFramebuffer(GL_FRAMEBUFFER, static_cast<GLuint>(target));
   glViewport(0, 0, width, height);
   impl_->beginSurfacePass(camera, width, height);
+  impl_->overlay_builder->build(snapshot, impl_->drawSettings(), impl_->overlay);
   impl_->drawBase(snapshot, camera, width, height);
-  impl_->drawOverlay(snapshot);
+  impl_->drawOverlay();
   return impl_->dynamicRect(snapshot, camera, width, height);
 }
 
