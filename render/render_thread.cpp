@@ -19,7 +19,7 @@
 #include <sys/resource.h>
 #include <unistd.h>
 
-#include "render/chart/chart_pen.hpp"
+#include "render/chart/chart_file.hpp"
 #include "render/gl/context.hpp"
 #include "render/gl/gl.hpp"
 #include "render/gl/gpu.hpp"
@@ -266,27 +266,6 @@ void drawCloseUps(Gpu& gpu, const sim::SceneDesc& desc, const sim::Snapshot& sna
   gpu.scene.redrawShadows();
 }
 
-// The SVG beside a chart's PNG: the same name, .svg for .png (appended to another name).
-std::string svgPathOf(const std::string& png_path) {
-  const bool png = png_path.size() > 4 && png_path.compare(png_path.size() - 4, 4, ".png") == 0;
-  return (png ? png_path.substr(0, png_path.size() - 4) : png_path) + ".svg";
-}
-
-void drawChartFile(const ChartSpec& chart, const std::string& path) {
-  Framebuffer frame(chart.width, chart.height, view::Antialiasing::kNone);  // ImGui smooths its own edges
-  ImGuiLayer layer(chart.width, chart.height, 17.0f);
-  frame.bind();
-  glClearColor(1, 1, 1, 1);
-  glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
-  SvgText svg;
-  drawChart(layer, chart, &svg);
-  Image image;
-  frame.read(image);
-  writePng(path, image);
-  const std::string text = svgDocument(svg, chart.width, chart.height);
-  writeFileAtomically(svgPathOf(path), std::vector<std::uint8_t>(text.begin(), text.end()));
-}
-
 // Close-ups and charts: work that is not a frame of the stream.
 void drawSideJob(Gpu& gpu, const sim::SceneDesc& desc, const Job& job) {
   if (job.chart) {
@@ -339,7 +318,7 @@ struct RenderThread::Impl {
   std::vector<float> frame_ms;
   Clock::time_point start = Clock::now();
   std::string gl_description;
-  long pictures_reused = 0;  // copied from the Gpu when the thread ends
+  long pictures_reused = 0;  // added from the Gpu when it is released and when the thread ends
   bool background_priority = false;  // the render thread runs at nice kBackgroundNice
   std::thread thread;
 
@@ -367,7 +346,7 @@ struct RenderThread::Impl {
     return made;
   }
 
-  void runOffline(Gpu& gpu) {
+  void runOffline(std::unique_ptr<Gpu>& gpu) {
     for (;;) {
       Job job;
       {
@@ -378,11 +357,24 @@ struct RenderThread::Impl {
         queue.pop_front();
         changed.notify_all();
       }
-      if (!job.close_up_prefix.empty() || job.chart) {
-        drawSideJob(gpu, scene, job);
+      if (job.chart) {
+        // A chart comes after the session's last frame: the frames' buffers, layers and
+        // programs are given back before it is drawn in a context of its own, so its memory
+        // does not add to theirs (docs/performance.md, "Memory").
+        if (gpu) {
+          pictures_reused += gpu->pictures_reused;
+          gpu.reset();
+          malloc_trim(0);
+        }
+        writeChartPng(*job.chart, job.chart_path);
         continue;
       }
-      std::vector<sim::SettingsCommand> made = drawFrame(gpu, job.snapshot);
+      if (!gpu) gpu = std::make_unique<Gpu>(scene, settings);  // work after a chart (none today)
+      if (!job.close_up_prefix.empty()) {
+        drawSideJob(*gpu, scene, job);
+        continue;
+      }
+      std::vector<sim::SettingsCommand> made = drawFrame(*gpu, job.snapshot);
       if (job.wants_reply) job.reply.set_value(std::move(made));
     }
   }
@@ -445,12 +437,12 @@ struct RenderThread::Impl {
       if (settings.realtime) {
         runRealtime(*gpu);
       } else {
-        runOffline(*gpu);
+        runOffline(gpu);
       }
     } catch (const std::exception& e) {
       fail(e.what());
     }
-    pictures_reused = gpu->pictures_reused;
+    if (gpu) pictures_reused += gpu->pictures_reused;
   }
 };
 
@@ -575,11 +567,6 @@ void renderCloseUps(const sim::SceneDesc& scene, const sim::Snapshot& snapshot, 
   settings.close_up_px = size_px;
   Gpu gpu(scene, settings);
   drawCloseUps(gpu, scene, snapshot, prefix);
-}
-
-void writeChartPng(const ChartSpec& chart, const std::string& path) {
-  GlContext context;
-  drawChartFile(chart, path);
 }
 
 Image renderStill(const sim::SceneDesc& scene, const sim::Snapshot& snapshot, const FrameOutputSettings& settings,

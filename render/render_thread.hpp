@@ -9,6 +9,7 @@
 
 #include "render/scene/camera.hpp"
 #include "render/chart/chart.hpp"
+#include "render/chart/chart_file.hpp"  // writeChartPng
 #include "render/frames/frame_sinks.hpp"
 #include "render/overlay/overlay.hpp"
 #include "render/overlay/patch_insets.hpp"
@@ -126,12 +127,6 @@ std::string closeUpPath(const std::string& prefix, const std::string& finger);
 /// without a haptic loop, such as `godfinger patch`.
 void renderCloseUps(const sim::SceneDesc& scene, const sim::Snapshot& snapshot,
                     const std::string& prefix, int size_px);
-
-/// Draws `chart` and writes it as the PNG `path` and the SVG beside it, the way
-/// RenderThread::submitChart does, on the
-/// calling thread with a GL context of its own (the thread must not have one already): charts
-/// from commands and tests without a render thread. Throws GlError, ImageError; allocates.
-void writeChartPng(const ChartSpec& chart, const std::string& path);
 
 /// Draws one frame of `snapshot` as `settings` ask (size, camera, effects, overlay) on the
 /// calling thread, with a GL context of its own: stills and visual-regression images.

@@ -11,6 +11,7 @@
 #include "render/scene/finger_marks.hpp"
 #include "render/scene/geometry.hpp"
 #include "render/scene/pad_mesh.hpp"
+#include "render/scene/screen_bounds.hpp"
 #include "render/state/same_picture.hpp"
 #include "render/state/view_layers.hpp"
 #include "render/gl/gl.hpp"
@@ -25,12 +26,6 @@ const Eigen::Vector3f kBackground(0.62f, 0.68f, 0.76f);  // linear RGB
 const Eigen::Vector3f kGround(0.55f, 0.55f, 0.53f);
 constexpr int kRoundSegments = 24;
 constexpr double kLightHalf = 1.5;  // half side of the key light's view, in scene radii
-
-Eigen::AlignedBox3f boundsOf(const std::vector<Vertex>& vertices) {
-  Eigen::AlignedBox3f box;
-  for (const Vertex& v : vertices) box.extend(Eigen::Map<const Eigen::Vector3f>(v.position));
-  return box;
-}
 
 // One body as the GPU sees it.
 struct BodyDraw {
@@ -290,7 +285,7 @@ struct SceneRenderer::Impl {
     if (still && slot->layer_kept) {
       slot->layer->restoreColourInto(static_cast<unsigned>(target));
       // Depth only where the overlay can draw: nothing else is depth-tested after the layer.
-      const PixelRect r = overlayRect(width, height);
+      const PixelRect r = overlayPixels(overlay, shape_bounds, view_proj, width, height);
       if (r.empty()) return;
       glEnable(GL_SCISSOR_TEST);
       glScissor(r.x0, r.y0, r.x1 - r.x0, r.y1 - r.y0);
@@ -334,76 +329,23 @@ struct SceneRenderer::Impl {
     glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
   }
 
-  // Pixels that this frame's overlay (built) can cover: its vertices and its unit shapes'
-  // boxes, projected, with 2 pixels to spare for lines and rounding; all of the frame when one
-  // of them is not in front of the eye.
-  PixelRect overlayRect(int width, int height) const {
-    if (overlay.items.empty()) return {};
-    double x0 = 1, x1 = -1, y0 = 1, y1 = -1;  // NDC
-    bool everywhere = false;
-    const auto add = [&](const Eigen::Vector3f& p) {
-      const Eigen::Vector4f c = view_proj * p.homogeneous();
-      if (c.w() < 1e-3f) {
-        everywhere = true;
-        return;
-      }
-      x0 = std::min(x0, double(c.x() / c.w())), x1 = std::max(x1, double(c.x() / c.w()));
-      y0 = std::min(y0, double(c.y() / c.w())), y1 = std::max(y1, double(c.y() / c.w()));
-    };
-    for (const DrawItem& item : overlay.items) {
-      if (item.shape == DrawShape::kTriangles || item.shape == DrawShape::kLines) {
-        for (int v = item.first; v < item.first + item.count; ++v) {
-          add(Eigen::Map<const Eigen::Vector3f>(overlay.vertices[static_cast<std::size_t>(v)].position));
-        }
-      } else {
-        const Eigen::AlignedBox3f& box = shape_bounds[static_cast<std::size_t>(item.shape)];
-        for (int k = 0; k < 8; ++k) {
-          add((item.model * box.corner(static_cast<Eigen::AlignedBox3f::CornerType>(k)).homogeneous()).head<3>());
-        }
-      }
-      if (everywhere) return {0, 0, width, height};
-    }
-    const auto px = [](double ndc, int size, int pad) {
-      return static_cast<int>(std::clamp(std::floor((0.5 * ndc + 0.5) * size) + pad, 0.0, double(size)));
-    };
-    return {px(x0, width, -2), px(y0, height, -2), px(x1, width, 3), px(y1, height, 3)};
-  }
-
   // Pixels that the bodies, fingers and contact marks of `snap` can cover: each drawn thing's
   // bounding sphere, projected conservatively. Outside it the frame is the smooth backdrop.
   PixelRect dynamicRect(const sim::Snapshot& snap, const view::Camera& camera, int width, int height) const {
-    const Eigen::Matrix4d to_camera = view.cast<double>();  // set by beginSurfacePass()
-    const double fy = 1.0 / std::tan(0.5 * camera.fov_deg * std::numbers::pi / 180.0);
-    const double fx = fy * height / width;
-    double x0 = 1, x1 = -1, y0 = 1, y1 = -1;  // NDC
-    bool everywhere = false;
-    const auto add = [&](const Vec3& centre_world, double r) {
-      const Vec3 c = (to_camera * centre_world.homogeneous()).head<3>();
-      const double d = -c.z();
-      if (d - r < 1e-3) {
-        everywhere = true;  // reaches behind the camera
-        return;
-      }
-      for (const double z : {d - r, d + r}) {
-        x0 = std::min(x0, fx * (c.x() - r) / z), x1 = std::max(x1, fx * (c.x() + r) / z);
-        y0 = std::min(y0, fy * (c.y() - r) / z), y1 = std::max(y1, fy * (c.y() + r) / z);
-      }
-    };
+    SphereBounds bounds(view.cast<double>(), camera.fov_deg, width, height);  // view: set by beginSurfacePass()
     for (std::size_t b = 0; b < bodies.size(); ++b) {
       if (bodies[b].ground || !bodies[b].mesh) continue;
-      for (int k = 0; k < 8; ++k) add(boxCorner(*bodies[b].mesh, snap.bodies[b], k), 0.0);
+      for (int k = 0; k < 8; ++k) bounds.add(boxCorner(*bodies[b].mesh, snap.bodies[b], k), 0.0);
     }
     for (std::size_t i = 0; i < snap.fingers.size(); ++i) {
       const sim::FingerSnapshot& f = snap.fingers[i];
       const double r = scene.fingers[i].proxy.radius;
-      add(f.proxy, std::max(fingerReach(f, r, settings.proxy), padReach(f.pad, f.proxy)));
-      add(f.device, r);
-      if (!f.contacts.empty()) add(f.proxy + forceArrow(f, drawSettings()), r);
-      for (const sim::ContactSnapshot& c : f.contacts) add(c.point_world, std::max(c.radius, scene.fingers[i].patch.r_max));
+      bounds.add(f.proxy, std::max(fingerReach(f, r, settings.proxy), padReach(f.pad, f.proxy)));
+      bounds.add(f.device, r);
+      if (!f.contacts.empty()) bounds.add(f.proxy + forceArrow(f, drawSettings()), r);
+      for (const sim::ContactSnapshot& c : f.contacts) bounds.add(c.point_world, std::max(c.radius, scene.fingers[i].patch.r_max));
     }
-    if (everywhere) return {0, 0, width, height};
-    const auto px = [](double ndc, int size) { return static_cast<int>(std::clamp((0.5 * ndc + 0.5) * size, 0.0, double(size))); };
-    return {px(x0, width), px(y0, height), px(x1, width) + 1, px(y1, height) + 1};
+    return bounds.pixels();
   }
 
   // The rectangle of ground plane b (its own frame) that the shadows of `snap` can darken:

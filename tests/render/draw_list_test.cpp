@@ -3,7 +3,8 @@
 // arrows pointing away from the surface, proxies drawn first so the patches show through, the
 // springs before the patches so these cover them, ghosts as outlines), dots coloured by load with
 // slipping ones ringed, arrows kept inside the view, what the switches leave out, that a
-// rebuild is the same, and a fem_pad finger drawn as its deformed pad on its bone.
+// rebuild is the same, a fem_pad finger drawn as its deformed pad on its bone, and the pixels
+// the list can cover (render/scene/screen_bounds.hpp).
 #include "render/scene/draw_list.hpp"
 
 #include <gtest/gtest.h>
@@ -19,6 +20,7 @@
 #include "render/scene/camera.hpp"
 #include "render/state/contact_load.hpp"
 #include "render/scene/geometry.hpp"
+#include "render/scene/screen_bounds.hpp"
 #include "sim/world/world.hpp"
 
 namespace gf::render {
@@ -374,6 +376,64 @@ TEST(DrawList, TargetsAreAGhostAtTheirPoseAndAZoneBox) {
     const sim::Vec3 d = (at(edges, 2 * e + 1) - at(edges, 2 * e)).cwiseAbs();
     EXPECT_EQ((d.array() > 1e-6).count(), 1) << "edge " << e << " runs along one axis";
   }
+}
+
+// overlayPixels holds every pixel the overlay can draw on: each vertex of the squeeze frame's
+// list, its ranges' and its unit shapes' own mesh vertices placed by their models, projected by
+// the scene's camera, falls inside it with the 2 pixels of margin (a restored layer gets depth
+// only there). An empty list covers nothing; a point behind the eye, the whole frame.
+TEST(DrawList, OverlayPixelsHoldEveryVertexTheOverlayDraws) {
+  const Fig8Frame frame;
+  DrawListBuilder builder(frame.session.scene, frame.surfaces);
+  DrawList list;
+  builder.build(frame.snapshot, DrawSettings{}, list);
+  ASSERT_FALSE(list.items.empty());
+  view::Camera camera;  // three-quarters from the front, the cylinder about a third of the frame's height
+  camera.position = sim::Vec3(0.25, 0.2, 0.35);
+  camera.target = sim::Vec3(0.0, 0.05, 0.0);
+  camera.fov_deg = 40.0;
+  const int width = 1280, height = 720;
+  const Eigen::Matrix4f view_proj = perspective(camera.fov_deg, double(width) / height, 0.002, 10.0) *
+                                    lookAt(camera.position, camera.target, upFor(camera.target - camera.position));
+  const std::vector<Vertex> meshes[4] = {unitSphere(3), unitSphere(1), unitCylinder(24), unitCone(24)};
+  const std::array<Eigen::AlignedBox3f, 4> boxes{boundsOf(meshes[0]), boundsOf(meshes[1]), boundsOf(meshes[2]),
+                                                 boundsOf(meshes[3])};
+  const PixelRect r = overlayPixels(list, boxes, view_proj, width, height);
+  ASSERT_FALSE(r.empty());
+  EXPECT_LT((r.x1 - r.x0) * (r.y1 - r.y0), width * height / 2);  // the contacts, not the frame
+  int checked = 0, outside = 0;
+  const auto check = [&](const Eigen::Vector3f& p) {
+    const Eigen::Vector4f c = view_proj * p.homogeneous();
+    ASSERT_GT(c.w(), 0.0f);
+    const double x = (0.5 * c.x() / c.w() + 0.5) * width, y = (0.5 * c.y() / c.w() + 0.5) * height;
+    ++checked;
+    outside += x < std::max(r.x0 + 2, 2) || x > std::min(r.x1 - 2, width - 2) || y < std::max(r.y0 + 2, 2) ||
+               y > std::min(r.y1 - 2, height - 2);
+  };
+  for (const DrawItem& item : list.items) {
+    if (item.shape == DrawShape::kTriangles || item.shape == DrawShape::kLines) {
+      for (int v = item.first; v < item.first + item.count; ++v) {
+        check(Eigen::Map<const Eigen::Vector3f>(list.vertices[static_cast<std::size_t>(v)].position));
+      }
+    } else {
+      for (const Vertex& v : meshes[static_cast<int>(item.shape)]) {
+        check((item.model * Eigen::Map<const Eigen::Vector3f>(v.position).homogeneous()).head<3>());
+      }
+    }
+  }
+  EXPECT_GT(checked, 1000);
+  EXPECT_EQ(outside, 0);
+  EXPECT_TRUE(overlayPixels(DrawList{}, boxes, view_proj, width, height).empty());
+  DrawList behind = list;
+  const Eigen::Vector3f back = (camera.position + 2.0 * (camera.position - camera.target)).cast<float>();
+  behind.items.push_back(shapeItem(DrawPass::kMarks, DrawShape::kDot, modelMatrix(back.cast<double>(), sim::Quat::Identity(),
+                                                                                  sim::Vec3::Constant(0.001)),
+                                   Eigen::Vector3f::Ones()));
+  const PixelRect all = overlayPixels(behind, boxes, view_proj, width, height);
+  EXPECT_EQ(all.x0, 0);
+  EXPECT_EQ(all.y0, 0);
+  EXPECT_EQ(all.x1, width);
+  EXPECT_EQ(all.y1, height);
 }
 
 }  // namespace
