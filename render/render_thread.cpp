@@ -192,7 +192,8 @@ struct Gpu {
       ++pictures_reused;
     } else {
       frame.bind();
-      frame.resolve(scene.draw(snap, camera, width, height));
+      const PixelRect edges = scene.draw(snap, camera, width, height);
+      frame.resolve(edges, scene.heldLayer());
       if (insets) {
         GLint output = 0;
         glGetIntegerv(GL_FRAMEBUFFER_BINDING, &output);

@@ -209,7 +209,46 @@ void copyColour(unsigned from, unsigned to, int width, int height, unsigned boun
   glViewport(0, 0, width, height);
 }
 
+// Copies rectangle `r` of framebuffer `from`'s colour to the same place in `to`.
+void blitRect(unsigned from, unsigned to, const PixelRect& r) {
+  if (r.empty()) return;
+  glBindFramebuffer(GL_READ_FRAMEBUFFER, from);
+  glBindFramebuffer(GL_DRAW_FRAMEBUFFER, to);
+  glBlitFramebuffer(r.x0, r.y0, r.x1, r.y1, r.x0, r.y0, r.x1, r.y1, GL_COLOR_BUFFER_BIT, GL_NEAREST);
+}
+
 }  // namespace
+
+PixelRect grow(const PixelRect& r, int by) {
+  if (r.empty()) return r;
+  return {r.x0 - by, r.y0 - by, r.x1 + by, r.y1 + by};
+}
+
+PixelRect intersect(const PixelRect& a, const PixelRect& b) {
+  const PixelRect r{std::max(a.x0, b.x0), std::max(a.y0, b.y0), std::min(a.x1, b.x1), std::min(a.y1, b.y1)};
+  return r.empty() ? PixelRect{} : r;
+}
+
+PixelRect unite(const PixelRect& a, const PixelRect& b) {
+  if (a.empty()) return b;
+  if (b.empty()) return a;
+  return {std::min(a.x0, b.x0), std::min(a.y0, b.y0), std::max(a.x1, b.x1), std::max(a.y1, b.y1)};
+}
+
+bool sameRect(const PixelRect& a, const PixelRect& b) {
+  return (a.empty() && b.empty()) || (a.x0 == b.x0 && a.y0 == b.y0 && a.x1 == b.x1 && a.y1 == b.y1);
+}
+
+std::vector<PixelRect> bandsAround(const PixelRect& outer, const PixelRect& hole) {
+  const PixelRect h = intersect(hole, outer);
+  if (h.empty()) return outer.empty() ? std::vector<PixelRect>{} : std::vector<PixelRect>{outer};
+  std::vector<PixelRect> out;
+  for (const PixelRect& band : {PixelRect{outer.x0, outer.y0, outer.x1, h.y0}, PixelRect{outer.x0, h.y1, outer.x1, outer.y1},
+                                PixelRect{outer.x0, h.y0, h.x0, h.y1}, PixelRect{h.x1, h.y0, outer.x1, h.y1}}) {
+    if (!band.empty()) out.push_back(band);
+  }
+  return out;
+}
 
 // The FXAA passes: the edge marking and the filter, and a colour texture holding a copy of the
 // pixels they read.
@@ -218,6 +257,10 @@ struct Framebuffer::Fxaa {
   Program program{"fxaa", shaders::kFullScreenVertex, shaders::kFxaaFragment};
   unsigned vao = 0, fbo = 0, copy = 0;
   int stencil_value = 0;  // this resolve's stencil value: marks of earlier ones differ, so none is cleared
+  // The last resolve over a held layer: its filtered pixels (inside its edges), made at the first.
+  unsigned filtered_fbo = 0, filtered_colour = 0;
+  std::optional<HeldLayer> filtered_held;
+  PixelRect filtered_edges;
   Fxaa(int width, int height) {
     glGenVertexArrays(1, &vao);
     copy = texture2D(GL_RGBA8, width, height, GL_RGBA, GL_UNSIGNED_BYTE, GL_CLAMP_TO_EDGE);
@@ -227,6 +270,8 @@ struct Framebuffer::Fxaa {
     requireComplete("fxaa copy");
   }
   ~Fxaa() {
+    glDeleteFramebuffers(1, &filtered_fbo);
+    glDeleteRenderbuffers(1, &filtered_colour);
     glDeleteFramebuffers(1, &fbo);
     glDeleteTextures(1, &copy);
     glDeleteVertexArrays(1, &vao);
@@ -270,7 +315,7 @@ void Framebuffer::bind() {
   resolved_ = false;
 }
 
-void Framebuffer::resolve(const std::optional<PixelRect>& edges) {
+void Framebuffer::resolve(const std::optional<PixelRect>& edges, const std::optional<HeldLayer>& held) {
   GF_ASSERT_GL_THREAD();
   resolved_ = true;
   glViewport(0, 0, width_, height_);
@@ -283,15 +328,48 @@ void Framebuffer::resolve(const std::optional<PixelRect>& edges) {
   }
   glBindFramebuffer(GL_FRAMEBUFFER, scene_fbo_);
   if (aa_ == view::Antialiasing::kNone) return;
-  PixelRect r = edges.value_or(PixelRect{0, 0, width_, height_});
-  r = {std::max(r.x0 - 2, 0), std::max(r.y0 - 2, 0), std::min(r.x1 + 2, width_), std::min(r.y1 + 2, height_)};
+  const PixelRect e = edges.value_or(PixelRect{0, 0, width_, height_});
+  const PixelRect r{std::max(e.x0 - 2, 0), std::max(e.y0 - 2, 0), std::min(e.x1 + 2, width_), std::min(e.y1 + 2, height_)};
   if (r.empty()) return;
-  // The filter reads at most 4 pixels away: copy a margin of 8 around what it writes.
-  const PixelRect c{std::max(r.x0 - 8, 0), std::max(r.y0 - 8, 0), std::min(r.x1 + 8, width_),
-                    std::min(r.y1 + 8, height_)};
-  glBindFramebuffer(GL_READ_FRAMEBUFFER, scene_fbo_);
-  glBindFramebuffer(GL_DRAW_FRAMEBUFFER, fxaa_->fbo);
-  glBlitFramebuffer(c.x0, c.y0, c.x1, c.y1, c.x0, c.y0, c.x1, c.y1, GL_COLOR_BUFFER_BIT, GL_NEAREST);
+  Fxaa& x = *fxaa_;
+  // Over the same layer with the same edges as the last resolve, a pixel's filtered value can
+  // differ only if its reach (the filter reads at most 5 pixels away) meets either overlay.
+  PixelRect f = r;
+  const bool reuse = held && x.filtered_held && x.filtered_held->layer == held->layer && sameRect(x.filtered_edges, r);
+  if (reuse) f = intersect(grow(unite(held->overlay, x.filtered_held->overlay), 6), r);
+  if (!f.empty()) copyForFilter(f);
+  if (reuse) {
+    for (const PixelRect& band : bandsAround(r, f)) blitRect(x.filtered_fbo, scene_fbo_, band);
+  }
+  if (!f.empty()) filterMarked(f);
+  x.filtered_held.reset();
+  if (held) {
+    if (x.filtered_fbo == 0) {
+      glGenFramebuffers(1, &x.filtered_fbo);
+      glBindFramebuffer(GL_FRAMEBUFFER, x.filtered_fbo);
+      x.filtered_colour = renderbuffer(GL_RGBA8, width_, height_, 1);
+      glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, x.filtered_colour);
+      requireComplete("filtered picture");
+    }
+    blitRect(scene_fbo_, x.filtered_fbo, f);
+    x.filtered_held = held;
+    x.filtered_edges = r;
+  }
+  glBindFramebuffer(GL_FRAMEBUFFER, scene_fbo_);
+}
+
+// The scene's pixels FXAA reads for `r` (it reads at most 5 pixels away: a margin of 8) into its
+// copy.
+void Framebuffer::copyForFilter(const PixelRect& r) {
+  const PixelRect c{std::max(r.x0 - 8, 0), std::max(r.y0 - 8, 0), std::min(r.x1 + 8, width_), std::min(r.y1 + 8, height_)};
+  blitRect(scene_fbo_, fxaa_->fbo, c);
+  glBindFramebuffer(GL_FRAMEBUFFER, scene_fbo_);
+}
+
+// FXAA over `r` of the scene, reading the copy: first the pixels with an edge are marked in the
+// stencil (colour untouched), then the filter runs on them alone. The same pixels as one pass,
+// at a third of its cost on llvmpipe (docs/performance.md, "The filter on edges only").
+void Framebuffer::filterMarked(const PixelRect& r) {
   glBindFramebuffer(GL_FRAMEBUFFER, scene_fbo_);
   GLboolean depth_test = GL_FALSE, blend = GL_FALSE;
   glGetBooleanv(GL_DEPTH_TEST, &depth_test);
@@ -303,9 +381,6 @@ void Framebuffer::resolve(const std::optional<PixelRect>& edges) {
   glActiveTexture(GL_TEXTURE0);
   glBindTexture(GL_TEXTURE_2D, fxaa_->copy);
   glBindVertexArray(fxaa_->vao);
-  // First the pixels with an edge are marked in the stencil (colour untouched), then the filter
-  // runs on them alone: the same pixels as one pass, at a third of its cost on llvmpipe
-  // (docs/performance.md, "The filter on edges only").
   glEnable(GL_STENCIL_TEST);
   glStencilMask(0xff);
   if (++fxaa_->stencil_value > 0xff) {

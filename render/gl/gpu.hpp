@@ -61,6 +61,23 @@ struct PixelRect {
   int x0 = 0, y0 = 0, x1 = 0, y1 = 0;
   bool empty() const { return x1 <= x0 || y1 <= y0; }
 };
+/// `r` with `by` pixels more on each side (an empty one stays empty).
+PixelRect grow(const PixelRect& r, int by);
+/// The pixels in both (empty when none).
+PixelRect intersect(const PixelRect& a, const PixelRect& b);
+/// The smallest rectangle holding both (an empty one adds nothing).
+PixelRect unite(const PixelRect& a, const PixelRect& b);
+/// Equal, or both empty.
+bool sameRect(const PixelRect& a, const PixelRect& b);
+/// The pixels of `outer` outside `hole`, as up to four rectangles that do not overlap.
+std::vector<PixelRect> bandsAround(const PixelRect& outer, const PixelRect& hole);
+
+/// A frame drawn over a kept bodies' layer (SceneRenderer::heldLayer): which layer (a number
+/// given each time one is kept) and the pixels its contact overlay can cover.
+struct HeldLayer {
+  long layer = 0;
+  PixelRect overlay;
+};
 
 /// Where a frame is drawn: the scene target (colour + depth, multisampled for kMsaa) and the
 /// single-sampled output that resolve() fills, overlays are drawn onto and read() returns. For
@@ -77,7 +94,11 @@ class Framebuffer {
   void bind();
   /// Anti-aliases the scene into the output and binds the output (for 2D overlays). FXAA is
   /// applied inside `edges` only (where the scene has geometric edges); nullopt: everywhere.
-  void resolve(const std::optional<PixelRect>& edges = std::nullopt);
+  /// `held`: the scene was drawn over a kept layer. When the last resolve had the same layer
+  /// and edges, the two frames differ only under their overlays, and FXAA runs only near them;
+  /// the rest of `edges` is the last resolve's filtered pixels (the same values).
+  void resolve(const std::optional<PixelRect>& edges = std::nullopt,
+               const std::optional<HeldLayer>& held = std::nullopt);
   /// Resolves if that has not happened since bind(), then reads the output into `out` (rows
   /// top to bottom).
   void read(Image& out);
@@ -95,6 +116,8 @@ class Framebuffer {
 
  private:
   struct Fxaa;
+  void copyForFilter(const PixelRect& r);
+  void filterMarked(const PixelRect& r);
   int width_, height_;
   view::Antialiasing aa_;
   unsigned scene_fbo_ = 0, scene_colour_ = 0, scene_depth_ = 0;

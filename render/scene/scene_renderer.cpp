@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <array>
+#include <atomic>
 #include <cmath>
 #include <numbers>
 #include <optional>
@@ -121,6 +122,7 @@ struct SceneRenderer::Impl {
   Vec3 centre = Vec3::Zero();
   double extent = 0.1;
   Eigen::Matrix4f view, view_proj, light_view_proj;  // view, view_proj: this frame's camera
+  std::optional<HeldLayer> held;  // the last draw restored a kept layer: which, and its overlay's pixels
   DrawView draw_view;  // this frame's camera as the overlay's builder sees it
   Vec3 light_dir = Vec3(0.25, 1.0, 0.3).normalized();
 
@@ -278,14 +280,14 @@ struct SceneRenderer::Impl {
       }
       slot->backdrop->takeFrom(static_cast<unsigned>(target));
     }
-    const LayerSwitches switches{shadow != nullptr, settings.ground, settings.fingers, settings.body_pattern,
-                                 settings.proxy};
+    const LayerSwitches switches{shadow != nullptr, settings.ground, settings.fingers, settings.body_pattern, settings.proxy};
     const bool still =
         slot->layer_state_valid && slot->layer_switches == switches && samePlaces(snap, slot->layer_state);
     if (still && slot->layer_kept) {
       slot->layer->restoreColourInto(static_cast<unsigned>(target));
       // Depth only where the overlay can draw: nothing else is depth-tested after the layer.
       const PixelRect r = overlayPixels(overlay, shape_bounds, view_proj, width, height);
+      held = HeldLayer{slot->layer_number, r};
       if (r.empty()) return;
       glEnable(GL_SCISSOR_TEST);
       glScissor(r.x0, r.y0, r.x1 - r.x0, r.y1 - r.y0);
@@ -301,6 +303,8 @@ struct SceneRenderer::Impl {
     if (still) {
       if (!slot->layer) slot->layer = std::make_unique<Backdrop>(width, height, samples);
       slot->layer->takeFrom(static_cast<unsigned>(target));
+      static std::atomic<long> layers_taken{0};
+      slot->layer_number = ++layers_taken;
     } else {
       slot->layer_state = snap;
       slot->layer_switches = switches;
@@ -566,6 +570,8 @@ const std::vector<std::shared_ptr<const sim::Mesh>>& SceneRenderer::surfaces() c
 
 void SceneRenderer::redrawShadows() { impl_->shadow_valid = false; }
 
+std::optional<HeldLayer> SceneRenderer::heldLayer() const { return impl_->held; }
+
 PixelRect SceneRenderer::draw(const sim::Snapshot& snapshot, const view::Camera& camera, int width, int height) {
   GF_ASSERT_GL_THREAD();
   GLint target = 0;
@@ -584,6 +590,7 @@ PixelRect SceneRenderer::draw(const sim::Snapshot& snapshot, const view::Camera&
   glBindFramebuffer(GL_FRAMEBUFFER, static_cast<GLuint>(target));
   glViewport(0, 0, width, height);
   impl_->beginSurfacePass(camera, width, height);
+  impl_->held.reset();
   impl_->overlay_builder->build(snapshot, impl_->drawSettings(), impl_->overlay);
   impl_->drawBase(snapshot, camera, width, height);
   impl_->drawOverlay();

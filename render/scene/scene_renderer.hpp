@@ -5,6 +5,7 @@
 
 #include <Eigen/Core>
 #include <memory>
+#include <optional>
 #include <vector>
 
 #include "render/scene/camera.hpp"
@@ -54,6 +55,9 @@ class SceneRenderer {
   /// its bodies' layer (backdrop, bodies, ground shadows) while nothing moves, so a still scene
   /// draws only its contact overlay again.
   PixelRect draw(const sim::Snapshot& snapshot, const view::Camera& camera, int width, int height);
+  /// The last draw's kept bodies' layer, when it restored one (its number and the pixels of its
+  /// contact overlay, for Framebuffer::resolve); nullopt when it drew its bodies.
+  std::optional<HeldLayer> heldLayer() const;
   /// Changes the switches for the next draw (close-ups hide the fingers).
   void setSettings(const RenderSettings& settings);
   /// The next draw draws the shadow map again, even for the instant it was last drawn for: a

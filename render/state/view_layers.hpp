@@ -30,6 +30,7 @@ struct ViewSlot {
   sim::Snapshot layer_state;
   LayerSwitches layer_switches;
   bool layer_state_valid = false, layer_kept = false;
+  long layer_number = 0;  ///< given each time `layer` is taken (HeldLayer::layer)
   long used = -1;  ///< when it was last drawn with (draws counted)
 };
 

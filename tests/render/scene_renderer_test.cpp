@@ -4,9 +4,11 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <numbers>
+#include <vector>
 
 #include "app/scene/scene_file.hpp"
 #include "app/compare/screenshots.hpp"
@@ -94,6 +96,37 @@ TEST_F(Frames, FxaaEdgeMarksStayTheirFramesOverManyResolves) {
   int differing = 0;
   for (int i = 0; i < 300; ++i) differing += draw(frame, cameras[i % 2]).rgb != fresh[i % 2].rgb;
   EXPECT_EQ(differing, 0);
+}
+
+// A frame over a kept layer is filtered only near its overlay and the last one's, the rest
+// taken from the last resolve: over 12 held frames whose SGO loads (the dots' colours) change
+// from frame to frame, each is the frame a framebuffer filtering its whole rectangle draws.
+TEST_F(Frames, HeldFramesFilterNearTheirOverlaysAsAWholeFilterWould) {
+  render::Framebuffer held(kWidth, kHeight, view::Antialiasing::kFxaa);
+  render::Framebuffer whole(kWidth, kHeight, view::Antialiasing::kFxaa);
+  std::vector<std::vector<std::uint8_t>> frames;
+  int held_draws = 0;
+  for (int i = 0; i < 12; ++i) {
+    sim::Snapshot s = snapshot_;
+    for (sim::FingerSnapshot& f : s.fingers) {
+      for (sim::ContactSnapshot& c : f.contacts) {
+        for (std::size_t k = 0; k < c.loads.size(); ++k) c.loads[k].normal *= 1.0 + 0.5 * std::sin(0.9 * i + 1.3 * k);
+      }
+    }
+    render::Image a, b;
+    held.bind();
+    const render::PixelRect edges = renderer_.draw(s, settings_.camera, kWidth, kHeight);
+    held.resolve(edges, renderer_.heldLayer());
+    held_draws += renderer_.heldLayer().has_value();
+    held.read(a);
+    whole.bind();
+    whole.resolve(renderer_.draw(s, settings_.camera, kWidth, kHeight));
+    whole.read(b);
+    EXPECT_EQ(a.rgb, b.rgb) << "frame " << i;
+    frames.push_back(a.rgb);
+  }
+  EXPECT_GE(held_draws, 10);  // the layer is kept from the second frame
+  EXPECT_NE(frames[4], frames[5]);  // the overlay did change
 }
 
 // The backdrop is cached per camera: drawing again gives the same frame, and a frame after a
