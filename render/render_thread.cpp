@@ -370,7 +370,8 @@ struct RenderThread::Impl {
         writeChartPng(*job.chart, job.chart_path);
         continue;
       }
-      if (!gpu) gpu = std::make_unique<Gpu>(scene, settings);  // work after a chart (none today)
+      // A new Gpu would not have the released one's overlay history, labels and layers.
+      if (!gpu) throw GlError("a frame or close-up was queued after the run's chart");
       if (!job.close_up_prefix.empty()) {
         drawSideJob(*gpu, scene, job);
         continue;

@@ -8,6 +8,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <numbers>
+#include <optional>
 #include <vector>
 
 #include "app/scene/scene_file.hpp"
@@ -78,10 +79,11 @@ TEST_F(Frames, AntialiasingChangesOnlyEdgePixels) {
 }
 
 // FXAA marks its edges in the stencil with a value per resolve and filters where the mark is
-// this resolve's: over 300 resolves of one framebuffer (the value wraps after 255 and the
-// stencil is cleared once), two views taking turns, each frame is the one a fresh framebuffer
-// draws, so no earlier mark is taken for this frame's and none is missed.
-TEST_F(Frames, FxaaEdgeMarksStayTheirFramesOverManyResolves) {
+// this resolve's (the filter keeps its own contrast test, so a stale mark cannot filter a pixel
+// that has no edge; a missing one would leave an edge unfiltered). Over 300 resolves of one
+// framebuffer (the value wraps after 255 and the stencil is cleared), two views taking turns,
+// each frame is the one a fresh framebuffer draws, which the filter changed.
+TEST_F(Frames, FxaaOverManyResolvesDrawsWhatAFreshFramebufferDraws) {
   view::Camera other = settings_.camera;
   other.position += sim::Vec3(0.03, -0.01, 0.02);
   const view::Camera cameras[2] = {settings_.camera, other};
@@ -99,34 +101,53 @@ TEST_F(Frames, FxaaEdgeMarksStayTheirFramesOverManyResolves) {
 }
 
 // A frame over a kept layer is filtered only near its overlay and the last one's, the rest
-// taken from the last resolve: over 12 held frames whose SGO loads (the dots' colours) change
-// from frame to frame, each is the frame a framebuffer filtering its whole rectangle draws.
+// copied from the last resolve. Over 12 held frames with the same edge rectangle (so more than
+// 30 % of it is copied), whose patches shrink to half and grow back in turn and whose dots
+// change colour, each is the frame a framebuffer filtering its whole rectangle draws. (The
+// overlay's bounds stay those of the proxies and arrows here.)
 TEST_F(Frames, HeldFramesFilterNearTheirOverlaysAsAWholeFilterWould) {
   render::Framebuffer held(kWidth, kHeight, view::Antialiasing::kFxaa);
   render::Framebuffer whole(kWidth, kHeight, view::Antialiasing::kFxaa);
   std::vector<std::vector<std::uint8_t>> frames;
-  int held_draws = 0;
+  std::optional<render::PixelRect> first_edges;
+  int held_draws = 0, same_edges = 0;
+  double copied_share = 0.0;  // of the edge rectangle, taken from the last resolve
+  std::optional<render::HeldLayer> last;
   for (int i = 0; i < 12; ++i) {
     sim::Snapshot s = snapshot_;
+    const double scale = i % 2 ? 0.5 : 1.0;
     for (sim::FingerSnapshot& f : s.fingers) {
       for (sim::ContactSnapshot& c : f.contacts) {
+        for (sim::Vec3& p : c.sgos_world) p = c.point_world + scale * (p - c.point_world);
+        for (sim::Vec3& p : c.path_points_world) p = c.point_world + scale * (p - c.point_world);
         for (std::size_t k = 0; k < c.loads.size(); ++k) c.loads[k].normal *= 1.0 + 0.5 * std::sin(0.9 * i + 1.3 * k);
       }
     }
     render::Image a, b;
     held.bind();
     const render::PixelRect edges = renderer_.draw(s, settings_.camera, kWidth, kHeight);
-    held.resolve(edges, renderer_.heldLayer());
-    held_draws += renderer_.heldLayer().has_value();
+    const std::optional<render::HeldLayer> now = renderer_.heldLayer();
+    held.resolve(edges, now);
     held.read(a);
+    if (!first_edges) first_edges = edges;
+    same_edges += i > 0 && render::sameRect(edges, *first_edges);
+    held_draws += now.has_value();
+    if (now) {  // what resolve filters again: the overlays' bounds and their reach, inside the rectangle
+      const render::PixelRect r = render::intersect(render::grow(edges, 2), {0, 0, kWidth, kHeight});
+      const render::PixelRect f = render::intersect(render::grow(render::unite(now->overlay, last ? last->overlay : render::PixelRect{}), 6), r);
+      copied_share = std::max(copied_share, 1.0 - double((f.x1 - f.x0) * (f.y1 - f.y0)) / ((r.x1 - r.x0) * (r.y1 - r.y0)));
+    }
+    last = now;
     whole.bind();
     whole.resolve(renderer_.draw(s, settings_.camera, kWidth, kHeight));
     whole.read(b);
     EXPECT_EQ(a.rgb, b.rgb) << "frame " << i;
     frames.push_back(a.rgb);
   }
-  EXPECT_GE(held_draws, 10);  // the layer is kept from the second frame
-  EXPECT_NE(frames[4], frames[5]);  // the overlay did change
+  EXPECT_GE(held_draws, 10);       // the layer is kept from the second frame
+  EXPECT_EQ(same_edges, 11);       // so the last resolve's pixels are taken outside the overlays
+  EXPECT_GT(copied_share, 0.3);    // a good part of the rectangle
+  EXPECT_NE(frames[4], frames[5]);  // and the overlays changed
 }
 
 // The backdrop is cached per camera: drawing again gives the same frame, and a frame after a
