@@ -16,7 +16,24 @@ btTransform poseOf(const Vec3& p, const Eigen::Quaterniond& q) {
   return btTransform(btQuaternion(n.x(), n.y(), n.z(), n.w()), toBt(p));
 }
 
+// The manifolds the fingers inject in one step at most (contact_injection.cpp): each touched
+// body's patch points and the true contact, MANIFOLD_CACHE_SIZE to a manifold, at the largest
+// patch a live setting can ask for.
+std::size_t injectedManifolds(const SceneDesc& scene) {
+  const std::size_t per_contact = (kMaxPatchPoints + 1 + MANIFOLD_CACHE_SIZE - 1) / MANIFOLD_CACHE_SIZE;
+  return scene.fingers.size() * kMaxContactsPerFinger * per_contact;
+}
+
 }  // namespace
+
+btDefaultCollisionConstructionInfo collisionPools(const SceneDesc& scene) {
+  const std::size_t objects = scene.bodies.size() + scene.fingers.size();
+  const std::size_t pairs = objects * (objects + 1) / 2;
+  btDefaultCollisionConstructionInfo info;
+  info.m_defaultMaxPersistentManifoldPoolSize = static_cast<int>(2 * pairs + injectedManifolds(scene));
+  info.m_defaultMaxCollisionAlgorithmPoolSize = static_cast<int>(std::max<std::size_t>(256, 4 * pairs));
+  return info;
+}
 
 World::Impl::Impl(const SceneDesc& d) : desc(d) {
   requireValid(desc);
@@ -28,7 +45,7 @@ World::Impl::Impl(const SceneDesc& d) : desc(d) {
   for (std::size_t i = 0; i < desc.bodies.size(); ++i) addBody(static_cast<int>(i), desc.bodies[i]);
   fingers.resize(desc.fingers.size());
   for (std::size_t i = 0; i < desc.fingers.size(); ++i) addFinger(static_cast<int>(i), desc.fingers[i]);
-  injected.reserve(desc.fingers.size() * kMaxContactsPerFinger * (kMaxSgo / MANIFOLD_CACHE_SIZE + 1));
+  injected.reserve(injectedManifolds(desc));
   saved.resize(bodies.size() + fingers.size());
   makeOverlapPairs();
 }

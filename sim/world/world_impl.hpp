@@ -38,6 +38,12 @@ inline constexpr std::size_t kMaxPadFaces = 4096;
 
 /// A finger handles at most this many touched bodies per step; further ones stay god-objects.
 inline constexpr int kMaxContactsPerFinger = 4;
+/// Bullet's pools sized for `scene`: manifolds for every contact its fingers can inject in a step
+/// and two for every pair of its bodies and proxies; four algorithms per pair, at least 256 (a
+/// mesh pair makes one per touching part). Bullet's default, 4096 of each, wrote 7.2 MB per
+/// World when it was made; a scene past these sizes still runs, the extra taken from the heap.
+btDefaultCollisionConstructionInfo collisionPools(const SceneDesc& scene);
+
 /// Collision group of proxies: they touch bodies, never each other.
 inline constexpr int kFingerGroup = 1 << 6;
 /// Bullet user index marking a proxy (bodies carry their index, >= 0).
@@ -214,7 +220,7 @@ struct World::Impl final : SolveHooks {
   std::thread::id owner = std::this_thread::get_id();
   // Bullet's parts, each declared after what it points to: the world is destroyed first, and
   // ~Impl removes every body from it before that.
-  btDefaultCollisionConfiguration config;
+  btDefaultCollisionConfiguration config{collisionPools(desc)};
   ContactAlgorithms contact_algorithms;  // our collision tests (registered in the constructor)
   btCollisionDispatcher dispatcher{&config};
   btDbvtBroadphase broadphase;

@@ -137,6 +137,31 @@ TEST(WorldAllocation, NoHeapAllocationPerStepWithOverlapHandled) {
   EXPECT_EQ(allocationsOfOverlappingSteps("merge"), 0);
 }
 
+// The Fig. 8 pinch held at the largest patch a setting allows (n_SGO 64, filled with 8 rings:
+// 513 points per finger, 129 manifolds each step): Bullet's pools, sized per scene
+// (collisionPools), hold every manifold the fingers inject, so no step takes one from the heap.
+TEST(WorldAllocation, TheLargestPatchesTakeTheirManifoldsFromBulletsPools) {
+  for (const std::string solver : {"points", "aggregate"}) {
+    test_support::TestContext ctx("fig8-pinch-oscillation", kMaxSgo,
+                                  {"fingers.left.patch=filled", "fingers.right.patch=filled",
+                                   "fingers.left.rings=" + std::to_string(kMaxRings),
+                                   "fingers.right.rings=" + std::to_string(kMaxRings),
+                                   "world.contact_solver=" + solver});
+    ctx.simulate(1.2);  // grasped: both patches full
+    World& w = ctx.world();
+    std::vector<DeviceSample> samples;
+    for (const DeviceTrack& d : deviceTracks(ctx.scene())) samples.push_back(d.sample(w.time()));
+    for (int i = 0; i < 20; ++i) w.step(1e-3, samples);
+    btAlignedAllocSetCustom(countedAlloc, std::free);
+    const long before = gf::test::allocations();
+    for (int i = 0; i < 100; ++i) w.step(1e-3, samples);
+    const long counted = gf::test::allocations() - before;
+    btAlignedAllocSetCustom(std::malloc, std::free);
+    EXPECT_EQ(w.sgoCount(0), kMaxSgo * kMaxRings) << solver;
+    EXPECT_EQ(counted, 0) << solver;
+  }
+}
+
 TEST(WorldAllocation, NoHeapAllocationPerStepWithTheOrientedPad) {
   for (const PatchFill fill : {PatchFill::kRing, PatchFill::kFilled}) {
     PatchSettings pad;
