@@ -290,14 +290,20 @@ struct WebServer::Impl {
     frames_changed.notify_one();
   }
 
+  // The fields a frame carries, on /frame.jpg and on each part of the stream.
+  static std::vector<std::pair<std::string, std::string>> frameFields(const render::JpegFrame& f) {
+    char time[32];
+    std::snprintf(time, sizeof time, "%.4f", f.time);
+    return {{"X-Frame", std::to_string(f.number)}, {"X-Sim-Time", time},
+            {"X-Moves-Taken", std::to_string(f.moves_taken)}, {"X-Moves-Arrived", std::to_string(f.moves_arrived)}};
+  }
+
   static std::shared_ptr<const StreamPart> partOf(const render::JpegFrame& f) {
     auto part = std::make_shared<StreamPart>();
-    char head[256];
-    const int n = std::snprintf(head, sizeof head,
-                                "--%s\r\nContent-Type: image/jpeg\r\nContent-Length: %zu\r\nX-Frame: %ld\r\n"
-                                "X-Sim-Time: %.4f\r\nX-Moves-Taken: %ld\r\nX-Moves-Arrived: %ld\r\n\r\n",
-                                kBoundary, f.bytes->size(), f.number, f.time, f.moves_taken, f.moves_arrived);
-    part->head.assign(head, static_cast<std::size_t>(n));
+    part->head = std::string("--") + kBoundary + "\r\nContent-Type: image/jpeg\r\nContent-Length: " +
+                 std::to_string(f.bytes->size()) + "\r\n";
+    for (const auto& [name, value] : frameFields(f)) part->head += name + ": " + value + "\r\n";
+    part->head += "\r\n";
     part->bytes = f.bytes;
     part->tail = "\r\n";
     return part;
@@ -321,8 +327,7 @@ struct WebServer::Impl {
         HttpAnswer a;
         a.type = "image/jpeg";
         a.bytes = f.bytes;
-        a.headers = {{"X-Frame", std::to_string(f.number)}, {"X-Sim-Time", shortestTime(f.time)},
-                     {"X-Moves-Taken", std::to_string(f.moves_taken)}, {"X-Moves-Arrived", std::to_string(f.moves_arrived)}};
+        a.headers = frameFields(f);
         w.exchange->answer(std::move(a));
         return true;
       }
@@ -330,12 +335,6 @@ struct WebServer::Impl {
       w.exchange->answer(textAnswer(503, "503: no frame drawn yet\n"));
       return true;
     });
-  }
-
-  static std::string shortestTime(double t) {
-    char text[32];
-    std::snprintf(text, sizeof text, "%.4f", t);
-    return text;
   }
 
   // The pump: while anyone watches, the newest frame encoded, handed to the watchers.

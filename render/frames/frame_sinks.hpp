@@ -31,7 +31,8 @@ struct SinkStats {
 /// frames/000000.png, 000001.png, ... in `folder`, encoded by a writer thread (libdeflate level 1) so
 /// the render thread only waits when `queue_depth` frames are already pending. A frame whose
 /// pixels equal the previous frame's is written with the previous frame's bytes, not encoded
-/// again (a scene at rest gives hundreds of equal frames: two thirds of a 10 s Fig. 8).
+/// again (a scene at rest drawn without a time stamp or an overlay clock gives equal frames;
+/// with either, as the bundled scenes are drawn, every frame differs).
 class PngSequenceWriter {
  public:
   /// Creates `folder` when missing. Throws ImageError naming it when it cannot.

@@ -181,10 +181,9 @@ void requireComplete(const char* what) {
   }
 }
 
-// A framebuffer with an RGBA8 colour and a 24-bit depth renderbuffer of `samples` each; returns
-// the framebuffer and leaves it bound.
-// A colour and depth target; with `stencil`, 24-bit depth with 8 bits of stencil beside it (the
-// same 32 bits a pixel llvmpipe gives 24-bit depth alone).
+// A framebuffer with an RGBA8 colour and a 24-bit depth renderbuffer of `samples` each, with
+// `stencil` 8 bits of stencil beside the depth (the same 32 bits a pixel llvmpipe gives 24-bit
+// depth alone); returns the framebuffer and leaves it bound.
 unsigned colourDepthTarget(int width, int height, int samples, bool stencil, unsigned& colour, unsigned& depth,
                            const char* what) {
   unsigned fbo = 0;
@@ -328,8 +327,8 @@ void Framebuffer::resolve(const std::optional<PixelRect>& edges, const std::opti
   }
   glBindFramebuffer(GL_FRAMEBUFFER, scene_fbo_);
   if (aa_ == view::Antialiasing::kNone) return;
-  const PixelRect e = edges.value_or(PixelRect{0, 0, width_, height_});
-  const PixelRect r{std::max(e.x0 - 2, 0), std::max(e.y0 - 2, 0), std::min(e.x1 + 2, width_), std::min(e.y1 + 2, height_)};
+  const PixelRect whole{0, 0, width_, height_};
+  const PixelRect r = intersect(grow(edges.value_or(whole), 2), whole);
   if (r.empty()) return;
   Fxaa& x = *fxaa_;
   // Over the same layer with the same edges as the last resolve, a pixel's filtered value can
@@ -361,8 +360,7 @@ void Framebuffer::resolve(const std::optional<PixelRect>& edges, const std::opti
 // The scene's pixels FXAA reads for `r` (it reads at most 5 pixels away: a margin of 8) into its
 // copy.
 void Framebuffer::copyForFilter(const PixelRect& r) {
-  const PixelRect c{std::max(r.x0 - 8, 0), std::max(r.y0 - 8, 0), std::min(r.x1 + 8, width_), std::min(r.y1 + 8, height_)};
-  blitRect(scene_fbo_, fxaa_->fbo, c);
+  blitRect(scene_fbo_, fxaa_->fbo, intersect(grow(r, 8), PixelRect{0, 0, width_, height_}));
   glBindFramebuffer(GL_FRAMEBUFFER, scene_fbo_);
 }
 
