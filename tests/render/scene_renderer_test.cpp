@@ -104,7 +104,7 @@ TEST_F(Frames, FxaaOverManyResolvesDrawsWhatAFreshFramebufferDraws) {
 // copied from the last resolve. Over 12 held frames with the same edge rectangle (so more than
 // 30 % of it is copied), whose patches shrink to half and grow back in turn and whose dots
 // change colour, each is the frame a framebuffer filtering its whole rectangle draws. (The
-// overlay's bounds stay those of the proxies and arrows here.)
+// overlay's bounds stay those of the proxies and arrows here; the next test moves them.)
 TEST_F(Frames, HeldFramesFilterNearTheirOverlaysAsAWholeFilterWould) {
   render::Framebuffer held(kWidth, kHeight, view::Antialiasing::kFxaa);
   render::Framebuffer whole(kWidth, kHeight, view::Antialiasing::kFxaa);
@@ -115,7 +115,7 @@ TEST_F(Frames, HeldFramesFilterNearTheirOverlaysAsAWholeFilterWould) {
   std::optional<render::HeldLayer> last;
   for (int i = 0; i < 12; ++i) {
     sim::Snapshot s = snapshot_;
-    const double scale = i % 2 ? 0.5 : 1.0;
+    const double scale = i % 2 ? 0.7 : 0.3;
     for (sim::FingerSnapshot& f : s.fingers) {
       for (sim::ContactSnapshot& c : f.contacts) {
         for (sim::Vec3& p : c.sgos_world) p = c.point_world + scale * (p - c.point_world);
@@ -148,6 +148,48 @@ TEST_F(Frames, HeldFramesFilterNearTheirOverlaysAsAWholeFilterWould) {
   EXPECT_EQ(same_edges, 11);       // so the last resolve's pixels are taken outside the overlays
   EXPECT_GT(copied_share, 0.3);    // a good part of the rectangle
   EXPECT_NE(frames[4], frames[5]);  // and the overlays changed
+}
+
+// The same when the overlay's bounds change: the fingers' patches three times as wide and back
+// in turn over the held bodies (the overlay's bounds then reach 10 px further up and down than
+// the proxies'). A frame filters again where the last overlay was as well as where its own is:
+// filtering only near its own would leave the last overlay's filtered pixels in the picture.
+TEST_F(Frames, HeldFramesFilterWhereTheLastOverlayWasAsWell) {
+  render::Framebuffer held(kWidth, kHeight, view::Antialiasing::kFxaa);
+  render::Framebuffer whole(kWidth, kHeight, view::Antialiasing::kFxaa);
+  std::optional<render::HeldLayer> last;
+  std::optional<render::PixelRect> last_edges;
+  int reused = 0, moved = 0;
+  for (int i = 0; i < 8; ++i) {
+    sim::Snapshot s = snapshot_;
+    const double scale = i % 2 ? 3.0 : 1.0;
+    for (sim::FingerSnapshot& f : s.fingers) {
+      for (sim::ContactSnapshot& c : f.contacts) {
+        for (sim::Vec3& p : c.sgos_world) p = c.point_world + scale * (p - c.point_world);
+        for (sim::Vec3& p : c.path_points_world) p = c.point_world + scale * (p - c.point_world);
+      }
+    }
+    render::Image a, b;
+    held.bind();
+    const render::PixelRect edges = renderer_.draw(s, settings_.camera, kWidth, kHeight);
+    const std::optional<render::HeldLayer> now = renderer_.heldLayer();
+    held.resolve(edges, now);
+    held.read(a);
+    if (now && last && now->layer == last->layer && render::sameRect(edges, *last_edges)) {
+      ++reused;
+      // More than the filter's reach (6 px) apart, so the last overlay's pixels lie outside
+      // this one's filtered bounds.
+      moved += std::abs(now->overlay.y0 - last->overlay.y0) > 6 && std::abs(now->overlay.y1 - last->overlay.y1) > 6;
+    }
+    last = now;
+    last_edges = edges;
+    whole.bind();
+    whole.resolve(renderer_.draw(s, settings_.camera, kWidth, kHeight));
+    whole.read(b);
+    EXPECT_EQ(a.rgb, b.rgb) << "frame " << i;
+  }
+  EXPECT_GE(reused, 6);      // frames that took the last resolve's pixels outside the overlays
+  EXPECT_EQ(moved, reused);  // each with its overlay's bounds well apart from the last one's
 }
 
 // The backdrop is cached per camera: drawing again gives the same frame, and a frame after a
