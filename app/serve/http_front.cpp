@@ -46,20 +46,22 @@ std::string headOf(const HttpAnswer& a, std::size_t length, bool keep_alive) {
   return h;
 }
 
-// The query's `token=` value of `target` ("" without one).
-std::string tokenOf(std::string_view target) {
-  const std::size_t q = target.find('?');
-  if (q == std::string_view::npos) return "";
-  std::string_view query = target.substr(q + 1);
+}  // namespace
+
+std::string queryValue(std::string_view query, std::string_view name) {
   while (!query.empty()) {
     const std::size_t amp = query.find('&');
     const std::string_view pair = query.substr(0, amp);
-    if (pair.rfind("token=", 0) == 0) return std::string(pair.substr(6));
+    if (pair.size() > name.size() && pair.substr(0, name.size()) == name && pair[name.size()] == '=') {
+      return std::string(pair.substr(name.size() + 1));
+    }
     if (amp == std::string_view::npos) break;
     query.remove_prefix(amp + 1);
   }
   return "";
 }
+
+namespace {
 
 // Writes `status` with `text` at once (a small answer an empty send buffer takes whole; nothing is
 // waited for) and closes `socket`.
@@ -251,7 +253,9 @@ class Connection final : public HttpExchange, public std::enable_shared_from_thi
     request_.method = std::string(m.method_string());
     const std::string_view target(m.target().data(), m.target().size());
     request_.path = std::string(target.substr(0, target.find('?')));
-    request_.token = tokenOf(target);
+    const std::size_t q = target.find('?');
+    request_.query = q == std::string_view::npos ? "" : std::string(target.substr(q + 1));
+    request_.token = queryValue(request_.query, "token");
     request_.host = fieldText(m, bhttp::field::host);
     request_.origin = fieldText(m, bhttp::field::origin);
     request_.authorization = fieldText(m, bhttp::field::authorization);

@@ -13,6 +13,7 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <utility>
 #include <vector>
 
@@ -40,10 +41,14 @@ struct HttpRequest {
   std::string method;  ///< "GET", "POST", ...
   std::string path;    ///< the target without its query
   std::string token;   ///< the query's `token=` value ("" without one)
+  std::string query;   ///< the target's query, after its '?' ("" without one)
   std::string host, origin, authorization;  ///< those header fields ("" when absent)
   std::string body;
   std::string address;  ///< the client's IP address
 };
+
+/// The value of `name=` in `query` (a target's query: pairs joined by '&'), "" without one.
+std::string queryValue(std::string_view query, std::string_view name);
 
 /// An answer: `body`, or `bytes` when set (shared, never copied).
 struct HttpAnswer {

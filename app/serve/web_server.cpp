@@ -10,6 +10,7 @@
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
+#include <algorithm>
 #include <mutex>
 #include <optional>
 #include <vector>
@@ -127,10 +128,12 @@ struct WebServer::Impl {
   struct Stream {
     std::weak_ptr<HttpExchange> exchange;
     long sent = 0;  // the newest frame's number sent it
+    int width = 0;  // its `width=` (0: the frame's own)
   };
   struct FrameWaiter {
     std::shared_ptr<HttpExchange> exchange;
     Clock::time_point until;
+    int width = 0;
   };
   mutable std::mutex frames_mutex;
   std::condition_variable frames_changed;
@@ -227,8 +230,11 @@ struct WebServer::Impl {
     if (req.path == "/scene.json") return x->answer(textAnswer(200, view.sceneJson().dump(), "application/json"));
     if (req.path == "/state.json") return x->answer(textAnswer(200, view.stateText(), "application/json"));
     if (req.path == "/server.json") return x->answer(textAnswer(200, stats().dump(), "application/json"));
-    if (req.path == "/stream.mjpg") return startStream(x);
-    if (req.path == "/frame.jpg") return waitForFrame(x);
+    if (req.path == "/stream.mjpg" || req.path == "/frame.jpg") {
+      const std::optional<int> width = watchWidth(req);
+      if (!width) return x->answer(textAnswer(400, "400: width must be a whole number of pixels, 16..4096\n"));
+      return req.path == "/stream.mjpg" ? startStream(x, *width) : waitForFrame(x, *width);
+    }
     x->answer(textAnswer(404, "404: no such page\n"));
   }
 
@@ -270,22 +276,44 @@ struct WebServer::Impl {
     }
   }
 
-  void startStream(const std::shared_ptr<HttpExchange>& x) {
+  // A watcher's `width=`, the pixels across it shows frames at: 0 without one, none when it is
+  // not a whole number within 16..4096.
+  static std::optional<int> watchWidth(const HttpRequest& req) {
+    const std::string text = queryValue(req.query, "width");
+    if (text.empty()) return 0;
+    int width = 0;
+    const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), width);
+    if (error != std::errc() || end != text.data() + text.size() || width < 16 || width > 4096) return std::nullopt;
+    return width;
+  }
+
+  // Frames lock held: the width frames are encoded at, the widest any watcher asks for (the
+  // frame's own when one asks for no width), so that none gets fewer pixels than it shows.
+  int wantedWidth() const {
+    int widest = 0;
+    bool full = false;
+    const auto want = [&](int w) { full = full || w == 0, widest = std::max(widest, w); };
+    for (const Stream& s : streams) want(s.width);
+    for (const FrameWaiter& w : frame_waiters) want(w.width);
+    return full ? 0 : widest;
+  }
+
+  void startStream(const std::shared_ptr<HttpExchange>& x, int width) {
     const std::string head = std::string("HTTP/1.1 200 OK\r\nContent-Type: multipart/x-mixed-replace; boundary=") +
                              kBoundary + "\r\nCache-Control: no-store\r\nConnection: close\r\n\r\n";
     if (!x->startStream(head)) return;
     std::lock_guard lock(frames_mutex);
-    streams.push_back({x, 0});
+    streams.push_back({x, 0, width});
     fresh_wanted = true;
     frames_changed.notify_one();
   }
 
-  void waitForFrame(const std::shared_ptr<HttpExchange>& x) {
+  void waitForFrame(const std::shared_ptr<HttpExchange>& x, int width) {
     std::lock_guard lock(frames_mutex);
     if (static_cast<int>(frame_waiters.size()) >= kMaxFrameWaiters) {
       return x->answer(textAnswer(429, "429: " + std::to_string(kMaxFrameWaiters) + " frame requests wait already\n"));
     }
-    frame_waiters.push_back({x, Clock::now() + kFrameWait});
+    frame_waiters.push_back({x, Clock::now() + kFrameWait, width});
     fresh_wanted = true;
     frames_changed.notify_one();
   }
@@ -352,6 +380,7 @@ struct WebServer::Impl {
         continue;
       }
       const bool fresh = std::exchange(fresh_wanted, false);
+      view.jpeg().setWidth(wantedWidth());
       lock.unlock();
       const render::JpegFrame f = view.jpeg().waitNewer(fresh ? 0 : last, kFramePoll);
       lock.lock();

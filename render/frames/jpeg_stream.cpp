@@ -9,6 +9,7 @@
 #include <algorithm>
 
 #include "render/frames/frame_sinks.hpp"
+#include "render/frames/shrink.hpp"
 
 namespace gf::render {
 namespace {
@@ -70,6 +71,11 @@ void JpegStream::push(const Image& image, long number, double time, long moves_t
 
 bool JpegStream::encodeWanted() const { return has_pending_ && (waiting_ > 0 || newest_.number == 0); }
 
+void JpegStream::setWidth(int width) {
+  std::lock_guard lock(mutex_);
+  width_ = std::max(0, width);
+}
+
 JpegFrame JpegStream::newest() const {
   std::lock_guard lock(mutex_);
   return newest_;
@@ -113,11 +119,12 @@ JpegStats JpegStream::stats() const {
 void JpegStream::run() {
   pthread_setname_np(pthread_self(), "gf-jpeg");
   if (background_) setpriority(PRIO_PROCESS, static_cast<id_t>(gettid()), kBackgroundNice);
-  Image frame;
+  Image frame, shrunk;
   std::vector<std::uint8_t> bytes;
   for (;;) {
     double time = 0.0;
     long number = 0, taken = 0, arrived = 0;
+    int width = 0;
     {
       std::unique_lock lock(mutex_);
       changed_.wait(lock, [&] { return encodeWanted() || closing_; });
@@ -129,10 +136,13 @@ void JpegStream::run() {
       arrived = pending_arrived_;
       encoding_number_ = number;
       has_pending_ = false;
+      width = width_;
     }
     const auto begin = Clock::now();
     try {
-      compressor_->encode(frame, quality_, bytes);
+      const int factor = shrinkFactor(frame.width, width);
+      if (factor > 1) shrinkByBlocks(frame, factor, shrunk);
+      compressor_->encode(factor > 1 ? shrunk : frame, quality_, bytes);
     } catch (const ImageError&) {
       continue;  // a frame that does not encode is skipped; the next one may
     }

@@ -49,6 +49,10 @@ class JpegStream {
   /// reader waits or none has been encoded yet; `moves_taken` and `moves_arrived` go with it
   /// (JpegFrame). Any one thread (the render thread).
   void push(const Image& image, long number, double time, long moves_taken = 0, long moves_arrived = 0);
+  /// The width (pixels) frames are shown at from now on: each frame is shrunk by the largest
+  /// whole factor that keeps it at least that wide (shrinkFactor, shrinkByBlocks) before
+  /// encoding; 0, or a width of at least the frame's, encodes frames as pushed. Any thread.
+  void setWidth(int width);
   /// The newest encoded frame (number 0 when none yet). Any thread.
   JpegFrame newest() const;
   /// Waits until a frame newer than `after`, and no older than the newest pushed before the
@@ -68,6 +72,7 @@ class JpegStream {
   class Compressor;
   std::unique_ptr<Compressor> compressor_;
   int quality_;
+  int width_ = 0;           // setWidth's (mutex_)
   bool background_;
   mutable std::mutex mutex_;
   std::condition_variable changed_;

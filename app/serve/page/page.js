@@ -255,12 +255,32 @@ function showPart(img, bytes, headers) {
   if (old.startsWith("blob:")) URL.revokeObjectURL(old);
   img.decode().then(() => noteShown(taken, arrived, performance.now()), () => {});
 }
+// The box the frame is shown in: the view's, at the frame's aspect, never above its own size.
+function frameBox() {
+  const v = $("#view"), fw = gf.scene.width, fh = gf.scene.height;
+  const s = Math.min(1, v.clientWidth / fw, v.clientHeight / fh);
+  return [Math.max(1, Math.floor(fw * s)), Math.max(1, Math.floor(fh * s))];
+}
+// The stream is asked for at the width the frame is shown at, in device pixels: the server
+// shrinks frames to the widest any watcher asks for, so a small page costs less to encode, send
+// and decode. A page resized to another width reads the stream again at its new width.
+function streamWidth() {
+  return Math.min(gf.scene.width, Math.max(16, Math.ceil(frameBox()[0] * (window.devicePixelRatio || 1))));
+}
+function placeFrame(img) {
+  const [w, h] = frameBox();
+  img.style.width = w + "px";
+  img.style.height = h + "px";
+  if (gf.stream && gf.stream.width !== streamWidth()) gf.stream.abort.abort();
+}
 async function readStream(img) {
   const crlf2 = [13, 10, 13, 10];
   gf.timing = true;
   for (;;) {
+    const abort = new AbortController();
+    gf.stream = {width: streamWidth(), abort};
     try {
-      const res = await fetch(withToken("stream.mjpg"), {cache: "no-store"});
+      const res = await fetch(withToken("stream.mjpg?width=" + gf.stream.width), {cache: "no-store", signal: abort.signal});
       if (!res.ok) throw new Error("HTTP " + res.status);
       const reader = res.body.getReader();
       let buf = new Uint8Array(0);
@@ -282,7 +302,10 @@ async function readStream(img) {
           buf = buf.slice(stop + 2);
         }
       }
-    } catch (e) { $("#latency").textContent = "stream: " + e.message; }
+    } catch (e) {
+      if (abort.signal.aborted) continue;  // resized: read again at once, at the new width
+      $("#latency").textContent = "stream: " + e.message;
+    }
     await new Promise(r => setTimeout(r, 1000));  // the session may be back: read again
   }
 }
@@ -300,6 +323,8 @@ async function start() {
   $("#scene").textContent = gf.scene.scene;
   $("#mode").textContent = gf.scene.mode === "live" ? "live: steps on command" : "realtime";
   const img = $("#frame");
+  placeFrame(img);
+  window.addEventListener("resize", () => placeFrame(img));
   readStream(img);
   gf.command = command;
   const select = $("#web-finger");
