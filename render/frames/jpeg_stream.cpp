@@ -69,11 +69,18 @@ void JpegStream::push(const Image& image, long number, double time, long moves_t
   if (encodeWanted()) changed_.notify_all();
 }
 
-bool JpegStream::encodeWanted() const { return has_pending_ && (waiting_ > 0 || newest_.number == 0); }
+bool JpegStream::newestStale() const {
+  return newest_.number > 0 && !has_pending_ && shrinkFactor(frame_width_, width_) != newest_factor_;
+}
+
+bool JpegStream::encodeWanted() const {
+  return (has_pending_ || newestStale()) && (waiting_ > 0 || newest_.number == 0);
+}
 
 void JpegStream::setWidth(int width) {
   std::lock_guard lock(mutex_);
   width_ = std::max(0, width);
+  if (encodeWanted()) changed_.notify_all();
 }
 
 JpegFrame JpegStream::newest() const {
@@ -87,7 +94,7 @@ JpegFrame JpegStream::waitNewer(long after, std::chrono::milliseconds timeout) {
   const long wanted = std::max(after + 1, has_pending_ ? pending_number_ : encoding_number_);
   ++waiting_;
   if (encodeWanted()) changed_.notify_all();
-  changed_.wait_for(lock, timeout, [&] { return newest_.number >= wanted || closing_; });
+  changed_.wait_for(lock, timeout, [&] { return (newest_.number >= wanted && !newestStale()) || closing_; });
   --waiting_;
   return newest_;
 }
@@ -120,36 +127,51 @@ void JpegStream::run() {
   pthread_setname_np(pthread_self(), "gf-jpeg");
   if (background_) setpriority(PRIO_PROCESS, static_cast<id_t>(gettid()), kBackgroundNice);
   Image frame, shrunk;
+  bool frame_is_newest = false;  // `frame` holds the pixels of newest_
   std::vector<std::uint8_t> bytes;
   for (;;) {
     double time = 0.0;
     long number = 0, taken = 0, arrived = 0;
-    int width = 0;
+    int factor = 1;
+    bool again = false;  // the frame kept from the last encoding, for a watcher's new width
     {
       std::unique_lock lock(mutex_);
       changed_.wait(lock, [&] { return encodeWanted() || closing_; });
       if (closing_) return;
-      std::swap(frame, pending_);
-      time = pending_time_;
-      number = pending_number_;
-      taken = pending_taken_;
-      arrived = pending_arrived_;
-      encoding_number_ = number;
-      has_pending_ = false;
-      width = width_;
+      again = !has_pending_;
+      if (again && !frame_is_newest) {  // (its encoding failed): newest_ stands as it is
+        newest_factor_ = shrinkFactor(frame_width_, width_);
+        changed_.notify_all();
+        continue;
+      }
+      if (again) {
+        time = newest_.time, number = newest_.number, taken = newest_.moves_taken, arrived = newest_.moves_arrived;
+      } else {
+        std::swap(frame, pending_);
+        time = pending_time_;
+        number = pending_number_;
+        taken = pending_taken_;
+        arrived = pending_arrived_;
+        encoding_number_ = number;
+        has_pending_ = false;
+        frame_width_ = frame.width;
+      }
+      factor = shrinkFactor(frame.width, width_);
     }
     const auto begin = Clock::now();
     try {
-      const int factor = shrinkFactor(frame.width, width);
       if (factor > 1) shrinkByBlocks(frame, factor, shrunk);
       compressor_->encode(factor > 1 ? shrunk : frame, quality_, bytes);
     } catch (const ImageError&) {
-      continue;  // a frame that does not encode is skipped; the next one may
+      frame_is_newest = false;  // skipped; the next one may encode
+      continue;
     }
+    frame_is_newest = true;
     auto shared = std::make_shared<const std::vector<std::uint8_t>>(bytes);
     const double seconds = std::chrono::duration<double>(Clock::now() - begin).count();
     std::lock_guard lock(mutex_);
     newest_ = {std::move(shared), number, time, taken, arrived};
+    newest_factor_ = factor;
     ++stats_.encoded;
     stats_.encode_seconds += seconds;
     stats_.bytes += static_cast<long>(newest_.bytes->size());

@@ -51,7 +51,9 @@ class JpegStream {
   void push(const Image& image, long number, double time, long moves_taken = 0, long moves_arrived = 0);
   /// The width (pixels) frames are shown at from now on: each frame is shrunk by the largest
   /// whole factor that keeps it at least that wide (shrinkFactor, shrinkByBlocks) before
-  /// encoding; 0, or a width of at least the frame's, encodes frames as pushed. Any thread.
+  /// encoding; 0, or a width of at least the frame's, encodes frames as pushed. When that
+  /// changes the factor and no newer frame is pushed, the newest one is encoded again for the
+  /// next reader (waitNewer returns no frame of another factor). Any thread.
   void setWidth(int width);
   /// The newest encoded frame (number 0 when none yet). Any thread.
   JpegFrame newest() const;
@@ -69,10 +71,13 @@ class JpegStream {
  private:
   void run();
   bool encodeWanted() const;  // mutex_ held
+  bool newestStale() const;   // mutex_ held: newest_ is of another factor than width_ asks, none pending
   class Compressor;
   std::unique_ptr<Compressor> compressor_;
   int quality_;
   int width_ = 0;           // setWidth's (mutex_)
+  int frame_width_ = 0;     // the width of the frame the encoder took last
+  int newest_factor_ = 1;   // the factor newest_ was shrunk by
   bool background_;
   mutable std::mutex mutex_;
   std::condition_variable changed_;

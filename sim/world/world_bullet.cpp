@@ -17,19 +17,26 @@ btTransform poseOf(const Vec3& p, const Eigen::Quaterniond& q) {
 }
 
 // The manifolds the fingers inject in one step at most (contact_injection.cpp): each touched
-// body's patch points and the true contact, MANIFOLD_CACHE_SIZE to a manifold, at the largest
-// patch a live setting can ask for.
+// body's patch points, MANIFOLD_CACHE_SIZE to a manifold, at the largest patch a live setting can
+// ask for (the true contact stays in its own pair's manifold).
 std::size_t injectedManifolds(const SceneDesc& scene) {
-  const std::size_t per_contact = (kMaxPatchPoints + 1 + MANIFOLD_CACHE_SIZE - 1) / MANIFOLD_CACHE_SIZE;
+  const std::size_t per_contact = (kMaxPatchPoints + MANIFOLD_CACHE_SIZE - 1) / MANIFOLD_CACHE_SIZE;
   return scene.fingers.size() * kMaxContactsPerFinger * per_contact;
 }
+
+// A shape whose pair with another opens one manifold and one algorithm: not a compound of
+// convex parts, not a triangle mesh, not a soft body (each of those opens one per part touching).
+bool onePerPair(ShapeKind shape) { return shape <= ShapeKind::kConvexHull; }
 
 }  // namespace
 
 btDefaultCollisionConstructionInfo collisionPools(const SceneDesc& scene) {
+  btDefaultCollisionConstructionInfo info;
+  for (const BodyDesc& b : scene.bodies) {
+    if (!onePerPair(b.shape)) return info;
+  }
   const std::size_t objects = scene.bodies.size() + scene.fingers.size();
   const std::size_t pairs = objects * (objects + 1) / 2;
-  btDefaultCollisionConstructionInfo info;
   info.m_defaultMaxPersistentManifoldPoolSize = static_cast<int>(2 * pairs + injectedManifolds(scene));
   info.m_defaultMaxCollisionAlgorithmPoolSize = static_cast<int>(std::max<std::size_t>(256, 4 * pairs));
   return info;

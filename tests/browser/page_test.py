@@ -223,6 +223,28 @@ BLUE_IN_INSETS_JS = """(async () => {
 })()"""
 
 
+def test_a_narrower_page_reads_smaller_frames(ctx: Context) -> None:
+    """(a') The same page made 1000 × 700 CSS px (its view about 640 px wide): it reads the
+    stream again at its new width and gets the frames halved, 640 × 360; back at 1600 × 900, the
+    frames as drawn again."""
+    def resize(width: int, height: int) -> None:
+        ctx.page.call("Emulation.setDeviceMetricsOverride",
+                      {"width": width, "height": height, "deviceScaleFactor": 1, "mobile": False})
+    frames = ("(() => { const i = document.querySelector('img#frame');"
+              " return gf.stream.width === Math.ceil(i.clientWidth) && [i.naturalWidth, i.naturalHeight, gf.stream.width]; })()")
+    resize(1000, 700)
+    try:
+        ctx.page.wait_for(frames + " && document.querySelector('img#frame').naturalWidth < 1280",
+                          "the narrower page's frames")
+        narrow = ctx.page.evaluate(frames)
+        assert 427 <= narrow[2] <= 640 and narrow[:2] == [640, 360], f"frames {narrow}, want 640 x 360 for a view 427..640 wide"
+    finally:
+        resize(1600, 900)
+    wide = ctx.page.wait_for("document.querySelector('img#frame').naturalWidth === 1280 && " + frames,
+                             "the page's frames as drawn again")
+    print(f"  view {narrow[2]} px: frames {narrow[0]} x {narrow[1]}; view {wide[2]} px: frames {wide[0]} x {wide[1]}")
+
+
 def test_drag_presses_index_on_the_cylinder(ctx: Context) -> None:
     """(b) With the pointer only (drag, wheel for depth), `index` is brought 3 cm above the top of
     the cylinder and dragged 2 cm into it: /state.json shows its contact on the cylinder, and the
@@ -331,7 +353,8 @@ def main(binary: Path, out_dir: Path) -> int:
         served = Served.start(serve_command(binary, out_dir / "run", "127.0.0.1:0"), out_dir / "godfinger.log")
         browser = Browser.launch(out_dir / "chromium.log")
         ctx = Context(served, browser.new_page(width=1600, height=900), out_dir)
-        tests = [test_page_shows_the_stream, test_drag_presses_index_on_the_cylinder,
+        tests = [test_page_shows_the_stream, test_a_narrower_page_reads_smaller_frames,
+                 test_drag_presses_index_on_the_cylinder,
                  test_page_times_its_moves_to_the_frames, test_n_sgo_control_sets_the_setting,
                  test_commands_answer_ok_or_error]
         passed = [run(t.__name__, lambda t=t: t(ctx), ctx) for t in tests]

@@ -115,7 +115,7 @@ TEST_F(Frames, HeldFramesFilterNearTheirOverlaysAsAWholeFilterWould) {
   std::optional<render::HeldLayer> last;
   for (int i = 0; i < 12; ++i) {
     sim::Snapshot s = snapshot_;
-    const double scale = i % 2 ? 0.7 : 0.3;
+    const double scale = i % 2 ? 0.5 : 1.0;
     for (sim::FingerSnapshot& f : s.fingers) {
       for (sim::ContactSnapshot& c : f.contacts) {
         for (sim::Vec3& p : c.sgos_world) p = c.point_world + scale * (p - c.point_world);

@@ -24,7 +24,7 @@ TEST(Shrink, TheFactorKeepsTheCopyAtLeastAsWideAsShown) {
   EXPECT_EQ(shrinkFactor(1280, 2000), 1);
   EXPECT_EQ(shrinkFactor(1280, 1090), 1);  // 1280 / 2 = 640 would be narrower than shown
   EXPECT_EQ(shrinkFactor(1280, 640), 2);
-  EXPECT_EQ(shrinkFactor(1280, 427), 2);   // 1280 / 3 = 426.7 < 427
+  EXPECT_EQ(shrinkFactor(1280, 427), 2);   // 426 whole blocks of 3 < 427
   EXPECT_EQ(shrinkFactor(1280, 426), 3);
   EXPECT_EQ(shrinkFactor(1280, 16), 80);
 }

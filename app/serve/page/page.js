@@ -262,8 +262,9 @@ function frameBox() {
   return [Math.max(1, Math.floor(fw * s)), Math.max(1, Math.floor(fh * s))];
 }
 // The stream is asked for at the width the frame is shown at, in device pixels: the server
-// shrinks frames to the widest any watcher asks for, so a small page costs less to encode, send
-// and decode. A page resized to another width reads the stream again at its new width.
+// shrinks frames for the widest any watcher asks for, so a small page costs less to encode, send
+// and decode. When the view's size settles at another width (a resized window, a top bar that
+// wraps), the stream is read again at it.
 function streamWidth() {
   return Math.min(gf.scene.width, Math.max(16, Math.ceil(frameBox()[0] * (window.devicePixelRatio || 1))));
 }
@@ -271,7 +272,10 @@ function placeFrame(img) {
   const [w, h] = frameBox();
   img.style.width = w + "px";
   img.style.height = h + "px";
-  if (gf.stream && gf.stream.width !== streamWidth()) gf.stream.abort.abort();
+  clearTimeout(gf.restream);
+  gf.restream = setTimeout(() => {
+    if (gf.stream && gf.stream.width !== streamWidth()) gf.stream.abort.abort();
+  }, 250);
 }
 async function readStream(img) {
   const crlf2 = [13, 10, 13, 10];
@@ -324,7 +328,7 @@ async function start() {
   $("#mode").textContent = gf.scene.mode === "live" ? "live: steps on command" : "realtime";
   const img = $("#frame");
   placeFrame(img);
-  window.addEventListener("resize", () => placeFrame(img));
+  new ResizeObserver(() => placeFrame(img)).observe($("#view"));
   readStream(img);
   gf.command = command;
   const select = $("#web-finger");

@@ -123,52 +123,6 @@ TEST(Serve, AReaderGetsTheNewestFrameDrawnNeverABacklog) {
   EXPECT_EQ(stream.stats().pushed, 11);
 }
 
-// A baseline JPEG's width and height, from its SOF0 segment (0, 0 without one).
-std::pair<int, int> jpegSize(const std::string& bytes) {
-  for (std::size_t i = 0; i + 8 < bytes.size(); ++i) {
-    if (static_cast<unsigned char>(bytes[i]) == 0xff && static_cast<unsigned char>(bytes[i + 1]) == 0xc0) {
-      const auto byte = [&](std::size_t k) { return static_cast<int>(static_cast<unsigned char>(bytes[k])); };
-      return {byte(i + 7) * 256 + byte(i + 8), byte(i + 5) * 256 + byte(i + 6)};
-    }
-  }
-  return {0, 0};
-}
-
-// A watcher may ask for frames `width=` pixels across (the page asks for the width it shows them
-// at): frames are shrunk to the widest any watcher waiting asks for, the frame's own when one asks
-// for none; a width that is not a whole number within 16..4096 is refused.
-TEST(Serve, FramesComeAtTheWidthAWatcherAsksFor) {
-  FedView fed(out("gf_serve_width"));  // 64 x 36 frames
-  std::unique_ptr<WebServer> server = serve(fed.view(), "127.0.0.1");
-  httplib::Client client("127.0.0.1", portOf(*server));
-  const auto size = [&](const std::string& path) {
-    for (;;) {
-      const auto res = client.Get(path);
-      if (!res) return std::pair<int, int>{-1, -1};
-      if (res->status == 429) continue;  // the address's burst used up: back within milliseconds
-      if (res->status != 200) return std::pair<int, int>{res->status, 0};
-      return jpegSize(res->body);
-    }
-  };
-  // The first frame asked for at a width may be one encoded before the width was asked for.
-  const auto settled = [&](const std::string& path, std::pair<int, int> want) {
-    for (int k = 0; k < 20; ++k) {
-      if (size(path) == want) return true;
-    }
-    return false;
-  };
-  EXPECT_TRUE(settled("/frame.jpg?width=32", {32, 18}));
-  EXPECT_TRUE(settled("/frame.jpg", {64, 36}));
-  EXPECT_TRUE(settled("/frame.jpg?width=1000", {64, 36}));  // wider than the frame: as drawn
-  // (An empty `width=` is no width: the frame's own. A good one on /stream.mjpg would stream.)
-  for (const char* bad : {"width=abc", "width=8", "width=5000", "width=32x", "width=-32", "width=+32"}) {
-    const auto res = client.Get(std::string("/frame.jpg?") + bad);
-    ASSERT_TRUE(res) << bad;
-    EXPECT_EQ(res->status, 400) << bad;
-    EXPECT_EQ(client.Get(std::string("/stream.mjpg?") + bad)->status, 400) << bad;
-  }
-}
-
 // A port in use is an error naming it, not a port shared with the other server.
 TEST(Serve, APortInUseIsRefused) {
   FedView fed(out("gf_serve_port"));
