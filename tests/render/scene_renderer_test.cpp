@@ -47,6 +47,37 @@ class Frames : public ::testing::Test {
     return draw(frame, settings_.camera);
   }
 
+  // The snapshot with every finger's patch (its SGOs and walked paths) scaled by `scale` about
+  // its contact point.
+  sim::Snapshot withPatchesScaled(double scale) const {
+    sim::Snapshot s = snapshot_;
+    for (sim::FingerSnapshot& f : s.fingers) {
+      for (sim::ContactSnapshot& c : f.contacts) {
+        for (sim::Vec3& p : c.sgos_world) p = c.point_world + scale * (p - c.point_world);
+        for (sim::Vec3& p : c.path_points_world) p = c.point_world + scale * (p - c.point_world);
+      }
+    }
+    return s;
+  }
+
+  // `s` drawn into `held`, resolved with the layer the renderer kept (into `a`), and into `whole`
+  // filtered over its whole edge rectangle (into `b`); the edges and the kept layer.
+  struct HeldDraw {
+    render::PixelRect edges;
+    std::optional<render::HeldLayer> layer;
+  };
+  HeldDraw drawHeldAndWhole(const sim::Snapshot& s, render::Framebuffer& held, render::Framebuffer& whole,
+                            render::Image& a, render::Image& b) {
+    held.bind();
+    HeldDraw out{renderer_.draw(s, settings_.camera, kWidth, kHeight), renderer_.heldLayer()};
+    held.resolve(out.edges, out.layer);
+    held.read(a);
+    whole.bind();
+    whole.resolve(renderer_.draw(s, settings_.camera, kWidth, kHeight));
+    whole.read(b);
+    return out;
+  }
+
   static constexpr int kWidth = 320, kHeight = 180;
   render::GlContext context_;
   app::SessionDesc session_;
@@ -114,21 +145,14 @@ TEST_F(Frames, HeldFramesFilterNearTheirOverlaysAsAWholeFilterWould) {
   double copied_share = 0.0;  // of the edge rectangle, taken from the last resolve
   std::optional<render::HeldLayer> last;
   for (int i = 0; i < 12; ++i) {
-    sim::Snapshot s = snapshot_;
-    const double scale = i % 2 ? 0.5 : 1.0;
+    sim::Snapshot s = withPatchesScaled(i % 2 ? 0.5 : 1.0);
     for (sim::FingerSnapshot& f : s.fingers) {
       for (sim::ContactSnapshot& c : f.contacts) {
-        for (sim::Vec3& p : c.sgos_world) p = c.point_world + scale * (p - c.point_world);
-        for (sim::Vec3& p : c.path_points_world) p = c.point_world + scale * (p - c.point_world);
         for (std::size_t k = 0; k < c.loads.size(); ++k) c.loads[k].normal *= 1.0 + 0.5 * std::sin(0.9 * i + 1.3 * k);
       }
     }
     render::Image a, b;
-    held.bind();
-    const render::PixelRect edges = renderer_.draw(s, settings_.camera, kWidth, kHeight);
-    const std::optional<render::HeldLayer> now = renderer_.heldLayer();
-    held.resolve(edges, now);
-    held.read(a);
+    const auto [edges, now] = drawHeldAndWhole(s, held, whole, a, b);
     if (!first_edges) first_edges = edges;
     same_edges += i > 0 && render::sameRect(edges, *first_edges);
     held_draws += now.has_value();
@@ -138,9 +162,6 @@ TEST_F(Frames, HeldFramesFilterNearTheirOverlaysAsAWholeFilterWould) {
       copied_share = std::max(copied_share, 1.0 - double((f.x1 - f.x0) * (f.y1 - f.y0)) / ((r.x1 - r.x0) * (r.y1 - r.y0)));
     }
     last = now;
-    whole.bind();
-    whole.resolve(renderer_.draw(s, settings_.camera, kWidth, kHeight));
-    whole.read(b);
     EXPECT_EQ(a.rgb, b.rgb) << "frame " << i;
     frames.push_back(a.rgb);
   }
@@ -161,20 +182,8 @@ TEST_F(Frames, HeldFramesFilterWhereTheLastOverlayWasAsWell) {
   std::optional<render::PixelRect> last_edges;
   int reused = 0, moved = 0;
   for (int i = 0; i < 8; ++i) {
-    sim::Snapshot s = snapshot_;
-    const double scale = i % 2 ? 3.0 : 1.0;
-    for (sim::FingerSnapshot& f : s.fingers) {
-      for (sim::ContactSnapshot& c : f.contacts) {
-        for (sim::Vec3& p : c.sgos_world) p = c.point_world + scale * (p - c.point_world);
-        for (sim::Vec3& p : c.path_points_world) p = c.point_world + scale * (p - c.point_world);
-      }
-    }
     render::Image a, b;
-    held.bind();
-    const render::PixelRect edges = renderer_.draw(s, settings_.camera, kWidth, kHeight);
-    const std::optional<render::HeldLayer> now = renderer_.heldLayer();
-    held.resolve(edges, now);
-    held.read(a);
+    const auto [edges, now] = drawHeldAndWhole(withPatchesScaled(i % 2 ? 3.0 : 1.0), held, whole, a, b);
     if (now && last && now->layer == last->layer && render::sameRect(edges, *last_edges)) {
       ++reused;
       // More than the filter's reach (6 px) apart, so the last overlay's pixels lie outside
@@ -183,9 +192,6 @@ TEST_F(Frames, HeldFramesFilterWhereTheLastOverlayWasAsWell) {
     }
     last = now;
     last_edges = edges;
-    whole.bind();
-    whole.resolve(renderer_.draw(s, settings_.camera, kWidth, kHeight));
-    whole.read(b);
     EXPECT_EQ(a.rgb, b.rgb) << "frame " << i;
   }
   EXPECT_GE(reused, 6);      // frames that took the last resolve's pixels outside the overlays
