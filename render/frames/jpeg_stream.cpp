@@ -70,7 +70,7 @@ void JpegStream::push(const Image& image, long number, double time, long moves_t
 }
 
 bool JpegStream::newestStale() const {
-  return newest_.number > 0 && !has_pending_ && shrinkFactor(frame_width_, width_) != newest_factor_;
+  return newest_.number > 0 && shrinkFactor(newest_source_width_, width_) != newest_factor_;
 }
 
 bool JpegStream::encodeWanted() const {
@@ -80,7 +80,7 @@ bool JpegStream::encodeWanted() const {
 void JpegStream::setWidth(int width) {
   std::lock_guard lock(mutex_);
   width_ = std::max(0, width);
-  if (encodeWanted()) changed_.notify_all();
+  changed_.notify_all();  // an encoding now wanted, or a reader's frame no longer stale
 }
 
 JpegFrame JpegStream::newest() const {
@@ -139,8 +139,8 @@ void JpegStream::run() {
       changed_.wait(lock, [&] { return encodeWanted() || closing_; });
       if (closing_) return;
       again = !has_pending_;
-      if (again && !frame_is_newest) {  // (its encoding failed): newest_ stands as it is
-        newest_factor_ = shrinkFactor(frame_width_, width_);
+      if (again && !frame_is_newest) {  // (the last encoding failed): newest_ stands as it is
+        newest_factor_ = shrinkFactor(newest_source_width_, width_);
         changed_.notify_all();
         continue;
       }
@@ -154,7 +154,6 @@ void JpegStream::run() {
         arrived = pending_arrived_;
         encoding_number_ = number;
         has_pending_ = false;
-        frame_width_ = frame.width;
       }
       factor = shrinkFactor(frame.width, width_);
     }
@@ -172,6 +171,7 @@ void JpegStream::run() {
     std::lock_guard lock(mutex_);
     newest_ = {std::move(shared), number, time, taken, arrived};
     newest_factor_ = factor;
+    newest_source_width_ = frame.width;
     ++stats_.encoded;
     stats_.encode_seconds += seconds;
     stats_.bytes += static_cast<long>(newest_.bytes->size());

@@ -53,7 +53,8 @@ class JpegStream {
   /// whole factor that keeps it at least that wide (shrinkFactor, shrinkByBlocks) before
   /// encoding; 0, or a width of at least the frame's, encodes frames as pushed. When that
   /// changes the factor and no newer frame is pushed, the newest one is encoded again for the
-  /// next reader (waitNewer returns no frame of another factor). Any thread.
+  /// next reader (waitNewer returns no frame of another factor, unless the last encoding
+  /// failed: then the newest encoded frame stands as it is). Any thread.
   void setWidth(int width);
   /// The newest encoded frame (number 0 when none yet). Any thread.
   JpegFrame newest() const;
@@ -71,13 +72,13 @@ class JpegStream {
  private:
   void run();
   bool encodeWanted() const;  // mutex_ held
-  bool newestStale() const;   // mutex_ held: newest_ is of another factor than width_ asks, none pending
+  bool newestStale() const;   // mutex_ held: newest_ is of another factor than width_ asks
   class Compressor;
   std::unique_ptr<Compressor> compressor_;
   int quality_;
   int width_ = 0;           // setWidth's (mutex_)
-  int frame_width_ = 0;     // the width of the frame the encoder took last
   int newest_factor_ = 1;   // the factor newest_ was shrunk by
+  int newest_source_width_ = 0;  // the width of the frame newest_ was encoded from
   bool background_;
   mutable std::mutex mutex_;
   std::condition_variable changed_;

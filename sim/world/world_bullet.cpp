@@ -26,7 +26,12 @@ std::size_t injectedManifolds(const SceneDesc& scene) {
 
 // A shape whose pair with another opens one manifold and one algorithm: not a compound of
 // convex parts, not a triangle mesh, not a soft body (each of those opens one per part touching).
-bool onePerPair(ShapeKind shape) { return shape <= ShapeKind::kConvexHull; }
+bool onePerPair(ShapeKind shape) {
+  static_assert(ShapeKind::kConvexHull < ShapeKind::kConvexDecomposition &&
+                    ShapeKind::kConvexDecomposition < ShapeKind::kConcaveMesh && ShapeKind::kConcaveMesh < ShapeKind::kSoftBox,
+                "the primitives and hulls come first in ShapeKind");
+  return shape <= ShapeKind::kConvexHull;
+}
 
 }  // namespace
 

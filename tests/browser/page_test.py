@@ -234,9 +234,8 @@ def test_a_narrower_page_reads_smaller_frames(ctx: Context) -> None:
               " return gf.stream.width === Math.ceil(i.clientWidth) && [i.naturalWidth, i.naturalHeight, gf.stream.width]; })()")
     resize(1000, 700)
     try:
-        ctx.page.wait_for(frames + " && document.querySelector('img#frame').naturalWidth < 1280",
-                          "the narrower page's frames")
-        narrow = ctx.page.evaluate(frames)
+        narrow = ctx.page.wait_for("document.querySelector('img#frame').naturalWidth < 1280 && " + frames,
+                                   "the narrower page's frames")
         assert 427 <= narrow[2] <= 640 and narrow[:2] == [640, 360], f"frames {narrow}, want 640 x 360 for a view 427..640 wide"
     finally:
         resize(1600, 900)
