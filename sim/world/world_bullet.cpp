@@ -42,7 +42,9 @@ btDefaultCollisionConstructionInfo collisionPools(const SceneDesc& scene) {
   }
   const std::size_t objects = scene.bodies.size() + scene.fingers.size();
   const std::size_t pairs = objects * (objects + 1) / 2;
-  info.m_defaultMaxPersistentManifoldPoolSize = static_cast<int>(2 * pairs + injectedManifolds(scene));
+  // (At least 64: Bullet's pool cannot be empty, and a scene without bodies or fingers would ask
+  // for none.)
+  info.m_defaultMaxPersistentManifoldPoolSize = static_cast<int>(std::max<std::size_t>(64, 2 * pairs + injectedManifolds(scene)));
   info.m_defaultMaxCollisionAlgorithmPoolSize = static_cast<int>(std::max<std::size_t>(256, 4 * pairs));
   return info;
 }

@@ -166,6 +166,17 @@ TEST(WorldAllocation, TheLargestPatchesTakeTheirManifoldsFromBulletsPools) {
   EXPECT_EQ(counted, 0);
 }
 
+// A scene without bodies or fingers still gets pools Bullet can make (it cannot make an empty
+// one), and a World of it steps.
+TEST(WorldAllocation, AnEmptySceneGetsPoolsBulletCanMake) {
+  const SceneDesc empty;
+  EXPECT_EQ(collisionPools(empty).m_defaultMaxPersistentManifoldPoolSize, 64);
+  EXPECT_EQ(collisionPools(empty).m_defaultMaxCollisionAlgorithmPoolSize, 256);
+  World w(empty);
+  for (int i = 0; i < 10; ++i) w.step(1e-3, {});
+  EXPECT_NEAR(w.time(), 0.01, 1e-12);
+}
+
 // Scenes whose bodies open a manifold per touching part (convex parts, triangle meshes, soft
 // bodies) keep Bullet's default pools.
 TEST(WorldAllocation, ScenesOfPartsKeepBulletsDefaultPools) {
