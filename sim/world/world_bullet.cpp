@@ -42,10 +42,14 @@ btDefaultCollisionConstructionInfo collisionPools(const SceneDesc& scene) {
   }
   const std::size_t objects = scene.bodies.size() + scene.fingers.size();
   const std::size_t pairs = objects * (objects + 1) / 2;
-  // (At least 64: Bullet's pool cannot be empty, and a scene without bodies or fingers would ask
-  // for none.)
-  info.m_defaultMaxPersistentManifoldPoolSize = static_cast<int>(std::max<std::size_t>(64, 2 * pairs + injectedManifolds(scene)));
-  info.m_defaultMaxCollisionAlgorithmPoolSize = static_cast<int>(std::max<std::size_t>(256, 4 * pairs));
+  // At least 64 (Bullet cannot make an empty pool, and a scene without bodies or fingers would
+  // ask for none), at most Bullet's default (the pairs grow with the square of the bodies).
+  const auto within = [&](std::size_t n, std::size_t least, int most) {
+    return static_cast<int>(std::clamp<std::size_t>(n, least, static_cast<std::size_t>(most)));
+  };
+  info.m_defaultMaxPersistentManifoldPoolSize =
+      within(2 * pairs + injectedManifolds(scene), 64, info.m_defaultMaxPersistentManifoldPoolSize);
+  info.m_defaultMaxCollisionAlgorithmPoolSize = within(4 * pairs, 256, info.m_defaultMaxCollisionAlgorithmPoolSize);
   return info;
 }
 

@@ -40,7 +40,7 @@ inline constexpr std::size_t kMaxPadFaces = 4096;
 inline constexpr int kMaxContactsPerFinger = 4;
 /// Bullet's pools sized for `scene` when all its bodies are primitives or convex hulls: manifolds
 /// for every contact its fingers can inject in a step and two for every pair of its bodies and
-/// proxies (at least 64), four algorithms per pair (at least 256). Bullet's default, 4096 of each, wrote 7.2 MB
+/// proxies (at least 64), four algorithms per pair (at least 256), neither above Bullet's default. Bullet's default, 4096 of each, wrote 7.2 MB
 /// per World when it was made, and stays for scenes with convex parts, triangle meshes or soft
 /// bodies (each part touching opens its own). Past these sizes Bullet takes from the heap.
 btDefaultCollisionConstructionInfo collisionPools(const SceneDesc& scene);

@@ -177,6 +177,17 @@ TEST(WorldAllocation, AnEmptySceneGetsPoolsBulletCanMake) {
   EXPECT_NEAR(w.time(), 0.01, 1e-12);
 }
 
+// Pools never grow past Bullet's default, however many bodies a scene has (the pairs grow with
+// their square): 100 spheres and two fingers would ask for 11 530 manifolds and 21 012 algorithms.
+TEST(WorldAllocation, ManyBodiesGetNoMoreThanBulletsDefaultPools) {
+  SceneDesc many;
+  many.bodies.resize(100);
+  for (BodyDesc& b : many.bodies) b.shape = ShapeKind::kSphere;
+  many.fingers.resize(2);
+  EXPECT_EQ(collisionPools(many).m_defaultMaxPersistentManifoldPoolSize, 4096);
+  EXPECT_EQ(collisionPools(many).m_defaultMaxCollisionAlgorithmPoolSize, 4096);
+}
+
 // Scenes whose bodies open a manifold per touching part (convex parts, triangle meshes, soft
 // bodies) keep Bullet's default pools.
 TEST(WorldAllocation, ScenesOfPartsKeepBulletsDefaultPools) {
