@@ -75,6 +75,7 @@ struct Job {
   std::string close_up_prefix;  // non-empty: close-ups instead of a frame
   std::unique_ptr<ChartSpec> chart;  // non-null: a chart to `chart_path` instead of a frame
   std::string chart_path;
+  bool release = false;  // give back the frames' GL resources (releaseFrames), then reply
   std::promise<std::vector<sim::SettingsCommand>> reply;
   bool wants_reply = false;
 };
@@ -323,6 +324,30 @@ struct RenderThread::Impl {
   bool background_priority = false;  // the render thread runs at nice kBackgroundNice
   std::thread thread;
 
+  // Queues a job set up by `fill` (under the lock; once the queue has room when `bounded`) and,
+  // with `reply`, waits until it is done and returns its commands. Throws the thread's error.
+  template <class Fill>
+  std::vector<sim::SettingsCommand> submit(Fill&& fill, bool bounded, bool reply) {
+    std::future<std::vector<sim::SettingsCommand>> done;
+    {
+      std::unique_lock lock(mutex);
+      if (bounded) changed.wait(lock, [&] { return queue.size() < kQueueDepth || !error.empty(); });
+      if (!error.empty()) throw GlError(error);
+      Job& job = queue.emplace_back();
+      fill(job);
+      job.wants_reply = reply;
+      if (reply) done = job.reply.get_future();
+      changed.notify_all();
+    }
+    if (!reply) return {};
+    try {
+      return done.get();
+    } catch (const std::future_error&) {  // the thread failed before it got to the job
+      std::lock_guard lock(mutex);
+      throw GlError(error.empty() ? "render thread stopped" : error);
+    }
+  }
+
   void fail(const std::string& what) {
     std::lock_guard lock(mutex);
     if (error.empty()) error = what;
@@ -347,6 +372,14 @@ struct RenderThread::Impl {
     return made;
   }
 
+  // The frames' GL buffers, layers and programs given back to the heap and the heap trimmed.
+  void releaseGpu(std::unique_ptr<Gpu>& gpu) {
+    if (!gpu) return;
+    pictures_reused += gpu->pictures_reused;
+    gpu.reset();
+    malloc_trim(0);
+  }
+
   void runOffline(std::unique_ptr<Gpu>& gpu) {
     for (;;) {
       Job job;
@@ -358,20 +391,21 @@ struct RenderThread::Impl {
         queue.pop_front();
         changed.notify_all();
       }
+      if (job.release) {
+        releaseGpu(gpu);
+        job.reply.set_value({});
+        continue;
+      }
       if (job.chart) {
         // A chart comes after the session's last frame: the frames' buffers, layers and
         // programs are given back before it is drawn in a context of its own, so its memory
         // does not add to theirs (docs/performance.md, "Memory").
-        if (gpu) {
-          pictures_reused += gpu->pictures_reused;
-          gpu.reset();
-          malloc_trim(0);
-        }
+        releaseGpu(gpu);
         writeChartPng(*job.chart, job.chart_path);
         continue;
       }
       // A new Gpu would not have the released one's overlay history, labels and layers.
-      if (!gpu) throw GlError("a frame or close-up was queued after the run's chart");
+      if (!gpu) throw GlError("a frame or close-up was queued after the frames were released (releaseFrames, a chart)");
       if (!job.close_up_prefix.empty()) {
         drawSideJob(*gpu, scene, job);
         continue;
@@ -445,6 +479,9 @@ struct RenderThread::Impl {
       fail(e.what());
     }
     if (gpu) pictures_reused += gpu->pictures_reused;
+    // Jobs left by a failure: their replies break, so a caller waiting on one throws the error.
+    std::lock_guard lock(mutex);
+    queue.clear();
   }
 };
 
@@ -477,45 +514,19 @@ RenderThread::~RenderThread() {
 }
 
 std::vector<sim::SettingsCommand> RenderThread::submitFrame(const sim::Snapshot& snapshot, bool wait_for_commands) {
-  Impl& r = *impl_;
-  std::future<std::vector<sim::SettingsCommand>> reply;
-  {
-    std::unique_lock lock(r.mutex);
-    r.changed.wait(lock, [&] { return r.queue.size() < kQueueDepth || !r.error.empty(); });
-    if (!r.error.empty()) throw GlError(r.error);
-    Job& job = r.queue.emplace_back();
-    job.snapshot = snapshot;
-    job.wants_reply = wait_for_commands;
-    if (wait_for_commands) reply = job.reply.get_future();
-    r.changed.notify_all();
-  }
-  if (!wait_for_commands) return {};
-  try {
-    return reply.get();
-  } catch (const std::future_error&) {  // the thread failed before drawing it
-    std::lock_guard lock(r.mutex);
-    throw GlError(r.error.empty() ? "render thread stopped" : r.error);
-  }
+  return impl_->submit([&](Job& job) { job.snapshot = snapshot; }, true, wait_for_commands);
 }
 
 void RenderThread::submitCloseUps(const sim::Snapshot& snapshot, const std::string& prefix) {
-  Impl& r = *impl_;
-  std::unique_lock lock(r.mutex);
-  if (!r.error.empty()) throw GlError(r.error);
-  Job& job = r.queue.emplace_back();
-  job.snapshot = snapshot;
-  job.close_up_prefix = prefix;
-  r.changed.notify_all();
+  impl_->submit([&](Job& job) { job.snapshot = snapshot, job.close_up_prefix = prefix; }, false, false);
+}
+
+void RenderThread::releaseFrames() {
+  if (!impl_->settings.realtime) impl_->submit([](Job& job) { job.release = true; }, false, true);
 }
 
 void RenderThread::submitChart(const ChartSpec& chart, const std::string& path) {
-  Impl& r = *impl_;
-  std::unique_lock lock(r.mutex);
-  if (!r.error.empty()) throw GlError(r.error);
-  Job& job = r.queue.emplace_back();
-  job.chart = std::make_unique<ChartSpec>(chart);
-  job.chart_path = path;
-  r.changed.notify_all();
+  impl_->submit([&](Job& job) { job.chart = std::make_unique<ChartSpec>(chart), job.chart_path = path; }, false, false);
 }
 
 sim::Snapshot& RenderThread::latestSlot() { return impl_->latest.back(); }

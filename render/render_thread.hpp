@@ -85,6 +85,11 @@ class RenderThread {
   void submitCloseUps(const sim::Snapshot& snapshot, const std::string& prefix);
   /// Queues a chart, written as the PNG `path` and as SVG beside it (`path` with .svg for .png).
   void submitChart(const ChartSpec& chart, const std::string& path);
+  /// Offline: waits until the queued frames and close-ups are drawn, then gives back the frames'
+  /// GL buffers, layers and programs, so that what the caller runs next (the force chart's
+  /// god-object rerun) takes their memory instead of adding to it. No frame or close-up may
+  /// follow; a chart may. Realtime: returns at once. Throws the thread's error.
+  void releaseFrames();
   /// Realtime: `fill(snapshot)` writes the latest state into the free slot of the triple
   /// buffer, which is then handed to the render thread (it draws the newest at its next frame).
   /// The slot is the caller's only inside `fill`. Never blocks; does not allocate once the

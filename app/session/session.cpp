@@ -475,6 +475,10 @@ void SessionRun::finishOutputs(const sim::LoopStats& stats) {
 }
 
 void SessionRun::finishFiles(const sim::LoopStats& stats) {
+  // The frames are done: their GL memory is given back first, so the files written below (the
+  // contact snapshots' JSON, the force chart's god-object rerun) take it rather than adding to
+  // the run's peak.
+  if (renderer_) finish([&] { renderer_->releaseFrames(); });
   if (trace_) {
     finish([&] { trace_->close(); });
     if (!trace_->sizeWarning().empty()) warnings_.push_back(trace_->sizeWarning());

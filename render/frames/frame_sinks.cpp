@@ -80,11 +80,11 @@ void PngSequenceWriter::run() {
     const auto start = Clock::now();
     char name[32];
     std::snprintf(name, sizeof name, "%06ld.png", index);
-    // The same pixels as the frame before: the same file, without encoding it again.
-    const bool repeated = !previous_png_.empty() && frame.width == previous_.width &&
-                          frame.height == previous_.height && frame.rgb == previous_.rgb;
+    // The same pixels as the frame before (the encoder's rows of it): the same file, without
+    // encoding it again.
+    const bool repeated = !previous_png_.empty() && encoder_.sameAsLast(frame);
     try {
-      if (!repeated) previous_png_ = encodePng(frame);
+      if (!repeated) previous_png_ = encoder_.encode(frame);
       writeFileAtomically((std::filesystem::path(folder_) / name).string(), previous_png_);
     } catch (const ImageError& e) {
       previous_png_.clear();
@@ -92,7 +92,6 @@ void PngSequenceWriter::run() {
       if (error_.empty()) error_ = e.what();
       changed_.notify_all();
     }
-    if (!repeated) std::swap(previous_, frame);  // keep what the bytes show; the older storage is spare
     std::lock_guard lock(mutex_);
     stats_.busy_seconds += secondsSince(start);
     stats_.bytes += static_cast<long>(previous_png_.size());

@@ -56,8 +56,8 @@ class PngSequenceWriter {
   std::condition_variable changed_;
   std::deque<Image> queue_;
   std::vector<Image> spares_;  // written frames' storage, at most depth_ + 1
-  // Writer thread only: the last frame written and its file's bytes.
-  Image previous_;
+  // Writer thread only: the encoder (which keeps the last frame's rows) and the last file's bytes.
+  PngEncoder encoder_;
   std::vector<std::uint8_t> previous_png_;
   bool closing_ = false;
   std::string error_;

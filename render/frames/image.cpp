@@ -3,6 +3,7 @@
 #include <libdeflate.h>
 
 #include <algorithm>
+#include <cstring>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -47,25 +48,21 @@ void filterRows(const Image& image, std::vector<std::uint8_t>& rows) {
 
 }  // namespace
 
-std::vector<std::uint8_t> encodePng(const Image& image, int zlib_level) {
-  // Scratch kept per thread: a frame's buffers are megabytes, and clearing fresh ones each
-  // frame cost more than a tenth of the encoding.
-  thread_local std::vector<std::uint8_t> rows, packed;
-  filterRows(image, rows);
-  // One compressor per thread and level: allocating one costs more than compressing a frame.
-  struct Free {
-    void operator()(libdeflate_compressor* c) const { libdeflate_free_compressor(c); }
-  };
-  thread_local std::unique_ptr<libdeflate_compressor, Free> compressor;
-  thread_local int compressor_level = -1;
-  if (!compressor || compressor_level != zlib_level) {
-    compressor.reset(libdeflate_alloc_compressor(std::clamp(zlib_level, 0, 12)));
-    compressor_level = zlib_level;
-    if (!compressor) throw ImageError("cannot allocate a deflate compressor");
-  }
-  packed.resize(libdeflate_zlib_compress_bound(compressor.get(), rows.size()));
-  const std::size_t packed_size =
-      libdeflate_zlib_compress(compressor.get(), rows.data(), rows.size(), packed.data(), packed.size());
+PngEncoder::PngEncoder(int zlib_level)
+    : level_(zlib_level), compressor_(libdeflate_alloc_compressor(std::clamp(zlib_level, 0, 12))) {
+  if (!compressor_) throw ImageError("cannot allocate a deflate compressor");
+}
+
+PngEncoder::~PngEncoder() { libdeflate_free_compressor(compressor_); }
+
+std::vector<std::uint8_t> PngEncoder::encode(const Image& image) {
+  rows_width_ = rows_height_ = 0;  // until the rows hold this image and it compressed
+  filterRows(image, rows_);
+  // The output's room, left uninitialized: a frame compresses to a seventh of its bound, and
+  // only the pages written are ever faulted in (a value-initialized buffer would hold all of it).
+  const std::size_t bound = libdeflate_zlib_compress_bound(compressor_, rows_.size());
+  if (packed_room_ < bound) packed_.reset(new std::uint8_t[bound]), packed_room_ = bound;
+  const std::size_t packed_size = libdeflate_zlib_compress(compressor_, rows_.data(), rows_.size(), packed_.get(), bound);
   if (packed_size == 0) throw ImageError("could not compress a frame");
   std::vector<std::uint8_t> out = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n'};
   out.reserve(out.size() + 3 * 12 + 13 + packed_size);
@@ -74,9 +71,29 @@ std::vector<std::uint8_t> encodePng(const Image& image, int zlib_level) {
   appendU32(header, static_cast<std::uint32_t>(image.height));
   header.insert(header.end(), {8, 2, 0, 0, 0});  // 8-bit RGB, deflate, adaptive, no interlace
   appendChunk(out, "IHDR", header.data(), header.size());
-  appendChunk(out, "IDAT", packed.data(), packed_size);
+  appendChunk(out, "IDAT", packed_.get(), packed_size);
   appendChunk(out, "IEND", nullptr, 0);
+  rows_width_ = image.width, rows_height_ = image.height;
   return out;
+}
+
+bool PngEncoder::sameAsLast(const Image& image) const {
+  if (rows_width_ == 0 || image.width != rows_width_ || image.height != rows_height_) return false;
+  const std::size_t stride = 3 * static_cast<std::size_t>(image.width);
+  if (image.rgb.size() != stride * static_cast<std::size_t>(image.height)) return false;
+  for (int y = 0; y < image.height; ++y) {
+    const std::uint8_t* row = rows_.data() + static_cast<std::size_t>(y) * (stride + 1) + 1;
+    if (std::memcmp(row, image.rgb.data() + static_cast<std::size_t>(y) * stride, stride) != 0) return false;
+  }
+  return true;
+}
+
+std::vector<std::uint8_t> encodePng(const Image& image, int zlib_level) {
+  // One encoder per thread and level, its scratch kept: allocating a compressor costs more than
+  // compressing a frame, and clearing fresh megabytes each frame more than a tenth of it.
+  thread_local std::unique_ptr<PngEncoder> encoder;
+  if (!encoder || encoder->level() != zlib_level) encoder = std::make_unique<PngEncoder>(zlib_level);
+  return encoder->encode(image);
 }
 
 void writePng(const std::string& path, const Image& image, int zlib_level) {

@@ -124,9 +124,11 @@ bool fail(std::vector<Vec3>& path_points, std::size_t mark) {
 
 }  // namespace
 
-void WalkCache::reserve() {
-  paths.resize(kMaxSgo);
-  crossings.resize(static_cast<std::size_t>(kMaxSgo) * kWarmCrossingsPerSgo);
+void WalkCache::reserve(int radials) {
+  const auto n = static_cast<std::size_t>(std::clamp(radials, 0, kMaxSgo));
+  if (paths.size() >= n) return;
+  paths.resize(n);
+  crossings.resize(n * kWarmCrossingsPerSgo);
 }
 
 StartPlane startPlane(const Mesh& m, int f, double side) {
@@ -135,13 +137,13 @@ StartPlane startPlane(const Mesh& m, int f, double side) {
 }
 
 void keyWalkCache(const Mesh* mesh, int n_sgo, const SurfacePoint& hit, bool was_valid, WalkCache& cache) {
-  if (cache.paths.size() < static_cast<std::size_t>(kMaxSgo)) cache.reserve();
+  if (cache.paths.size() < static_cast<std::size_t>(n_sgo)) cache.reserve(n_sgo);  // sized before a step, normally
   const bool same = was_valid && cache.mesh == mesh && cache.n_sgo == n_sgo && cache.hit_face == hit.face &&
                     cache.feature == hit.feature && cache.feature_index == hit.feature_index;
   if (!same) {
     cache.mesh = mesh, cache.n_sgo = n_sgo, cache.hit_face = hit.face;
     cache.feature = hit.feature, cache.feature_index = hit.feature_index;
-    for (int i = 0; i < kMaxSgo; ++i) uncachePath(cache, i);
+    for (std::size_t i = 0; i < cache.paths.size(); ++i) uncachePath(cache, static_cast<int>(i));
   }
   cache.plane_face = -1;
   cache.valid = true;

@@ -69,7 +69,8 @@ struct StartPlane {
 };
 
 /// What one finger's contact with one body carries between steps for its walks. Storage is
-/// sized once by reserve(); after that nothing allocates.
+/// sized by reserve() for the most radial vectors the finger will use; after that nothing
+/// allocates (a patch with more radial vectors sizes it again, once).
 struct WalkCache {
   bool valid = false;           ///< holds the paths of a patch computed with the key below
   const Mesh* mesh = nullptr;   ///< key: the mesh walked,
@@ -87,8 +88,9 @@ struct WalkCache {
   long warm_walks = 0;  ///< walks carried from the last step (cumulative)
   long slack_walks = 0;  ///< of which carried within their slack, unchecked (cumulative)
   long cold_walks = 0;  ///< walks done from the contact (cumulative)
-  /// Sizes the storage for kMaxSgo radial vectors. Allocates (once).
-  void reserve();
+  /// Sizes the storage for `radials` radial vectors (at most kMaxSgo), when it holds fewer.
+  /// Allocates then.
+  void reserve(int radials);
 };
 
 /// The plane of face f with winding sign `side`. Any thread; no allocation.
@@ -117,7 +119,7 @@ struct WalkStart {
 
 /// Keys `cache` to a patch on `mesh` with n_sgo radial vectors and contact `hit` (face and
 /// feature): its paths stay if `was_valid` and the key is the same, else they start uncached.
-/// Sizes its storage on first use (allocates once).
+/// Sizes its storage when it holds fewer than n_sgo radial vectors (allocates then).
 void keyWalkCache(const Mesh* mesh, int n_sgo, const SurfacePoint& hit, bool was_valid, WalkCache& cache);
 
 /// Radial i's path is not carried (nor its crossings pending) until a walk records it again.

@@ -302,6 +302,7 @@ void World::setPatchSettings(int finger, const PatchSettings& settings) {
   std::optional<FieldError> e = validateModelChange(impl_->desc.fingers[finger].patch.model, settings.model);
   if (!e) e = validatePatch(settings);
   if (e) throw DescriptionError("finger '" + impl_->desc.fingers[finger].name + "'", *e);
+  impl_->sizeWalks(impl_->fingers[finger], settings.n_sgo);
   impl_->applySettings(impl_->fingers[finger], settings);
 }
 

@@ -117,9 +117,13 @@ void World::Impl::addFinger(int index, const FingerDesc& d) {
   Finger& f = fingers[index];
   applySettings(f, d.patch);
   f.device = d.device.sample(0.0);
-  // Warm-started walks: every cache sized now, so no step allocates for them.
-  for (FingerContact& c : f.contacts) c.walks.reserve();
-  for (WalkCache& w : f.memory_walks) w.reserve();
+  // Warm-started walks: every cache sized now for the most radial vectors the finger's scripted
+  // settings use, so no step allocates for them (setPatchSettings sizes them for a new n_sgo).
+  int n_sgo = d.patch.n_sgo;
+  for (const PatchChange& c : desc.changes) {
+    if (c.finger == index) n_sgo = std::max(n_sgo, c.patch.n_sgo);
+  }
+  sizeWalks(f, n_sgo);
   // A soft pad's proxy is its bone, inside the skin by the pad's thickness.
   const bool pad = d.patch.model == ContactModel::kFemPad;
   f.shape = std::make_unique<btSphereShape>(pad ? d.proxy.radius - d.pad.thickness : d.proxy.radius);
@@ -139,6 +143,11 @@ void World::Impl::addFinger(int index, const FingerDesc& d) {
 }
 
 // The finger's settings from now on: the scene's effects applied and its model chosen, once.
+void World::Impl::sizeWalks(Finger& f, int n_sgo) {
+  for (FingerContact& c : f.contacts) c.walks.reserve(n_sgo);
+  for (WalkCache& w : f.memory_walks) w.reserve(n_sgo);
+}
+
 void World::Impl::applySettings(Finger& f, const PatchSettings& patch) const {
   f.given = patch;
   f.settings = effectiveSettings(patch, desc.effects, desc.world.contact_solver);

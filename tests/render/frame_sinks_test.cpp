@@ -48,5 +48,26 @@ TEST(PngSequence, EqualFramesRepeatTheFileAndOthersAreEncoded) {
   for (const auto& entry : fs::directory_iterator(folder)) EXPECT_EQ(entry.path().extension(), ".png");
 }
 
+// A frame one byte away from the one before is encoded, not repeated.
+TEST(PngSequence, AFrameOneByteOffIsEncoded) {
+  const fs::path folder = gf::test::scratchRoot() / "gf_png_sequence_one_byte";
+  fs::remove_all(folder);
+  const render::Image a = pattern(0);
+  render::Image near = a;
+  near.rgb[near.rgb.size() / 2] ^= 1;
+  render::SinkStats stats;
+  {
+    render::PngSequenceWriter writer(folder.string(), 1);
+    writer.push(render::Image(a));
+    writer.push(render::Image(near));
+    writer.push(render::Image(near));
+    stats = writer.finish();
+  }
+  EXPECT_EQ(stats.frames, 3);
+  EXPECT_EQ(stats.repeated, 1);  // the third only
+  EXPECT_EQ(render::readPng((folder / "000001.png").string()).rgb, near.rgb);
+  EXPECT_EQ(fileBytes(folder / "000002.png"), fileBytes(folder / "000001.png"));
+}
+
 }  // namespace
 }  // namespace gf

@@ -237,5 +237,32 @@ TEST_F(SamePicture, AReusedPictureGivesTheFrameAStillGives) {
   }
 }
 
+// releaseFrames returns once the frames queued before it are drawn, keeps the count of reused
+// pictures, and no frame may follow: one submitted after it fails with an error rather than
+// waiting for a reply that never comes.
+TEST_F(SamePicture, ReleasedFramesAreDrawnFirstAndNoneMayFollow) {
+  render::FrameOutputSettings settings = app::frameSettings(session_, {});
+  settings.width = 320;
+  settings.height = 180;
+  struct Count : render::FrameTap {
+    int frames = 0;
+    void frame(const render::Image&, const sim::Snapshot&, float) noexcept override { ++frames; }
+  } tap;
+  settings.tap = &tap;
+  std::vector<sim::Snapshot> states(3, snapshot_);
+  for (int k = 0; k < 3; ++k) states[k].time = 4.0 + k / 60.0;
+  render::RenderThread thread(session_.scene, settings);
+  for (const sim::Snapshot& s : states) thread.submitFrame(s, false);
+  thread.releaseFrames();
+  EXPECT_EQ(tap.frames, 3);
+  EXPECT_THROW(thread.submitFrame(states.back(), true), render::GlError);
+  try {
+    thread.finish();
+    FAIL() << "finish() did not report the frame after the release";
+  } catch (const render::GlError& e) {
+    EXPECT_NE(std::string(e.what()).find("released"), std::string::npos) << e.what();
+  }
+}
+
 }  // namespace
 }  // namespace gf

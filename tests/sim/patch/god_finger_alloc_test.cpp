@@ -166,6 +166,52 @@ TEST(WorldAllocation, TheLargestPatchesTakeTheirManifoldsFromBulletsPools) {
   EXPECT_EQ(counted, 0);
 }
 
+// The walk caches are sized for the n_SGO a finger uses (kWarmCrossingsPerSgo crossings each),
+// not for kMaxSgo: a live change to more radial vectors sizes them again, between steps, and a
+// scripted one was sized for when the World was made; either way the steps from the change on
+// allocate nothing and every radial vector is walked. (The aggregate solver: with the points
+// solver Bullet's own arrays grow once for the points a larger patch adds.)
+long allocationsAfterGrowingNSgo(bool scripted) {
+  sim::SceneDesc scene =
+      test_support::TestContext::load("fig8-pinch-oscillation", 8, {"world.contact_solver=aggregate"});
+  if (scripted) {
+    for (int f = 0; f < 2; ++f) {
+      PatchChange change{1.2, f, scene.fingers[static_cast<std::size_t>(f)].patch};
+      change.patch.n_sgo = kMaxSgo;
+      scene.changes.push_back(change);
+    }
+  }
+  World w(scene);
+  std::vector<DeviceTrack> tracks = deviceTracks(scene);
+  std::vector<DeviceSample> samples(tracks.size());
+  const auto step = [&] {
+    for (std::size_t f = 0; f < tracks.size(); ++f) samples[f] = tracks[f].sample(w.time());
+    w.step(1e-3, samples);
+  };
+  while (w.time() < 1.1) step();  // grasped with 8 radial vectors a finger
+  EXPECT_EQ(w.sgoCount(0), 8);
+  if (!scripted) {
+    for (int f = 0; f < 2; ++f) {
+      PatchSettings bigger = scene.fingers[static_cast<std::size_t>(f)].patch;
+      bigger.n_sgo = kMaxSgo;
+      w.setPatchSettings(f, bigger);
+    }
+  }
+  btAlignedAllocSetCustom(countedAlloc, std::free);
+  const long before = gf::test::allocations();
+  for (int i = 0; i < 300; ++i) step();  // past the scripted change at 1.2 s
+  const long counted = gf::test::allocations() - before;
+  btAlignedAllocSetCustom(std::malloc, std::free);
+  EXPECT_EQ(w.sgoCount(0), kMaxSgo);
+  EXPECT_EQ(w.sgoCount(1), kMaxSgo);
+  return counted;
+}
+
+TEST(WorldAllocation, WalkCachesFollowAGrowingNSgoWithoutAllocatingInASteps) {
+  EXPECT_EQ(allocationsAfterGrowingNSgo(false), 0);
+  EXPECT_EQ(allocationsAfterGrowingNSgo(true), 0);
+}
+
 // A scene without bodies or fingers still gets pools Bullet can make (it cannot make an empty
 // one), and a World of it steps.
 TEST(WorldAllocation, AnEmptySceneGetsPoolsBulletCanMake) {
