@@ -333,6 +333,7 @@ struct RenderThread::Impl {
       std::unique_lock lock(mutex);
       if (bounded) changed.wait(lock, [&] { return queue.size() < kQueueDepth || !error.empty(); });
       if (!error.empty()) throw GlError(error);
+      if (closing) throw GlError("the render thread has finished");
       Job& job = queue.emplace_back();
       fill(job);
       job.wants_reply = reply;

@@ -321,6 +321,8 @@ void SessionRun::prepareOutputs() {
   if (!options_.video_path.empty()) requireVideoPath(options_.video_path);
   warnings_ = requestWarnings(session_, options_);
   world_.emplace(scene_);
+  // Settings changed live (the overlay, the browser) reach a realtime World on its haptic thread.
+  if (options_.realtime) world_->sizeForLiveSettings();
   addOverlapWarnings(*world_, warnings_);
   for (const std::string& w : warnings_) std::fprintf(stderr, "%s: warning: %s\n", scene_.name.c_str(), w.c_str());
   pending_ = session_.record.contact_times;

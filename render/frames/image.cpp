@@ -77,6 +77,8 @@ std::vector<std::uint8_t> PngEncoder::encode(const Image& image) {
   return out;
 }
 
+// The rows are filter type 0 (filterRows): each holds its pixels as they are, after its filter
+// byte. With another filter this would have to undo it.
 bool PngEncoder::sameAsLast(const Image& image) const {
   if (rows_width_ == 0 || image.width != rows_width_ || image.height != rows_height_) return false;
   const std::size_t stride = 3 * static_cast<std::size_t>(image.width);

@@ -306,6 +306,11 @@ void World::setPatchSettings(int finger, const PatchSettings& settings) {
   impl_->applySettings(impl_->fingers[finger], settings);
 }
 
+void World::sizeForLiveSettings() {
+  GF_ASSERT_OWNER();
+  for (Impl::Finger& f : impl_->fingers) Impl::sizeWalks(f, kMaxSgo);
+}
+
 void World::checkWarmWalks(bool on) {
   GF_ASSERT_OWNER();
   impl_->check_walks = on;

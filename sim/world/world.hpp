@@ -135,7 +135,12 @@ class World {
   void applyTorqueImpulse(int body, const Vec3& impulse);
   /// Sets the god-finger settings of finger i from the next step on (n_sgo 0: god-object).
   /// Throws DescriptionError naming the finger and the first setting that is not legal.
+  /// Allocates when n_sgo grows past what the finger was sized for (sizeForLiveSettings).
   void setPatchSettings(int finger, const PatchSettings& settings);
+  /// Sizes every finger's stores for the largest patch a live setting may ask for (kMaxSgo
+  /// radial vectors), so that setPatchSettings on a realtime haptic thread allocates nothing. A
+  /// World is otherwise sized for the n_SGO its scene and scripted changes use.
+  void sizeForLiveSettings();
   /// Test hook: from the next step on, every patch is also computed from scratch (no warm-
   /// started walk) and compared with the one used (counters().walk_checks, walk_check_error).
   /// Owner thread; does not allocate per step.

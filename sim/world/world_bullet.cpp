@@ -142,12 +142,12 @@ void World::Impl::addFinger(int index, const FingerDesc& d) {
   if (pad) addPad(f, d);
 }
 
-// The finger's settings from now on: the scene's effects applied and its model chosen, once.
 void World::Impl::sizeWalks(Finger& f, int n_sgo) {
   for (FingerContact& c : f.contacts) c.walks.reserve(n_sgo);
   for (WalkCache& w : f.memory_walks) w.reserve(n_sgo);
 }
 
+// The finger's settings from now on: the scene's effects applied and its model chosen, once.
 void World::Impl::applySettings(Finger& f, const PatchSettings& patch) const {
   f.given = patch;
   f.settings = effectiveSettings(patch, desc.effects, desc.world.contact_solver);

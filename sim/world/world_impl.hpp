@@ -168,8 +168,9 @@ struct World::Impl final : SolveHooks {
   void afterSolve() override;   ///< remembers the impulses, releases injected manifolds
   /// Keeps the deepest point of a proxy's manifold as its finger's contact with that body.
   void gatherProxyManifold(btPersistentManifold& m, const btCollisionObject* proxy);
+  /// Every walk cache of f sized for n_sgo radial vectors (allocates when they grow).
+  static void sizeWalks(Finger& f, int n_sgo);
   /// One contact: its record and its patch if the finger's model wants one (rows: beforeSolve).
-  static void sizeWalks(Finger& f, int n_sgo);  ///< every walk cache of f for n_sgo radial vectors
   void handleContact(Finger& f, FingerContact& c);
   void recordContact(const Finger& f, const ContactMemory* mem, FingerContact& c) const;
   void computeContactPatch(const Finger& f, FingerContact& c, const ContactMemory* mem);

@@ -169,9 +169,10 @@ TEST(WorldAllocation, TheLargestPatchesTakeTheirManifoldsFromBulletsPools) {
 // The walk caches are sized for the n_SGO a finger uses (kWarmCrossingsPerSgo crossings each),
 // not for kMaxSgo: a live change to more radial vectors sizes them again, between steps, and a
 // scripted one was sized for when the World was made; either way the steps from the change on
-// allocate nothing and every radial vector is walked. (The aggregate solver: with the points
-// solver Bullet's own arrays grow once for the points a larger patch adds.)
-long allocationsAfterGrowingNSgo(bool scripted) {
+// allocate nothing and every radial vector is walked; a realtime session's World is sized for
+// kMaxSgo up front (sizeForLiveSettings), so the call allocates nothing either. (The aggregate
+// solver: with the points solver Bullet's own arrays grow once for the points a larger patch adds.)
+long allocationsAfterGrowingNSgo(bool scripted, bool sized_for_live = false) {
   sim::SceneDesc scene =
       test_support::TestContext::load("fig8-pinch-oscillation", 8, {"world.contact_solver=aggregate"});
   if (scripted) {
@@ -182,6 +183,7 @@ long allocationsAfterGrowingNSgo(bool scripted) {
     }
   }
   World w(scene);
+  if (sized_for_live) w.sizeForLiveSettings();
   std::vector<DeviceTrack> tracks = deviceTracks(scene);
   std::vector<DeviceSample> samples(tracks.size());
   const auto step = [&] {
@@ -190,15 +192,17 @@ long allocationsAfterGrowingNSgo(bool scripted) {
   };
   while (w.time() < 1.1) step();  // grasped with 8 radial vectors a finger
   EXPECT_EQ(w.sgoCount(0), 8);
-  if (!scripted) {
+  const auto grow = [&] {
     for (int f = 0; f < 2; ++f) {
       PatchSettings bigger = scene.fingers[static_cast<std::size_t>(f)].patch;
       bigger.n_sgo = kMaxSgo;
       w.setPatchSettings(f, bigger);
     }
-  }
+  };
+  if (!scripted && !sized_for_live) grow();
   btAlignedAllocSetCustom(countedAlloc, std::free);
   const long before = gf::test::allocations();
+  if (sized_for_live) grow();  // as a realtime haptic thread applies a setting from the browser
   for (int i = 0; i < 300; ++i) step();  // past the scripted change at 1.2 s
   const long counted = gf::test::allocations() - before;
   btAlignedAllocSetCustom(std::malloc, std::free);
@@ -210,6 +214,12 @@ long allocationsAfterGrowingNSgo(bool scripted) {
 TEST(WorldAllocation, WalkCachesFollowAGrowingNSgoWithoutAllocatingInASteps) {
   EXPECT_EQ(allocationsAfterGrowingNSgo(false), 0);
   EXPECT_EQ(allocationsAfterGrowingNSgo(true), 0);
+}
+
+// A World sized for live settings (a realtime session's) takes a larger n_SGO from
+// setPatchSettings without allocating, in the call as in the steps after it.
+TEST(WorldAllocation, AWorldSizedForLiveSettingsGrowsNSgoWithoutAllocating) {
+  EXPECT_EQ(allocationsAfterGrowingNSgo(false, true), 0);
 }
 
 // A scene without bodies or fingers still gets pools Bullet can make (it cannot make an empty
