@@ -59,7 +59,7 @@ std::vector<std::uint8_t> PngEncoder::encode(const Image& image) {
   rows_width_ = rows_height_ = 0;  // until the rows hold this image and it compressed
   filterRows(image, rows_);
   // The output's room, left uninitialized: a frame compresses to a seventh of its bound, and
-  // only the pages written are ever faulted in (a value-initialized buffer would hold all of it).
+  // zeroing it wrote all of it (pages the heap had not used before stay unused).
   const std::size_t bound = libdeflate_zlib_compress_bound(compressor_, rows_.size());
   if (packed_room_ < bound) packed_.reset(new std::uint8_t[bound]), packed_room_ = bound;
   const std::size_t packed_size = libdeflate_zlib_compress(compressor_, rows_.data(), rows_.size(), packed_.get(), bound);
