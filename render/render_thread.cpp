@@ -11,6 +11,7 @@
 #include <future>
 #include <mutex>
 #include <thread>
+#include <utility>
 
 #include <malloc.h>
 #include <pthread.h>
@@ -27,6 +28,7 @@
 #include "render/overlay/labels.hpp"
 #include "render/overlay/layout.hpp"
 #include "render/state/same_picture.hpp"
+#include "render/state/triple_buffer.hpp"
 #include "render/state/view_layers.hpp"
 #include "sim/assert.hpp"
 
@@ -73,44 +75,12 @@ namespace {
 struct Job {
   sim::Snapshot snapshot;
   std::string close_up_prefix;  // non-empty: close-ups instead of a frame
+  RenderSettings close_up_scene;  // a deferred close-up's: the scene's switches when it came
   std::unique_ptr<ChartSpec> chart;  // non-null: a chart to `chart_path` instead of a frame
   std::string chart_path;
   bool release = false;  // give back the frames' GL resources (releaseFrames), then reply
   std::promise<std::vector<sim::SettingsCommand>> reply;
   bool wants_reply = false;
-};
-
-// Latest-value handoff: the writer fills `back`, then swaps it with `middle`; the reader swaps
-// `middle` with `front` when it holds something new. Neither side ever waits. One writer
-// thread and one reader thread (asserted for the writer).
-class TripleBuffer {
- public:
-  sim::Snapshot& back() {
-    GF_ASSERT(writtenHere() && "one thread (the haptic thread) publishes realtime snapshots");
-    return slots_[back_];
-  }
-  void publish() {
-    GF_ASSERT(writtenHere() && "one thread (the haptic thread) publishes realtime snapshots");
-    back_ = middle_.exchange(back_ | kFresh) & kIndex;
-  }
-  bool update() {
-    if (!(middle_.load() & kFresh)) return false;
-    front_ = middle_.exchange(front_) & kIndex;
-    return true;
-  }
-  const sim::Snapshot& front() const { return slots_[front_]; }
-
- private:
-  // The first caller becomes the writer.
-  bool writtenHere() {
-    if (writer_ == std::thread::id()) writer_ = std::this_thread::get_id();
-    return writer_ == std::this_thread::get_id();
-  }
-  static constexpr int kFresh = 4, kIndex = 3;
-  sim::Snapshot slots_[3];
-  int back_ = 0, front_ = 1;
-  std::atomic<int> middle_{2};
-  std::thread::id writer_;
 };
 
 // Everything GL, created and destroyed on the render thread. The context is the first member:
@@ -270,11 +240,8 @@ void drawCloseUps(Gpu& gpu, const sim::SceneDesc& desc, const sim::Snapshot& sna
 
 // Close-ups and charts: work that is not a frame of the stream.
 void drawSideJob(Gpu& gpu, const sim::SceneDesc& desc, const Job& job) {
-  if (job.chart) {
-    drawChartFile(*job.chart, job.chart_path);
-  } else {
-    drawCloseUps(gpu, desc, job.snapshot, job.close_up_prefix);
-  }
+  if (job.chart) return drawChartFile(*job.chart, job.chart_path);
+  drawCloseUps(gpu, desc, job.snapshot, job.close_up_prefix);
 }
 
 }  // namespace
@@ -303,6 +270,7 @@ struct RenderThread::Impl {
     ~Wake() { sem_destroy(&sem); }
   } wake;
   long hurried = 0;
+  std::vector<Job> deferred;  // offline close-ups waiting for the frames' memory (defersCloseUps)
 
   // Sleeps until `t` or a post to `wake`; true when woken by a post (all taken).
   bool sleepUntil(Clock::time_point t) {
@@ -373,11 +341,31 @@ struct RenderThread::Impl {
     return made;
   }
 
-  // The frames' GL buffers, layers and programs given back to the heap and the heap trimmed.
+  // The frames' GL objects given back, the heap trimmed; then the close-ups deferred meanwhile.
   void releaseGpu(std::unique_ptr<Gpu>& gpu) {
     if (!gpu) return;
     pictures_reused += gpu->pictures_reused;
     gpu.reset();
+    malloc_trim(0);
+    drawDeferredCloseUps();
+  }
+
+  // An offline run drawing frames keeps its close-ups until the frames' GL memory is given back,
+  // then draws them with a context sized for them: drawn among the frames, their framebuffer,
+  // labels, layer and shader variants stayed in the frames' heap (docs/performance.md, "Memory").
+  bool defersCloseUps() const { return !settings.realtime && (png || video || settings.tap); }
+  void drawDeferredCloseUps() {
+    if (deferred.empty()) return;
+    const std::vector<Job> jobs = std::exchange(deferred, {});
+    FrameOutputSettings s = settings;
+    s.width = s.height = settings.close_up_px;
+    s.overlay = s.patch_insets = s.time_stamp = false;
+    auto side = std::make_unique<Gpu>(scene, s);
+    for (const Job& job : jobs) {
+      side->scene.setSettings(job.close_up_scene);
+      drawCloseUps(*side, scene, job.snapshot, job.close_up_prefix);
+    }
+    side.reset();
     malloc_trim(0);
   }
 
@@ -387,7 +375,7 @@ struct RenderThread::Impl {
       {
         std::unique_lock lock(mutex);
         changed.wait(lock, [&] { return !queue.empty() || closing; });
-        if (queue.empty()) return;
+        if (queue.empty()) break;
         job = std::move(queue.front());
         queue.pop_front();
         changed.notify_all();
@@ -408,12 +396,18 @@ struct RenderThread::Impl {
       // A new Gpu would not have the released one's overlay history, labels and layers.
       if (!gpu) throw GlError("a frame or close-up was queued after the frames were released (releaseFrames, a chart)");
       if (!job.close_up_prefix.empty()) {
-        drawSideJob(*gpu, scene, job);
+        if (!defersCloseUps()) {
+          drawSideJob(*gpu, scene, job);
+        } else {
+          job.close_up_scene = gpu->scene.settings();
+          deferred.push_back(std::move(job));
+        }
         continue;
       }
       std::vector<sim::SettingsCommand> made = drawFrame(*gpu, job.snapshot);
       if (job.wants_reply) job.reply.set_value(std::move(made));
     }
+    releaseGpu(gpu);  // finished without releaseFrames: the deferred close-ups are drawn still
   }
 
   void runRealtime(Gpu& gpu) {
@@ -478,8 +472,12 @@ struct RenderThread::Impl {
       }
     } catch (const std::exception& e) {
       fail(e.what());
+      try {  // the close-ups of a run whose frames failed (a full disk) are drawn still
+        releaseGpu(gpu);
+      } catch (const std::exception&) {
+      }
     }
-    if (gpu) pictures_reused += gpu->pictures_reused;
+    if (gpu) pictures_reused += gpu->pictures_reused;  // realtime
     // Jobs left by a failure: their replies break, so a caller waiting on one throws the error.
     std::lock_guard lock(mutex);
     queue.clear();

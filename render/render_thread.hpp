@@ -81,14 +81,16 @@ class RenderThread {
   /// `wait_for_commands`, waits until it is drawn and returns the overlay's settings changes,
   /// so scripted input lands on the same haptic step in every run. Throws the thread's error.
   std::vector<sim::SettingsCommand> submitFrame(const sim::Snapshot& snapshot, bool wait_for_commands);
-  /// Queues close-ups of every contact in `snapshot`, written as `<prefix>-<finger>.png`.
+  /// Queues close-ups of every contact in `snapshot`, written as `<prefix>-<finger>.png`. An
+  /// offline run with frames draws them when the frames' GL memory is given back (releaseFrames,
+  /// a chart, finish()), with the scene's switches of the moment they were queued.
   void submitCloseUps(const sim::Snapshot& snapshot, const std::string& prefix);
   /// Queues a chart, written as the PNG `path` and as SVG beside it (`path` with .svg for .png).
   void submitChart(const ChartSpec& chart, const std::string& path);
-  /// Offline: waits until the queued frames and close-ups are drawn, then gives back the frames'
-  /// GL buffers, layers and programs, so that what the caller runs next (the force chart's
-  /// god-object rerun) takes their memory instead of adding to it. No frame or close-up may
-  /// follow; a chart may. Realtime: returns at once. Throws the thread's error.
+  /// Offline: waits until the queued frames are drawn, gives back the frames' GL buffers, layers
+  /// and programs, so that what the caller runs next (the force chart's god-object rerun) takes
+  /// their memory instead of adding to it, and draws the close-ups kept until then. No frame or
+  /// close-up may follow; a chart may. Realtime: returns at once. Throws the thread's error.
   void releaseFrames();
   /// Realtime: `fill(snapshot)` writes the latest state into the free slot of the triple
   /// buffer, which is then handed to the render thread (it draws the newest at its next frame).

@@ -12,9 +12,16 @@
 
 namespace gf::app {
 
+/// Rows a realtime run's ring holds: about 8 s of a 1 kHz run, a disk stalled that long.
+inline constexpr std::size_t kRealtimeRingRows = 8192;
+/// Rows an offline run's ring holds: its steps wait for the writer when it is a ring behind, so
+/// the ring only spans the writer's naps (10 ms) at an offline run's pace (0.37 MB for fig8's
+/// 45 columns against 2.9 MB).
+inline constexpr std::size_t kOfflineRingRows = 1024;
+
 /// How a RowFile writes, beyond its path and columns.
 struct RowFileOptions {
-  std::size_t ring_rows = 8192;  ///< rows the ring holds (8192: about 8 s of a 1 kHz run)
+  std::size_t ring_rows = kRealtimeRingRows;  ///< rows the ring holds
   /// The writer thread calls this once, when it has formatted `watch_rows` rows, with the rows and
   /// the bytes of text they made (header included): a trace projecting its size. Empty: never.
   std::function<void(std::size_t rows, std::uint64_t bytes)> on_rows;

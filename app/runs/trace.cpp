@@ -72,6 +72,7 @@ RowFileOptions traceFileOptions(const sim::SceneDesc& scene, const TraceOptions&
                                 const std::shared_ptr<std::string>& warning) {
   RowFileOptions out;
   out.fail_after_bytes = o.fail_after_bytes;
+  out.ring_rows = o.ring_rows;
   if (!o.warn_size) return out;
   out.watch_rows = kTraceWatchRows;
   out.on_rows = [name = scene.name, rate = scene.world.haptic_rate_hz, duration = scene.duration,

@@ -29,6 +29,9 @@ struct TraceOptions {
   int every_steps = 1;  ///< a row every this many haptic steps (traceStride of record.trace_rate)
   bool warn_size = true;  ///< project the size after kTraceWatchRows rows; warn once past kTraceWarnBytes
   std::uint64_t fail_after_bytes = 0;  ///< tests only: a disk that fills (RowFileOptions)
+  /// Rows the writer may fall behind (RowFileOptions::ring_rows): a realtime run's loop must never
+  /// wait for the disk (kRealtimeRingRows); an offline run's may, and holds less (kOfflineRingRows).
+  std::size_t ring_rows = kRealtimeRingRows;
 };
 
 /// The haptic steps between two trace rows for `trace_rate_hz` (0: every step, 1).

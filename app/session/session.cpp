@@ -347,7 +347,7 @@ void SessionRun::startThreads() {
   clearRunOutputs(dir_);
   if (session_.record.trace) {
     const TraceOptions o{traceStride(scene_.world.haptic_rate_hz, session_.record.trace_rate), true,
-                         options_.trace_fail_after_bytes};
+                         options_.trace_fail_after_bytes, options_.realtime ? kRealtimeRingRows : kOfflineRingRows};
     trace_.emplace(*world_, (dir_ / kTraceFile).string(), o);
   }
   forces_.emplace(*world_, session_.record.force_bodies, steps_, (dir_ / kForcesFile).string());

@@ -6,6 +6,9 @@
 
 #include <gtest/gtest.h>
 
+#include <filesystem>
+#include <fstream>
+#include <iterator>
 #include <limits>
 #include <string>
 #include <vector>
@@ -20,6 +23,7 @@
 #include "render/render_thread.hpp"
 #include "render/state/contact_load.hpp"
 #include "render/scene/scene_renderer.hpp"
+#include "tests/scratch.hpp"
 
 namespace gf {
 namespace {
@@ -262,6 +266,52 @@ TEST_F(SamePicture, ReleasedFramesAreDrawnFirstAndNoneMayFollow) {
   } catch (const render::GlError& e) {
     EXPECT_NE(std::string(e.what()).find("released"), std::string::npos) << e.what();
   }
+}
+
+std::string pngBytes(const std::filesystem::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+
+// An offline run drawing frames keeps its close-ups until the frames' GL memory is given back
+// (releaseFrames) or the thread finishes, and draws them then in a context of their own: the
+// same bytes as close-ups drawn at once by a thread that draws no frames.
+TEST_F(SamePicture, CloseUpsAmongFramesAreDrawnAfterTheFramesAsTheyWouldBeAtOnce) {
+  const std::filesystem::path dir = test::scratchRoot() / "same_picture_close_ups";
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir);
+  render::FrameOutputSettings settings = app::frameSettings(session_, {});
+  {
+    render::RenderThread alone(session_.scene, settings);  // no frames: drawn at once
+    alone.submitCloseUps(snapshot_, (dir / "alone").string());
+    alone.finish();
+  }
+  const std::string left = session_.scene.fingers.front().name;
+  const std::string expected = pngBytes(dir / ("alone-" + left + ".png"));
+  ASSERT_GT(expected.size(), 1000u);
+
+  settings.width = 320;
+  settings.height = 180;
+  struct Count : render::FrameTap {
+    int frames = 0;
+    void frame(const render::Image&, const sim::Snapshot&, float) noexcept override { ++frames; }
+  } tap;
+  settings.tap = &tap;
+  for (const bool release : {true, false}) {
+    const std::string stem = release ? "released" : "finished";
+    render::RenderThread thread(session_.scene, settings);
+    thread.submitFrame(snapshot_, false);
+    thread.submitCloseUps(snapshot_, (dir / stem).string());
+    thread.submitFrame(snapshot_, true);  // drawn after the close-up job was taken
+    EXPECT_FALSE(std::filesystem::exists(dir / (stem + "-" + left + ".png"))) << stem;
+    if (release) thread.releaseFrames();
+    else thread.finish();
+    for (const sim::FingerDesc& f : session_.scene.fingers) {
+      EXPECT_EQ(pngBytes(dir / (stem + "-" + f.name + ".png")), pngBytes(dir / ("alone-" + f.name + ".png")))
+          << stem << " " << f.name;
+    }
+  }
+  EXPECT_EQ(tap.frames, 4);
 }
 
 }  // namespace

@@ -1,0 +1,45 @@
+// The realtime frames' handoff from the haptic thread to the render thread.
+#pragma once
+
+#include <atomic>
+#include <thread>
+
+#include "sim/assert.hpp"
+#include "sim/scene/snapshot.hpp"
+
+namespace gf::render {
+
+// Latest-value handoff: the writer fills `back`, then swaps it with `middle`; the reader swaps
+// `middle` with `front` when it holds something new. Neither side ever waits. One writer
+// thread and one reader thread (asserted for the writer).
+class TripleBuffer {
+ public:
+  sim::Snapshot& back() {
+    GF_ASSERT(writtenHere() && "one thread (the haptic thread) publishes realtime snapshots");
+    return slots_[back_];
+  }
+  void publish() {
+    GF_ASSERT(writtenHere() && "one thread (the haptic thread) publishes realtime snapshots");
+    back_ = middle_.exchange(back_ | kFresh) & kIndex;
+  }
+  bool update() {
+    if (!(middle_.load() & kFresh)) return false;
+    front_ = middle_.exchange(front_) & kIndex;
+    return true;
+  }
+  const sim::Snapshot& front() const { return slots_[front_]; }
+
+ private:
+  // The first caller becomes the writer.
+  bool writtenHere() {
+    if (writer_ == std::thread::id()) writer_ = std::this_thread::get_id();
+    return writer_ == std::this_thread::get_id();
+  }
+  static constexpr int kFresh = 4, kIndex = 3;
+  sim::Snapshot slots_[3];
+  int back_ = 0, front_ = 1;
+  std::atomic<int> middle_{2};
+  std::thread::id writer_;
+};
+
+}  // namespace gf::render
