@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <atomic>
 #include <cerrno>
+#include <cstdio>
 #include <chrono>
 #include <condition_variable>
 #include <deque>
@@ -17,8 +18,6 @@
 #include <pthread.h>
 #include <semaphore.h>
 #include <time.h>
-#include <sys/resource.h>
-#include <unistd.h>
 
 #include "render/chart/chart_file.hpp"
 #include "render/gl/context.hpp"
@@ -38,39 +37,6 @@ namespace {
 using Clock = std::chrono::steady_clock;
 constexpr std::size_t kQueueDepth = 2;
 
-// Lowers the calling thread (only it: Linux keeps a nice value per thread) to nice
-// kBackgroundNice, which any user may choose: the scheduler then gives a haptic loop at nice 0 about
-// ten times its share and wakes it ahead of the renderer, yet the renderer still gets what the
-// loop leaves (SCHED_IDLE got only that and starved frames). Threads and processes it starts
-// afterwards inherit it. Raising it back needs privileges. Returns whether the thread now runs at
-// kBackgroundNice or nicer.
-bool lowerToNice() {
-  const id_t self = static_cast<id_t>(gettid());
-  errno = 0;
-  const int now = getpriority(PRIO_PROCESS, self);
-  if (errno == 0 && now >= kBackgroundNice) return true;  // started nicer still (`nice -n 15`): kept
-  return setpriority(PRIO_PROCESS, self, kBackgroundNice) == 0;
-}
-
-// Mesa's draw module allocates and frees vertex buffers at every draw call. With glibc's
-// defaults the render thread's heap was given back to the system (madvise) after the frees and
-// faulted in again at the next frame: 4-5 ms of CPU per 1280x720 Fig. 8 frame (perf: page
-// faults, sysmalloc and madvise on the render thread). Keeping up to kKeptFreeBytes of freed
-// memory per heap, and taking blocks under kHeapBlockBytes (frames included) from the heap
-// rather than from mmap, ends most of that. The rest came from the threads' own arenas: glibc
-// unmaps a thread arena's whole heap when it empties, whatever the trim threshold, and the render
-// thread's and llvmpipe's heaps emptied and filled at every frame (about 6 600 page faults a
-// second in a 1280x720 realtime run). One arena for the process keeps them (see the header).
-constexpr int kKeptFreeBytes = 256 << 20, kHeapBlockBytes = 32 << 20;
-}  // namespace
-
-void keepFreedMemory() {
-  mallopt(M_ARENA_MAX, 1);
-  mallopt(M_TRIM_THRESHOLD, kKeptFreeBytes);
-  mallopt(M_MMAP_THRESHOLD, kHeapBlockBytes);
-}
-
-namespace {
 // One piece of offline work.
 struct Job {
   sim::Snapshot snapshot;
@@ -353,7 +319,9 @@ struct RenderThread::Impl {
   // An offline run drawing frames keeps its close-ups until the frames' GL memory is given back,
   // then draws them with a context sized for them: drawn among the frames, their framebuffer,
   // labels, layer and shader variants stayed in the frames' heap (docs/performance.md, "Memory").
-  bool defersCloseUps() const { return !settings.realtime && (png || video || settings.tap); }
+  bool defersCloseUps() const {
+    return settings.close_ups_after_frames && !settings.realtime && (png || video || settings.tap);
+  }
   void drawDeferredCloseUps() {
     if (deferred.empty()) return;
     const std::vector<Job> jobs = std::exchange(deferred, {});
@@ -381,7 +349,12 @@ struct RenderThread::Impl {
         changed.notify_all();
       }
       if (job.release) {
-        releaseGpu(gpu);
+        try {
+          releaseGpu(gpu);
+        } catch (const std::exception& e) {  // the error set before the reply breaks
+          fail(e.what());
+          throw;
+        }
         job.reply.set_value({});
         continue;
       }
@@ -472,9 +445,10 @@ struct RenderThread::Impl {
       }
     } catch (const std::exception& e) {
       fail(e.what());
-      try {  // the close-ups of a run whose frames failed (a full disk) are drawn still
+      try {  // the close-ups kept while the frames went (a full disk) are drawn still
         releaseGpu(gpu);
-      } catch (const std::exception&) {
+      } catch (const std::exception& late) {
+        std::fprintf(stderr, "[godfinger] close-ups: %s\n", late.what());
       }
     }
     if (gpu) pictures_reused += gpu->pictures_reused;  // realtime

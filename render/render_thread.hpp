@@ -47,6 +47,11 @@ struct FrameOutputSettings {
   bool top_left_taken = false;
   OverlaySettings overlay_settings;
   int close_up_px = 480;          ///< side of contact close-up images (pixels)
+  /// Offline with frames: close-ups are drawn once the frames' GL memory is given back
+  /// (RenderThread::releaseFrames), in a context sized for them, so they add nothing to the
+  /// frames' memory (docs/performance.md, "Memory"). False: each is drawn when it comes, among
+  /// the frames, as realtime runs always do.
+  bool close_ups_after_frames = true;
   bool realtime = false;          ///< draw the latest snapshot at `fps` of wall-clock time
   /// Run the render thread, its encoders and llvmpipe's workers (made with the context, after
   /// the thread lowered itself) at nice kBackgroundNice: a realtime haptic loop at nice 0 without
@@ -125,6 +130,10 @@ class RenderThread {
 /// draws should call it first thing in main(), before it starts threads, as `godfinger` does:
 /// threads that already have an arena of their own keep it. Process-wide, idempotent; any thread.
 void keepFreedMemory();
+
+/// Lowers the calling thread (only it) to nice kBackgroundNice; threads it starts afterwards
+/// inherit it. Whether it now runs at kBackgroundNice or nicer (render/render_process.cpp).
+bool lowerToNice();
 
 /// Close-up file of finger `finger` (its scene name) for a snapshot written under `prefix`.
 std::string closeUpPath(const std::string& prefix, const std::string& finger);

@@ -214,9 +214,10 @@ std::map<std::string, std::string> filesIn(const fs::path& folder) {
   return files;
 }
 
-// A contact close-up at a frame's instant (t = 0.8 s: frame 48) draws its own shadow map, without
-// the fingers, and leaves none behind: the frame of that instant keeps the fingers' shadows, so the
-// frames are the files of a run without close-ups, byte for byte.
+// A run's contact close-up (t = 0.8 s: frame 48; drawn once the frames are, as an offline run
+// with frames does) leaves its frames the files of a run without close-ups, byte for byte. Drawn
+// among the frames (realtime), a close-up draws its own shadow map, without the fingers, and
+// leaves none behind: SamePicture.ACloseUpAmongFramesLeavesTheFrameOfItsInstantItsShadows.
 TEST(Session, ACloseUpLeavesTheFrameOfItsInstantItsShadows) {
   std::map<std::string, std::string> frames[2];
   for (int run = 0; run < 2; ++run) {

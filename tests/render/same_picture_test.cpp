@@ -9,6 +9,7 @@
 #include <filesystem>
 #include <fstream>
 #include <iterator>
+#include <cstdint>
 #include <limits>
 #include <string>
 #include <vector>
@@ -304,14 +305,54 @@ TEST_F(SamePicture, CloseUpsAmongFramesAreDrawnAfterTheFramesAsTheyWouldBeAtOnce
     thread.submitCloseUps(snapshot_, (dir / stem).string());
     thread.submitFrame(snapshot_, true);  // drawn after the close-up job was taken
     EXPECT_FALSE(std::filesystem::exists(dir / (stem + "-" + left + ".png"))) << stem;
-    if (release) thread.releaseFrames();
-    else thread.finish();
+    if (release) {
+      thread.releaseFrames();
+    } else {
+      thread.finish();
+    }
     for (const sim::FingerDesc& f : session_.scene.fingers) {
       EXPECT_EQ(pngBytes(dir / (stem + "-" + f.name + ".png")), pngBytes(dir / ("alone-" + f.name + ".png")))
           << stem << " " << f.name;
     }
   }
   EXPECT_EQ(tap.frames, 4);
+}
+
+// Close-ups drawn among the frames (as realtime runs draw them; close_ups_after_frames off here)
+// draw a shadow map of their own, without the fingers, and leave none behind: the frame of their
+// instant keeps the fingers' shadows, the frame a thread without close-ups draws.
+TEST_F(SamePicture, ACloseUpAmongFramesLeavesTheFrameOfItsInstantItsShadows) {
+  const std::filesystem::path dir = test::scratchRoot() / "same_picture_close_up_among";
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir);
+  render::FrameOutputSettings settings = app::frameSettings(session_, {});
+  settings.width = 320;
+  settings.height = 180;
+  settings.close_ups_after_frames = false;
+  struct Keep : render::FrameTap {
+    std::vector<std::vector<std::uint8_t>> frames;
+    void frame(const render::Image& image, const sim::Snapshot&, float) noexcept override {
+      frames.push_back(image.rgb);
+    }
+  };
+  Keep plain, with_close_up;
+  for (Keep* tap : {&plain, &with_close_up}) {
+    settings.tap = tap;
+    render::RenderThread thread(session_.scene, settings);
+    if (tap == &with_close_up) thread.submitCloseUps(snapshot_, (dir / "among").string());
+    thread.submitFrame(snapshot_, true);  // as a session does: the close-up, then the frame
+    thread.submitFrame(snapshot_, true);
+    const std::string left = session_.scene.fingers.front().name;
+    // Drawn when it came: on disk before the frames are released.
+    if (tap == &with_close_up) {
+      EXPECT_TRUE(std::filesystem::exists(dir / ("among-" + left + ".png")));
+    }
+    thread.finish();
+  }
+  ASSERT_EQ(plain.frames.size(), 2u);
+  ASSERT_EQ(with_close_up.frames.size(), 2u);
+  EXPECT_TRUE(plain.frames[0] == with_close_up.frames[0]) << "a close-up changed the frame of its instant";
+  EXPECT_TRUE(plain.frames[1] == with_close_up.frames[1]) << "a close-up changed the frame after";
 }
 
 }  // namespace
