@@ -65,7 +65,8 @@ namespace {
 // The writer's text is handed to the file once it holds this much (256 kB: 64 writes a second
 // for fig8's trace at 1 kHz, and 0.8 MB less held than at 1 MB).
 constexpr std::size_t kWriteBytes = std::size_t{1} << 18;
-// How long the writer sleeps when it finds the ring empty (the owner never wakes it: close() does).
+// How long the writer sleeps when it finds the ring empty (the owner wakes it only when the ring
+// is full, when it waits anyway; close() does).
 constexpr auto kWriterPoll = std::chrono::milliseconds(10);
 }  // namespace
 
@@ -204,6 +205,7 @@ void RowFile::push(const double* row) {
   const std::size_t h = w.head.load(std::memory_order_relaxed);
   if (h - w.tail.load(std::memory_order_acquire) == w.options.ring_rows) {
     ++w.waits;  // the writer is a whole ring behind: wait for it rather than lose a row
+    w.closing_changed.notify_one();  // and wake it from its nap (kWriterPoll) if it took one
     while (h - w.tail.load(std::memory_order_acquire) == w.options.ring_rows) {
       if (w.failed.load(std::memory_order_relaxed)) throw std::runtime_error(w.path + ": cannot write (disk full?)");
       std::this_thread::yield();

@@ -14,10 +14,10 @@ namespace gf::app {
 
 /// Rows a realtime run's ring holds: about 8 s of a 1 kHz run, a disk stalled that long.
 inline constexpr std::size_t kRealtimeRingRows = 8192;
-/// Rows an offline run's ring holds: its steps wait for the writer when it is a ring behind, so
-/// the ring need only span the writer's naps (10 ms) at the fastest offline pace, 400 000 rows a
-/// second (1.5 MB for fig8's 45 columns against 2.9 MB).
-inline constexpr std::size_t kOfflineRingRows = 4096;
+/// Rows an offline run's ring holds: its steps wait for the writer, and wake it, when it is a
+/// ring behind, so a ring of a few milliseconds' rows keeps the writer busy (0.37 MB for fig8's
+/// 45 columns against 2.9 MB).
+inline constexpr std::size_t kOfflineRingRows = 1024;
 
 /// How a RowFile writes, beyond its path and columns.
 struct RowFileOptions {
