@@ -242,6 +242,12 @@ TEST_F(SamePicture, AReusedPictureGivesTheFrameAStillGives) {
   }
 }
 
+// Counts the frames a render thread hands to it.
+struct CountingTap : render::FrameTap {
+  int frames = 0;
+  void frame(const render::Image&, const sim::Snapshot&, float) noexcept override { ++frames; }
+};
+
 // releaseFrames returns once the frames queued before it are drawn, keeps the count of reused
 // pictures, and no frame may follow: one submitted after it fails with an error rather than
 // waiting for a reply that never comes.
@@ -249,10 +255,7 @@ TEST_F(SamePicture, ReleasedFramesAreDrawnFirstAndNoneMayFollow) {
   render::FrameOutputSettings settings = app::frameSettings(session_, {});
   settings.width = 320;
   settings.height = 180;
-  struct Count : render::FrameTap {
-    int frames = 0;
-    void frame(const render::Image&, const sim::Snapshot&, float) noexcept override { ++frames; }
-  } tap;
+  CountingTap tap;
   settings.tap = &tap;
   std::vector<sim::Snapshot> states(3, snapshot_);
   for (int k = 0; k < 3; ++k) states[k].time = 4.0 + k / 60.0;
@@ -293,10 +296,7 @@ TEST_F(SamePicture, CloseUpsAmongFramesAreDrawnAfterTheFramesAsTheyWouldBeAtOnce
 
   settings.width = 320;
   settings.height = 180;
-  struct Count : render::FrameTap {
-    int frames = 0;
-    void frame(const render::Image&, const sim::Snapshot&, float) noexcept override { ++frames; }
-  } tap;
+  CountingTap tap;
   settings.tap = &tap;
   for (const bool release : {true, false}) {
     const std::string stem = release ? "released" : "finished";
