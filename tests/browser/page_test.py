@@ -234,7 +234,9 @@ def test_a_narrower_page_reads_smaller_frames(ctx: Context) -> None:
               " return gf.stream.width === Math.ceil(i.clientWidth) && [i.naturalWidth, i.naturalHeight, gf.stream.width]; })()")
     resize(1000, 700)
     try:
-        narrow = ctx.page.wait_for("document.querySelector('img#frame').naturalWidth < 1280 && " + frames,
+        # naturalWidth is 0 while the stream at the new width is opening: wait for its first frame.
+        narrow = ctx.page.wait_for("document.querySelector('img#frame').naturalWidth > 0 && "
+                                   "document.querySelector('img#frame').naturalWidth < 1280 && " + frames,
                                    "the narrower page's frames")
         assert 427 <= narrow[2] <= 640 and narrow[:2] == [640, 360], f"frames {narrow}, want 640 x 360 for a view 427..640 wide"
     finally:
