@@ -41,7 +41,6 @@ constexpr std::size_t kQueueDepth = 2;
 struct Job {
   sim::Snapshot snapshot;
   std::string close_up_prefix;  // non-empty: close-ups instead of a frame
-  RenderSettings close_up_scene;  // a deferred close-up's: the scene's switches when it came
   std::unique_ptr<ChartSpec> chart;  // non-null: a chart to `chart_path` instead of a frame
   std::string chart_path;
   bool release = false;  // give back the frames' GL resources (releaseFrames), then reply
@@ -329,10 +328,7 @@ struct RenderThread::Impl {
     s.width = s.height = settings.close_up_px;
     s.overlay = s.patch_insets = s.time_stamp = false;
     auto side = std::make_unique<Gpu>(scene, s);
-    for (const Job& job : jobs) {
-      side->scene.setSettings(job.close_up_scene);
-      drawCloseUps(*side, scene, job.snapshot, job.close_up_prefix);
-    }
+    for (const Job& job : jobs) drawCloseUps(*side, scene, job.snapshot, job.close_up_prefix);
     side.reset();
     malloc_trim(0);
   }
@@ -369,11 +365,10 @@ struct RenderThread::Impl {
       // A new Gpu would not have the released one's overlay history, labels and layers.
       if (!gpu) throw GlError("a frame or close-up was queued after the frames were released (releaseFrames, a chart)");
       if (!job.close_up_prefix.empty()) {
-        if (!defersCloseUps()) {
-          drawSideJob(*gpu, scene, job);
-        } else {
-          job.close_up_scene = gpu->scene.settings();
+        if (defersCloseUps()) {
           deferred.push_back(std::move(job));
+        } else {
+          drawSideJob(*gpu, scene, job);
         }
         continue;
       }

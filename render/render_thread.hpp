@@ -88,7 +88,7 @@ class RenderThread {
   std::vector<sim::SettingsCommand> submitFrame(const sim::Snapshot& snapshot, bool wait_for_commands);
   /// Queues close-ups of every contact in `snapshot`, written as `<prefix>-<finger>.png`. An
   /// offline run with frames draws them when the frames' GL memory is given back (releaseFrames,
-  /// a chart, finish()), with the scene's switches of the moment they were queued.
+  /// a chart, finish()); the scene's switches are the run's (only patch settings change live).
   void submitCloseUps(const sim::Snapshot& snapshot, const std::string& prefix);
   /// Queues a chart, written as the PNG `path` and as SVG beside it (`path` with .svg for .png).
   void submitChart(const ChartSpec& chart, const std::string& path);
