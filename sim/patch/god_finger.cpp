@@ -404,17 +404,17 @@ WalkContext walkContext(const Mesh& mesh, const PatchSettings& s, const Vec3& n,
 }
 
 // One radial vector's walk: carried from the cache's path when it still holds, else Algorithm 1
-// from the contact (recorded in the cache when there is one).
+// from the contact (recorded in the cache when there is one). (dx, dy): the direction in the
+// cache's start plane (ringInPlane).
 Sgo walkRadial(const WalkContext& ctx, const Start& start, const Vec3& from, double d, WalkCache* cache, int i,
-               Patch& out) {
+               double dx, double dy, Patch& out) {
   if (!cache) return walk(ctx, start, from, d, out);
-  Vec3 dir = start.dir;
-  if (inPlane(ctx.mesh.faceNormal(start.face), dir) && d > 0.0) {
+  if (d > 0.0) {
     // The budget is at least max_face_crossings: worked out only for a path crossing more.
     const int crossings = cache->paths[static_cast<std::size_t>(i)].crossings;
     const long budget = crossings > ctx.s.max_face_crossings ? walkBudget(ctx, start.face, d) : ctx.s.max_face_crossings;
     // A ring's crossings within the slack are left pending (the SGOs do not read them).
-    const WalkStart ws{start.face, start.side, dir, from, d, budget, ctx.s.fill == PatchFill::kFilled};
+    const WalkStart ws{start.face, start.side, dx, dy, from, d, budget, ctx.s.fill == PatchFill::kFilled};
     Sgo sgo{from, start.face, -1, d, WalkStop::kDistance, 0.0};
     if (carryWalk(ctx.mesh, ctx.limits, ws, i, *cache, out.path_points, sgo.position, sgo.face)) return sgo;
   }
@@ -547,11 +547,14 @@ void computePatch(const Mesh& mesh, const PatchContact& contact, const Vec3& v, 
   const bool face_hit = out.hit.feature == Feature::kFace;
   const Vec3 hit_normal = side * mesh.faceNormal(out.hit.face);
   const Vec3 f1 = face_hit ? rotateOnto(t1, n, hit_normal) : t1, f2 = face_hit ? rotateOnto(t2, n, hit_normal) : t2;
+  // Carried walks (face hits only) start in the hit face's plane: the ring's axes there.
+  const PlaneAxes axes = carry ? ringInPlane(carryPlane(mesh, out.hit.face, side, out.hit.point, *carry), f1, f2)
+                               : PlaneAxes{};
   for (int i = 0; i < s.n_sgo; ++i) {
     const double ci = ring.c[static_cast<std::size_t>(i)], si = ring.s[static_cast<std::size_t>(i)];
     const Vec3 r = ci * t1 + si * t2;
     const Start start = face_hit ? Start{out.hit.face, side, ci * f1 + si * f2, true} : startFace(ctx, out.hit, side, r);
-    const bool usable = start.usable && start.dir.norm() > kDegenerateLength;
+    const bool usable = start.usable && start.dir.squaredNorm() > kDegenerateLength * kDegenerateLength;
     out.radial.push_back(usable ? start.dir : r);
     out.d_i.push_back(usable ? stretched(out.radius * padRadiusScale(pad, r), v_t, r, s, logs) : 0.0);
     if (!usable) {
@@ -559,7 +562,8 @@ void computePatch(const Mesh& mesh, const PatchContact& contact, const Vec3& v, 
       out.radial_stop.push_back(WalkStop::kDropped);
       continue;
     }
-    Sgo sgo = walkRadial(ctx, start, out.hit.point, out.d_i.back(), carry, i, out);
+    Sgo sgo = walkRadial(ctx, start, out.hit.point, out.d_i.back(), carry, i, ci * axes.x1 + si * axes.x2,
+                         ci * axes.y1 + si * axes.y2, out);
     if (warm && !carry) ++warm->cold_walks;
     sgo.radial = i;
     if (filled) fillPath(s.rings, padSectorAngle(pad, r, n, 2.0 * std::numbers::pi / s.n_sgo), sgo, out);

@@ -50,7 +50,9 @@ double insideBy(const Mesh& m, int f, const Vec3& p) {
 // Crossings then stay inside their edges (each moves along its edge by at most move / (sine -
 // turn), sine its line's sine to the edge there), in order and on faces within the thresholds,
 // and the end inside its face: every check of checkCrossings and the end holds.
-bool withinSlack(const WalkPath& p, const WalkLimits& l, const Line& a) {
+// The contact normal's turn from path p's reference normal is worked out once per patch for
+// the reference most paths share (the cache's memo, reset by keyWalkCache).
+bool withinSlack(const WalkPath& p, const WalkLimits& l, const Line& a, WalkCache& cache) {
   if (!p.slack || l.cos_limit != p.ref_cos_limit || l.cos_facing != p.ref_cos_facing ||
       l.has_limit != p.ref_has_limit) {
     return false;
@@ -58,8 +60,12 @@ bool withinSlack(const WalkPath& p, const WalkLimits& l, const Line& a) {
   const double tx = a.dx - p.ref_dx, ty = a.dy - p.ref_dy, mx = a.hx - p.ref_hx, my = a.hy - p.ref_hy;
   const double turn = std::sqrt(tx * tx + ty * ty);
   const double move = std::sqrt(mx * mx + my * my) + p.ref_d * turn;
-  return turn <= p.turn_slack && move <= p.move_slack && move + std::abs(a.d - p.ref_d) <= p.end_slack &&
-         (l.normal - p.ref_normal).norm() <= p.normal_slack;
+  if (!(turn <= p.turn_slack && move <= p.move_slack && move + std::abs(a.d - p.ref_d) <= p.end_slack)) return false;
+  if (p.ref_normal != cache.turn_ref) {
+    cache.turn_ref = p.ref_normal;
+    cache.turn_of_ref = (l.normal - p.ref_normal).norm();
+  }
+  return cache.turn_of_ref <= p.normal_slack;
 }
 
 // Within the slack: each crossing where line `a` meets its edge, unchecked, into `out`.
@@ -146,6 +152,7 @@ void keyWalkCache(const Mesh* mesh, int n_sgo, const SurfacePoint& hit, bool was
     for (std::size_t i = 0; i < cache.paths.size(); ++i) uncachePath(cache, static_cast<int>(i));
   }
   cache.plane_face = -1;
+  cache.turn_ref.setConstant(std::numeric_limits<double>::quiet_NaN());
   cache.valid = true;
 }
 
@@ -187,26 +194,37 @@ void WalkRecorder::end(const Mesh& m, double side, const Vec3& dir, int f, const
   path_->axis_y = dy_ * dir + dx_ * perp;
 }
 
+const StartPlane& carryPlane(const Mesh& m, int f, double side, const Vec3& from, WalkCache& cache) {
+  if (cache.plane_face != f || cache.plane_side != side) {
+    cache.plane = startPlane(m, f, side);
+    cache.plane_face = f, cache.plane_side = side;
+    const Vec3 rel = from - cache.plane.origin;
+    cache.from_x = rel.dot(cache.plane.x_axis), cache.from_y = rel.dot(cache.plane.y_axis);
+  }
+  return cache.plane;
+}
+
+PlaneAxes ringInPlane(const StartPlane& plane, const Vec3& f1, const Vec3& f2) {
+  const double x1 = f1.dot(plane.x_axis), y1 = f1.dot(plane.y_axis);
+  const double x2 = f2.dot(plane.x_axis), y2 = f2.dot(plane.y_axis);
+  const double l1 = std::hypot(x1, y1), l2 = std::hypot(x2, y2);
+  if (!(l1 > 0.0) || !(l2 > 0.0)) return {};
+  return {x1 / l1, y1 / l1, x2 / l2, y2 / l2};
+}
+
 bool carryWalk(const Mesh& m, const WalkLimits& limits, const WalkStart& s, int i, WalkCache& cache,
                std::vector<Vec3>& path_points, Vec3& end, int& end_face) {
   WalkPath& p = cache.paths[static_cast<std::size_t>(i)];
   if (!p.cached || p.start_face != s.face || p.side != s.side || p.crossings > s.budget) return false;
   // The start and direction in the start face's plane (the start once a patch: the contact).
-  if (cache.plane_face != s.face || cache.plane_side != s.side) {
-    cache.plane = startPlane(m, s.face, s.side);
-    cache.plane_face = s.face, cache.plane_side = s.side;
-    const Vec3 rel = s.from - cache.plane.origin;
-    cache.from_x = rel.dot(cache.plane.x_axis), cache.from_y = rel.dot(cache.plane.y_axis);
-  }
-  const StartPlane& plane = cache.plane;
-  const Line a{cache.from_x, cache.from_y, s.dir.dot(plane.x_axis), s.dir.dot(plane.y_axis), s.d};
+  const Line a{cache.from_x, cache.from_y, s.dx, s.dy, s.d};
   WalkCrossing* first = cache.crossings.data() + static_cast<std::ptrdiff_t>(i) * kWarmCrossingsPerSgo;
   // The path's points: from, the crossings, the end.
   const std::size_t mark = path_points.size();
   path_points.resize(mark + static_cast<std::size_t>(p.crossings) + 2);
   Vec3* out = path_points.data() + mark;
   out[0] = s.from;
-  const bool unchecked = withinSlack(p, limits, a);
+  const bool unchecked = withinSlack(p, limits, a, cache);
   p.pending = unchecked && !s.place;
   if (p.pending) {
     p.line_hx = a.hx, p.line_hy = a.hy, p.line_dx = a.dx, p.line_dy = a.dy;

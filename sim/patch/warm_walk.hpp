@@ -11,6 +11,7 @@
 #pragma once
 
 #include <cstdint>
+#include <limits>
 #include <vector>
 
 #include "sim/mesh/mesh.hpp"
@@ -85,6 +86,10 @@ struct WalkCache {
   double plane_side = 1.0;
   StartPlane plane;
   double from_x = 0.0, from_y = 0.0;  ///< the walks' start (the contact) in that plane (m)
+  /// This patch's contact normal's turn from a reference normal its paths were checked against
+  /// (most share one): |normal - turn_ref|, NaN key until a carried walk computes it.
+  Vec3 turn_ref = Vec3::Constant(std::numeric_limits<double>::quiet_NaN());
+  double turn_of_ref = 0.0;
   long warm_walks = 0;  ///< walks carried from the last step (cumulative)
   long slack_walks = 0;  ///< of which carried within their slack, unchecked (cumulative)
   long cold_walks = 0;  ///< walks done from the contact (cumulative)
@@ -104,11 +109,12 @@ struct WalkLimits {
   double cos_facing = 0.0;      ///< a face with n_f . normal <= this faces away
 };
 
-/// The start of a walk: its face, winding sign, unit in-plane direction, the point and length.
+/// The start of a walk: its face, winding sign, unit direction in the start face's plane
+/// (carryPlane's axes), the point and length.
 struct WalkStart {
   int face = -1;
   double side = 1.0;
-  Vec3 dir = Vec3::Zero();
+  double dx = 1.0, dy = 0.0;
   Vec3 from = Vec3::Zero();  ///< the same for every walk of a patch (the contact)
   double d = 0.0;
   long budget = 0;  ///< edge crossings allowed (or any bound below it the path keeps within)
@@ -147,7 +153,20 @@ class WalkRecorder {
   double hx_ = 0.0, hy_ = 0.0, dx_ = 0.0, dy_ = 0.0;  // start and direction in the start plane
 };
 
-/// Carries radial `i`'s path of `cache` to the start `s`: on success appends the path (from,
+/// The plane of face f (winding `side`) the walks of this patch start in, with `from` (the
+/// contact) in it (cache.from_x, from_y): kept in `cache` until the face or side changes.
+const StartPlane& carryPlane(const Mesh& mesh, int f, double side, const Vec3& from, WalkCache& cache);
+
+/// A face hit's ring axes (unit, on the start face) in a start plane's axes, each of unit length
+/// there: radial i's direction in the plane is c_i (x1, y1) + s_i (x2, y2), what projecting and
+/// normalizing it would give (to rounding), without a square root per radial.
+struct PlaneAxes {
+  double x1 = 1.0, y1 = 0.0, x2 = 0.0, y2 = 1.0;
+};
+/// f1 and f2 in `plane`'s axes; the plane's own axes when either has no length there.
+PlaneAxes ringInPlane(const StartPlane& plane, const Vec3& f1, const Vec3& f2);
+
+/// Carries radial `i`'s path of `cache` to the start `s` (its face's carryPlane set): on success appends the path (from,
 /// crossings, end) to `path_points`, updates the cache and returns true with the end's face in
 /// `end_face`; on failure leaves `path_points` as it was (and the path to be walked from the
 /// contact). Within the path's slack its crossings are placed without checks (they hold), or
