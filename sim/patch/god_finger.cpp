@@ -556,7 +556,8 @@ void computePatch(const Mesh& mesh, const PatchContact& contact, const Vec3& v, 
     const Start start = face_hit ? Start{out.hit.face, side, ci * f1 + si * f2, true} : startFace(ctx, out.hit, side, r);
     const bool usable = start.usable && start.dir.squaredNorm() > kDegenerateLength * kDegenerateLength;
     out.radial.push_back(usable ? start.dir : r);
-    out.d_i.push_back(usable ? stretched(out.radius * padRadiusScale(pad, r), v_t, r, s, logs) : 0.0);
+    const double pad_scale = pad.on ? padRadiusScale(pad, r) : 1.0;  // the disc: no call per radial
+    out.d_i.push_back(usable ? stretched(out.radius * pad_scale, v_t, r, s, logs) : 0.0);
     if (!usable) {
       if (carry) uncachePath(*carry, i);
       out.radial_stop.push_back(WalkStop::kDropped);
