@@ -405,11 +405,11 @@ WalkContext walkContext(const Mesh& mesh, const PatchSettings& s, const Vec3& n,
 
 // One radial vector's walk: carried from the cache's path when it still holds, else Algorithm 1
 // from the contact (recorded in the cache when there is one). (dx, dy): the direction in the
-// cache's start plane (ringInPlane).
+// cache's start plane (ringInPlane; not `axes_ok`: no carry).
 Sgo walkRadial(const WalkContext& ctx, const Start& start, const Vec3& from, double d, WalkCache* cache, int i,
-               double dx, double dy, Patch& out) {
+               bool axes_ok, double dx, double dy, Patch& out) {
   if (!cache) return walk(ctx, start, from, d, out);
-  if (d > 0.0) {
+  if (d > 0.0 && axes_ok) {
     // The budget is at least max_face_crossings: worked out only for a path crossing more.
     const int crossings = cache->paths[static_cast<std::size_t>(i)].crossings;
     const long budget = crossings > ctx.s.max_face_crossings ? walkBudget(ctx, start.face, d) : ctx.s.max_face_crossings;
@@ -563,7 +563,7 @@ void computePatch(const Mesh& mesh, const PatchContact& contact, const Vec3& v, 
       out.radial_stop.push_back(WalkStop::kDropped);
       continue;
     }
-    Sgo sgo = walkRadial(ctx, start, out.hit.point, out.d_i.back(), carry, i, ci * axes.x1 + si * axes.x2,
+    Sgo sgo = walkRadial(ctx, start, out.hit.point, out.d_i.back(), carry, i, axes.ok, ci * axes.x1 + si * axes.x2,
                          ci * axes.y1 + si * axes.y2, out);
     if (warm && !carry) ++warm->cold_walks;
     sgo.radial = i;

@@ -19,6 +19,8 @@ constexpr double kMinCrossingSine = 1e-6;
 // then far from deciding: slacks of 1e-10 m and more against rounding of 1e-17 m).
 constexpr double kSlackFraction = 0.5;
 constexpr double kUnbounded = std::numeric_limits<double>::infinity();
+// A ring axis shorter than this in a start plane (unit vectors) has no direction there.
+constexpr double kDegenerateAxis = 1e-12;
 
 // A walk's line in the start face's plane: start, unit direction, length.
 struct Line {
@@ -50,8 +52,9 @@ double insideBy(const Mesh& m, int f, const Vec3& p) {
 // Crossings then stay inside their edges (each moves along its edge by at most move / (sine -
 // turn), sine its line's sine to the edge there), in order and on faces within the thresholds,
 // and the end inside its face: every check of checkCrossings and the end holds.
-// The contact normal's turn from path p's reference normal is worked out once per patch for
-// the reference most paths share (the cache's memo, reset by keyWalkCache).
+// The contact normal's turn from path p's reference normal is worked out again only when p's
+// reference differs from the last one looked at (the cache's memo, reset by keyWalkCache): once a
+// patch when the paths share one, as they do after a full check of them all.
 bool withinSlack(const WalkPath& p, const WalkLimits& l, const Line& a, WalkCache& cache) {
   if (!p.slack || l.cos_limit != p.ref_cos_limit || l.cos_facing != p.ref_cos_facing ||
       l.has_limit != p.ref_has_limit) {
@@ -195,12 +198,10 @@ void WalkRecorder::end(const Mesh& m, double side, const Vec3& dir, int f, const
 }
 
 const StartPlane& carryPlane(const Mesh& m, int f, double side, const Vec3& from, WalkCache& cache) {
-  if (cache.plane_face != f || cache.plane_side != side) {
-    cache.plane = startPlane(m, f, side);
-    cache.plane_face = f, cache.plane_side = side;
-    const Vec3 rel = from - cache.plane.origin;
-    cache.from_x = rel.dot(cache.plane.x_axis), cache.from_y = rel.dot(cache.plane.y_axis);
-  }
+  cache.plane = startPlane(m, f, side);
+  cache.plane_face = f, cache.plane_side = side;
+  const Vec3 rel = from - cache.plane.origin;
+  cache.from_x = rel.dot(cache.plane.x_axis), cache.from_y = rel.dot(cache.plane.y_axis);
   return cache.plane;
 }
 
@@ -208,14 +209,17 @@ PlaneAxes ringInPlane(const StartPlane& plane, const Vec3& f1, const Vec3& f2) {
   const double x1 = f1.dot(plane.x_axis), y1 = f1.dot(plane.y_axis);
   const double x2 = f2.dot(plane.x_axis), y2 = f2.dot(plane.y_axis);
   const double l1 = std::hypot(x1, y1), l2 = std::hypot(x2, y2);
-  if (!(l1 > 0.0) || !(l2 > 0.0)) return {};
-  return {x1 / l1, y1 / l1, x2 / l2, y2 / l2};
+  if (!(l1 > kDegenerateAxis) || !(l2 > kDegenerateAxis) || !std::isfinite(l1) || !std::isfinite(l2)) return {};
+  return {true, x1 / l1, y1 / l1, x2 / l2, y2 / l2};
 }
 
 bool carryWalk(const Mesh& m, const WalkLimits& limits, const WalkStart& s, int i, WalkCache& cache,
                std::vector<Vec3>& path_points, Vec3& end, int& end_face) {
   WalkPath& p = cache.paths[static_cast<std::size_t>(i)];
-  if (!p.cached || p.start_face != s.face || p.side != s.side || p.crossings > s.budget) return false;
+  if (!p.cached || p.start_face != s.face || p.side != s.side || p.crossings > s.budget ||
+      cache.plane_face != s.face || cache.plane_side != s.side) {
+    return false;
+  }
   // The start and direction in the start face's plane (the start once a patch: the contact).
   const Line a{cache.from_x, cache.from_y, s.dx, s.dy, s.d};
   WalkCrossing* first = cache.crossings.data() + static_cast<std::ptrdiff_t>(i) * kWarmCrossingsPerSgo;
@@ -238,7 +242,7 @@ bool carryWalk(const Mesh& m, const WalkLimits& limits, const WalkStart& s, int 
   const Vec3 moved = p.end + (ex - p.end_x) * p.axis_x + (ey - p.end_y) * p.axis_y;
   if (!unchecked) {
     const double inside = insideBy(m, p.end_face, moved);
-    if (inside < kCarryMargin) return fail(path_points, mark);
+    if (!(inside >= kCarryMargin)) return fail(path_points, mark);
     renewReference(p, limits, a, inside);
   }
   out[p.crossings + 1] = moved;

@@ -86,8 +86,9 @@ struct WalkCache {
   double plane_side = 1.0;
   StartPlane plane;
   double from_x = 0.0, from_y = 0.0;  ///< the walks' start (the contact) in that plane (m)
-  /// This patch's contact normal's turn from a reference normal its paths were checked against
-  /// (most share one): |normal - turn_ref|, NaN key until a carried walk computes it.
+  /// This patch's contact normal's turn from the reference normal a path was last checked
+  /// against, |normal - turn_ref|: worked out again only when the next path's reference differs
+  /// (most paths share one). keyWalkCache resets the key to NaN each patch.
   Vec3 turn_ref = Vec3::Constant(std::numeric_limits<double>::quiet_NaN());
   double turn_of_ref = 0.0;
   long warm_walks = 0;  ///< walks carried from the last step (cumulative)
@@ -153,21 +154,25 @@ class WalkRecorder {
   double hx_ = 0.0, hy_ = 0.0, dx_ = 0.0, dy_ = 0.0;  // start and direction in the start plane
 };
 
-/// The plane of face f (winding `side`) the walks of this patch start in, with `from` (the
-/// contact) in it (cache.from_x, from_y): kept in `cache` until the face or side changes.
+/// Sets the plane of face f (winding `side`) the walks of this patch start in, and `from` (the
+/// contact) in it (cache.from_x, from_y), once a patch after keyWalkCache (which clears it);
+/// carryWalk carries nothing from another face or side.
 const StartPlane& carryPlane(const Mesh& mesh, int f, double side, const Vec3& from, WalkCache& cache);
 
 /// A face hit's ring axes (unit, on the start face) in a start plane's axes, each of unit length
 /// there: radial i's direction in the plane is c_i (x1, y1) + s_i (x2, y2), what projecting and
-/// normalizing it would give (to rounding), without a square root per radial.
+/// normalizing it would give (to rounding on a well-shaped face, whose plane axes are
+/// orthonormal), without a square root per radial.
 struct PlaneAxes {
+  bool ok = false;  ///< false: an axis has no length in the plane (the walks go from the contact)
   double x1 = 1.0, y1 = 0.0, x2 = 0.0, y2 = 1.0;
 };
-/// f1 and f2 in `plane`'s axes; the plane's own axes when either has no length there.
+/// f1 and f2 in `plane`'s axes; not ok when either has no length there or is not finite.
 PlaneAxes ringInPlane(const StartPlane& plane, const Vec3& f1, const Vec3& f2);
 
-/// Carries radial `i`'s path of `cache` to the start `s` (its face's carryPlane set): on success appends the path (from,
-/// crossings, end) to `path_points`, updates the cache and returns true with the end's face in
+/// Carries radial `i`'s path of `cache` to the start `s`, whose face and side carryPlane set this
+/// patch (else false): on success appends the path (from, crossings, end) to `path_points`,
+/// updates the cache and returns true with the end's face in
 /// `end_face`; on failure leaves `path_points` as it was (and the path to be walked from the
 /// contact). Within the path's slack its crossings are placed without checks (they hold), or
 /// with `s.place` false left pending (their points unset), else each is checked and the slack

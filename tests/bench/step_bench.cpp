@@ -104,8 +104,9 @@ void BM_Patch(benchmark::State& state) {
 BENCHMARK(BM_Patch)->Arg(8)->Arg(16)->Arg(64)->Unit(benchmark::kNanosecond);
 
 // The same patch held, as a haptic step computes it: warm-started walks (the cache of the last
-// step) with the device wiggling by 10 nm between steps, so every walk is carried within its
-// slack, as 99.8 % are in the held pinch. Time per SGO is what n_SGO 64 adds over n_SGO 8.
+// step) with the device wiggling by 14 nm (10 nm on two axes) between steps, so every walk is
+// carried within its slack, as 99.8 % are in the held pinch. Time per SGO is what n_SGO 64 adds
+// over n_SGO 8.
 void BM_PatchHeld(benchmark::State& state) {
   const sim::Mesh mesh = sim::tessellateCylinder(0.03, 0.05, 64);
   sim::PatchSettings s;
