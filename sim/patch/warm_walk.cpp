@@ -197,12 +197,12 @@ void WalkRecorder::end(const Mesh& m, double side, const Vec3& dir, int f, const
   path_->axis_y = dy_ * dir + dx_ * perp;
 }
 
-const StartPlane& carryPlane(const Mesh& m, int f, double side, const Vec3& from, WalkCache& cache) {
-  cache.plane = startPlane(m, f, side);
+StartPlane carryPlane(const Mesh& m, int f, double side, const Vec3& from, WalkCache& cache) {
+  const StartPlane plane = startPlane(m, f, side);
   cache.plane_face = f, cache.plane_side = side;
-  const Vec3 rel = from - cache.plane.origin;
-  cache.from_x = rel.dot(cache.plane.x_axis), cache.from_y = rel.dot(cache.plane.y_axis);
-  return cache.plane;
+  const Vec3 rel = from - plane.origin;
+  cache.from_x = rel.dot(plane.x_axis), cache.from_y = rel.dot(plane.y_axis);
+  return plane;
 }
 
 PlaneAxes ringInPlane(const StartPlane& plane, const Vec3& f1, const Vec3& f2) {

@@ -81,10 +81,9 @@ struct WalkCache {
   int feature_index = -1;
   std::vector<WalkPath> paths;           ///< by radial index
   std::vector<WalkCrossing> crossings;   ///< radial i's in [i, i + 1) * kWarmCrossingsPerSgo
-  /// The last start plane used (of face plane_face, winding plane_side; -1: none this patch).
+  /// The face and winding of this patch's start plane (carryPlane; -1: none this patch).
   int plane_face = -1;
   double plane_side = 1.0;
-  StartPlane plane;
   double from_x = 0.0, from_y = 0.0;  ///< the walks' start (the contact) in that plane (m)
   /// This patch's contact normal's turn from the reference normal a path was last checked
   /// against, |normal - turn_ref|: worked out again only when the next path's reference differs
@@ -154,10 +153,10 @@ class WalkRecorder {
   double hx_ = 0.0, hy_ = 0.0, dx_ = 0.0, dy_ = 0.0;  // start and direction in the start plane
 };
 
-/// Sets the plane of face f (winding `side`) the walks of this patch start in, and `from` (the
-/// contact) in it (cache.from_x, from_y), once a patch after keyWalkCache (which clears it);
-/// carryWalk carries nothing from another face or side.
-const StartPlane& carryPlane(const Mesh& mesh, int f, double side, const Vec3& from, WalkCache& cache);
+/// The plane of face f (winding `side`) the walks of this patch start in; keeps its face, side
+/// and `from` (the contact) in it (cache.from_x, from_y) in `cache`, once a patch after
+/// keyWalkCache (which clears them): carryWalk carries nothing from another face or side.
+StartPlane carryPlane(const Mesh& mesh, int f, double side, const Vec3& from, WalkCache& cache);
 
 /// A face hit's ring axes (unit, on the start face) in a start plane's axes, each of unit length
 /// there: radial i's direction in the plane is c_i (x1, y1) + s_i (x2, y2), what projecting and
