@@ -171,10 +171,10 @@ bool DeviceLink::take(const DevicePacket& p, double t, std::uint64_t sender) {
 sim::DeviceSample DeviceLink::sample(double t) {
   sample_time_ = t;
   const bool stale = !heard_ || t - received_at_ > desc_.stale_after;
-  if (stale && !stale_ && heard_) ++counters_.stale_periods;
+  if (stale && !stale_ && heard_ && !run_over_) ++counters_.stale_periods;
   stale_ = stale;
   if (stale_) resync_ = ramping_ = true;
-  if (stale_) ++counters_.stale_steps;
+  if (stale_ && !run_over_) ++counters_.stale_steps;
   sim::DeviceSample out{position_, stale_ ? sim::Vec3::Zero() : velocity_, interval_};
   out.orientation = orientation_;
   out.resumed = resumed_ && !stale_;
@@ -212,6 +212,13 @@ DeviceReply DeviceLink::reply(double t, const sim::DeviceFeedback& f) {
   r.sgo_count = static_cast<std::uint32_t>(std::max(0, f.sgo_count));
   r.gain = static_cast<float>(gain_);
   return r;
+}
+
+bool DeviceLink::toldNothing() const {
+  for (int i = 0; i < displaced_count_; ++i) {
+    if (!displaced_[static_cast<std::size_t>(i)].sent.isZero(0.0)) return false;
+  }
+  return sent_.isZero(0.0);
 }
 
 sim::Vec3 DeviceLink::sentInScene() const {

@@ -3,6 +3,7 @@
 // the state of one device's link (newest packet, staleness, force ramp) without the socket.
 #pragma once
 
+#include <algorithm>
 #include <array>
 #include <cstddef>
 #include <cstdint>
@@ -152,6 +153,16 @@ class DeviceLink {
   /// Displaced sender i's reply for the step that ended at t (fades its force one step).
   DeviceReply displacedReply(int i, double t);
 
+  /// The run ends at simulated time t: every reply after t is flagged kEnding and its force
+  /// fades to zero at the ramp's rate, then stays zero (as after an experiment's trial).
+  /// Samples after it are not the run's steps: they count no stale time.
+  void endAt(double t) {
+    desc_.fade_out_at = std::min(desc_.fade_out_at, t);
+    run_over_ = true;
+  }
+  /// No sender is told a force: the last reply's, and every displaced sender's, is zero.
+  bool toldNothing() const;
+
   bool heard() const { return heard_; }  ///< a packet has been taken
   bool stale() const { return stale_; }   ///< as of the last sample
   bool ramping() const { return ramping_; }  ///< the force sent is rate-limited (see reply)
@@ -166,6 +177,7 @@ class DeviceLink {
   double max_force_;
   bool heard_ = false, stale_ = true, resync_ = true, ramping_ = true;
   bool resumed_ = false;  // a new stream after a dropout or a takeover, not sampled yet
+  bool run_over_ = false;  // endAt was called: the samples are the ending's, not steps
   sim::Vec3 sent_ = sim::Vec3::Zero();  // the force of the last reply
   std::uint32_t seq_ = 0, buttons_ = 0;
   std::uint64_t sender_ = 0;

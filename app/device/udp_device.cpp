@@ -4,6 +4,8 @@
 #include <array>
 #include <atomic>
 #include <cerrno>
+#include <chrono>
+#include <csignal>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
@@ -11,6 +13,7 @@
 #include <utility>
 
 #include <arpa/inet.h>
+#include <pthread.h>
 #include <netinet/in.h>
 #include <sys/socket.h>
 #include <unistd.h>
@@ -88,6 +91,8 @@ class UdpDeviceBridge::Device final : public sim::DeviceSource {
   }
 
   sim::Vec3 feedback(double t, const sim::DeviceFeedback& f) override {
+    last_ = f;
+    replied_at_ = t;
     const DeviceReply r = link_.reply(t, f);
     live_taken_.store(link_.counters().taken, std::memory_order_relaxed);
     live_flags_.store((link_.stale() ? 1 : 0) | (link_.ramping() ? 2 : 0), std::memory_order_relaxed);
@@ -114,6 +119,12 @@ class UdpDeviceBridge::Device final : public sim::DeviceSource {
     }
     peer_ = from;
   }
+
+  // After the run: replies after t fade the last step's force out (DeviceLink::endAt).
+  void endAt(double t) { link_.endAt(t); }
+  // The reply after the step time t of the run's ending: the last step's feedback, fading.
+  void answerEnding(double t) { feedback(t, last_); }
+  double repliedAt() const { return replied_at_; }
 
   const Socket& socket() const { return socket_; }
   const DeviceLink& link() const { return link_; }
@@ -176,6 +187,8 @@ class UdpDeviceBridge::Device final : public sim::DeviceSource {
   }
 
   DeviceLink link_;
+  sim::DeviceFeedback last_;  // the last step's, which the ending fades out
+  double replied_at_ = 0.0;   // s: the last reply's step time
   std::atomic<long> live_taken_{0};
   std::atomic<int> live_flags_{1};  // bit 0 stale, bit 1 ramping
   std::atomic<float> live_gain_{0.0f};
@@ -237,8 +250,10 @@ void UdpDeviceBridge::Socket::poll(double t) {
 }
 
 UdpDeviceBridge::UdpDeviceBridge(const SessionDesc& session)
-    : sources_(session.scene.fingers.size(), nullptr), dt_(1.0 / session.scene.world.haptic_rate_hz) {
+    : sources_(session.scene.fingers.size(), nullptr), dt_(1.0 / session.scene.world.haptic_rate_hz),
+      name_(session.scene.name) {
   for (const UdpDeviceDesc& d : session.udp_devices) {
+    longest_ramp_ = std::max(longest_ramp_, d.force_ramp);
     const sim::FingerDesc& finger = session.scene.fingers[static_cast<std::size_t>(d.finger)];
     const std::string field = "fingers." + finger.name + ".device.udp";
     const auto fail = [&](const std::string& at, const std::string& why) {
@@ -290,7 +305,71 @@ UdpDeviceBridge::UdpDeviceBridge(const SessionDesc& session)
   }
 }
 
-UdpDeviceBridge::~UdpDeviceBridge() = default;
+// The run never said it ended (it threw): its devices fade from their last replies.
+UdpDeviceBridge::~UdpDeviceBridge() {
+  try {
+    if (!ended_) {
+      double t = 0.0;
+      for (const std::unique_ptr<Device>& d : devices_) t = std::max(t, d->repliedAt());
+      endRun(t);
+    }
+    awaitFade();
+    stopEnding();
+  } catch (const std::exception& e) {  // no thread to be had: the devices are told nothing more
+    std::fprintf(stderr, "%s: the UDP devices' force could not fade out: %s\n", name_.c_str(), e.what());
+  }
+}
+
+void UdpDeviceBridge::endRun(double t) {
+  if (ended_ || devices_.empty()) return;
+  ended_ = true;
+  for (const std::unique_ptr<Device>& d : devices_) d->endAt(t);
+  ending_ = std::thread([this, t] { answerWhileEnding(t); });
+}
+
+void UdpDeviceBridge::answerWhileEnding(double t) {
+  sigset_t both;  // Ctrl-C and SIGTERM are the run's thread's
+  sigemptyset(&both);
+  sigaddset(&both, SIGINT);
+  sigaddset(&both, SIGTERM);
+  pthread_sigmask(SIG_BLOCK, &both, nullptr);
+  pthread_setname_np(pthread_self(), "gf-udp-end");
+  using Clock = std::chrono::steady_clock;
+  const auto tick = std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(dt_));
+  auto next = Clock::now();
+  std::unique_lock lock(ending_mutex_);
+  while (!stop_ending_) {
+    for (const std::unique_ptr<Device>& d : devices_) d->sample(t);
+    t += dt_;
+    for (const std::unique_ptr<Device>& d : devices_) d->answerEnding(t);
+    ending_changed_.notify_all();
+    next += tick;
+    if (Clock::now() > next + 10 * tick) next = Clock::now();  // far behind (a busy machine): no burst
+    ending_changed_.wait_until(lock, next, [&] { return stop_ending_; });
+  }
+}
+
+void UdpDeviceBridge::awaitFade() {
+  if (!ending_.joinable()) return;
+  std::unique_lock lock(ending_mutex_);
+  const auto told_nothing = [&] {
+    return std::all_of(devices_.begin(), devices_.end(), [](const auto& d) { return d->link().toldNothing(); });
+  };
+  if (told_nothing()) return;
+  std::fprintf(stderr, "%s: fading the UDP devices' force to zero\n", name_.c_str());
+  const std::chrono::duration<double> most(2.0 * longest_ramp_ + 20.0 * dt_ + 0.5);
+  ending_changed_.wait_for(lock, most, told_nothing);
+}
+
+void UdpDeviceBridge::stopEnding() {
+  if (!ending_.joinable()) return;
+  {
+    const std::lock_guard lock(ending_mutex_);
+    stop_ending_ = true;
+  }
+  ending_changed_.notify_all();
+  ending_.join();
+}
 
 std::string UdpDeviceBridge::address(int finger) const {
   for (const std::unique_ptr<Device>& d : devices_) {
@@ -306,6 +385,7 @@ nlohmann::json UdpDeviceBridge::liveJson() const {
 }
 
 nlohmann::json UdpDeviceBridge::json() const {
+  const std::lock_guard lock(ending_mutex_);  // the ending's thread may be answering
   nlohmann::json sockets = nlohmann::json::array(), fingers = nlohmann::json::array();
   for (const std::unique_ptr<Socket>& s : sockets_) {
     sockets.push_back({{"address", s->host + ":" + std::to_string(s->port)},
@@ -344,6 +424,7 @@ std::vector<std::string> UdpDeviceBridge::bindWarnings() const {
 }
 
 std::vector<std::string> UdpDeviceBridge::report() const {
+  const std::lock_guard lock(ending_mutex_);  // the ending's thread may be answering
   std::vector<std::string> lines;
   for (const std::unique_ptr<Device>& d : devices_) {
     const Socket& s = d->socket();
@@ -369,6 +450,7 @@ std::vector<std::string> UdpDeviceBridge::report() const {
 }
 
 std::vector<std::string> UdpDeviceBridge::runWarnings() const {
+  const std::lock_guard lock(ending_mutex_);  // the ending's thread may be answering
   std::vector<std::string> warnings;
   for (const std::unique_ptr<Device>& d : devices_) {
     const Socket& s = d->socket();

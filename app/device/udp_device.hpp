@@ -2,9 +2,12 @@
 // the DeviceSource the haptic loop samples for each of them.
 #pragma once
 
+#include <condition_variable>
 #include <memory>
+#include <mutex>
 #include <span>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include <nlohmann/json_fwd.hpp>
@@ -25,7 +28,8 @@ inline constexpr int kReceiveBufferBytes = 1 << 20;
 /// drains its socket without blocking, takes the newest valid packet of its channel and holds
 /// the position when none has come for stale_after; after the step the source sends the reply
 /// (the force ramped by the stale gain) to the address of the channel's newest packet. Everything
-/// but construction and json() runs on the haptic thread; nothing there blocks or allocates.
+/// but construction, the ending (endRun) and the reports after the run runs on the haptic thread;
+/// nothing there blocks or allocates.
 class UdpDeviceBridge {
  public:
   /// Binds the sockets now. Throws InputError naming the scene file (or --set), line and field
@@ -57,6 +61,18 @@ class UdpDeviceBridge {
   /// its socket or what every datagram was rejected for. Allocates.
   std::vector<std::string> runWarnings() const;
 
+  /// The run's last step ended at simulated time t (its duration, a Ctrl-C, a failure): from
+  /// here a thread of the bridge's goes on at the haptic rate in real time, reading the sockets
+  /// and answering every device after every step's time, each reply flagged ending and its force
+  /// fading from the last step's to zero at the ramp's rate (DeviceLink::endAt). So no device is
+  /// left pushing, and none goes unanswered while the run writes its outputs. Once.
+  void endRun(double t);
+  /// Waits until every device is told zero force: the fade, at most twice the longest
+  /// force_ramp and a few steps. A run calls it before its summary; the devices go on being
+  /// answered (zero, flagged ending) until the bridge is destroyed, which waits the same way
+  /// (after endRun from the last step's time, when the run never called it).
+  void awaitFade();
+
   struct Socket;
   class Device;
 
@@ -65,6 +81,16 @@ class UdpDeviceBridge {
   std::vector<std::unique_ptr<Device>> devices_;
   std::vector<sim::DeviceSource*> sources_;
   double dt_;  // s: the haptic step
+  std::string name_;  // the scene's, for the line said while the force fades
+  double longest_ramp_ = 0.0;  // s: the devices' largest force_ramp
+  // After the run: the thread answering the devices while their forces fade (endRun), and what
+  // it shares with the summary's readers and awaitFade.
+  std::thread ending_;
+  mutable std::mutex ending_mutex_;
+  std::condition_variable ending_changed_;
+  bool ended_ = false, stop_ending_ = false;
+  void answerWhileEnding(double t);
+  void stopEnding();
 };
 
 }  // namespace gf::app

@@ -61,7 +61,8 @@ struct UdpDeviceDesc {
   double force_ramp = 0.1;             ///< s for the force sent back to ramp from 0 to full (or back)
   /// s: from this simulated time on the force sent back fades to zero at the ramp's rate and stays
   /// there (flag kEnding), so a run that ends leaves no device pushing. Not a scene field: an
-  /// experiment's trial sets it to its time limit and runs force_ramp longer.
+  /// experiment's trial sets it to its time limit and runs force_ramp longer; any other run's
+  /// devices fade after its last step (UdpDeviceBridge::endRun).
   double fade_out_at = HUGE_VAL;
   /// s: time constant of the low-pass filter on the velocity from successive packets (0: raw
   /// differences); the coupling damps on it.

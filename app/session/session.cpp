@@ -379,6 +379,7 @@ sim::LoopStats SessionRun::loop() {
     afterStep(w);
     progress.step(w.time(), ++done_);
   });
+  if (udp_) udp_->endRun(world_->time());  // answered while the outputs are written, their force fading
   progress.finish();
   interrupted_ = stats.stopped && failure_.empty();
   if (interrupted_) {
@@ -453,7 +454,8 @@ void SessionRun::finishOutputs(const sim::LoopStats& stats) {
   nlohmann::json out = summary(stats);
   if (served_) out["serve"] = served;
   addRenderSummary(out);
-  if (udp_) {  // what each device sent, and loud warnings when one sent nothing usable
+  if (udp_) {  // what each device sent (its force faded out), and loud warnings when one sent nothing usable
+    udp_->awaitFade();
     out["udp_devices"] = udp_->json();
     for (const std::string& line : udp_->report()) std::fprintf(stderr, "%s: %s\n", scene_.name.c_str(), line.c_str());
     const std::vector<std::string> bound = udp_->bindWarnings(), silent = udp_->runWarnings();

@@ -345,6 +345,70 @@ TEST(DeviceLink, ADisplacedSenderHearsItsForceFadeToZeroAndTakesItBack) {
   EXPECT_EQ(heard[2].back().force, Vec3::Zero()) << "displaced, hand 2 ends told nothing";
 }
 
+// The end of a run (DeviceLink::endAt, which UdpDeviceBridge::endRun calls after the last step,
+// its thread then answering with the last step's feedback). Hand 1 presses 15 mm into the box
+// (about 12 N) and goes on sending: from the first reply after the end every reply is flagged
+// kEnding, no two successive ones differ by more than max_force force_scale dt / force_ramp
+// (0.4 N), and the force reaches zero after force_ramp (the gain's fade: 12 N / 0.1 s is below that rate),
+// then stays zero. With a takeover 10 steps before the end, the hand displaced (still told about
+// 8 N) and the new one (fading in) are both told nothing at last, and only then.
+TEST(DeviceLink, TheEndOfARunFadesTheLastForceToZeroAndKeepsItThere) {
+  for (const bool takeover : {false, true}) {
+    LinkedBox box;
+    DeviceLink& link = box.link;
+    DeviceReply r;
+    for (long k = 0; k < 500; ++k) {
+      const double t = static_cast<double>(k) * kDt;
+      link.take(packet(static_cast<std::uint32_t>(k + 1), t, Vec3(0.0, 0.108 - 0.015, 0.0)), t, 1);
+      if (takeover && k >= 490) link.take(packet(static_cast<std::uint32_t>(100000 + k), t, Vec3(0.0, 0.093, 0.0)), t, 2);
+      r = box.step(t);
+    }
+    const sim::World& w = box.world;
+    const sim::DeviceFeedback last{w.feedbackForce(0), w.contactRadius(0), w.sgoCount(0), w.touching(0)};
+    if (!takeover) {
+      EXPECT_NEAR(r.force.norm(), 12.0, 0.5) << "the press when the run ends";
+    }
+    EXPECT_FALSE(link.toldNothing());
+    const double end = w.time();
+    link.endAt(end);
+    double t = end;
+    long zero_at = -1, nothing_at = -1;
+    std::vector<Vec3> displaced(1, link.displacedCount() > 0 ? link.displaced(0).sent : Vec3::Zero());
+    for (long k = 0; k < 400; ++k) {
+      link.take(packet(static_cast<std::uint32_t>(1000 + k), t, Vec3(0.0, 0.093, 0.0)), t, 1);
+      link.sample(t);
+      t += kDt;
+      const DeviceReply e = link.reply(t, last);
+      EXPECT_NE(e.flags & DeviceReply::kEnding, 0u) << k;
+      EXPECT_LE((e.force - r.force).norm(), box.limit * (1.0 + 1e-9)) << "a step at " << k;
+      if (link.displacedCount() > 0) {
+        const Vec3 was = displaced.back();
+        displaced.push_back(link.displacedReply(0, t).force);
+        EXPECT_LE((displaced.back() - was).norm(), box.limit * (1.0 + 1e-9)) << "the displaced hand at " << k;
+      }
+      if (zero_at < 0 && e.force.isZero(0.0)) zero_at = k;
+      if (zero_at >= 0) {
+        EXPECT_TRUE(e.force.isZero(0.0)) << "zero stays zero, " << k;
+      }
+      if (nothing_at < 0 && link.toldNothing()) nothing_at = k;
+      if (nothing_at >= 0) {
+        EXPECT_TRUE(link.toldNothing()) << k;
+      }
+      r = e;
+    }
+    ASSERT_GE(zero_at, 0);
+    if (!takeover) {
+      EXPECT_NEAR(static_cast<double>(zero_at + 1) * kDt, box.d.force_ramp, 1.5 * kDt) << "faded over force_ramp";
+      EXPECT_EQ(nothing_at, zero_at);
+    } else {
+      ASSERT_EQ(link.displacedCount(), 1);
+      EXPECT_GT(displaced.front().norm(), 6.0) << "the displaced hand was still told a press";
+      const long displaced_zero = std::find(displaced.begin(), displaced.end(), Vec3::Zero()) - displaced.begin() - 1;
+      EXPECT_EQ(nothing_at, std::max(zero_at, displaced_zero)) << "told nothing once both are";
+    }
+  }
+}
+
 // Passivity through dropouts: a device pressing into a box and moving (a 12 mm, 1 Hz stroke from
 // 2 mm above the box to 10 mm into it) drops out at random for 0.05 to 2 s (its packets lost; it goes on moving),
 // 26 times in 60 s (fixed seed). While stale its force fades; at a resume the World keeps the

@@ -278,6 +278,34 @@ void aTakeoverFadesTheFirstOut(Device& device, Device& second, double held_force
   EXPECT_TRUE(after->flags & DeviceReply::kDisplaced);
 }
 
+// 6. The run ends (Ctrl-C, or its duration) while `device` presses with `held_force`: the replies
+// go on after the last step, flagged ending, the force fading from the press to zero at the
+// ramp's rate (Device::check: no step above max_force dt / force_ramp) over force_ramp, and the
+// run's last reply tells zero. `sending`: the device goes on sending while it listens. Returns
+// the simulated time of the first reply flagged ending.
+double theEndFadesThePressOut(Device& device, double held_force, bool sending) {
+  std::optional<DeviceReply> r, before, first, zero;
+  for (int k = 0; k < 600000 && !zero; ++k) {
+    r = sending ? device.echo(device.send(Vec3(0.0, 0.0, 0.0))) : device.next();
+    if (!r) break;
+    if (!(r->flags & DeviceReply::kEnding)) {
+      EXPECT_FALSE(first) << "a reply after the end not flagged ending, at t = " << r->time;
+      before = r;
+      continue;
+    }
+    if (!first) first = r;
+    if (r->force.isZero(0.0)) zero = r;
+  }
+  if (!first || !zero || !before) {
+    ADD_FAILURE() << "no fade to zero was heard";
+    return 0.0;
+  }
+  EXPECT_NEAR(before->force.norm(), held_force, 0.02 * held_force) << "the press when the run ended";
+  EXPECT_NEAR(zero->time - before->time, kRamp, 1.5 * kSceneStep) << "faded over force_ramp";
+  EXPECT_NE(first->flags & DeviceReply::kRamping, 0u);
+  return first->time;
+}
+
 TEST(UdpDevice, ADeviceDrivesARealtimeRunThroughLoopback) {
   const fs::path dir = freshFolder("gf_udp_loopback");
   {
@@ -299,8 +327,13 @@ TEST(UdpDevice, ADeviceDrivesARealtimeRunThroughLoopback) {
   Device second(port, device.nextSeq() + 1000);
   ASSERT_NO_FATAL_FAILURE(aTakeoverFadesTheFirstOut(device, second, held_force));
 
-  // 6. Ctrl-C: the run stops, writes its summary, and exits 130.
+  // 6. Ctrl-C while the second presses: the run stops, its device hears its press fade out,
+  // and the run writes its summary and exits 130.
+  std::optional<DeviceReply> r;
+  for (int k = 0; k < 20000 && (!r || r->flags & DeviceReply::kRamping); ++k) r = second.echo(second.send(Vec3::Zero()));
+  ASSERT_TRUE(r && !(r->flags & DeviceReply::kRamping));
   kill(-child.pid, SIGINT);
+  theEndFadesThePressOut(second, held_force, false);
   EXPECT_EQ(finish(child), 130);
   stop.done = true;
   const nlohmann::json summary = summaryOf(dir / "run");
@@ -330,6 +363,36 @@ TEST(UdpDevice, ADeviceDrivesARealtimeRunThroughLoopback) {
                 rtt.size(), rtt[rtt.size() / 2], rtt[rtt.size() * 99 / 100], rtt.back(),
                 summary["realtime"]["late_steps"].dump().c_str());
   }
+}
+
+// A run that reaches its duration while a device program presses and goes on sending (the
+// defect this guards against: the last step's 6 N stayed the program's last word, and its packets
+// went unanswered while the run wrote its outputs). The press fades out after the duration,
+// every reply flagged ending, and the run exits 0 with the replies counted in its summary.
+TEST(UdpDevice, ARunThatReachesItsDurationFadesThePressOut) {
+  const fs::path dir = freshFolder("gf_udp_duration");
+  {
+    std::ofstream(dir / "scene.toml") << kScene;
+  }
+  // Long enough for the press and its ramp in lockstep, even on a slow (sanitizer) build.
+  constexpr double kDuration = 6.0;
+  Child child = start(kBin + " run " + (dir / "scene.toml").string() + " --realtime --quiet --set duration=" +
+                          std::to_string(kDuration) + " --out " + (dir / "run").string(),
+                      (dir / "stdout.txt").string());
+  ASSERT_GT(child.pid, 0);
+  KillGroupOnExit stop{child.pid};
+  const int port = listeningPort(child.lines);
+  ASSERT_GT(port, 0) << "the run did not say where it listens";
+  Device device(port);
+  double held_force = 0.0;
+  ASSERT_NO_FATAL_FAILURE(pressAndHold(device, held_force));
+  const double ended = theEndFadesThePressOut(device, held_force, true);
+  EXPECT_NEAR(ended, kDuration + kSceneStep, 0.5 * kSceneStep) << "the first reply after the last step";
+  EXPECT_EQ(finish(child), 0);
+  stop.done = true;
+  const nlohmann::json summary = summaryOf(dir / "run");
+  EXPECT_FALSE(summary["interrupted"].get<bool>());
+  EXPECT_GE(summary["udp_devices"]["fingers"][0]["replies_sent"].get<long>(), device.replies());
 }
 
 // Runs `device-udp` in realtime with both fingers on one free port (and the `--set`s of `extra`),
