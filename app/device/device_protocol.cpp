@@ -234,7 +234,8 @@ DeviceReply DeviceLink::displacedReply(int i, double t) {
   DeviceReply r;
   r.seq = d.seq;
   r.channel = static_cast<std::uint32_t>(desc_.channel);
-  r.flags = DeviceReply::kDisplaced | (d.sent.isZero(0.0) ? 0u : DeviceReply::kRamping);
+  r.flags = DeviceReply::kDisplaced | (d.sent.isZero(0.0) ? 0u : DeviceReply::kRamping) |
+            (t > desc_.fade_out_at ? DeviceReply::kEnding : 0u);
   r.time = t;
   r.force = d.sent;
   return r;

@@ -72,6 +72,13 @@ struct UdpDeviceBridge::Socket {
   }
   // Reads what has arrived (at most kMaxDatagramsPerStep datagrams), once per step time t.
   void poll(double t);
+  // After the run: what has arrived is read and dropped, counting nothing (the run's figures
+  // stand as its last step left them).
+  void drain() {
+    std::array<std::uint8_t, DevicePacket::kOrientedSize + 1> buffer;
+    for (int n = 0; n < kMaxDatagramsPerStep && recv(fd, buffer.data(), buffer.size(), MSG_DONTWAIT) >= 0; ++n) {
+    }
+  }
   std::string address() const { return host + ":" + std::to_string(port); }
   // The datagrams rejected before their channel was known, by kind.
   Counts rejected() const {
@@ -84,6 +91,7 @@ class UdpDeviceBridge::Device final : public sim::DeviceSource {
  public:
   Device(const UdpDeviceDesc& desc, std::string finger, double max_force, Socket& socket)
       : link_(desc, max_force), channel_(desc.channel), finger_(std::move(finger)), socket_(socket) {}
+  void setStep(double dt) { dt_ = dt; }
 
   sim::DeviceSample sample(double t) override {
     socket_.poll(t);
@@ -120,17 +128,27 @@ class UdpDeviceBridge::Device final : public sim::DeviceSource {
     peer_ = from;
   }
 
-  // After the run: replies after t fade the last step's force out (DeviceLink::endAt).
-  void endAt(double t) { link_.endAt(t); }
-  // The reply after the step time t of the run's ending: the last step's feedback, fading.
-  void answerEnding(double t) { feedback(t, last_); }
+  // After the run: replies after t fade the last step's force out (DeviceLink::endAt); packets
+  // are no longer taken, and the replies are counted apart.
+  void endAt(double t) {
+    link_.endAt(t);
+    run_replies_ = replies_;
+  }
+  // The ending's step before time t: nothing is taken; the reply after it, the last step's
+  // feedback (its touching, radius and SGOs too) with the force fading.
+  void answerEnding(double t) {
+    socket_.drain();
+    link_.sample(t);
+    feedback(t + dt_, last_);
+  }
   double repliedAt() const { return replied_at_; }
+  long endingReplies() const { return replies_ - run_replies_; }
 
   const Socket& socket() const { return socket_; }
   const DeviceLink& link() const { return link_; }
   const std::string& finger() const { return finger_; }
   int channel() const { return channel_; }
-  long replies() const { return replies_; }
+  long replies() const { return run_replies_ >= 0 ? run_replies_ : replies_; }  // the run's
   long sendErrors() const { return send_errors_; }
   std::string field() const { return "fingers." + finger_ + ".device"; }
   // The link as of the last step, for a watcher on another thread.
@@ -163,7 +181,8 @@ class UdpDeviceBridge::Device final : public sim::DeviceSource {
             {"stale_s", static_cast<double>(c.stale_steps) * dt},
             {"takeovers", c.takeovers},
             {"displaced_replies", c.displaced_replies},
-            {"replies_sent", replies_},
+            {"replies_sent", replies()},
+            {"ending_replies", endingReplies()},
             {"send_errors", send_errors_}};
   }
 
@@ -189,6 +208,8 @@ class UdpDeviceBridge::Device final : public sim::DeviceSource {
   DeviceLink link_;
   sim::DeviceFeedback last_;  // the last step's, which the ending fades out
   double replied_at_ = 0.0;   // s: the last reply's step time
+  long run_replies_ = -1;     // the replies the run's steps sent (-1: the run goes on)
+  double dt_ = 0.0;           // s: the haptic step
   std::atomic<long> live_taken_{0};
   std::atomic<int> live_flags_{1};  // bit 0 stale, bit 1 ramping
   std::atomic<float> live_gain_{0.0f};
@@ -299,6 +320,7 @@ UdpDeviceBridge::UdpDeviceBridge(const SessionDesc& session)
                " already drives another finger; give each finger on one port its own channel");
     }
     auto device = std::make_unique<Device>(d, finger.name, finger.coupling.max_force, *socket);
+    device->setStep(dt_);
     socket->by_channel[static_cast<std::size_t>(d.channel)] = device.get();
     sources_[static_cast<std::size_t>(d.finger)] = device.get();
     devices_.push_back(std::move(device));
@@ -324,28 +346,34 @@ void UdpDeviceBridge::endRun(double t) {
   if (ended_ || devices_.empty()) return;
   ended_ = true;
   for (const std::unique_ptr<Device>& d : devices_) d->endAt(t);
-  ending_ = std::thread([this, t] { answerWhileEnding(t); });
-}
-
-void UdpDeviceBridge::answerWhileEnding(double t) {
-  sigset_t both;  // Ctrl-C and SIGTERM are the run's thread's
+  sigset_t both, old;  // Ctrl-C and SIGTERM stay the run's thread's: the new thread starts blocking them
   sigemptyset(&both);
   sigaddset(&both, SIGINT);
   sigaddset(&both, SIGTERM);
-  pthread_sigmask(SIG_BLOCK, &both, nullptr);
+  pthread_sigmask(SIG_BLOCK, &both, &old);
+  try {
+    ending_ = std::thread([this, t] { answerWhileEnding(t); });
+  } catch (const std::exception& e) {  // the outputs still get written; the devices hear no more
+    std::fprintf(stderr, "%s: warning: the UDP devices' force cannot fade out (%s): the last step's stands\n",
+                 name_.c_str(), e.what());
+  }
+  pthread_sigmask(SIG_SETMASK, &old, nullptr);
+}
+
+// One step time after another in real time, as the loop's: the first reply a step after the
+// run's last.
+void UdpDeviceBridge::answerWhileEnding(double t) {
   pthread_setname_np(pthread_self(), "gf-udp-end");
   using Clock = std::chrono::steady_clock;
   const auto tick = std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(dt_));
-  auto next = Clock::now();
+  auto next = Clock::now() + tick;
   std::unique_lock lock(ending_mutex_);
-  while (!stop_ending_) {
-    for (const std::unique_ptr<Device>& d : devices_) d->sample(t);
-    t += dt_;
+  while (!ending_changed_.wait_until(lock, next, [&] { return stop_ending_; })) {
     for (const std::unique_ptr<Device>& d : devices_) d->answerEnding(t);
+    t += dt_;
     ending_changed_.notify_all();
     next += tick;
     if (Clock::now() > next + 10 * tick) next = Clock::now();  // far behind (a busy machine): no burst
-    ending_changed_.wait_until(lock, next, [&] { return stop_ending_; });
   }
 }
 
@@ -356,9 +384,14 @@ void UdpDeviceBridge::awaitFade() {
     return std::all_of(devices_.begin(), devices_.end(), [](const auto& d) { return d->link().toldNothing(); });
   };
   if (told_nothing()) return;
-  std::fprintf(stderr, "%s: fading the UDP devices' force to zero\n", name_.c_str());
-  const std::chrono::duration<double> most(2.0 * longest_ramp_ + 20.0 * dt_ + 0.5);
-  ending_changed_.wait_for(lock, most, told_nothing);
+  // The fade: the gain's force_ramp, then the rate limit's (at most as long again), and room
+  // for a busy machine.
+  const double most = 2.0 * longest_ramp_ + 20.0 * dt_ + 0.5;
+  lock.unlock();  // stderr may block: the devices are answered meanwhile
+  std::fprintf(stderr, "%s: fading the UDP devices' force to zero (at most %.1f s; a second Ctrl-C stops at once)\n",
+               name_.c_str(), most);
+  lock.lock();
+  ending_changed_.wait_for(lock, std::chrono::duration<double>(most), told_nothing);
 }
 
 void UdpDeviceBridge::stopEnding() {
@@ -443,6 +476,7 @@ std::vector<std::string> UdpDeviceBridge::report() const {
     // Then how long it was stale, and what was sent back.
     line += "; stale " + seconds(static_cast<double>(c.stale_steps) * dt_) + " (" +
             counted(c.stale_periods, "dropout") + "); " + counted(d->replies(), "reply", "replies") + " sent";
+    if (d->endingReplies() > 0) line += " and " + std::to_string(d->endingReplies()) + " after the last step (the force fading)";
     if (d->sendErrors() > 0) line += ", " + counted(d->sendErrors(), "send error");
     lines.push_back(std::move(line));
   }

@@ -65,10 +65,12 @@ class UdpDeviceBridge {
   /// here a thread of the bridge's goes on at the haptic rate in real time, reading the sockets
   /// and answering every device after every step's time, each reply flagged ending and its force
   /// fading from the last step's to zero at the ramp's rate (DeviceLink::endAt). So no device is
-  /// left pushing, and none goes unanswered while the run writes its outputs. Once.
+  /// left pushing, and none goes unanswered while the run writes its outputs. Packets are read
+  /// and dropped then: what json() and report() count stands as the last step left it, the
+  /// ending's replies apart (`ending_replies`). Once.
   void endRun(double t);
   /// Waits until every device is told zero force: the fade, at most twice the longest
-  /// force_ramp and a few steps. A run calls it before its summary; the devices go on being
+  /// force_ramp, 20 steps and 0.5 s. A run calls it before its summary; the devices go on being
   /// answered (zero, flagged ending) until the bridge is destroyed, which waits the same way
   /// (after endRun from the last step's time, when the run never called it).
   void awaitFade();

@@ -128,10 +128,12 @@ class Device {
 
   std::vector<double>& rtts() { return rtt_us_; }
   long replies() const { return replies_; }
+  const std::vector<DeviceReply>& heard() const { return heard_; }  // every reply, in order
 
  private:
   void check(const DeviceReply& r) {
     ++replies_;
+    heard_.push_back(r);
     EXPECT_EQ(r.channel, 0u);
     EXPECT_TRUE(r.force.allFinite());
     EXPECT_LE(r.force.norm(), kMaxForce + 1e-9) << "at t = " << r.time;
@@ -162,6 +164,7 @@ class Device {
   std::uint32_t next_seq_;
   long valid_ = 0, replies_ = 0;
   std::optional<DeviceReply> previous_;
+  std::vector<DeviceReply> heard_;
   std::vector<std::chrono::steady_clock::time_point> sent_at_;
   std::array<bool, 100000> answered_{};
   std::vector<double> rtt_us_;
@@ -284,26 +287,35 @@ void aTakeoverFadesTheFirstOut(Device& device, Device& second, double held_force
 // run's last reply tells zero. `sending`: the device goes on sending while it listens. Returns
 // the simulated time of the first reply flagged ending.
 double theEndFadesThePressOut(Device& device, double held_force, bool sending) {
-  std::optional<DeviceReply> r, before, first, zero;
+  const std::vector<DeviceReply>& heard = device.heard();
+  std::size_t looked = heard.size();
+  std::optional<std::size_t> first, zero;  // the first reply flagged ending, the first of them telling zero
   for (int k = 0; k < 600000 && !zero; ++k) {
-    r = sending ? device.echo(device.send(Vec3(0.0, 0.0, 0.0))) : device.next();
-    if (!r) break;
-    if (!(r->flags & DeviceReply::kEnding)) {
-      EXPECT_FALSE(first) << "a reply after the end not flagged ending, at t = " << r->time;
-      before = r;
-      continue;
+    if (sending) device.send(Vec3::Zero());  // a packet a reply: the replies after the end echo none of them
+    if (!device.next()) break;
+    for (; looked < heard.size() && !zero; ++looked) {
+      const DeviceReply& r = heard[looked];
+      if (!(r.flags & DeviceReply::kEnding)) {
+        EXPECT_FALSE(first) << "a reply after the end not flagged ending, at t = " << r.time;
+        continue;
+      }
+      if (!first) first = looked;
+      if (r.force.isZero(0.0)) zero = looked;
     }
-    if (!first) first = r;
-    if (r->force.isZero(0.0)) zero = r;
   }
-  if (!first || !zero || !before) {
+  if (!first || !zero || *first == 0) {
     ADD_FAILURE() << "no fade to zero was heard";
     return 0.0;
   }
-  EXPECT_NEAR(before->force.norm(), held_force, 0.02 * held_force) << "the press when the run ended";
-  EXPECT_NEAR(zero->time - before->time, kRamp, 1.5 * kSceneStep) << "faded over force_ramp";
-  EXPECT_NE(first->flags & DeviceReply::kRamping, 0u);
-  return first->time;
+  const DeviceReply& before = heard[*first - 1];  // the run's last step's reply
+  EXPECT_NEAR(before.force.norm(), held_force, 0.02 * held_force) << "the press when the run ended";
+  EXPECT_NEAR(heard[*first].time - before.time, kSceneStep, 1e-9) << "the ending's first reply a step after the last";
+  EXPECT_NEAR(heard[*zero].time - before.time, kRamp, 1.5 * kSceneStep) << "faded over force_ramp";
+  EXPECT_NE(heard[*first].flags & DeviceReply::kRamping, 0u);
+  for (std::size_t i = *first; i <= *zero; ++i) {
+    EXPECT_EQ(heard[i].seq, before.seq) << "no packet is taken after the last step, t = " << heard[i].time;
+  }
+  return heard[*first].time;
 }
 
 TEST(UdpDevice, ADeviceDrivesARealtimeRunThroughLoopback) {
@@ -351,7 +363,8 @@ TEST(UdpDevice, ADeviceDrivesARealtimeRunThroughLoopback) {
   EXPECT_EQ(finger["takeovers"], 1);
   EXPECT_GT(finger["displaced_replies"].get<long>(), 0);
   EXPECT_GE(finger["stale_periods"].get<long>(), 1);
-  EXPECT_GE(finger["replies_sent"].get<long>(), device.replies());
+  EXPECT_GE(finger["replies_sent"].get<long>() + finger["ending_replies"].get<long>(), device.replies());
+  EXPECT_GT(finger["ending_replies"].get<long>(), 0);
   EXPECT_EQ(finger["send_errors"], 0);
 
   // The loopback round trip (send to the reply echoing it: the wait for the next step, the
@@ -392,7 +405,9 @@ TEST(UdpDevice, ARunThatReachesItsDurationFadesThePressOut) {
   stop.done = true;
   const nlohmann::json summary = summaryOf(dir / "run");
   EXPECT_FALSE(summary["interrupted"].get<bool>());
-  EXPECT_GE(summary["udp_devices"]["fingers"][0]["replies_sent"].get<long>(), device.replies());
+  const nlohmann::json& finger = summary["udp_devices"]["fingers"][0];
+  EXPECT_GE(finger["replies_sent"].get<long>() + finger["ending_replies"].get<long>(), device.replies());
+  EXPECT_EQ(finger["last_seq"].get<long>(), device.heard().back().seq) << "the last packet the run took";
 }
 
 // Runs `device-udp` in realtime with both fingers on one free port (and the `--set`s of `extra`),
