@@ -74,6 +74,8 @@ class Device {
  public:
   explicit Device(int port, std::uint32_t first_seq = 0) : server_(loopback(port)), next_seq_(first_seq) {
     fd_ = socket(AF_INET, SOCK_DGRAM | SOCK_CLOEXEC, 0);
+    const int buffer = 1 << 20;  // a reply a millisecond: room for a second of this process waiting for a core
+    setsockopt(fd_, SOL_SOCKET, SO_RCVBUF, &buffer, sizeof buffer);
   }
   ~Device() { close(fd_); }
 
@@ -303,17 +305,19 @@ double theEndFadesThePressOut(Device& device, double held_force, bool sending) {
       if (r.force.isZero(0.0)) zero = looked;
     }
   }
-  if (!first || !zero || *first == 0) {
+  if (!first || !zero) {
     ADD_FAILURE() << "no fade to zero was heard";
     return 0.0;
   }
-  const DeviceReply& before = heard[*first - 1];  // the run's last step's reply
-  EXPECT_NEAR(before.force.norm(), held_force, 0.02 * held_force) << "the press when the run ended";
-  EXPECT_NEAR(heard[*first].time - before.time, kSceneStep, 1e-9) << "the ending's first reply a step after the last";
-  EXPECT_NEAR(heard[*zero].time - before.time, kRamp, 1.5 * kSceneStep) << "faded over force_ramp";
+  // The run's last step ended a step before the first reply flagged ending (which the caller
+  // checks where it knows when that was); the fade starts from the press, one step in.
+  const double end = heard[*first].time - kSceneStep;
+  EXPECT_NEAR(heard[*first].force.norm(), held_force, 0.02 * held_force + kMaxForce * kSceneStep / kRamp)
+      << "the press when the run ended";
+  EXPECT_NEAR(heard[*zero].time - end, kRamp, 1.5 * kSceneStep) << "faded over force_ramp";
   EXPECT_NE(heard[*first].flags & DeviceReply::kRamping, 0u);
   for (std::size_t i = *first; i <= *zero; ++i) {
-    EXPECT_EQ(heard[i].seq, before.seq) << "no packet is taken after the last step, t = " << heard[i].time;
+    EXPECT_EQ(heard[i].seq, heard[*first].seq) << "no packet is taken after the last step, t = " << heard[i].time;
   }
   return heard[*first].time;
 }
