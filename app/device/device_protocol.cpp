@@ -230,7 +230,7 @@ DeviceReply DeviceLink::displacedReply(int i, double t) {
   const double limit = max_force_ * desc_.force_scale * ramp_step_;
   const double size = d.sent.norm();
   d.sent = size > limit ? sim::Vec3(d.sent * (1.0 - limit / size)) : sim::Vec3::Zero();
-  ++counters_.displaced_replies;
+  if (!run_over_) ++counters_.displaced_replies;  // the ending's are counted with its replies
   DeviceReply r;
   r.seq = d.seq;
   r.channel = static_cast<std::uint32_t>(desc_.channel);

@@ -9,6 +9,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstring>
+#include <functional>
 #include <limits>
 #include <utility>
 
@@ -142,7 +143,7 @@ class UdpDeviceBridge::Device final : public sim::DeviceSource {
     feedback(t + dt_, last_);
   }
   double repliedAt() const { return replied_at_; }
-  long endingReplies() const { return replies_ - run_replies_; }
+  long endingReplies() const { return run_replies_ >= 0 ? replies_ - run_replies_ : 0; }
 
   const Socket& socket() const { return socket_; }
   const DeviceLink& link() const { return link_; }
@@ -327,15 +328,18 @@ UdpDeviceBridge::UdpDeviceBridge(const SessionDesc& session)
   }
 }
 
-// The run never said it ended (it threw): its devices fade from their last replies.
+// The run never said it ended (it threw): its devices fade from their last replies, unless
+// none is told a force.
 UdpDeviceBridge::~UdpDeviceBridge() {
   try {
-    if (!ended_) {
+    const bool told_nothing =
+        std::all_of(devices_.begin(), devices_.end(), [](const auto& d) { return d->link().toldNothing(); });
+    if (!ended_ && !told_nothing) {
       double t = 0.0;
       for (const std::unique_ptr<Device>& d : devices_) t = std::max(t, d->repliedAt());
       endRun(t);
     }
-    awaitFade();
+    awaitFade(false, {});
     stopEnding();
   } catch (const std::exception& e) {  // no thread to be had: the devices are told nothing more
     std::fprintf(stderr, "%s: the UDP devices' force could not fade out: %s\n", name_.c_str(), e.what());
@@ -377,7 +381,7 @@ void UdpDeviceBridge::answerWhileEnding(double t) {
   }
 }
 
-void UdpDeviceBridge::awaitFade() {
+void UdpDeviceBridge::awaitFade(bool say, const std::function<bool()>& cut_short) {
   if (!ending_.joinable()) return;
   std::unique_lock lock(ending_mutex_);
   const auto told_nothing = [&] {
@@ -387,11 +391,16 @@ void UdpDeviceBridge::awaitFade() {
   // The fade: the gain's force_ramp, then the rate limit's (at most as long again), and room
   // for a busy machine.
   const double most = 2.0 * longest_ramp_ + 20.0 * dt_ + 0.5;
-  lock.unlock();  // stderr may block: the devices are answered meanwhile
-  std::fprintf(stderr, "%s: fading the UDP devices' force to zero (at most %.1f s; a second Ctrl-C stops at once)\n",
-               name_.c_str(), most);
-  lock.lock();
-  ending_changed_.wait_for(lock, std::chrono::duration<double>(most), told_nothing);
+  if (say) {
+    lock.unlock();  // stderr may block: the devices are answered meanwhile
+    std::fprintf(stderr, "%s: fading the UDP devices' force to zero (at most %.1f s)\n", name_.c_str(), most);
+    lock.lock();
+  }
+  // In slices, so that `cut_short` is looked at while the fade goes on.
+  const auto until = std::chrono::steady_clock::now() + std::chrono::duration<double>(most);
+  while (!told_nothing() && std::chrono::steady_clock::now() < until && !(cut_short && cut_short())) {
+    ending_changed_.wait_for(lock, std::chrono::milliseconds(20), told_nothing);
+  }
 }
 
 void UdpDeviceBridge::stopEnding() {
@@ -476,7 +485,7 @@ std::vector<std::string> UdpDeviceBridge::report() const {
     // Then how long it was stale, and what was sent back.
     line += "; stale " + seconds(static_cast<double>(c.stale_steps) * dt_) + " (" +
             counted(c.stale_periods, "dropout") + "); " + counted(d->replies(), "reply", "replies") + " sent";
-    if (d->endingReplies() > 0) line += " and " + std::to_string(d->endingReplies()) + " after the last step (the force fading)";
+    if (d->endingReplies() > 0) line += " and " + std::to_string(d->endingReplies()) + " after the last step (flagged ending)";
     if (d->sendErrors() > 0) line += ", " + counted(d->sendErrors(), "send error");
     lines.push_back(std::move(line));
   }

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <condition_variable>
+#include <functional>
 #include <memory>
 #include <mutex>
 #include <span>
@@ -70,10 +71,12 @@ class UdpDeviceBridge {
   /// ending's replies apart (`ending_replies`). Once.
   void endRun(double t);
   /// Waits until every device is told zero force: the fade, at most twice the longest
-  /// force_ramp, 20 steps and 0.5 s. A run calls it before its summary; the devices go on being
-  /// answered (zero, flagged ending) until the bridge is destroyed, which waits the same way
-  /// (after endRun from the last step's time, when the run never called it).
-  void awaitFade();
+  /// force_ramp, 20 steps and 0.5 s, or until `cut_short` says so (looked at every 20 ms).
+  /// `say`: a line on stderr when there is a fade to wait for. A run calls it before its
+  /// summary; the devices go on being answered (zero, flagged ending) until the bridge is
+  /// destroyed, which waits the same way, silently (after endRun from the last reply's time,
+  /// when the run never called it and a device is still told a force).
+  void awaitFade(bool say = true, const std::function<bool()>& cut_short = {});
 
   struct Socket;
   class Device;

@@ -455,7 +455,9 @@ void SessionRun::finishOutputs(const sim::LoopStats& stats) {
   if (served_) out["serve"] = served;
   addRenderSummary(out);
   if (udp_) {  // what each device sent (its force faded out), and loud warnings when one sent nothing usable
-    udp_->awaitFade();
+    // A Ctrl-C that comes during the wait (a run that ended otherwise) ends it; after one that
+    // stopped the run, a second ends the process.
+    udp_->awaitFade(true, [stopped = interruptSignal() != 0] { return !stopped && interruptSignal() != 0; });
     out["udp_devices"] = udp_->json();
     for (const std::string& line : udp_->report()) std::fprintf(stderr, "%s: %s\n", scene_.name.c_str(), line.c_str());
     const std::vector<std::string> bound = udp_->bindWarnings(), silent = udp_->runWarnings();

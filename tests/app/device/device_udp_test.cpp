@@ -74,7 +74,9 @@ class Device {
  public:
   explicit Device(int port, std::uint32_t first_seq = 0) : server_(loopback(port)), next_seq_(first_seq) {
     fd_ = socket(AF_INET, SOCK_DGRAM | SOCK_CLOEXEC, 0);
-    const int buffer = 1 << 20;  // a reply a millisecond: room for a second of this process waiting for a core
+    // Room for replies while this process waits for a core (the kernel caps it at
+    // net.core.rmem_max: 0.2-0.3 s of replies at the default).
+    const int buffer = 1 << 20;
     setsockopt(fd_, SOL_SOCKET, SO_RCVBUF, &buffer, sizeof buffer);
   }
   ~Device() { close(fd_); }
