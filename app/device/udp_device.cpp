@@ -332,9 +332,8 @@ UdpDeviceBridge::UdpDeviceBridge(const SessionDesc& session)
 // none is told a force.
 UdpDeviceBridge::~UdpDeviceBridge() {
   try {
-    const bool told_nothing =
-        std::all_of(devices_.begin(), devices_.end(), [](const auto& d) { return d->link().toldNothing(); });
-    if (!ended_ && !told_nothing) {
+    // Before endRun no other thread touches the links; after it, the ending's thread does.
+    if (!ended_ && !std::all_of(devices_.begin(), devices_.end(), [](const auto& d) { return d->link().toldNothing(); })) {
       double t = 0.0;
       for (const std::unique_ptr<Device>& d : devices_) t = std::max(t, d->repliedAt());
       endRun(t);
