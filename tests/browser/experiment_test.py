@@ -70,9 +70,14 @@ def run_trial(page: Page, served: Served, block: int, out_dir: Path) -> None:
     page.wait_for(f"window.gf.panel && (window.gf.panel.id || '').startsWith('ready-{block}-')", f"the ready panel of block {block}")
     page.click(page.centre("#start"))
     page.wait_for("window.gf.panel.phase === 'trial' && !!window.gf.hand.anchor", f"trial {block} with the hand placed")
-    # The drag first: the trial is the participant's, in real time (4 s), and the checks after it
-    # take a while on a loaded machine. It starts on the picture once the picture has a frame (a
-    # slow first frame leaves the image without a size, and the pointer lands beside it).
+    # The trial is the participant's, in real time (4 s): what the server refuses during it is
+    # asked at once (three short requests), then the drag; the checks after the drag take a
+    # while on a loaded machine (a screenshot), and may come after the trial's end.
+    for line in ("set fingers.index.n_sgo=0", "record start", "snapshot x"):
+        answer = served.command(line)
+        assert answer.startswith("error:") and "experiment" in answer, f"{line!r} during a trial answered {answer!r}"
+    # The drag starts on the picture once the picture has a frame (a slow first frame leaves the
+    # image without a size, and the pointer lands beside it).
     page.wait_for("document.querySelector('#frame').naturalWidth > 0", f"trial {block}'s first frame")
     anchor = page.evaluate("window.gf.hand.anchor")
     start = page.evaluate(f"window.gf.project({json.dumps(anchor)})")
@@ -83,9 +88,6 @@ def run_trial(page: Page, served: Served, block: int, out_dir: Path) -> None:
     poll(lambda: served.state()["fingers"][0]["device"][0] - anchor[0] > 0.03, f"trial {block}: the device to follow the drag")
     if block == 1:
         page.screenshot(out_dir / "experiment-trial.png")
-    for line in ("set fingers.index.n_sgo=0", "record start", "snapshot x"):
-        answer = served.command(line)
-        assert answer.startswith("error:") and "experiment" in answer, f"{line!r} during a trial answered {answer!r}"
     # What the page may read: no model, setting, SGO count or contact (each tells the condition).
     state_answer = served.command("state")
     assert state_answer.startswith("ok "), state_answer
