@@ -23,6 +23,7 @@
 
 #include "app/scene/scene_file.hpp"
 #include "app/device/device_protocol.hpp"
+#include "app/process/interrupt.hpp"
 
 namespace gf::app {
 namespace {
@@ -90,9 +91,8 @@ struct UdpDeviceBridge::Socket {
 
 class UdpDeviceBridge::Device final : public sim::DeviceSource {
  public:
-  Device(const UdpDeviceDesc& desc, std::string finger, double max_force, Socket& socket)
-      : link_(desc, max_force), channel_(desc.channel), finger_(std::move(finger)), socket_(socket) {}
-  void setStep(double dt) { dt_ = dt; }
+  Device(const UdpDeviceDesc& desc, std::string finger, double max_force, double dt, Socket& socket)
+      : link_(desc, max_force), dt_(dt), channel_(desc.channel), finger_(std::move(finger)), socket_(socket) {}
 
   sim::DeviceSample sample(double t) override {
     socket_.poll(t);
@@ -207,10 +207,10 @@ class UdpDeviceBridge::Device final : public sim::DeviceSource {
   }
 
   DeviceLink link_;
+  const double dt_;           // s: the haptic step
   sim::DeviceFeedback last_;  // the last step's, which the ending fades out
   double replied_at_ = 0.0;   // s: the last reply's step time
   long run_replies_ = -1;     // the replies the run's steps sent (-1: the run goes on)
-  double dt_ = 0.0;           // s: the haptic step
   std::atomic<long> live_taken_{0};
   std::atomic<int> live_flags_{1};  // bit 0 stale, bit 1 ramping
   std::atomic<float> live_gain_{0.0f};
@@ -320,8 +320,7 @@ UdpDeviceBridge::UdpDeviceBridge(const SessionDesc& session)
            "channel " + std::to_string(d.channel) + " of " + d.host + ":" + std::to_string(socket->port) +
                " already drives another finger; give each finger on one port its own channel");
     }
-    auto device = std::make_unique<Device>(d, finger.name, finger.coupling.max_force, *socket);
-    device->setStep(dt_);
+    auto device = std::make_unique<Device>(d, finger.name, finger.coupling.max_force, dt_, *socket);
     socket->by_channel[static_cast<std::size_t>(d.channel)] = device.get();
     sources_[static_cast<std::size_t>(d.finger)] = device.get();
     devices_.push_back(std::move(device));
@@ -333,7 +332,7 @@ UdpDeviceBridge::UdpDeviceBridge(const SessionDesc& session)
 UdpDeviceBridge::~UdpDeviceBridge() {
   try {
     // Before endRun no other thread touches the links; after it, the ending's thread does.
-    if (!ended_ && !std::all_of(devices_.begin(), devices_.end(), [](const auto& d) { return d->link().toldNothing(); })) {
+    if (!ended_ && !toldNothing()) {
       double t = 0.0;
       for (const std::unique_ptr<Device>& d : devices_) t = std::max(t, d->repliedAt());
       endRun(t);
@@ -349,18 +348,13 @@ void UdpDeviceBridge::endRun(double t) {
   if (ended_ || devices_.empty()) return;
   ended_ = true;
   for (const std::unique_ptr<Device>& d : devices_) d->endAt(t);
-  sigset_t both, old;  // Ctrl-C and SIGTERM stay the run's thread's: the new thread starts blocking them
-  sigemptyset(&both);
-  sigaddset(&both, SIGINT);
-  sigaddset(&both, SIGTERM);
-  pthread_sigmask(SIG_BLOCK, &both, &old);
+  const SignalsBlocked quiet;  // Ctrl-C and SIGTERM stay the run's thread's
   try {
     ending_ = std::thread([this, t] { answerWhileEnding(t); });
   } catch (const std::exception& e) {  // the outputs still get written; the devices hear no more
     std::fprintf(stderr, "%s: warning: the UDP devices' force cannot fade out (%s): the last step's stands\n",
                  name_.c_str(), e.what());
   }
-  pthread_sigmask(SIG_SETMASK, &old, nullptr);
 }
 
 // One step time after another in real time, as the loop's: the first reply a step after the
@@ -383,9 +377,7 @@ void UdpDeviceBridge::answerWhileEnding(double t) {
 void UdpDeviceBridge::awaitFade(bool say, const std::function<bool()>& cut_short) {
   if (!ending_.joinable()) return;
   std::unique_lock lock(ending_mutex_);
-  const auto told_nothing = [&] {
-    return std::all_of(devices_.begin(), devices_.end(), [](const auto& d) { return d->link().toldNothing(); });
-  };
+  const auto told_nothing = [this] { return toldNothing(); };
   if (told_nothing()) return;
   // The fade: the gain's force_ramp, then the rate limit's (at most as long again), and room
   // for a busy machine.
@@ -400,6 +392,10 @@ void UdpDeviceBridge::awaitFade(bool say, const std::function<bool()>& cut_short
   while (!told_nothing() && std::chrono::steady_clock::now() < until && !(cut_short && cut_short())) {
     ending_changed_.wait_for(lock, std::chrono::milliseconds(20), told_nothing);
   }
+}
+
+bool UdpDeviceBridge::toldNothing() const {
+  return std::all_of(devices_.begin(), devices_.end(), [](const auto& d) { return d->link().toldNothing(); });
 }
 
 void UdpDeviceBridge::stopEnding() {

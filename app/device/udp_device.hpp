@@ -96,6 +96,7 @@ class UdpDeviceBridge {
   bool ended_ = false, stop_ending_ = false;
   void answerWhileEnding(double t);
   void stopEnding();
+  bool toldNothing() const;  // no device is told a force (callers hold the ending's lock once it runs)
 };
 
 }  // namespace gf::app

@@ -2,7 +2,30 @@
 // outputs (`run`, `live`).
 #pragma once
 
+#include <csignal>
+
+#include <pthread.h>
+
 namespace gf::app {
+
+/// While alive, SIGINT and SIGTERM are blocked on this thread, so the threads it starts meanwhile
+/// never take them (they stay with the thread that records them).
+class SignalsBlocked {
+ public:
+  SignalsBlocked() {
+    sigset_t both;
+    sigemptyset(&both);
+    sigaddset(&both, SIGINT);
+    sigaddset(&both, SIGTERM);
+    pthread_sigmask(SIG_BLOCK, &both, &old_);
+  }
+  ~SignalsBlocked() { pthread_sigmask(SIG_SETMASK, &old_, nullptr); }
+  SignalsBlocked(const SignalsBlocked&) = delete;
+  SignalsBlocked& operator=(const SignalsBlocked&) = delete;
+
+ private:
+  sigset_t old_{};
+};
 
 /// While alive, SIGINT and SIGTERM record their signal (the first one) instead of ending the
 /// process; each handler resets itself, so a second Ctrl-C ends the process at once. A signal the

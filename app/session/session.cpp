@@ -47,25 +47,6 @@ constexpr double kContactSnapshotBytes = 150e3;
 constexpr double kForceChartBytes = 64e3;
 constexpr double kSummaryBytes = 64e3;
 
-// While alive, SIGINT and SIGTERM are blocked on this thread, so the threads it starts meanwhile
-// never take them (they stay with the haptic loop's thread, which waits for them).
-class SignalsBlocked {
- public:
-  SignalsBlocked() {
-    sigset_t both;
-    sigemptyset(&both);
-    sigaddset(&both, SIGINT);
-    sigaddset(&both, SIGTERM);
-    pthread_sigmask(SIG_BLOCK, &both, &old_);
-  }
-  ~SignalsBlocked() { pthread_sigmask(SIG_SETMASK, &old_, nullptr); }
-  SignalsBlocked(const SignalsBlocked&) = delete;
-  SignalsBlocked& operator=(const SignalsBlocked&) = delete;
-
- private:
-  sigset_t old_{};
-};
-
 // Progress on stderr: on a terminal one line rewritten in place once per simulated second;
 // otherwise (a log file, a pipe) a plain line at every tenth of the run, so logs stay readable.
 class Progress {
