@@ -24,6 +24,15 @@ bool nearLoad(const sim::Vec3& a, const sim::Vec3& b) {
   return (a - b).norm() <= kSameLoadShare * std::max(a.norm(), b.norm()) + kSameLoadFloor;
 }
 
+// A contact's moment about its normal, relative to the largest of it and its force times its
+// radius: the torsion arc shows it against mu F_n r, so a moment far below that (a held pinch's
+// 1e-8 N m) drawn again for every rounding of the centre of pressure would redraw nothing seen.
+bool nearTorsion(const sim::ContactSnapshot& a, const sim::ContactSnapshot& b) {
+  const double ta = contactTorsion(a), tb = contactTorsion(b);
+  const double scale = std::max(a.force.norm(), b.force.norm()) * std::max(a.radius, b.radius);
+  return std::abs(ta - tb) <= kSameLoadShare * std::max({std::abs(ta), std::abs(tb), scale}) + kSameLoadFloor;
+}
+
 template <class T, class Same>
 bool all(const std::vector<T>& a, const std::vector<T>& b, Same same) {
   if (a.size() != b.size()) return false;
@@ -55,7 +64,7 @@ bool sameContact(const sim::ContactSnapshot& a, const sim::ContactSnapshot& b, b
          nearVec3s(a.path_points_world, b.path_points_world) &&
          (load_arrows ? sameLoad(a.point_load, b.point_load) && all(a.loads, b.loads, sameLoad)
                       : samePressing(a.point_load, b.point_load) && all(a.loads, b.loads, samePressing) &&
-                            nearLoad(contactTorsion(a), contactTorsion(b)));
+                            nearTorsion(a, b));
 }
 
 bool samePlace(const sim::FingerSnapshot& a, const sim::FingerSnapshot& b) {

@@ -21,7 +21,8 @@ inline constexpr double kSameLoadShare = 4e-5, kSameLoadFloor = 1e-12;
 
 /// True when `a` and `b` draw the same scene picture: every length, direction and orientation of
 /// every body, finger, contact, pad and soft body within kSamePictureTolerance, every force and
-/// moment within kSameLoadShare of itself, and every count, flag, feature and
+/// moment within kSameLoadShare of itself (a contact's torsion, of its force times its radius
+/// when that is larger: the arc shows it against mu F_n r), and every count, flag, feature and
 /// setting equal. Each point's friction is compared with `load_arrows` (drawn as arrows, [render]
 /// load_arrows); without them only through the contact's torsion about its normal
 /// (contactTorsion, the torsion arc's), as the picture shows it: in a hold the aggregate solver

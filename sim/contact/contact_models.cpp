@@ -154,14 +154,17 @@ void addBlockPoints(const ContactToSolve& in, SolveRows& out) {
 // about the load's centre, weighted by their load shares, as the aggregate block takes it. Not
 // from the points' solved impulses: damping on their normal rows turns a tilt wobble into push
 // and pull, the clamp at zero keeps only the push, and load moved to the rim raised the limit
-// by up to 13 % while the body spun.
-double patchTorsion(const FingerContact& c, const FrictionBlock& block, AggregateScratch& s) {
+// by up to 13 % while the body spun. Also sets the block's twist_moment from the same points.
+double patchTorsion(const FingerContact& c, FrictionBlock& block, AggregateScratch& s) {
   const Pressing p = pressingPoints(c, truthShare(c), s);
-  double lever = 0.0;
+  double lever = 0.0, moment = 0.0;
   for (int i = 0; i < p.count; ++i) {
     const btVector3 r = s.points[static_cast<std::size_t>(i)] - block.centre;
-    lever += s.shares[static_cast<std::size_t>(i)] * (r - r.dot(block.normal) * block.normal).length();
+    const double arm = (r - r.dot(block.normal) * block.normal).length();
+    lever += s.shares[static_cast<std::size_t>(i)] * arm;
+    moment += s.shares[static_cast<std::size_t>(i)] * arm * arm;
   }
+  block.twist_moment = moment;
   return p.share > 0.0 ? block.friction * lever / p.share : 0.0;
 }
 
@@ -234,6 +237,13 @@ void addAggregateRows(const ContactToSolve& in, SolveRows& out) {
                  block.press, s.levers.data());
   anchorBlock(in, block);
   block.torsion = block.friction * block.press.mean_lever;
+  // The points' shares were scaled to sum to 1: the moment is over the contact's stiffness.
+  double moment = 0.0;
+  for (int i = 0; i < p.count; ++i) {
+    const auto k = static_cast<std::size_t>(i);
+    moment += s.shares[k] * s.levers[k] * s.levers[k];
+  }
+  block.twist_moment = p.share * moment;
   // The rim's pressing SGOs' levers are patchRolling's (the same points, centre and normal).
   block.rolling = !p.all && p.rim > 0 ? meanOf(s.levers.data() + p.first_sgo, p.rim) : patchRolling(c, block);
   if (in.memory) {

@@ -148,11 +148,16 @@ void PatchFrictionSolver::bind(const btContactSolverInfo& info) {
     setRows(b);
     // The friction rows' effective mass; rows that cannot act (no friction, no torsion limit or
     // nothing to turn) are left out.
-    const Eigen::Matrix3d K = rowMass(b, 0);
+    Eigen::Matrix3d K = rowMass(b, 0);
     bool active[kFrictionRows] = {fb.friction > 0.0, fb.friction > 0.0, fb.torsion != 0.0};
     for (int row = 0; row < kFrictionRows; ++row) active[row] = active[row] && moves(K, row);
+    const double h = info.m_timeStep, spring = h * fb.anchor_stiffness + fb.anchor_damping;
+    // Two pads on one body turn it about one axis: stiff torsion rows with anchors that differ
+    // by a rounding would twist against each other without end; the pads' springs settle.
+    b.twist_cfm = active[2] && fb.twist_moment > 0.0 && spring > 0.0 ? 1.0 / (h * spring * fb.twist_moment) : 0.0;
+    K(2, 2) += b.twist_cfm;
     invertActive(K, active, b.k_inv, nullptr);
-    const double pull = fb.anchor_stiffness / std::max(info.m_timeStep * fb.anchor_stiffness + fb.anchor_damping, 1e-300);
+    const double pull = fb.anchor_stiffness / std::max(spring, 1e-300);
     b.slip_bias[0] = pull * fb.slip.dot(b.t1);
     b.slip_bias[1] = pull * fb.slip.dot(b.t2);
     b.slip_bias[2] = pull * fb.turn_slip * fb.normal.dot(b.n);
@@ -465,6 +470,7 @@ double PatchFrictionSolver::solveBlock(Bound& b, double normal) {
   for (int row = 0; row < kFrictionRows; ++row) u[row] = b.k_inv[row][row] != 0.0 ? relativeVelocity(b, m, row) : 0.0;
   // A sticking contact's rows also take back its slip and turn since its anchor.
   for (int row = 0; row < kFrictionRows; ++row) u[row] += b.k_inv[row][row] != 0.0 ? b.slip_bias[row] : 0.0;
+  u[2] += b.twist_cfm * b.lambda[2];
   Eigen::Vector3d y, d = Eigen::Vector3d::Zero();
   Eigen::Matrix3d e;
   for (int row = 0; row < kFrictionRows; ++row) {

@@ -79,6 +79,11 @@ struct FrictionBlock {
   /// The spring and damper that take the slip back (N/m, N s/m: the contact's own), as Bullet's
   /// compliant rows do: target relative velocity -k slip / (h k + d).
   double anchor_stiffness = 0.0, anchor_damping = 0.0;
+  /// The pressing points' polar second moment about the centre, over their shares of the
+  /// contact's stiffness: sum_i w_i |rho_i|^2 (m^2). The torsion row is the pad's spring about
+  /// the normal, anchor_stiffness and anchor_damping times it, as a tilt row is about its axis:
+  /// compliance 1 / (h (h k + d) J) beside the pull. 0: a stiff torsion row (a point contact).
+  double twist_moment = 0.0;
   /// Aggregate: the block carries the contact's normal and tilt rows too (`press`) and has no
   /// points; its bodies are found by their solver bodies.
   bool aggregate = false;
@@ -150,6 +155,7 @@ class PatchFrictionSolver final : public btSequentialImpulseConstraintSolver {
     double cfm[3];
     double roll_inv[2][2];   // inverse of the rolling rows' effective mass
     double slip_bias[3];     // the friction rows' pull back to the anchor: along t1, t2, about n
+    double twist_cfm;        // the torsion row's compliance (the pad's spring): -cfm lambda more
     double lambda[kRows];    // accumulated impulses
   };
   // The bodies' relative motion a block's rows read (with the impulses applied so far).
