@@ -153,7 +153,9 @@ double PatchFrictionSolver::limitContactFriction(const btContactSolverInfo& info
       if (clamped == l) continue;
       row.m_appliedImpulse = static_cast<btScalar>(clamped);
       applyRow(m_tmpSolverBodyPool[row.m_solverBodyIdA], m_tmpSolverBodyPool[row.m_solverBodyIdB], row, clamped - l);
-      residual = std::max(residual, (clamped - l) * (clamped - l));
+      // Bullet's residual: the change of velocity, the impulse over the row's effective mass.
+      const double speed = row.m_jacDiagABInv != 0.0 ? (clamped - l) / row.m_jacDiagABInv : 0.0;
+      residual = std::max(residual, speed * speed);
     }
   }
   return residual;

@@ -131,6 +131,8 @@ class PatchFrictionSolver final : public btSequentialImpulseConstraintSolver {
                                          const btContactSolverInfo& info) override;
 
  private:
+  int iterations_ = 0;  // iterations of the solve under way
+  void drawSkippedShuffles(const btContactSolverInfo& info);
   // tangential t1, t2, torsion; aggregate: normal, tilt a0, a1; then with a rolling limit:
   // rolling about t1, t2
   static constexpr int kRows = 8;
@@ -157,6 +159,10 @@ class PatchFrictionSolver final : public btSequentialImpulseConstraintSolver {
     double slip_bias[3];     // the friction rows' pull back to the anchor: along t1, t2, about n
     double twist_cfm;        // the torsion row's compliance (the pad's spring): -cfm lambda more
     double lambda[kRows];    // accumulated impulses
+    // Each row's relative velocity per unit impulse (its effective mass's diagonal, compliance
+    // in): an iteration's change of impulse times it is the residual Bullet's rows report, the
+    // change of velocity (m/s, rad/s), so one threshold can end the iterations.
+    double speed[kRows];
   };
   // The bodies' relative motion a block's rows read (with the impulses applied so far).
   struct Motion {
