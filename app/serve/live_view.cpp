@@ -175,7 +175,8 @@ nlohmann::json LiveView::statsJson() const {
 std::string LiveView::record(bool on) {
   const std::string folder = (std::filesystem::path(out_dir_) / kFramesFolder).string();
   std::lock_guard lock(mutex_);
-  if (on && !recorder_) recorder_ = std::make_shared<render::PngSequenceWriter>(folder);
+  // Three frames of slack for the encoder beside the realtime loop and the stream.
+  if (on && !recorder_) recorder_ = std::make_shared<render::PngSequenceWriter>(folder, 3);
   recording_ = on && recorder_;
   if (on) return "ok recording frames to " + folder + "/ (" + std::to_string(recorded_) + " so far)";
   return "ok recording stopped: " + std::to_string(recorded_) + " frames in " + folder + "/";

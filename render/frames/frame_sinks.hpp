@@ -31,7 +31,8 @@ struct SinkStats {
 /// frames/000000.png, 000001.png, ... in `folder`, encoded by a writer thread (libdeflate level 1) so
 /// the render thread only waits when `queue_depth` frames are already pending. One by default:
 /// the next frame is drawn while one is encoded, and a run whose held frames are reused (drawn
-/// faster than encoded) keeps one 1280x720 image waiting rather than three (8 MB less). A frame whose
+/// faster than encoded) keeps one 2.76 MB 1280x720 image waiting, and one spare, rather than
+/// three of each (fig8's 10 s with frames: 155-156 MB at its peak, 158-159 with three). A frame whose
 /// pixels equal the previous frame's is written with the previous frame's bytes, not encoded
 /// again (a scene at rest drawn without a time stamp or an overlay clock gives equal frames;
 /// with either, as the bundled scenes are drawn, every frame differs).

@@ -2,7 +2,6 @@
 
 #include <Eigen/Dense>
 #include <algorithm>
-#include <cstdlib>
 #include <cmath>
 #include <limits>
 
@@ -573,18 +572,21 @@ btScalar PatchFrictionSolver::solveGroupCacheFriendlyFinish(btCollisionObject** 
 }
 
 // The shuffles of the iterations a converged solve skipped, drawn all the same: Bullet draws
-// one number a row an iteration (btRandInt2 over its non-contact, contact and friction pools,
-// SOLVER_RANDMIZE_ORDER) from a generator that runs on across steps, so the next step's orders
-// are those of a solve that ran every iteration. Ending early would otherwise change them from
-// that step on, and a contact that the iterations leave short of convergence depends on them:
-// a ball pressed into a bowl at 9 or 11 iterations chatters at 500 Hz, 1.3 um, under the
-// orders that alternate from step to step (a generator's low bit alternates).
+// one number a row of its non-contact pool every iteration, and one a row of its contact and
+// friction pools in each of the first m_numIterations (btRandInt2, SOLVER_RANDMIZE_ORDER), from a
+// generator that runs on across steps; so the next step's orders are those of a solve that ran
+// every iteration. Ending early would otherwise change them from that step on, and a contact
+// that the iterations leave short of convergence depends on them: a ball pressed into a bowl at
+// 9 or 11 iterations chatters at 500 Hz, 1.3 um, under orders that alternate from step to step
+// (a generator's low bit alternates).
 void PatchFrictionSolver::drawSkippedShuffles(const btContactSolverInfo& info) {
   if (!(info.m_solverMode & SOLVER_RANDMIZE_ORDER)) return;
   const int iterations = std::max(m_maxOverrideNumSolverIterations, info.m_numIterations);
-  const long draws = static_cast<long>(m_tmpSolverNonContactConstraintPool.size()) +
-                     m_tmpSolverContactConstraintPool.size() + m_tmpSolverContactFrictionConstraintPool.size();
-  for (long k = static_cast<long>(std::max(0, iterations - iterations_)) * draws; k > 0; --k) btRand2();
+  const long non_contact = m_tmpSolverNonContactConstraintPool.size();
+  const long contact = static_cast<long>(m_tmpSolverContactConstraintPool.size()) + m_tmpSolverContactFrictionConstraintPool.size();
+  long draws = 0;
+  for (int it = iterations_; it < iterations; ++it) draws += non_contact + (it < info.m_numIterations ? contact : 0);
+  for (; draws > 0; --draws) btRand2();
 }
 
 }  // namespace gf::sim

@@ -157,12 +157,12 @@ class PatchFrictionSolver final : public btSequentialImpulseConstraintSolver {
     double cfm[3];
     double roll_inv[2][2];   // inverse of the rolling rows' effective mass
     double slip_bias[3];     // the friction rows' pull back to the anchor: along t1, t2, about n
-    double twist_cfm;        // the torsion row's compliance (the pad's spring): -cfm lambda more
+    double twist_cfm = 0.0;  // the torsion row's compliance (the pad's spring): -cfm lambda more
     double lambda[kRows];    // accumulated impulses
     // Each row's relative velocity per unit impulse (its effective mass's diagonal, compliance
     // in): an iteration's change of impulse times it is the residual Bullet's rows report, the
     // change of velocity (m/s, rad/s), so one threshold can end the iterations.
-    double speed[kRows];
+    double speed[kRows] = {};
   };
   // The bodies' relative motion a block's rows read (with the impulses applied so far).
   struct Motion {

@@ -40,7 +40,7 @@ struct Hold {
 };
 
 // The pads' moments about their own normals m_l, m_r: the normals are opposite, so the body
-// feels m_r - m_l about the left pad's normal, and the pads twist against each other by
+// feels m_l - m_r about the left pad's normal, and the pads twist against each other by
 // (m_l + m_r) / 2.
 Hold holdAt(const World& w, double friction) {
   Snapshot s;
@@ -65,9 +65,9 @@ void PrintTo(const HoldCase& c, std::ostream* os) { *os << c.solver << ", " << c
 
 class PinchHold : public testing::TestWithParam<HoldCase> {};
 
-// After the lift (3 s) the devices hold still for a minute: the pads' counter-twist stays under
-// 5 % of mu F_n r all along, and the cylinder turns less than 0.01 mm at its rim (3 cm) and
-// moves less than 0.01 mm from 10 s to 63 s. With stiff torsion rows the points solver's pads
+// After the lift (3 s) the devices hold still: sampled every second from 11 s to 63 s, the pads'
+// counter-twist stays under 5 % of that moment's mu F_n r, and the cylinder turns less than
+// 0.01 mm at its rim (3 cm) and moves less than 0.01 mm from 10 s to 63 s. With stiff torsion rows the points solver's pads
 // twisted against each other by 0.021 N m at 20 s and 0.022 N m (86 % of their 0.026 N m) from
 // 30 s on; the aggregate solver's by 0.0025 N m (10 %) at 20 iterations.
 TEST_P(PinchHold, ThePadsDoNotTwistAgainstEachOtherInAMinutesHold) {
@@ -84,7 +84,7 @@ TEST_P(PinchHold, ThePadsDoNotTwistAgainstEachOtherInAMinutesHold) {
     ctx.simulate(1.0);
     h = holdAt(ctx.world(), friction);
     ASSERT_TRUE(std::isfinite(h.counter_twist)) << "a pad let go at " << ctx.world().time() << " s";
-    largest = std::max(largest, std::abs(h.counter_twist));
+    largest = std::max(largest, std::abs(h.counter_twist) / h.limit);
     if (k % 10 == 9) {
       std::printf("%s, %d iterations, %.0f s: counter-twist %.3g N m (mu F_n r %.3g)\n", p.solver, p.iterations,
                   ctx.world().time(), h.counter_twist, h.limit);
@@ -93,9 +93,9 @@ TEST_P(PinchHold, ThePadsDoNotTwistAgainstEachOtherInAMinutesHold) {
   const Pose p1 = ctx.world().bodyPose(cylinder);
   const double turned = Eigen::AngleAxisd(p1.orientation * p0.orientation.inverse()).angle();
   const double moved = (p1.position - p0.position).norm();
-  std::printf("%s, %d iterations: largest counter-twist %.3g N m, turned %.3g rad, moved %.3g m\n", p.solver,
+  std::printf("%s, %d iterations: largest counter-twist %.3g of mu F_n r, turned %.3g rad, moved %.3g m\n", p.solver,
               p.iterations, largest, turned, moved);
-  EXPECT_LT(largest, 0.05 * h.limit);
+  EXPECT_LT(largest, 0.05);
   EXPECT_LT(turned * 0.03, 1e-5);
   EXPECT_LT(moved, 1e-5);
   EXPECT_EQ(ctx.world().counters().nan_recoveries, 0);
