@@ -23,6 +23,8 @@ if("render" IN_LIST godfinger_FIND_COMPONENTS)
   pkg_check_modules(OSMESA REQUIRED IMPORTED_TARGET osmesa)
   # PNG frames are deflated by libdeflate (zlib streams, level 1 for frames).
   pkg_check_modules(DEFLATE REQUIRED IMPORTED_TARGET libdeflate)
+  # A held sequence's frames are deflated band by band by zlib (flushed parts of one stream).
+  pkg_check_modules(ZLIB REQUIRED IMPORTED_TARGET zlib)
   pkg_check_modules(IMGUI REQUIRED IMPORTED_TARGET imgui)
   # The browser view's frames are JPEGs encoded by libjpeg-turbo.
   pkg_check_modules(TURBOJPEG REQUIRED IMPORTED_TARGET libturbojpeg)

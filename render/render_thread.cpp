@@ -3,8 +3,8 @@
 #include <imgui.h>
 
 #include <algorithm>
+#include <cmath>
 #include <atomic>
-#include <cerrno>
 #include <cstdio>
 #include <chrono>
 #include <condition_variable>
@@ -16,8 +16,6 @@
 
 #include <malloc.h>
 #include <pthread.h>
-#include <semaphore.h>
-#include <time.h>
 
 #include "render/chart/chart_file.hpp"
 #include "render/gl/context.hpp"
@@ -27,8 +25,10 @@
 #include "render/overlay/labels.hpp"
 #include "render/overlay/layout.hpp"
 #include "render/state/same_picture.hpp"
+#include "render/state/snapshot_queue.hpp"
 #include "render/state/triple_buffer.hpp"
 #include "render/state/view_layers.hpp"
+#include "render/state/wake.hpp"
 #include "sim/assert.hpp"
 
 namespace gf::render {
@@ -226,28 +226,19 @@ struct RenderThread::Impl {
   bool closing = false;
   std::string error;
   TripleBuffer latest;
-  // Realtime: posted by hurry() (haptic thread) and finish(); the render thread sleeps on it
-  // until its next tick. A semaphore's post is an atomic add and, when the thread sleeps, a futex
-  // wake: no lock the render thread could hold.
-  struct Wake {
-    sem_t sem;
-    Wake() { sem_init(&sem, 0, 0); }
-    ~Wake() { sem_destroy(&sem); }
-  } wake;
+  // Realtime frames written to files with no viewer: every published state is drawn, in order
+  // (a frame that falls behind is drawn late rather than lost), from a queue of
+  // kQueuedSeconds of them; null otherwise (the newest is drawn, from `latest`).
+  std::unique_ptr<SnapshotQueue> ordered;
+  std::atomic<long> dropped{0};  // states published to a full queue: not drawn
+  long queue_max = 0;            // the most states waiting when one was taken
+  long drawn_after_end = 0;      // frames drawn after finish() was called
+  long realtime_drawn = 0;       // under `mutex`: realtime frames drawn (waitFirstFrame)
+  Wake wake;  // realtime: the render thread sleeps on it until a publish, finish() or its next frame
+  std::atomic<bool> input_published{false};  // set before the publish of a viewer's input
   long hurried = 0;
   std::vector<Job> deferred;  // offline close-ups waiting for the frames' memory (defersCloseUps)
 
-  // Sleeps until `t` or a post to `wake`; true when woken by a post (all taken).
-  bool sleepUntil(Clock::time_point t) {
-    const auto ns = std::chrono::duration_cast<std::chrono::nanoseconds>(t.time_since_epoch()).count();
-    const timespec at{static_cast<time_t>(ns / 1000000000), static_cast<long>(ns % 1000000000)};
-    while (sem_clockwait(&wake.sem, CLOCK_MONOTONIC, &at) != 0) {  // steady_clock is CLOCK_MONOTONIC
-      if (errno != EINTR) return false;                              // ETIMEDOUT
-    }
-    while (sem_trywait(&wake.sem) == 0) {
-    }
-    return true;
-  }
   std::mutex command_mutex;
   std::vector<sim::SettingsCommand> commands;
   std::vector<float> frame_ms;
@@ -378,37 +369,47 @@ struct RenderThread::Impl {
     releaseGpu(gpu);  // finished without releaseFrames: the deferred close-ups are drawn still
   }
 
+  // Draws each state the haptic thread publishes as it comes: its frame times are the clock, so
+  // no frame is lost to a tick of the render thread's own falling just before a publish. A state
+  // published within half a period of the last frame (a viewer's input on consecutive steps)
+  // waits until then. With the ordered queue every state is drawn, the next at once when drawing
+  // fell behind, and those still waiting when the run ends are drawn before the thread stops;
+  // otherwise the newest is drawn and the ones it replaced are not.
   void runRealtime(Gpu& gpu) {
     const auto period = std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(1.0 / settings.fps));
-    // A viewer's input (hurry()) is drawn at once, but at most twice the frame rate: moves
-    // taken on consecutive steps are one frame. Ticks count from a hurried frame.
     auto last_draw = Clock::now() - period;
-    bool pending = false;
-    for (auto next = Clock::now();;) {
-      pending = sleepUntil(next) || pending;
+    bool ending = false;
+    for (auto until = Clock::now() + period;;) {
+      if (!ending) wake.sleepUntil(until);
       const auto now = Clock::now();
       // Close-ups and charts still come through the queue in realtime runs; they are drawn
-      // outside the lock so the haptic thread never waits on a draw.
+      // outside the lock so the haptic thread never waits on a draw. They are looked at every
+      // period at least.
       std::deque<Job> side;
-      bool stop = false;
       {
         std::lock_guard lock(mutex);
         side.swap(queue);
-        stop = closing;
+        ending = closing;
       }
       for (const Job& job : side) drawSideJob(gpu, scene, job);
-      if (stop) break;
-      if (pending && now < last_draw + period / 2) {
-        next = last_draw + period / 2;
+      const std::size_t waiting = ordered ? ordered->waiting() : (latest.fresh() ? 1 : 0);
+      if (ending && (!ordered || waiting == 0)) break;
+      if (!ending && waiting > 0 && now < last_draw + period / 2) {
+        until = last_draw + period / 2;
         continue;
       }
-      const bool hurried_frame = pending;
-      pending = false;
-      next = (hurried_frame ? now : next) + period;
-      if (!latest.update()) continue;
+      until = now + period;
+      if (!(ordered ? ordered->update() : latest.update())) continue;
+      queue_max = std::max(queue_max, static_cast<long>(waiting));
+      if (ending) ++drawn_after_end;
       last_draw = now;
-      if (hurried_frame) ++hurried;
-      std::vector<sim::SettingsCommand> made = drawFrame(gpu, latest.front());
+      if (input_published.exchange(false)) ++hurried;
+      std::vector<sim::SettingsCommand> made = drawFrame(gpu, ordered ? ordered->front() : latest.front());
+      if (realtime_drawn == 0) {  // written only here; read under the lock by waitFirstFrame
+        std::lock_guard lock(mutex);
+        realtime_drawn = 1;
+        changed.notify_all();
+      }
       if (made.empty()) continue;
       std::lock_guard lock(command_mutex);
       commands.insert(commands.end(), made.begin(), made.end());
@@ -458,6 +459,9 @@ RenderThread::RenderThread(const sim::SceneDesc& scene, const FrameOutputSetting
   Impl& r = *impl_;
   r.scene = scene;
   r.settings = settings;
+  if (settings.realtime && !settings.tap && (!settings.frames_dir.empty() || !settings.video_path.empty())) {
+    r.ordered = std::make_unique<SnapshotQueue>(static_cast<std::size_t>(std::ceil(kQueuedSeconds * settings.fps)) + 1);
+  }
   if (settings.width < 1 || settings.height < 1 || settings.width > 1920 || settings.height > 1080) {
     throw GlError("frame size must be 1..1920 x 1..1080 pixels");
   }
@@ -497,11 +501,32 @@ void RenderThread::submitChart(const ChartSpec& chart, const std::string& path) 
   impl_->submit([&](Job& job) { job.chart = std::make_unique<ChartSpec>(chart), job.chart_path = path; }, false, false);
 }
 
-sim::Snapshot& RenderThread::latestSlot() { return impl_->latest.back(); }
+sim::Snapshot* RenderThread::freeSlot() {
+  Impl& r = *impl_;
+  if (!r.ordered) return &r.latest.back();
+  sim::Snapshot* slot = r.ordered->back();
+  if (!slot) r.dropped.fetch_add(1, std::memory_order_relaxed);
+  return slot;
+}
 
-void RenderThread::hurry() { sem_post(&impl_->wake.sem); }
+void RenderThread::publishSlot(bool input) {
+  Impl& r = *impl_;
+  if (input) r.input_published.store(true);
+  if (r.ordered) {
+    r.ordered->publish();
+  } else {
+    r.latest.publish();
+  }
+  r.wake.post();
+}
 
-void RenderThread::publishSlot() { impl_->latest.publish(); }
+bool RenderThread::waitFirstFrame(double seconds) {
+  Impl& r = *impl_;
+  std::unique_lock lock(r.mutex);
+  return r.changed.wait_for(lock, std::chrono::duration<double>(seconds),
+                            [&] { return r.realtime_drawn > 0 || r.closing || !r.error.empty(); }) &&
+         r.realtime_drawn > 0;
+}
 
 std::vector<sim::SettingsCommand> RenderThread::takeCommands() {
   std::unique_lock lock(impl_->command_mutex, std::try_to_lock);
@@ -516,7 +541,7 @@ RenderStats RenderThread::finish() {
     std::lock_guard lock(r.mutex);
     r.closing = true;
     r.changed.notify_all();
-    sem_post(&r.wake.sem);
+    r.wake.post();
   }
   if (r.thread.joinable()) r.thread.join();
   RenderStats stats;
@@ -524,6 +549,9 @@ RenderStats RenderThread::finish() {
   stats.frame_ms = r.frame_ms;
   stats.pictures_reused = r.pictures_reused;
   stats.hurried = r.hurried;
+  stats.dropped = r.dropped.load();
+  stats.queue_max = r.queue_max;
+  stats.drawn_after_end = r.drawn_after_end;
   stats.background_priority = r.background_priority;
   // Each sink is finished on its own: a PNG folder that fails does not cost the video.
   const auto finishSink = [&](auto& sink, SinkStats& out) {

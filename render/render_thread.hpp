@@ -1,6 +1,7 @@
 // The render thread: the only owner of OSMesa, GL, ImGui and the frame encoders. The haptic
 // thread hands it immutable Snapshots; offline through a short queue (every frame drawn, in
-// order), realtime through a triple buffer (the latest state, never blocking the haptic thread).
+// order), realtime through a triple buffer (the latest state) or, for frames written to files
+// with no viewer, a queue (every state, in order); neither ever blocks the haptic thread.
 #pragma once
 
 #include <memory>
@@ -18,6 +19,10 @@
 #include "sim/scene/snapshot.hpp"
 
 namespace gf::render {
+
+/// Realtime frames written to files with no viewer: how many seconds of published states may
+/// wait to be drawn (a stretch of frames dearer than a period is drawn late, not lost).
+inline constexpr double kQueuedSeconds = 6.0;
 
 /// Receives every frame of the stream as it is drawn, with the Snapshot it shows (a browser
 /// view, app/serve/). Called on the render thread right after the read-back: keep it short
@@ -52,7 +57,9 @@ struct FrameOutputSettings {
   /// frames' memory (docs/performance.md, "Memory"). False: each is drawn when it comes, among
   /// the frames, as realtime runs always do.
   bool close_ups_after_frames = true;
-  bool realtime = false;          ///< draw the latest snapshot at `fps` of wall-clock time
+  /// Draw the states the haptic thread publishes as they come (publishLatest), not frames queued
+  /// by submitFrame.
+  bool realtime = false;
   /// Run the render thread, its encoders and llvmpipe's workers (made with the context, after
   /// the thread lowered itself) at nice kBackgroundNice: a realtime haptic loop at nice 0 without
   /// root wins the cores when it wakes, and the frames still get what it leaves.
@@ -63,7 +70,13 @@ struct FrameOutputSettings {
 /// What the render thread did.
 struct RenderStats {
   std::vector<float> frame_ms;    ///< draw + overlay + read-back of each frame drawn (ms)
-  long hurried = 0;               ///< realtime frames drawn early for a viewer's input (hurry())
+  long hurried = 0;               ///< realtime frames that showed a viewer's input (publishLatest)
+  /// Realtime frames written to files with no viewer are drawn in order, every state published
+  /// (kQueuedSeconds of them may wait): states dropped because the queue was full, the most that
+  /// waited when one was taken, and the frames drawn after finish() (the run had ended).
+  long dropped = 0;
+  long queue_max = 0;
+  long drawn_after_end = 0;
   /// Frames whose scene picture was the one before's, not drawn again (only their labels and
   /// overlay were): nothing had moved (render/state/same_picture.hpp).
   long pictures_reused = 0;
@@ -98,27 +111,32 @@ class RenderThread {
   /// close-up may follow; a chart may. Realtime: returns at once. Throws the thread's error.
   void releaseFrames();
   /// Realtime: `fill(snapshot)` writes the latest state into the free slot of the triple
-  /// buffer, which is then handed to the render thread (it draws the newest at its next frame).
-  /// The slot is the caller's only inside `fill`. Never blocks; does not allocate once the
-  /// slots have grown. Haptic thread only (one publishing thread).
+  /// buffer, which is then handed to the render thread and wakes it: it draws the newest state
+  /// at once, or half a period after its last frame if that is later (so input published on
+  /// consecutive steps is one frame). `input`: the state shows a viewer's input (a move from the
+  /// browser view; counted as `hurried`). The slot is the caller's only inside `fill`. Never
+  /// blocks: an atomic exchange and a semaphore post (an atomic add, a futex wake when the
+  /// thread sleeps); does not allocate once the slots have grown. Haptic thread only (one
+  /// publishing thread).
   template <class Fill>
-  void publishLatest(Fill&& fill) {
-    fill(latestSlot());
-    publishSlot();
+  void publishLatest(Fill&& fill, bool input = false) {
+    if (sim::Snapshot* slot = freeSlot()) {
+      fill(*slot);
+      publishSlot(input);
+    }
   }
-  /// Realtime: the snapshot just published shows a viewer's input (a move from the browser
-  /// view): the render thread draws it now, not at its next 1/fps tick (and counts its ticks from
-  /// then), unless it drew less than half a period ago (then at that point). Never blocks: a
-  /// semaphore post (an atomic add, a futex wake when the thread sleeps). Any thread.
-  void hurry();
+  /// Realtime: waits (at most `seconds`) until the first state published is drawn, so that a
+  /// loop started afterwards does not fall behind while the first frame compiles llvmpipe's
+  /// shaders (0.7 s at 1280×720 here). False when it was not (the time ran out, an error).
+  bool waitFirstFrame(double seconds);
   /// Realtime: settings changes made in the overlay since the last call; never blocks.
   std::vector<sim::SettingsCommand> takeCommands();
   /// Draws what is queued, stops the thread and the encoders, rethrows the first error.
   RenderStats finish();
 
  private:
-  sim::Snapshot& latestSlot();
-  void publishSlot();
+  sim::Snapshot* freeSlot();  // null: the ordered queue is full (the state is dropped)
+  void publishSlot(bool input);
   struct Impl;
   std::unique_ptr<Impl> impl_;
 };

@@ -102,16 +102,21 @@ class BenchCommand final : public Command {
       options.stop_on_interrupt = true;  // Ctrl-C: this round's run folder is finished for the time reached
       const sim::LoopStats stats = runSession(session, options);
       const nlohmann::json summary = requireSummary(options.out_dir);
-      const double frames_per_s = summary.contains("render")
-                                      ? summary["render"]["frames"].get<double>() / std::max(1e-9, stats.wall_seconds)
-                                      : 0.0;
+      // Frames drawn while the loop ran; a run writing frames draws the states still queued at
+      // its end after it (render.queue.drawn_after_end), and drops those published to a full queue.
+      const nlohmann::json render = summary.value("render", nlohmann::json::object());
+      const double after_end = render.contains("queue") ? render["queue"]["drawn_after_end"].get<double>() : 0.0;
+      const double dropped = render.contains("queue") ? render["queue"]["dropped"].get<double>() : 0.0;
+      const double frames_per_s =
+          render.contains("frames") ? (render["frames"].get<double>() - after_end) / std::max(1e-9, stats.wall_seconds) : 0.0;
       const nlohmann::json loop = summary["realtime"];
       std::printf("round %d: sleeper late %.3f %% (p99 %.0f us, max %.0f us) | loop late %.3f %% (p99 %.0f us, max %.0f us; "
-                  "woke late %ld, overran %ld, catching up %ld), %.1f frames/s\n",
+                  "woke late %ld, overran %ld, catching up %ld), %.1f frames/s (then %.0f drawn after the end, %.0f dropped)\n",
                   r, sleeper.late_percent(), sleeper.p99_us, sleeper.max_late_us, loop["late_percent"].get<double>(),
                   stats.late_p99_us, stats.max_lateness_us, stats.late_woke, stats.late_overran, stats.late_catching_up,
-                  frames_per_s);
+                  frames_per_s, after_end, dropped);
       rounds.push_back({{"sleeper", sleeperJson(sleeper)}, {"loop", loop}, {"frames_per_s", frames_per_s},
+                        {"frames_after_end", after_end}, {"frames_dropped", dropped},
                         {"run_folder", options.out_dir}});
       sleeper_late += sleeper.late;
       sleeper_n += sleeper.wakeups;

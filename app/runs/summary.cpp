@@ -111,7 +111,8 @@ nlohmann::json summaryJson(const SessionDesc& session, const sim::World& world, 
 }
 
 // frames: drawn by the render thread; published: handed over by the haptic thread (realtime
-// draws only the newest of those, so it can draw fewer).
+// with a viewer draws only the newest of those, so it can draw fewer; realtime to files draws
+// them all, in order, but those published to a full queue, `dropped`).
 nlohmann::json renderJson(render::RenderStats r, long published) {
   const auto fps = [](const render::SinkStats& s) { return s.busy_seconds > 0 ? s.frames / s.busy_seconds : 0.0; };
   const long frames = static_cast<long>(r.frame_ms.size());
@@ -119,8 +120,10 @@ nlohmann::json renderJson(render::RenderStats r, long published) {
           {"published", published},
           {"pictures_reused", r.pictures_reused},
           {"hurried", r.hurried},
+          {"queue", {{"dropped", r.dropped}, {"most_waiting", r.queue_max}, {"drawn_after_end", r.drawn_after_end}}},
           {"render_ms", {{"median", sim::percentile(r.frame_ms, 0.5)}, {"p99", sim::percentile(r.frame_ms, 0.99)}}},
-          {"png", {{"frames", r.png.frames}, {"encode_fps", fps(r.png)}, {"repeated", r.png.repeated}}},
+          {"png", {{"frames", r.png.frames}, {"encode_fps", fps(r.png)}, {"repeated", r.png.repeated},
+                   {"banded", r.png.banded}, {"bands_compressed", r.png.bands_compressed}}},
           {"video", {{"frames", r.video.frames}, {"bytes", r.video.bytes}}},
           {"priority", r.background_priority ? "nice " + std::to_string(render::kBackgroundNice) : std::string("normal")},
           {"gl", r.gl}};

@@ -32,12 +32,14 @@ void FrameDriver::apply(sim::World& world, const std::vector<sim::SettingsComman
 }
 
 // Realtime: the latest state, written straight into the render thread's free slot.
-void FrameDriver::publishLatest(const sim::World& world) {
-  renderer_.publishLatest([&](sim::Snapshot& slot) {
-    world.snapshot(slot);
-    slot.timings = live_ ? live_->summary() : sim::HapticTimings{};
-    if (marks_) marks_(slot);
-  });
+void FrameDriver::publishLatest(const sim::World& world, bool input) {
+  renderer_.publishLatest(
+      [&](sim::Snapshot& slot) {
+        world.snapshot(slot);
+        slot.timings = live_ ? live_->summary() : sim::HapticTimings{};
+        if (marks_) marks_(slot);
+      },
+      input);
 }
 
 void FrameDriver::start(sim::World& world) {
@@ -56,8 +58,7 @@ void FrameDriver::afterStep(sim::World& world, double dt, bool input) {
     const bool frame_time = t + kTimeEps >= frameTime(next_frame_);
     if (!input && !frame_time) return;
     while (t + kTimeEps >= frameTime(next_frame_)) ++next_frame_;
-    publishLatest(world);
-    if (input) renderer_.hurry();
+    publishLatest(world, input);
     if (!frame_time) return;
     apply(world, renderer_.takeCommands());
     return;

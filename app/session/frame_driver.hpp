@@ -41,7 +41,7 @@ class FrameDriver {
  private:
   double frameTime(long k) const { return static_cast<double>(k) / fps_; }
   void apply(sim::World& world, const std::vector<sim::SettingsCommand>& commands);
-  void publishLatest(const sim::World& world);
+  void publishLatest(const sim::World& world, bool input = false);
   bool isSyncFrame(long k) const;
 
   render::RenderThread& renderer_;

@@ -37,6 +37,7 @@ namespace fs = std::filesystem;
 
 // Bodies overlapping by more than this at the start (m) are reported.
 constexpr double kStartOverlap = 1e-3;
+constexpr double kFirstFrameSeconds = 30.0;  // the most a realtime run waits for its first frame
 // What a run's outputs take, about, for the room they need (measured on the bundled scenes):
 // bytes per trace.csv or forces.csv number with its comma (14.8 to 17), per pixel of a PNG frame
 // (0.36 for a 1280 x 720 scene), per contact snapshot with its close-ups (JSON up to 37 kB, a
@@ -335,6 +336,9 @@ void SessionRun::startThreads() {
   if (stream) frames_ = std::make_unique<FrameDriver>(*renderer_, 60.0, options_.realtime, session_.view.actions, &live_);
   if (frames_ && served_) frames_->setMarks([served = served_.get()](sim::Snapshot& s) { served->markMoves(s); });
   if (frames_) frames_->start(*world_);
+  // The loop's clock starts once the first frame is drawn: drawing it compiles llvmpipe's
+  // shaders, and its frames would wait for that from the run's first second.
+  if (frames_ && options_.realtime) renderer_->waitFirstFrame(kFirstFrameSeconds);
   expect_.emplace(session_.expect, *world_);
   quiet_threads_.reset();  // this thread takes the signals again
 }

@@ -96,6 +96,8 @@ void PngSequenceWriter::run() {
     stats_.busy_seconds += secondsSince(start);
     stats_.bytes += static_cast<long>(previous_png_.size());
     stats_.repeated += repeated ? 1 : 0;
+    stats_.banded = encoder_.bandedImages();
+    stats_.bands_compressed = encoder_.bandsCompressed();
     if (spares_.size() <= depth_ && !frame.rgb.empty()) spares_.push_back(std::move(frame));
   }
 }

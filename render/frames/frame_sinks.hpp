@@ -26,6 +26,8 @@ struct SinkStats {
   double busy_seconds = 0.0;  ///< time spent encoding (PNG) or writing to the pipe (MP4)
   long bytes = 0;             ///< bytes written
   long repeated = 0;          ///< PNG: frames equal to the one before, written without encoding
+  long banded = 0;            ///< PNG: frames encoded band by band (PngEncoder), a held scene's
+  long bands_compressed = 0;  ///< PNG: the bands those frames compressed (the rest kept)
 };
 
 /// frames/000000.png, 000001.png, ... in `folder`, encoded by a writer thread (libdeflate level 1) so

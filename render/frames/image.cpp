@@ -1,6 +1,7 @@
 #include "render/frames/image.hpp"
 
 #include <libdeflate.h>
+#include <zlib.h>
 
 #include <algorithm>
 #include <cstring>
@@ -53,17 +54,132 @@ PngEncoder::PngEncoder(int zlib_level)
   if (!compressor_) throw ImageError("cannot allocate a deflate compressor");
 }
 
-PngEncoder::~PngEncoder() { libdeflate_free_compressor(compressor_); }
+PngEncoder::~PngEncoder() {
+  libdeflate_free_compressor(compressor_);
+  if (zlib_) deflateEnd(zlib_.get());
+}
 
-std::vector<std::uint8_t> PngEncoder::encode(const Image& image) {
-  rows_width_ = rows_height_ = 0;  // until the rows hold this image and it compressed
+// Deflates band `band` of rows_ on its own (no match reaches into another band) into bands_,
+// ending byte-aligned without a final block (a sync flush), so that the bands' parts joined make
+// one deflate stream once a final empty block follows.
+void PngEncoder::compressBand(std::size_t band, std::size_t row_bytes, int rows) {
+  z_stream& z = *zlib_;
+  std::uint8_t* in = rows_.data() + band * kPngBandRows * row_bytes;
+  const auto in_size = static_cast<uLong>(row_bytes * static_cast<std::size_t>(rows));
+  if (deflateReset(&z) != Z_OK) throw ImageError("could not compress a frame (zlib reset)");
+  std::vector<std::uint8_t>& out = bands_[band];
+  out.resize(deflateBound(&z, in_size) + 16);  // the bound is for a finished stream; a flush adds 5 bytes
+  z.next_in = in;
+  z.avail_in = static_cast<uInt>(in_size);
+  z.next_out = out.data();
+  z.avail_out = static_cast<uInt>(out.size());
+  if (deflate(&z, Z_SYNC_FLUSH) != Z_OK || z.avail_in != 0 || z.avail_out == 0) {
+    throw ImageError("could not compress a frame (zlib)");
+  }
+  out.resize(out.size() - z.avail_out);
+  band_adler_[band] = static_cast<std::uint32_t>(adler32(1L, in, static_cast<uInt>(in_size)));
+  ++bands_compressed_;
+}
+
+// Marks in changed_ the bands of kPngBandRows rows in which `image` differs from the image rows_
+// holds, and returns how many (all of them when the sizes differ).
+std::size_t PngEncoder::markChangedBands(const Image& image, std::size_t band_count) {
+  const std::size_t stride = 3 * static_cast<std::size_t>(image.width);
+  changed_.assign(band_count, 1);
+  const bool same_size = rows_width_ == image.width && rows_height_ == image.height &&
+                         image.rgb.size() == stride * static_cast<std::size_t>(image.height);
+  if (!same_size) return band_count;
+  std::size_t changed_count = 0;
+  for (std::size_t b = 0; b < band_count; ++b) {
+    const int first = static_cast<int>(b) * kPngBandRows;
+    const int end = std::min(image.height, first + kPngBandRows);
+    bool differs = false;
+    for (int y = first; y < end && !differs; ++y) {
+      differs = std::memcmp(rows_.data() + static_cast<std::size_t>(y) * (stride + 1) + 1,
+                            image.rgb.data() + static_cast<std::size_t>(y) * stride, stride) != 0;
+    }
+    changed_[b] = differs ? 1 : 0;
+    changed_count += differs ? 1 : 0;
+  }
+  return changed_count;
+}
+
+// Deflates the changed bands (all of them when the kept parts are not of rows_) and joins the
+// parts into packed_ as one zlib stream; returns its size.
+std::size_t PngEncoder::deflateBanded(const Image& image, bool kept_parts_valid) {
+  const std::size_t stride = 3 * static_cast<std::size_t>(image.width);
+  const std::size_t row_bytes = stride + 1;
+  const std::size_t band_count = changed_.size();
+  if (!zlib_) {
+    zlib_ = std::make_unique<z_stream>();
+    if (deflateInit2(zlib_.get(), 1, Z_DEFLATED, -15, 8, Z_DEFAULT_STRATEGY) != Z_OK) {
+      zlib_.reset();
+      throw ImageError("could not compress a frame (zlib init)");
+    }
+  }
+  bands_.resize(band_count);
+  band_adler_.resize(band_count);
+  uLong adler = 1;
+  std::size_t size = 2 + 2 + 4;  // zlib header, the final empty block, Adler-32
+  for (std::size_t b = 0; b < band_count; ++b) {
+    const int first = static_cast<int>(b) * kPngBandRows;
+    const int rows = std::min(image.height - first, kPngBandRows);
+    if (changed_[b] || !kept_parts_valid) {
+      for (int y = first; y < first + rows; ++y) {
+        std::uint8_t* dst = rows_.data() + static_cast<std::size_t>(y) * row_bytes;
+        dst[0] = 0;
+        std::memcpy(dst + 1, image.rgb.data() + static_cast<std::size_t>(y) * stride, stride);
+      }
+      compressBand(b, row_bytes, rows);
+    }
+    adler = adler32_combine(adler, band_adler_[b], static_cast<z_off_t>(row_bytes * static_cast<std::size_t>(rows)));
+    size += bands_[b].size();
+  }
+  if (packed_room_ < size) packed_.reset(new std::uint8_t[size]), packed_room_ = size;
+  std::uint8_t* out = packed_.get();
+  *out++ = 0x78, *out++ = 0x01;  // deflate, 32 kB window, fastest (0x7801 is a multiple of 31)
+  for (const std::vector<std::uint8_t>& part : bands_) out = std::copy(part.begin(), part.end(), out);
+  *out++ = 0x03, *out++ = 0x00;  // a final, empty block of fixed codes
+  for (int shift : {24, 16, 8, 0}) *out++ = static_cast<std::uint8_t>(adler >> shift);
+  ++banded_images_;
+  return size;
+}
+
+// Deflates the whole image by libdeflate into packed_; returns the stream's size.
+std::size_t PngEncoder::deflateWhole(const Image& image) {
   filterRows(image, rows_);
   // The output's room, left uninitialized: a frame compresses to a seventh of its bound, and
   // zeroing it wrote all of it (pages the heap had not used before stay unused).
   const std::size_t bound = libdeflate_zlib_compress_bound(compressor_, rows_.size());
   if (packed_room_ < bound) packed_.reset(new std::uint8_t[bound]), packed_room_ = bound;
-  const std::size_t packed_size = libdeflate_zlib_compress(compressor_, rows_.data(), rows_.size(), packed_.get(), bound);
-  if (packed_size == 0) throw ImageError("could not compress a frame");
+  const std::size_t size = libdeflate_zlib_compress(compressor_, rows_.data(), rows_.size(), packed_.get(), bound);
+  if (size == 0) throw ImageError("could not compress a frame");
+  return size;
+}
+
+std::vector<std::uint8_t> PngEncoder::encode(const Image& image) {
+  const std::size_t band_count = (static_cast<std::size_t>(image.height) + kPngBandRows - 1) / kPngBandRows;
+  const std::size_t changed_count = markChangedBands(image, band_count);
+  const bool banded = band_count > 0 && 4 * changed_count <= band_count;
+  const bool kept_parts_valid = bands_valid_;
+  rows_width_ = rows_height_ = 0;  // until the rows hold this image and it compressed
+  bands_valid_ = false;
+  // The first banded image of a sequence compresses all its bands (the image before was deflated
+  // whole); after it, only the changed bands' rows are copied and compressed.
+  const std::size_t packed_size = banded ? deflateBanded(image, kept_parts_valid) : deflateWhole(image);
+  std::vector<std::uint8_t> out = pngBytes(image, packed_size);
+  bands_valid_ = banded;
+  return out;
+}
+
+std::vector<std::uint8_t> PngEncoder::encodeWhole(const Image& image) {
+  rows_width_ = rows_height_ = 0;
+  bands_valid_ = false;
+  return pngBytes(image, deflateWhole(image));
+}
+
+// The PNG file around packed_'s first `packed_size` bytes, rows_ then holding `image`'s rows.
+std::vector<std::uint8_t> PngEncoder::pngBytes(const Image& image, std::size_t packed_size) {
   std::vector<std::uint8_t> out = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n'};
   out.reserve(out.size() + 3 * 12 + 13 + packed_size);
   std::vector<std::uint8_t> header;
@@ -95,7 +211,7 @@ std::vector<std::uint8_t> encodePng(const Image& image, int zlib_level) {
   // compressing a frame, and clearing fresh megabytes each frame more than a tenth of it.
   thread_local std::unique_ptr<PngEncoder> encoder;
   if (!encoder || encoder->level() != zlib_level) encoder = std::make_unique<PngEncoder>(zlib_level);
-  return encoder->encode(image);
+  return encoder->encodeWhole(image);
 }
 
 void writePng(const std::string& path, const Image& image, int zlib_level) {

@@ -22,6 +22,8 @@ class TripleBuffer {
     GF_ASSERT(writtenHere() && "one thread (the haptic thread) publishes realtime snapshots");
     back_ = middle_.exchange(back_ | kFresh) & kIndex;
   }
+  // Whether the writer published since the last update(); the reader's.
+  bool fresh() const { return (middle_.load() & kFresh) != 0; }
   bool update() {
     if (!(middle_.load() & kFresh)) return false;
     front_ = middle_.exchange(front_) & kIndex;

@@ -8,7 +8,7 @@ GF_PACKAGES=(
   build-essential cmake ninja-build pkg-config git
   ccache                      # compiles taken from the cache on a rebuild (cmake/buildSpeed.cmake)
   libbullet-dev libbullet-extras-dev libeigen3-dev libassimp-dev
-  libosmesa6-dev libimgui-dev libstb-dev libdeflate-dev
+  libosmesa6-dev libimgui-dev libstb-dev libdeflate-dev zlib1g-dev
   libgtest-dev libgmock-dev libbenchmark-dev
   libboost-dev libturbojpeg0-dev  # the browser view (--serve): HTTP front (Beast, Asio), JPEG frames
   libcpp-httplib-dev          # the serve tests' HTTP client

@@ -300,7 +300,7 @@ TEST(Serve, ASteeredDeviceGoesStraightToEachTargetFromWhereItIs) {
 }
 
 // A move counts once when taken and once when its device reaches the target (at once for 0 s):
-// the steps whose frame should be drawn early (ServedRun::afterStep, RenderThread::hurry).
+// the steps whose state is published at once as a viewer's input (ServedRun::afterStep, RenderThread::publishLatest).
 TEST(Serve, ASteeredDeviceCountsEachMoveTakenAndArrived) {
   sim::DeviceTrack track;
   track.keyframes = {{0.0, sim::Vec3(0, 0.1, 0)}};
