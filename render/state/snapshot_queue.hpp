@@ -4,9 +4,9 @@
 
 #include <atomic>
 #include <cstddef>
-#include <thread>
 #include <vector>
 
+#include "render/state/one_writer.hpp"
 #include "sim/assert.hpp"
 #include "sim/scene/snapshot.hpp"
 
@@ -23,14 +23,14 @@ class SnapshotQueue {
   explicit SnapshotQueue(std::size_t slots) : slots_(slots) { GF_ASSERT(slots >= 2); }
 
   sim::Snapshot* back() {
-    GF_ASSERT(writtenHere() && "one thread (the haptic thread) publishes realtime snapshots");
+    writer_.check();
     const std::size_t w = write_.load(std::memory_order_relaxed);
     // The reader holds slot (read_ - 1) while it draws; the writer stays off it.
     if (w + 1 - read_.load(std::memory_order_acquire) >= slots_.size()) return nullptr;
     return &slots_[w % slots_.size()];
   }
   void publish() {
-    GF_ASSERT(writtenHere() && "one thread (the haptic thread) publishes realtime snapshots");
+    writer_.check();
     write_.store(write_.load(std::memory_order_relaxed) + 1, std::memory_order_release);
   }
   // States published and not taken yet; the reader's.
@@ -47,15 +47,10 @@ class SnapshotQueue {
   const sim::Snapshot& front() const { return slots_[front_]; }
 
  private:
-  // The first caller becomes the writer.
-  bool writtenHere() {
-    if (writer_ == std::thread::id()) writer_ = std::this_thread::get_id();
-    return writer_ == std::this_thread::get_id();
-  }
   std::vector<sim::Snapshot> slots_;
   std::size_t front_ = 0;
   std::atomic<std::size_t> write_{0}, read_{0};
-  std::thread::id writer_;
+  OneWriter writer_;
 };
 
 }  // namespace gf::render

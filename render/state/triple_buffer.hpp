@@ -2,9 +2,8 @@
 #pragma once
 
 #include <atomic>
-#include <thread>
 
-#include "sim/assert.hpp"
+#include "render/state/one_writer.hpp"
 #include "sim/scene/snapshot.hpp"
 
 namespace gf::render {
@@ -15,11 +14,11 @@ namespace gf::render {
 class TripleBuffer {
  public:
   sim::Snapshot& back() {
-    GF_ASSERT(writtenHere() && "one thread (the haptic thread) publishes realtime snapshots");
+    writer_.check();
     return slots_[back_];
   }
   void publish() {
-    GF_ASSERT(writtenHere() && "one thread (the haptic thread) publishes realtime snapshots");
+    writer_.check();
     back_ = middle_.exchange(back_ | kFresh) & kIndex;
   }
   // Whether the writer published since the last update(); the reader's.
@@ -32,16 +31,11 @@ class TripleBuffer {
   const sim::Snapshot& front() const { return slots_[front_]; }
 
  private:
-  // The first caller becomes the writer.
-  bool writtenHere() {
-    if (writer_ == std::thread::id()) writer_ = std::this_thread::get_id();
-    return writer_ == std::this_thread::get_id();
-  }
   static constexpr int kFresh = 4, kIndex = 3;
   sim::Snapshot slots_[3];
   int back_ = 0, front_ = 1;
   std::atomic<int> middle_{2};
-  std::thread::id writer_;
+  OneWriter writer_;
 };
 
 }  // namespace gf::render
